@@ -1,0 +1,14 @@
+# Every dependency is a Debian package (../shared/BUILD_NOTES.md says how each one behaves).
+find_package(glm REQUIRED)
+find_package(TBB REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(nlohmann_json REQUIRED)
+find_package(ZLIB REQUIRED)
+find_package(PkgConfig REQUIRED)
+if(RTRT_WITH_OIIO)
+    # Debian's OpenImageIOConfig.cmake names a missing opencv4 include dir; pkg-config works.
+    pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+endif()
+if(RTRT_BUILD_TESTS)
+    find_package(GTest REQUIRED)
+endif()

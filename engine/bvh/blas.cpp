@@ -1,0 +1,62 @@
+#include "engine/bvh/blas.h"
+
+#include "engine/core/parallel_for.h"
+
+namespace rtrt {
+
+BlasView Blas::View() const {
+    return {nodes.data(),   triangles.data(), normals.empty() ? nullptr : normals.data(),
+            spheres.data(), kind,             PrimCount()};
+}
+
+size_t Blas::Bytes() const {
+    return nodes.size() * sizeof(BvhNode) + triangles.size() * sizeof(Triangle) +
+           normals.size() * sizeof(TriangleNormals) + spheres.size() * sizeof(Sphere);
+}
+
+Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options) {
+    const size_t count = mesh.indices.size();
+    std::vector<Triangle> source(count);
+    std::vector<Aabb> bounds(count);
+    ParallelFor(0, count, 4096, [&](size_t i) {
+        const glm::uvec3 idx = mesh.indices[i];
+        source[i] = {mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
+        bounds[i] = source[i].Bounds();
+    });
+    Bvh bvh = BuildBvh(bounds, options);
+
+    Blas blas;
+    blas.kind = GeometryKind::kTriangles;
+    blas.nodes = std::move(bvh.nodes);
+    blas.primIds = std::move(bvh.primOrder);
+    blas.triangles.resize(count);
+    const bool smooth = !mesh.normals.empty();
+    if (smooth) blas.normals.resize(count);
+    ParallelFor(0, count, 4096, [&](size_t slot) {
+        const uint32_t prim = blas.primIds[slot];
+        blas.triangles[slot] = source[prim];
+        if (smooth) {
+            const glm::uvec3 idx = mesh.indices[prim];
+            blas.normals[slot] = {mesh.normals[idx.x], mesh.normals[idx.y], mesh.normals[idx.z]};
+        }
+    });
+    blas.bounds = blas.nodes[0].Bounds();
+    return blas;
+}
+
+Blas BuildSphereBlas(std::span<const Sphere> spheres, const BvhBuildOptions& options) {
+    std::vector<Aabb> bounds(spheres.size());
+    for (size_t i = 0; i < spheres.size(); ++i) bounds[i] = spheres[i].Bounds();
+    Bvh bvh = BuildBvh(bounds, options);
+    Blas blas;
+    blas.kind = GeometryKind::kSpheres;
+    blas.nodes = std::move(bvh.nodes);
+    blas.primIds = std::move(bvh.primOrder);
+    blas.spheres.resize(spheres.size());
+    for (size_t slot = 0; slot < spheres.size(); ++slot)
+        blas.spheres[slot] = spheres[blas.primIds[slot]];
+    blas.bounds = blas.nodes[0].Bounds();
+    return blas;
+}
+
+}  // namespace rtrt

@@ -1,0 +1,41 @@
+#pragma once
+// Bottom-level acceleration structure: one BVH over one model's triangles or spheres, with the
+// primitives stored in leaf order. Built once per model (offline or at load), shared by every
+// instance of the model.
+#include <span>
+#include <vector>
+
+#include "engine/bvh/bvh_builder.h"
+#include "engine/bvh/primitives.h"
+#include "engine/bvh/triangle_mesh.h"
+
+namespace rtrt {
+
+// What the tracer needs of a BLAS: plain pointers, valid in host or device memory.
+struct BlasView {
+    const BvhNode* nodes;
+    const Triangle* triangles;        // kTriangles: leaf order
+    const TriangleNormals* normals;   // kTriangles: leaf order, or null for flat shading
+    const Sphere* spheres;            // kSpheres: leaf order
+    GeometryKind kind;
+    uint32_t primCount;
+};
+
+struct Blas {
+    GeometryKind kind = GeometryKind::kTriangles;
+    std::vector<BvhNode> nodes;
+    std::vector<Triangle> triangles;
+    std::vector<TriangleNormals> normals;
+    std::vector<Sphere> spheres;
+    std::vector<uint32_t> primIds;  // leaf slot -> index in the source mesh or sphere list
+    Aabb bounds;
+
+    uint32_t PrimCount() const { return uint32_t(primIds.size()); }
+    BlasView View() const;
+    size_t Bytes() const;  // what the tracer keeps of it (nodes, primitives, normals)
+};
+
+Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options = {});
+Blas BuildSphereBlas(std::span<const Sphere> spheres, const BvhBuildOptions& options = {});
+
+}  // namespace rtrt

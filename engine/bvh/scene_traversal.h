@@ -1,0 +1,123 @@
+#pragma once
+// Two-level traversal: the TLAS over instances, then each reached instance's BLAS in object
+// space. Object-space directions are not renormalised, so t means the same in both spaces.
+#include "engine/bvh/blas.h"
+#include "engine/bvh/instance.h"
+#include "engine/bvh/sphere_intersect.h"
+#include "engine/bvh/traversal.h"
+#include "engine/bvh/triangle_intersect.h"
+
+namespace rtrt {
+
+struct TlasView {
+    const BvhNode* nodes;
+    const uint32_t* instanceOrder;  // leaf slot -> instance index
+    const Instance* instances;
+    const BlasView* blases;
+};
+
+struct SceneHit {
+    float t;
+    uint32_t instance;
+    uint32_t prim;  // leaf slot in the instance's BLAS
+    float b1, b2;   // triangle barycentrics
+};
+
+RT_HD inline Ray ToObjectSpace(const Ray& ray, const Instance& inst) {
+    Ray r;
+    r.origin = inst.worldToObject.Point(ray.origin);
+    r.dir = inst.worldToObject.Vector(ray.dir);
+    r.tMax = ray.tMax;
+    r.pad = 0.0f;
+    return r;
+}
+
+RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, float& tMax,
+                                SceneHit* hit, TraversalStats* stats) {
+    const RaySetup setup = MakeRaySetup(objectRay);
+    if (blas.kind == GeometryKind::kTriangles) {
+        return TraverseClosest(
+            blas.nodes, setup, tMax,
+            [&](uint32_t slot, float& tBest) {
+                TriangleHit h;
+                if (!IntersectTriangle(blas.triangles[slot], setup, tBest, &h)) return false;
+                tBest = h.t;
+                hit->t = h.t;
+                hit->prim = slot;
+                hit->b1 = h.b1;
+                hit->b2 = h.b2;
+                return true;
+            },
+            stats);
+    }
+    return TraverseClosest(
+        blas.nodes, setup, tMax,
+        [&](uint32_t slot, float& tBest) {
+            float t;
+            if (!IntersectSphere(blas.spheres[slot], setup, tBest, &t)) return false;
+            tBest = t;
+            hit->t = t;
+            hit->prim = slot;
+            hit->b1 = hit->b2 = 0.0f;
+            return true;
+        },
+        stats);
+}
+
+RT_HD inline bool OccludedBlas(const BlasView& blas, const Ray& objectRay, float tMax,
+                               TraversalStats* stats) {
+    const RaySetup setup = MakeRaySetup(objectRay);
+    if (blas.kind == GeometryKind::kTriangles) {
+        return TraverseAny(
+            blas.nodes, setup, tMax,
+            [&](uint32_t slot, float tLimit) {
+                TriangleHit h;
+                return IntersectTriangle(blas.triangles[slot], setup, tLimit, &h);
+            },
+            stats);
+    }
+    return TraverseAny(
+        blas.nodes, setup, tMax,
+        [&](uint32_t slot, float tLimit) {
+            float t;
+            return IntersectSphere(blas.spheres[slot], setup, tLimit, &t);
+        },
+        stats);
+}
+
+// Closest hit along ray within (0, ray.tMax].
+RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit* hit,
+                                 TraversalStats* stats = nullptr) {
+    if (!IsTraceable(ray)) return false;
+    const RaySetup setup = MakeRaySetup(ray);
+    float tMax = ray.tMax;
+    return TraverseClosest(
+        scene.nodes, setup, tMax,
+        [&](uint32_t slot, float& tBest) {
+            const uint32_t id = scene.instanceOrder[slot];
+            const Instance& inst = scene.instances[id];
+            if (!IntersectBlas(scene.blases[inst.blasId], ToObjectSpace(ray, inst), tBest, hit,
+                               stats))
+                return false;
+            hit->instance = id;
+            return true;
+        },
+        stats);
+}
+
+// Whether anything blocks ray within (0, tMax).
+RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
+                                TraversalStats* stats = nullptr) {
+    if (!IsTraceable(ray)) return false;
+    const RaySetup setup = MakeRaySetup(ray);
+    return TraverseAny(
+        scene.nodes, setup, ray.tMax,
+        [&](uint32_t slot, float tLimit) {
+            const Instance& inst = scene.instances[scene.instanceOrder[slot]];
+            Ray objectRay = ToObjectSpace(ray, inst);
+            return OccludedBlas(scene.blases[inst.blasId], objectRay, tLimit, stats);
+        },
+        stats);
+}
+
+}  // namespace rtrt

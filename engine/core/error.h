@@ -1,0 +1,21 @@
+#pragma once
+// Errors at the API boundary of loaders and the CLI. Never thrown from RT_HD code.
+#include <stdexcept>
+#include <string>
+
+namespace rtrt {
+
+// Bad input from a user: a file, a field inside it and the reason. what() reads
+// "FILE: FIELD: REASON" (FIELD omitted when empty), the one line the CLI prints.
+class InputError : public std::runtime_error {
+public:
+    InputError(std::string file, std::string field, std::string reason);
+    const std::string& File() const { return file_; }
+    const std::string& Field() const { return field_; }
+    const std::string& Reason() const { return reason_; }
+
+private:
+    std::string file_, field_, reason_;
+};
+
+}  // namespace rtrt

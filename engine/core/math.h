@@ -1,0 +1,28 @@
+#pragma once
+// GLM vector types everywhere; GLM marks its functions __host__ __device__ by itself under nvcc
+// (do not define GLM_FORCE_CUDA, see BUILD_NOTES.md).
+#include <cmath>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "engine/core/rt_hd.h"
+
+namespace rtrt {
+
+using glm::ivec2;
+using glm::vec2;
+using glm::vec3;
+using glm::vec4;
+
+inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr float kInfinity = __builtin_huge_valf();
+
+RT_HD inline float MaxComponent(vec3 v) { return fmaxf(v.x, fmaxf(v.y, v.z)); }
+RT_HD inline int MaxDimension(vec3 v) {
+    return (v.x > v.y) ? (v.x > v.z ? 0 : 2) : (v.y > v.z ? 1 : 2);
+}
+RT_HD inline vec3 Abs(vec3 v) { return vec3(fabsf(v.x), fabsf(v.y), fabsf(v.z)); }
+RT_HD inline float Luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+}  // namespace rtrt

@@ -1,0 +1,29 @@
+#pragma once
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace rtrt {
+
+class Stopwatch {
+public:
+    Stopwatch() : start_(Clock::now()) {}
+    void Restart() { start_ = Clock::now(); }
+    double Milliseconds() const {
+        return std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point start_;
+};
+
+// Median of a sample (copied, since nth_element reorders).
+inline double Median(std::vector<double> samples) {
+    if (samples.empty()) return 0.0;
+    auto mid = samples.begin() + samples.size() / 2;
+    std::nth_element(samples.begin(), mid, samples.end());
+    return *mid;
+}
+
+}  // namespace rtrt

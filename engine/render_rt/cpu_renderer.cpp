@@ -1,0 +1,34 @@
+#include <atomic>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+#include "engine/render_rt/pixel_kernel.h"
+#include "engine/render_rt/renderer.h"
+
+namespace rtrt {
+
+Image RenderRaw(const RenderScene& scene, const RenderSettings& settings, RenderStats* stats) {
+    Image image(settings.width, settings.height);
+    const RenderSceneView view = scene.HostView(settings.width, settings.height, settings.maxDepth);
+    const uint32_t features =
+        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
+    constexpr uint32_t kTile = 16;
+    std::atomic<uint64_t> rays{0};
+    DispatchFeatures(features, [&](auto featureTag) {
+        constexpr uint32_t kFeatures = decltype(featureTag)::value;
+        tbb::parallel_for(
+            tbb::blocked_range2d<uint32_t>(0, settings.height, kTile, 0, settings.width, kTile),
+            [&](const tbb::blocked_range2d<uint32_t>& tile) {
+                uint32_t tileRays = 0;
+                for (uint32_t y = tile.rows().begin(); y != tile.rows().end(); ++y)
+                    for (uint32_t x = tile.cols().begin(); x != tile.cols().end(); ++x)
+                        image.At(x, y) = RawPixel<kFeatures>(view, settings.view, x, y, &tileRays);
+                rays += tileRays;
+            });
+    });
+    if (stats) stats->rays = rays.load();
+    return image;
+}
+
+}  // namespace rtrt

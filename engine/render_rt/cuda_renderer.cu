@@ -1,0 +1,114 @@
+// The CUDA back end: the RT_HD body of pixel_kernel.h, one thread per pixel, specialised per
+// scene feature set.
+#include <vector>
+
+#include "engine/render_rt/device_buffer.h"
+#include "engine/render_rt/pixel_kernel.h"
+#include "engine/render_rt/renderer.h"
+
+namespace rtrt {
+namespace {
+
+template <uint32_t kFeatures>
+__global__ void TraceKernel(RenderSceneView scene, ViewMode view, vec3* out,
+                            unsigned long long* rayCount) {
+    const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
+    const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
+    if (x >= scene.width || y >= scene.height) return;
+    uint32_t rays = 0;
+    out[size_t(y) * scene.width + x] = RawPixel<kFeatures>(scene, view, x, y, &rays);
+    if (rayCount) atomicAdd(rayCount, (unsigned long long)rays);
+}
+
+// The scene's arrays in device memory, uploaded once per render call.
+struct DeviceScene {
+    std::vector<DeviceBuffer<BvhNode>> blasNodes;
+    std::vector<DeviceBuffer<Triangle>> triangles;
+    std::vector<DeviceBuffer<TriangleNormals>> normals;
+    std::vector<DeviceBuffer<Sphere>> spheres;
+    DeviceBuffer<BlasView> blasViews;
+    DeviceBuffer<BvhNode> tlasNodes;
+    DeviceBuffer<uint32_t> instanceOrder;
+    DeviceBuffer<Instance> instances;
+    DeviceBuffer<Material> materials;
+    DeviceBuffer<Light> lights;
+
+    explicit DeviceScene(const RenderScene& scene) {
+        std::vector<BlasView> views;
+        for (const auto& blas : scene.blases) {
+            blasNodes.emplace_back(std::span<const BvhNode>(blas->nodes));
+            triangles.emplace_back(std::span<const Triangle>(blas->triangles));
+            normals.emplace_back(std::span<const TriangleNormals>(blas->normals));
+            spheres.emplace_back(std::span<const Sphere>(blas->spheres));
+            BlasView v = blas->View();
+            v.nodes = blasNodes.back().Data();
+            v.triangles = triangles.back().Data();
+            v.normals = blas->normals.empty() ? nullptr : normals.back().Data();
+            v.spheres = spheres.back().Data();
+            views.push_back(v);
+        }
+        blasViews.Upload(views);
+        tlasNodes.Upload(scene.GetTlas().nodes);
+        instanceOrder.Upload(scene.GetTlas().instanceOrder);
+        instances.Upload(scene.instances);
+        materials.Upload(scene.materials);
+        lights.Upload(scene.lights);
+    }
+
+    RenderSceneView View(const RenderScene& scene, const RenderSettings& s) const {
+        RenderSceneView view = scene.HostView(s.width, s.height, s.maxDepth);
+        view.tlas = {tlasNodes.Data(), instanceOrder.Data(), instances.Data(), blasViews.Data()};
+        view.materials = materials.Data();
+        view.lights = lights.Data();
+        return view;
+    }
+};
+
+}  // namespace
+
+bool CudaBackendAvailable(std::string* why) {
+    int count = 0;
+    const cudaError_t status = cudaGetDeviceCount(&count);
+    if (status != cudaSuccess || count == 0) {
+        if (why)
+            *why = std::string("no CUDA device is usable here (") +
+                   (status != cudaSuccess ? cudaGetErrorString(status) : "no device found") + ")";
+        return false;
+    }
+    return true;
+}
+
+Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings,
+                    RenderStats* stats) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use --backend cpu");
+    DeviceScene device(scene);
+    const RenderSceneView view = device.View(scene, settings);
+    DeviceBuffer<unsigned long long> rayCount;
+    if (stats) {
+        rayCount.Resize(1);
+        RT_CUDA_CHECK(cudaMemset(rayCount.Data(), 0, sizeof(unsigned long long)));
+    }
+    DeviceBuffer<vec3> frame;
+    frame.Resize(size_t(settings.width) * settings.height);
+    const dim3 block(8, 8);
+    const dim3 grid((settings.width + block.x - 1) / block.x, (settings.height + block.y - 1) / block.y);
+    const uint32_t features =
+        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
+    DispatchFeatures(features, [&](auto featureTag) {
+        constexpr uint32_t kFeatures = decltype(featureTag)::value;
+        TraceKernel<kFeatures><<<grid, block>>>(view, settings.view, frame.Data(), rayCount.Data());
+        RT_CUDA_CHECK_LAUNCH();
+    });
+    RT_CUDA_CHECK(cudaDeviceSynchronize());
+    Image image(settings.width, settings.height);
+    frame.Download(image.pixels);
+    if (stats) {
+        unsigned long long rays = 0;
+        rayCount.Download(std::span<unsigned long long>(&rays, 1));
+        stats->rays = rays;
+    }
+    return image;
+}
+
+}  // namespace rtrt

@@ -1,0 +1,17 @@
+// Built when nvcc is absent: the CUDA back end reports why it cannot run.
+#include <stdexcept>
+
+#include "engine/render_rt/renderer.h"
+
+namespace rtrt {
+
+bool CudaBackendAvailable(std::string* why) {
+    if (why) *why = "this rtrt was built without CUDA (nvcc was not found at configure time)";
+    return false;
+}
+
+Image RenderRawCuda(const RenderScene&, const RenderSettings&, RenderStats*) {
+    throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
+}
+
+}  // namespace rtrt

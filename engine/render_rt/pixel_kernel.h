@@ -1,0 +1,46 @@
+#pragma once
+// One pixel of one view, as both back ends compute it, and the dispatch from a runtime feature
+// mask to the compile-time specialisation.
+#include <type_traits>
+
+#include "engine/render_rt/trace.h"
+
+namespace rtrt {
+
+// The raw value a view stores before the host finishes the image (FinishView): shaded colour,
+// the normal, the primary hit distance, or the heatmap's traversal counts (nodes, primitives).
+template <uint32_t kFeatures>
+RT_HD inline vec3 RawPixel(const RenderSceneView& scene, ViewMode view, uint32_t x, uint32_t y,
+                           uint32_t* rays) {
+    const PixelResult r = TracePixel<kFeatures>(scene, x, y);
+    *rays += r.rays;
+    switch (view) {
+        case ViewMode::kNormals: return r.normal;
+        case ViewMode::kDepth: return vec3(r.depth);
+        case ViewMode::kHeatmap:
+            return vec3(float(r.stats.nodesVisited), float(r.stats.primsTested), 0.0f);
+        default: return r.color;
+    }
+}
+
+// Views other than shaded need only the primary hit: their specialisation has no secondary rays.
+inline uint32_t EffectiveFeatures(uint32_t sceneFeatures, uint32_t enabled, ViewMode view) {
+    if (view != ViewMode::kShaded) return 0u;
+    return sceneFeatures & enabled;
+}
+
+template <typename Fn>
+decltype(auto) DispatchFeatures(uint32_t features, Fn&& fn) {
+    switch (features & kAllFeatures) {
+        case 0: return fn(std::integral_constant<uint32_t, 0>{});
+        case 1: return fn(std::integral_constant<uint32_t, 1>{});
+        case 2: return fn(std::integral_constant<uint32_t, 2>{});
+        case 3: return fn(std::integral_constant<uint32_t, 3>{});
+        case 4: return fn(std::integral_constant<uint32_t, 4>{});
+        case 5: return fn(std::integral_constant<uint32_t, 5>{});
+        case 6: return fn(std::integral_constant<uint32_t, 6>{});
+        default: return fn(std::integral_constant<uint32_t, 7>{});
+    }
+}
+
+}  // namespace rtrt

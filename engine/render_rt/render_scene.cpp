@@ -1,0 +1,73 @@
+#include "engine/render_rt/render_scene.h"
+
+#include <algorithm>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+namespace rtrt {
+
+uint32_t RenderScene::AddBlas(std::shared_ptr<const Blas> blas) {
+    blases.push_back(std::move(blas));
+    return uint32_t(blases.size() - 1);
+}
+
+uint32_t RenderScene::AddMaterial(const Material& material) {
+    materials.push_back(material);
+    return uint32_t(materials.size() - 1);
+}
+
+uint32_t RenderScene::AddInstance(uint32_t blasId, uint32_t materialId,
+                                  const glm::mat4& objectToWorld) {
+    Instance inst{};
+    inst.objectToWorld = AffineFromMat4(objectToWorld);
+    inst.worldToObject = AffineFromMat4(glm::affineInverse(objectToWorld));
+    inst.blasId = blasId;
+    inst.materialId = materialId;
+    instances.push_back(inst);
+    return uint32_t(instances.size() - 1);
+}
+
+void RenderScene::BuildTlas() {
+    std::vector<Aabb> blasBounds;
+    blasViews_.clear();
+    for (const auto& blas : blases) {
+        blasBounds.push_back(blas->bounds);
+        blasViews_.push_back(blas->View());
+    }
+    tlas_ = rtrt::BuildTlas(instances, blasBounds);
+}
+
+uint32_t RenderScene::Features() const {
+    uint32_t features = lights.empty() ? 0u : kFeatureShadows;
+    for (const Material& m : materials) {
+        if (m.reflectivity > 0.0f) features |= kFeatureReflection;
+        if (m.transmissivity > 0.0f) features |= kFeatureRefraction | kFeatureReflection;
+    }
+    return features;
+}
+
+uint64_t RenderScene::TriangleCount() const {
+    uint64_t count = 0;
+    for (const Instance& inst : instances) {
+        const Blas& blas = *blases[inst.blasId];
+        if (blas.kind == GeometryKind::kTriangles) count += blas.PrimCount();
+    }
+    return count;
+}
+
+RenderSceneView RenderScene::HostView(uint32_t width, uint32_t height, uint32_t depth) const {
+    RenderSceneView view;
+    view.tlas = {tlas_.nodes.data(), tlas_.instanceOrder.data(), instances.data(),
+                 blasViews_.data()};
+    view.materials = materials.data();
+    view.lights = lights.data();
+    view.lightCount = uint32_t(lights.size());
+    view.maxDepth = std::clamp(depth, 1u, kMaxRayDepth);
+    view.camera = MakeCameraFrame(camera, width, height);
+    view.background = background;
+    view.width = width;
+    view.height = height;
+    return view;
+}
+
+}  // namespace rtrt

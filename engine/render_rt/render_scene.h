@@ -1,0 +1,42 @@
+#pragma once
+// The host-side scene a back end renders: BLASes shared between instances, instance records, a
+// TLAS over them, materials, lights and camera. The game extracts it from scene files or the
+// ECS; render_rt knows nothing of either.
+#include <memory>
+#include <vector>
+
+#include "engine/bvh/tlas.h"
+#include "engine/render_rt/render_scene_view.h"
+
+namespace rtrt {
+
+struct RenderScene {
+    std::vector<std::shared_ptr<const Blas>> blases;
+    std::vector<Instance> instances;
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    Camera camera;
+    vec3 background{0.2f, 0.3f, 0.5f};
+    uint32_t maxDepth = 4;
+
+    uint32_t AddBlas(std::shared_ptr<const Blas> blas);
+    uint32_t AddMaterial(const Material& material);
+    uint32_t AddInstance(uint32_t blasId, uint32_t materialId, const glm::mat4& objectToWorld);
+
+    // Rebuilds the TLAS over the current instances; call after adding or moving instances.
+    void BuildTlas();
+    // The SceneFeature bits this scene's materials and lights call for.
+    uint32_t Features() const;
+    uint64_t TriangleCount() const;  // over all instances
+
+    const Tlas& GetTlas() const { return tlas_; }
+    const std::vector<BlasView>& BlasViews() const { return blasViews_; }
+    // View into host memory for the CPU back end.
+    RenderSceneView HostView(uint32_t width, uint32_t height, uint32_t maxDepth) const;
+
+private:
+    Tlas tlas_;
+    std::vector<BlasView> blasViews_;
+};
+
+}  // namespace rtrt

@@ -1,0 +1,24 @@
+#pragma once
+// Everything a trace kernel reads, as plain pointers into host or device memory.
+#include "engine/bvh/scene_traversal.h"
+#include "engine/render_rt/camera.h"
+#include "engine/render_rt/material.h"
+#include "engine/render_rt/scene_features.h"
+
+namespace rtrt {
+
+struct RenderSceneView {
+    TlasView tlas;
+    const Material* materials;
+    const Light* lights;
+    uint32_t lightCount;
+    uint32_t maxDepth;  // rays per path: 1 = primary only, 2 = primary plus one bounce
+    CameraFrame camera;
+    vec3 background;
+    uint32_t width, height;
+};
+
+// The largest maxDepth the per-pixel ray stack holds (each bounce adds at most one entry).
+inline constexpr uint32_t kMaxRayDepth = 16;
+
+}  // namespace rtrt

@@ -1,0 +1,166 @@
+// `rtrt bench cpu`: BLAS build time and SAH cost per builder, and CPU frame time and rays per
+// second on the paper scene (paper_scene.h), for the cube, the teapot and the dragons.
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/core/timer.h"
+#include "engine/render_rt/renderer.h"
+#include "game/commands.h"
+#include "game/mesh_io.h"
+#include "game/model_dir.h"
+#include "game/paper_scene.h"
+#include "game/procedural_shapes.h"
+#include "game/teapot.h"
+
+namespace rtrt {
+namespace {
+
+struct BenchOptions {
+    int frames = 7;
+    std::string output;
+    std::vector<std::string> models{"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"};
+    std::vector<std::string> builders{"binned", "sweep", "centroid"};
+};
+
+std::string CommandOutput(const char* command) {
+    std::string out;
+    if (FILE* pipe = popen(command, "r")) {
+        char buffer[256];
+        while (fgets(buffer, sizeof(buffer), pipe)) out += buffer;
+        pclose(pipe);
+    }
+    while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+    return out;
+}
+
+nlohmann::json MachineInfo() {
+    nlohmann::json m;
+    m["cpu"] = CommandOutput("grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //'");
+    m["threads"] = std::thread::hardware_concurrency();
+    m["host"] = CommandOutput("hostname");
+    m["commit"] = CommandOutput("git rev-parse --short HEAD 2>/dev/null");
+    std::time_t now = std::time(nullptr);
+    char date[32];
+    std::strftime(date, sizeof(date), "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+    m["date"] = date;
+    return m;
+}
+
+// Loads a benchmark model, fitted to extent 5; false (with a note) when its file is missing.
+bool LoadBenchModel(const std::string& name, TriangleMesh* mesh) {
+    const std::string dir = ModelDir();
+    std::string path;
+    if (name == "cube") {
+        *mesh = MakeBoxMesh(vec3(1.0f));
+    } else if (name == "teapot") {
+        path = dir + "/teapot.inc";
+        if (!std::filesystem::exists(path)) return false;
+        *mesh = TessellateTeapot(path, 6);
+    } else {
+        const std::string suffix = name == "dragon" ? "" : name.substr(6);  // "_res4"
+        path = dir + "/dragon_vrip" + suffix + ".ply.gz";
+        if (!std::filesystem::exists(path)) return false;
+        *mesh = LoadMesh(path);
+    }
+    FitMesh(*mesh, 5.0f);
+    return true;
+}
+
+void RunBench(const BenchOptions& o) {
+    nlohmann::json report;
+    report["machine"] = MachineInfo();
+    report["scene"] = "paper scene, 1920x1080, max depth 2, one ray per pixel centre";
+    std::printf("rtrt bench cpu: %s, %u threads\n", report["machine"]["cpu"].get<std::string>().c_str(),
+                std::thread::hardware_concurrency());
+    std::printf("%-12s %10s %-9s %10s %9s %8s | %10s %8s %9s\n", "model", "triangles", "builder",
+                "build ms", "SAH cost", "nodes", "frame ms", "M rays", "M rays/s");
+    for (const std::string& name : o.models) {
+        TriangleMesh mesh;
+        Stopwatch loadTimer;
+        if (!LoadBenchModel(name, &mesh)) {
+            std::printf("%-12s skipped: model file missing in %s (run tools/fetch_models.sh)\n", name.c_str(),
+                        ModelDir().c_str());
+            continue;
+        }
+        nlohmann::json row;
+        row["model"] = name;
+        row["triangles"] = mesh.indices.size();
+        row["load_ms"] = loadTimer.Milliseconds();
+        std::shared_ptr<const Blas> binned;
+        for (const std::string& builderName : o.builders) {
+            BvhBuildOptions options;
+            ParseBuilder(builderName, &options.builder);
+            std::vector<double> times;
+            Blas blas;
+            Stopwatch total;
+            do {
+                Stopwatch t;
+                blas = BuildTriangleBlas(mesh, options);
+                times.push_back(t.Milliseconds());
+            } while (times.size() < 5 && total.Milliseconds() < 1500.0);
+            const BvhStats stats = ComputeStats(blas.nodes);
+            row["builders"][builderName] = {{"build_ms", Median(times)}, {"sah_cost", stats.sahCost},
+                                            {"nodes", stats.nodeCount}, {"max_depth", stats.maxDepth},
+                                            {"bytes", blas.Bytes()}, {"runs", times.size()}};
+            std::printf("%-12s %10zu %-9s %10.1f %9.2f %8u |", name.c_str(), mesh.indices.size(),
+                        builderName.c_str(), Median(times), stats.sahCost, stats.nodeCount);
+            std::fflush(stdout);
+            // Each builder's tree traces the paper scene, so SAH cost can be read against time.
+            const RenderScene scene = MakePaperScene(std::make_shared<const Blas>(std::move(blas)));
+            RenderSettings settings{kPaperWidth, kPaperHeight, kPaperMaxDepth};
+            RenderStats renderStats;
+            RenderRaw(scene, settings, &renderStats);  // warm-up
+            std::vector<double> frameTimes;
+            for (int i = 0; i < o.frames; ++i) {
+                Stopwatch t;
+                RenderRaw(scene, settings, &renderStats);
+                frameTimes.push_back(t.Milliseconds());
+            }
+            const double frameMs = Median(frameTimes);
+            const double mrays = double(renderStats.rays) * 1e-6;
+            row["builders"][builderName]["frame_ms"] = frameMs;
+            row["builders"][builderName]["rays"] = renderStats.rays;
+            row["builders"][builderName]["mrays_per_s"] = mrays / (frameMs * 1e-3);
+            std::printf(" %10.1f %8.2f %9.1f\n", frameMs, mrays, mrays / (frameMs * 1e-3));
+        }
+        report["models"].push_back(row);
+    }
+    if (!o.output.empty()) {
+        std::ofstream(o.output) << report.dump(2) << "\n";
+        std::printf("rtrt: wrote %s\n", o.output.c_str());
+    }
+}
+
+}  // namespace
+
+void AddBenchCommand(CLI::App& app, int* exitCode) {
+    CLI::App* bench = app.add_subcommand("bench", "Benchmarks (see README: Benchmarks)");
+    bench->require_subcommand(1);
+    auto options = std::make_shared<BenchOptions>();
+    CLI::App* cpu = bench->add_subcommand(
+        "cpu", "BLAS build time and SAH cost per builder, CPU frame time on the paper scene");
+    cpu->add_option("--frames", options->frames, "Timed frames per model (median reported)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    cpu->add_option("--models", options->models, "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
+        ->check(CLI::IsMember({"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
+        ->delimiter(',');
+    cpu->add_option("--builders", options->builders, "binned, sweep, centroid")
+        ->check(CLI::IsMember({"binned", "sweep", "centroid"}))
+        ->delimiter(',');
+    cpu->add_option("-o,--output", options->output, "Write the results as JSON here");
+    cpu->callback([options, exitCode] {
+        RunBench(*options);
+        *exitCode = kExitOk;
+    });
+}
+
+}  // namespace rtrt

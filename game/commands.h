@@ -1,0 +1,15 @@
+#pragma once
+// The rtrt subcommands. Each registers itself on the app and sets *exitCode when it runs.
+#include <CLI/CLI.hpp>
+
+namespace rtrt {
+
+// Exit statuses scripts can rely on.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;     // the work itself failed (GPU error, I/O error)
+inline constexpr int kExitBadInput = 2;    // bad command line, scene, model or output path
+
+void AddRenderCommand(CLI::App& app, int* exitCode);
+void AddBenchCommand(CLI::App& app, int* exitCode);
+
+}  // namespace rtrt

@@ -1,0 +1,18 @@
+#pragma once
+#include <string>
+
+#include "engine/render_rt/image.h"
+
+namespace rtrt {
+
+// Throws InputError unless path names a format rtrt can write (PNG, EXR, ... through
+// OpenImageIO; PPM and PFM without it). Called before rendering so bad paths fail early.
+void CheckImagePath(const std::string& path);
+
+// Writes through a temporary file renamed into place: a failure leaves no partial output.
+// 8-bit formats store clamp(value) * 255 rounded; float formats store the values.
+void WriteImage(const std::string& path, const Image& image);
+
+Image ReadImage(const std::string& path);
+
+}  // namespace rtrt

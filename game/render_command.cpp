@@ -1,0 +1,106 @@
+#include <cstdio>
+#include <string>
+
+#include "engine/core/error.h"
+#include "engine/core/timer.h"
+#include "engine/render_rt/renderer.h"
+#include "game/commands.h"
+#include "game/default_scene.h"
+#include "game/image_io.h"
+#include "game/scene_file.h"
+
+namespace rtrt {
+namespace {
+
+struct RenderOptions {
+    std::string scene = "default";
+    std::string output;
+    std::string size;
+    std::string backend = "cpu";
+    std::string view = "shaded";
+    int maxDepth = 0;  // 0: the scene's own
+};
+
+void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
+    unsigned long w = 0, h = 0;
+    size_t x = text.find('x');
+    try {
+        size_t used = 0;
+        if (x == std::string::npos) throw std::invalid_argument("");
+        w = std::stoul(text.substr(0, x), &used);
+        if (used != x) throw std::invalid_argument("");
+        h = std::stoul(text.substr(x + 1), &used);
+        if (used != text.size() - x - 1) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+        throw InputError("--size", "", "expected WIDTHxHEIGHT such as 1920x1080, got \"" + text + "\"");
+    }
+    if (w < 1 || h < 1 || w > 16384 || h > 16384)
+        throw InputError("--size", "", "width and height must be between 1 and 16384, got " + text);
+    *width = uint32_t(w);
+    *height = uint32_t(h);
+}
+
+ViewMode ParseView(const std::string& view) {
+    if (view == "normals") return ViewMode::kNormals;
+    if (view == "depth") return ViewMode::kDepth;
+    if (view == "heatmap") return ViewMode::kHeatmap;
+    return ViewMode::kShaded;
+}
+
+void RunRender(const RenderOptions& o) {
+    CheckImagePath(o.output);
+    RenderSettings settings;
+    LoadedScene loaded;
+    Stopwatch loadTimer;
+    if (o.scene == "default") loaded.scene = MakeDefaultScene();
+    else loaded = LoadSceneFile(o.scene);
+    const double loadMs = loadTimer.Milliseconds();
+    settings.width = loaded.width.value_or(1280);
+    settings.height = loaded.height.value_or(720);
+    if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
+    settings.maxDepth = o.maxDepth > 0 ? uint32_t(o.maxDepth) : loaded.scene.maxDepth;
+    settings.view = ParseView(o.view);
+    const Backend backend = o.backend == "cuda" ? Backend::kCuda : Backend::kCpu;
+    std::string why;
+    if (backend == Backend::kCuda && !CudaBackendAvailable(&why))
+        throw InputError("--backend", "cuda", why + "; use --backend cpu");
+
+    Stopwatch renderTimer;
+    RenderStats stats;
+    Image raw = backend == Backend::kCuda ? RenderRawCuda(loaded.scene, settings, &stats)
+                                          : RenderRaw(loaded.scene, settings, &stats);
+    const double renderMs = renderTimer.Milliseconds();
+    HeatmapScale heat;
+    WriteImage(o.output, FinishView(raw, settings.view, &heat));
+    std::printf("rtrt: wrote %s (%ux%u, %s back end, %s view): scene %.1f ms, render %.1f ms, %.2f M rays\n",
+                o.output.c_str(), settings.width, settings.height, o.backend.c_str(), o.view.c_str(),
+                loadMs, renderMs, double(stats.rays) * 1e-6);
+    if (settings.view == ViewMode::kHeatmap)
+        std::printf("rtrt: heatmap scale: 0 to %.0f traversal steps (nodes visited + primitives tested) per primary ray\n",
+                    heat.maxSteps);
+}
+
+}  // namespace
+
+void AddRenderCommand(CLI::App& app, int* exitCode) {
+    auto options = std::make_shared<RenderOptions>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene file (or the built-in default scene) to an image");
+    cmd->add_option("scene", options->scene, "Scene file (.json), or \"default\" for the built-in scene")
+        ->capture_default_str();
+    cmd->add_option("-o,--output", options->output, "Output image (.png, .exr, ...)")->required();
+    cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the scene's, else 1280x720)");
+    cmd->add_option("--backend", options->backend, "cpu or cuda")
+        ->check(CLI::IsMember({"cpu", "cuda"}))
+        ->capture_default_str();
+    cmd->add_option("--max-depth", options->maxDepth, "Rays per path: 1 = primary only (default: the scene's)")
+        ->check(CLI::Range(1, 16));
+    cmd->add_option("--view", options->view, "shaded, normals, depth or heatmap")
+        ->check(CLI::IsMember({"shaded", "normals", "depth", "heatmap"}))
+        ->capture_default_str();
+    cmd->callback([options, exitCode] {
+        RunRender(*options);
+        *exitCode = kExitOk;
+    });
+}
+
+}  // namespace rtrt

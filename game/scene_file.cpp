@@ -1,0 +1,342 @@
+#include "game/scene_file.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "engine/core/error.h"
+#include "game/mesh_io.h"
+#include "game/model_dir.h"
+#include "game/procedural_shapes.h"
+#include "game/teapot.h"
+
+namespace rtrt {
+namespace {
+
+using Json = nlohmann::json;
+
+const char* TypeName(const Json& j) { return j.type_name(); }
+
+// One JSON object of the scene file at a known path. Reading a key marks it as known; Finish()
+// rejects any key nobody read, so a typo never passes silently.
+class Fields {
+public:
+    Fields(const Json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {
+        if (!j.is_object()) Fail("", std::string("expected an object, got ") + TypeName(j));
+    }
+
+    bool Has(const std::string& key) {
+        allowed_.insert(key);
+        return j_.contains(key);
+    }
+    const Json& Get(const std::string& key) {
+        if (!Has(key)) Fail(key, "missing required field");
+        return j_.at(key);
+    }
+
+    float Number(const std::string& key, std::optional<float> fallback = std::nullopt) {
+        if (!Has(key)) return fallback ? *fallback : Missing<float>(key);
+        return ToNumber(j_.at(key), key);
+    }
+    float Positive(const std::string& key, std::optional<float> fallback = std::nullopt) {
+        const float v = Number(key, fallback);
+        if (!(v > 0.0f)) Fail(key, "must be greater than 0, got " + Format(v));
+        return v;
+    }
+    float InRange(const std::string& key, float lo, float hi, float fallback) {
+        const float v = Number(key, fallback);
+        if (!(v >= lo && v <= hi))
+            Fail(key, "must be between " + Format(lo) + " and " + Format(hi) + ", got " + Format(v));
+        return v;
+    }
+    uint32_t Count(const std::string& key, uint32_t lo, uint32_t hi, uint32_t fallback) {
+        if (!Has(key)) return fallback;
+        const Json& v = j_.at(key);
+        if (!v.is_number_integer() && !v.is_number_unsigned())
+            Fail(key, std::string("expected an integer, got ") + TypeName(v));
+        const int64_t n = v.get<int64_t>();
+        if (n < lo || n > hi)
+            Fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
+                          ", got " + std::to_string(n));
+        return uint32_t(n);
+    }
+    vec3 Vec3(const std::string& key, std::optional<vec3> fallback = std::nullopt) {
+        if (!Has(key)) return fallback ? *fallback : Missing<vec3>(key);
+        const Json& v = j_.at(key);
+        if (!v.is_array() || v.size() != 3)
+            Fail(key, std::string("expected an array of 3 numbers, got ") +
+                          (v.is_array() ? std::to_string(v.size()) + " elements" : TypeName(v)));
+        return vec3(ToNumber(v[0], key + "[0]"), ToNumber(v[1], key + "[1]"), ToNumber(v[2], key + "[2]"));
+    }
+    // A colour: 3 numbers, or one number for grey.
+    vec3 Colour(const std::string& key, vec3 fallback) {
+        if (Has(key) && j_.at(key).is_number()) return vec3(Number(key));
+        const vec3 c = Vec3(key, fallback);
+        if (c.x < 0 || c.y < 0 || c.z < 0) Fail(key, "colour components must not be negative");
+        return c;
+    }
+    std::string String(const std::string& key, std::optional<std::string> fallback = std::nullopt) {
+        if (!Has(key)) return fallback ? *fallback : Missing<std::string>(key);
+        const Json& v = j_.at(key);
+        if (!v.is_string()) Fail(key, std::string("expected a string, got ") + TypeName(v));
+        return v.get<std::string>();
+    }
+
+    void Finish() {
+        for (const auto& [key, value] : j_.items()) {
+            if (allowed_.count(key)) continue;
+            std::string known;
+            for (const std::string& k : allowed_) known += (known.empty() ? "" : ", ") + k;
+            Fail(key, "unknown field (known fields here: " + known + ")");
+        }
+    }
+
+    std::string Path(const std::string& key) const {
+        if (key.empty()) return path_;
+        return path_.empty() ? key : path_ + "." + key;
+    }
+    [[noreturn]] void Fail(const std::string& key, const std::string& reason) const {
+        throw InputError(file_, Path(key), reason);
+    }
+
+private:
+    template <typename T>
+    [[noreturn]] T Missing(const std::string& key) const {
+        Fail(key, "missing required field");
+    }
+    float ToNumber(const Json& v, const std::string& key) const {
+        if (!v.is_number()) Fail(key, std::string("expected a number, got ") + TypeName(v));
+        const double d = v.get<double>();
+        if (!std::isfinite(d) || std::fabs(d) > 3.0e38) Fail(key, "number out of range");
+        return float(d);
+    }
+    static std::string Format(float v) {
+        std::ostringstream s;
+        s << v;
+        return s.str();
+    }
+
+    const Json& j_;
+    std::string path_;
+    const std::string& file_;
+    std::set<std::string> allowed_;
+};
+
+class SceneParser {
+public:
+    SceneParser(std::string name, std::string baseDir) : file_(std::move(name)), baseDir_(std::move(baseDir)) {}
+
+    LoadedScene Parse(const std::string& text) {
+        Json root;
+        try {
+            root = Json::parse(text);
+        } catch (const Json::parse_error& e) {
+            throw InputError(file_, "", std::string("malformed JSON: ") + e.what());
+        }
+        Fields top(root, "", file_);
+        LoadedScene out;
+        RenderScene& scene = out.scene;
+        if (top.Has("camera")) scene.camera = ParseCamera(top.Get("camera"));
+        scene.background = top.Colour("background", scene.background);
+        scene.maxDepth = top.Count("max_depth", 1, 16, scene.maxDepth);
+        if (top.Has("image")) {
+            Fields image(top.Get("image"), "image", file_);
+            out.width = image.Count("width", 1, 16384, 1280);
+            out.height = image.Count("height", 1, 16384, 720);
+            image.Finish();
+        }
+        if (top.Has("materials")) ParseMaterials(top.Get("materials"), scene);
+        if (top.Has("lights")) ParseLights(top.Get("lights"), scene);
+        if (top.Has("models")) ParseModels(top.Get("models"), scene);
+        ParseInstances(top.Get("instances"), scene);
+        top.Finish();
+        scene.BuildTlas();
+        return out;
+    }
+
+private:
+    Camera ParseCamera(const Json& j) {
+        Fields f(j, "camera", file_);
+        Camera c;
+        c.position = f.Vec3("position", c.position);
+        if (f.Has("look_at") && f.Has("forward")) f.Fail("look_at", "give either look_at or forward, not both");
+        if (f.Has("look_at")) c.forward = f.Vec3("look_at") - c.position;
+        else c.forward = f.Vec3("forward", c.forward);
+        c.up = f.Vec3("up", c.up);
+        c.fovYDegrees = f.InRange("fov_y", 1.0f, 179.0f, c.fovYDegrees);
+        if (glm::length(c.forward) == 0.0f) f.Fail("forward", "the view direction has zero length");
+        if (glm::length(glm::cross(c.forward, c.up)) < 1e-6f * glm::length(c.forward) * glm::length(c.up))
+            f.Fail("up", "up must not be parallel to the view direction (or zero)");
+        f.Finish();
+        return c;
+    }
+
+    void ParseMaterials(const Json& j, RenderScene& scene) {
+        if (!j.is_object()) throw InputError(file_, "materials", std::string("expected an object of named materials, got ") + TypeName(j));
+        for (const auto& [name, value] : j.items()) {
+            Fields f(value, "materials." + name, file_);
+            Material m;
+            m.diffuse = f.Colour("diffuse", m.diffuse);
+            m.ambient = f.Colour("ambient", 0.1f * m.diffuse);
+            m.specular = f.Colour("specular", m.specular);
+            m.shininess = f.InRange("shininess", 0.0f, 1e6f, m.shininess);
+            m.reflectivity = f.InRange("reflectivity", 0.0f, 1.0f, m.reflectivity);
+            m.transmissivity = f.InRange("transmissivity", 0.0f, 1.0f, m.transmissivity);
+            m.ior = f.InRange("ior", 1.0f, 10.0f, m.ior);
+            if (m.reflectivity + m.transmissivity > 1.0f)
+                f.Fail("transmissivity", "reflectivity + transmissivity must not exceed 1");
+            f.Finish();
+            materialIds_[name] = scene.AddMaterial(m);
+        }
+    }
+
+    void ParseLights(const Json& j, RenderScene& scene) {
+        if (!j.is_array()) throw InputError(file_, "lights", std::string("expected an array, got ") + TypeName(j));
+        for (size_t i = 0; i < j.size(); ++i) {
+            Fields f(j[i], "lights[" + std::to_string(i) + "]", file_);
+            Light light;
+            const std::string type = f.String("type");
+            if (type == "directional") {
+                light.type = LightType::kDirectional;
+                const vec3 d = f.Vec3("direction");
+                if (glm::length(d) == 0.0f) f.Fail("direction", "direction has zero length");
+                light.vector = glm::normalize(d);
+            } else if (type == "point") {
+                light.type = LightType::kPoint;
+                light.vector = f.Vec3("position");
+            } else {
+                f.Fail("type", "unknown light type \"" + type + "\" (expected directional or point)");
+            }
+            light.color = f.Colour("color", vec3(1.0f));
+            f.Finish();
+            scene.lights.push_back(light);
+        }
+    }
+
+    void ParseModels(const Json& j, RenderScene& scene) {
+        if (!j.is_object()) throw InputError(file_, "models", std::string("expected an object of named models, got ") + TypeName(j));
+        for (const auto& [name, value] : j.items()) {
+            Fields f(value, "models." + name, file_);
+            modelIds_[name] = scene.AddBlas(std::make_shared<const Blas>(ParseModel(f)));
+            f.Finish();
+        }
+    }
+
+    Blas ParseModel(Fields& f) {
+        BvhBuildOptions options;
+        const std::string builder = f.String("builder", "binned");
+        if (!ParseBuilder(builder, &options.builder))
+            f.Fail("builder", "unknown builder \"" + builder + "\" (expected binned, sweep or centroid)");
+        const std::string type = f.String("type");
+        if (type == "sphere") {
+            const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
+            return BuildSphereBlas(std::span<const Sphere>(&s, 1), options);
+        }
+        if (type == "spheres") return BuildSphereBlas(ParseSphereList(f), options);
+        TriangleMesh mesh;
+        if (type == "box") {
+            mesh = MakeBoxMesh(f.Vec3("size", vec3(1.0f)));
+            const vec3 size = mesh.Bounds().Extent();
+            if (!(size.x > 0 && size.y > 0 && size.z > 0)) f.Fail("size", "box sides must be greater than 0");
+        } else if (type == "plane") {
+            const vec3 size = f.Vec3("size", vec3(10.0f, 0.0f, 10.0f));
+            if (!(size.x > 0 && size.z > 0)) f.Fail("size", "plane size x and z must be greater than 0");
+            mesh = MakePlaneMesh(size.x, size.z);
+        } else if (type == "teapot") {
+            const uint32_t resolution = f.Count("resolution", 1, 64, 6);
+            mesh = TessellateTeapot(ResolveModelPath(f.String("file", "@models/teapot.inc"), baseDir_), int(resolution));
+        } else if (type == "mesh") {
+            mesh = LoadMesh(ResolveModelPath(f.String("file"), baseDir_));
+        } else {
+            f.Fail("type", "unknown model type \"" + type + "\" (expected sphere, spheres, box, plane, teapot or mesh)");
+        }
+        if (f.Has("fit")) FitMesh(mesh, f.Positive("fit"));
+        return BuildTriangleBlas(mesh, options);
+    }
+
+    std::vector<Sphere> ParseSphereList(Fields& f) {
+        const Json& list = f.Get("spheres");
+        if (!list.is_array() || list.empty()) f.Fail("spheres", "expected a non-empty array of [x, y, z, radius]");
+        std::vector<Sphere> spheres;
+        for (size_t i = 0; i < list.size(); ++i) {
+            const Json& s = list[i];
+            const std::string key = "spheres[" + std::to_string(i) + "]";
+            if (!s.is_array() || s.size() != 4) f.Fail(key, "expected [x, y, z, radius]");
+            for (const Json& v : s)
+                if (!v.is_number() || !std::isfinite(v.get<double>())) f.Fail(key, "expected finite numbers");
+            if (!(s[3].get<float>() > 0.0f)) f.Fail(key, "radius must be greater than 0");
+            spheres.push_back({vec3(s[0].get<float>(), s[1].get<float>(), s[2].get<float>()), s[3].get<float>()});
+        }
+        return spheres;
+    }
+
+    void ParseInstances(const Json& j, RenderScene& scene) {
+        if (!j.is_array()) throw InputError(file_, "instances", std::string("expected an array, got ") + TypeName(j));
+        uint32_t defaultMaterial = UINT32_MAX;
+        for (size_t i = 0; i < j.size(); ++i) {
+            Fields f(j[i], "instances[" + std::to_string(i) + "]", file_);
+            const std::string model = f.String("model");
+            auto modelIt = modelIds_.find(model);
+            if (modelIt == modelIds_.end()) f.Fail("model", "no model named \"" + model + "\" in models");
+            uint32_t material;
+            if (f.Has("material")) {
+                const std::string name = f.String("material");
+                auto it = materialIds_.find(name);
+                if (it == materialIds_.end()) f.Fail("material", "no material named \"" + name + "\" in materials");
+                material = it->second;
+            } else {
+                if (defaultMaterial == UINT32_MAX) defaultMaterial = scene.AddMaterial(Material{});
+                material = defaultMaterial;
+            }
+            scene.AddInstance(modelIt->second, material, ParseTransform(f));
+            f.Finish();
+        }
+    }
+
+    // position * rotation (degrees about x, then y, then z) * scale.
+    glm::mat4 ParseTransform(Fields& f) {
+        const vec3 position = f.Vec3("position", vec3(0.0f));
+        const vec3 rotation = f.Vec3("rotation", vec3(0.0f));
+        vec3 scale(1.0f);
+        if (f.Has("scale")) {
+            if (f.Get("scale").is_number()) scale = vec3(f.Positive("scale"));
+            else scale = f.Vec3("scale");
+            if (!(scale.x > 0 && scale.y > 0 && scale.z > 0)) f.Fail("scale", "scale factors must be greater than 0");
+        }
+        glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
+        m = glm::rotate(m, glm::radians(rotation.z), vec3(0, 0, 1));
+        m = glm::rotate(m, glm::radians(rotation.y), vec3(0, 1, 0));
+        m = glm::rotate(m, glm::radians(rotation.x), vec3(1, 0, 0));
+        return glm::scale(m, scale);
+    }
+
+    std::string file_, baseDir_;
+    std::map<std::string, uint32_t> materialIds_, modelIds_;
+};
+
+}  // namespace
+
+LoadedScene ParseScene(const std::string& text, const std::string& name, const std::string& baseDir) {
+    return SceneParser(name, baseDir).Parse(text);
+}
+
+LoadedScene LoadSceneFile(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "no such file");
+    if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot be opened for reading");
+    std::stringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw InputError(path, "", "read failed");
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    return ParseScene(text.str(), path, dir);
+}
+
+}  // namespace rtrt

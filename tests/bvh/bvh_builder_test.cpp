@@ -1,0 +1,120 @@
+#include <algorithm>
+#include <numeric>
+
+#include <gtest/gtest.h>
+
+#include "engine/bvh/blas.h"
+#include "game/mesh_io.h"
+#include "tests/test_util.h"
+
+namespace rtrt {
+namespace {
+
+// Every node bounds its children (or its primitives), every primitive sits in exactly one leaf,
+// pairs start at even indices.
+void ExpectWellFormed(const Blas& blas) {
+    std::vector<uint32_t> seen(blas.PrimCount(), 0);
+    std::vector<uint32_t> stack{0};
+    while (!stack.empty()) {
+        const BvhNode& node = blas.nodes[stack.back()];
+        stack.pop_back();
+        if (node.IsLeaf()) {
+            for (uint32_t i = 0; i < node.primCount; ++i) {
+                const uint32_t slot = node.leftFirst + i;
+                ASSERT_LT(slot, blas.PrimCount());
+                ++seen[slot];
+                EXPECT_TRUE(node.Bounds().Contains(blas.triangles[slot].Bounds()));
+            }
+            continue;
+        }
+        ASSERT_EQ(node.leftFirst % 2, 0u);
+        ASSERT_LT(node.leftFirst + 1, blas.nodes.size());
+        EXPECT_TRUE(node.Bounds().Contains(blas.nodes[node.leftFirst].Bounds()));
+        EXPECT_TRUE(node.Bounds().Contains(blas.nodes[node.leftFirst + 1].Bounds()));
+        stack.push_back(node.leftFirst);
+        stack.push_back(node.leftFirst + 1);
+    }
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](uint32_t n) { return n == 1; }));
+    std::vector<uint32_t> ids = blas.primIds;
+    std::sort(ids.begin(), ids.end());
+    std::vector<uint32_t> expected(ids.size());
+    std::iota(expected.begin(), expected.end(), 0u);
+    EXPECT_EQ(ids, expected);
+}
+
+TEST(BvhBuilder, EveryBuilderMakesAWellFormedTree) {
+    const TriangleMesh mesh = test::RandomTriangles(5000, 1);
+    for (BvhBuilder b : {BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit}) {
+        SCOPED_TRACE(std::string(BuilderName(b)));
+        BvhBuildOptions o;
+        o.builder = b;
+        ExpectWellFormed(BuildTriangleBlas(mesh, o));
+    }
+}
+
+TEST(BvhBuilder, TrianglesAreStoredInLeafOrder) {
+    const TriangleMesh mesh = test::RandomTriangles(500, 2);
+    const Blas blas = BuildTriangleBlas(mesh);
+    for (uint32_t slot = 0; slot < blas.PrimCount(); ++slot) {
+        const glm::uvec3 idx = mesh.indices[blas.primIds[slot]];
+        EXPECT_EQ(blas.triangles[slot].v0, mesh.positions[idx.x]);
+        EXPECT_EQ(blas.triangles[slot].v2, mesh.positions[idx.z]);
+    }
+}
+
+// The full sweep searches a superset of the binned planes: its tree is never much worse; both
+// beat the paper's centroid split.
+TEST(BvhBuilder, SahBuildersBeatTheCentroidSplit) {
+    const TriangleMesh mesh = test::RandomTriangles(20000, 3);
+    auto cost = [&](BvhBuilder b) {
+        BvhBuildOptions o;
+        o.builder = b;
+        return SahCost(BuildTriangleBlas(mesh, o).nodes);
+    };
+    const float binned = cost(BvhBuilder::kBinnedSah);
+    const float sweep = cost(BvhBuilder::kSweepSah);
+    const float centroid = cost(BvhBuilder::kCentroidSplit);
+    EXPECT_LE(sweep, binned * 1.02f);
+    EXPECT_LT(binned, centroid);
+    EXPECT_GT(binned, 1.0f);
+}
+
+TEST(BvhBuilder, SahCostOfASingleLeafIsItsPrimitiveCount) {
+    const TriangleMesh mesh = test::RandomTriangles(1, 4);
+    const Blas blas = BuildTriangleBlas(mesh);
+    EXPECT_FLOAT_EQ(SahCost(blas.nodes), 1.0f);
+}
+
+TEST(BvhBuilder, IdenticalPrimitivesStillSplitIntoBoundedLeaves) {
+    // 1000 copies of one triangle: no plane separates their centroids.
+    TriangleMesh mesh;
+    mesh.positions = {vec3(0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    mesh.indices.assign(1000, glm::uvec3(0, 1, 2));
+    const Blas blas = BuildTriangleBlas(mesh);
+    ExpectWellFormed(blas);
+    EXPECT_LE(ComputeStats(blas.nodes).maxLeafSize, 8u);
+}
+
+TEST(BvhBuilder, NodeArrayBytesAreStated) {
+    const Blas blas = BuildTriangleBlas(test::RandomTriangles(100, 5));
+    const BvhStats stats = ComputeStats(blas.nodes);
+    EXPECT_EQ(stats.bytes, blas.nodes.size() * 32);
+    EXPECT_EQ(stats.nodeCount + 1, blas.nodes.size());  // + the unused slot 1
+}
+
+TEST(BvhBuilder, ParsesBuilderNames) {
+    BvhBuilder b;
+    EXPECT_TRUE(ParseBuilder("sweep", &b));
+    EXPECT_EQ(b, BvhBuilder::kSweepSah);
+    EXPECT_FALSE(ParseBuilder("sah", &b));
+}
+
+TEST(BvhBuilder, DragonBinnedTreeIsWellFormed) {
+    RTRT_REQUIRE_MODEL(path, "dragon_vrip_res2.ply.gz");
+    const Blas blas = BuildTriangleBlas(LoadMesh(path));
+    ExpectWellFormed(blas);
+    EXPECT_LT(ComputeStats(blas.nodes).maxDepth, kBvhStackSize);
+}
+
+}  // namespace
+}  // namespace rtrt

@@ -1,0 +1,122 @@
+// Two-level traversal: a TLAS over instances finds what testing every instance finds.
+#include <random>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "engine/bvh/scene_traversal.h"
+#include "engine/bvh/tlas.h"
+#include "tests/test_util.h"
+
+namespace rtrt {
+namespace {
+
+struct TwoLevel {
+    std::vector<Blas> blases;
+    std::vector<BlasView> views;
+    std::vector<Instance> instances;
+    Tlas tlas;
+
+    void Add(uint32_t blas, const glm::mat4& m) {
+        Instance inst{};
+        inst.objectToWorld = AffineFromMat4(m);
+        inst.worldToObject = AffineFromMat4(glm::affineInverse(m));
+        inst.blasId = blas;
+        instances.push_back(inst);
+    }
+    TlasView Build() {
+        std::vector<Aabb> bounds;
+        views.clear();
+        for (const Blas& b : blases) {
+            bounds.push_back(b.bounds);
+            views.push_back(b.View());
+        }
+        tlas = BuildTlas(instances, bounds);
+        return {tlas.nodes.data(), tlas.instanceOrder.data(), instances.data(), views.data()};
+    }
+};
+
+// Closest hit by asking every instance in turn.
+bool BruteForce(const TlasView& scene, uint32_t count, const Ray& ray, SceneHit* hit) {
+    float tMax = ray.tMax;
+    bool found = false;
+    for (uint32_t i = 0; i < count; ++i) {
+        const Instance& inst = scene.instances[i];
+        SceneHit h;
+        float t = tMax;
+        if (IntersectBlas(scene.blases[inst.blasId], ToObjectSpace(ray, inst), t, &h, nullptr) &&
+            h.t < tMax) {
+            tMax = h.t;
+            *hit = h;
+            hit->instance = i;
+            found = true;
+        }
+    }
+    return found;
+}
+
+void ExpectSameAsBruteForce(TwoLevel& world, float spread, uint32_t seed) {
+    const TlasView scene = world.Build();
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    uint32_t hits = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Ray ray{spread * vec3(u(rng), u(rng), u(rng)), kInfinity, vec3(u(rng), u(rng), u(rng)), 0};
+        if (i % 2) {
+            const Instance& target = world.instances[i % world.instances.size()];
+            ray.dir = target.objectToWorld.Point(vec3(0.1f * u(rng))) - ray.origin;
+        }
+        SceneHit expected{}, got{};
+        const bool e = BruteForce(scene, uint32_t(world.instances.size()), ray, &expected);
+        const bool g = IntersectScene(scene, ray, &got);
+        ASSERT_EQ(e, g) << "ray " << i;
+        hits += e;
+        if (e) {
+            EXPECT_EQ(expected.t, got.t) << "ray " << i;
+            EXPECT_EQ(OccludedScene(scene, Ray{ray.origin, got.t * 1.001f, ray.dir, 0}), true);
+        }
+    }
+    EXPECT_GT(hits, 2000u);
+}
+
+TEST(Tlas, ManyTransformedInstancesMatchBruteForce) {
+    TwoLevel world;
+    world.blases.push_back(BuildTriangleBlas(test::RandomTriangles(200, 1)));
+    const Sphere s{vec3(0), 0.8f};
+    world.blases.push_back(BuildSphereBlas(std::span<const Sphere>(&s, 1)));
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<float> u(-20.0f, 20.0f);
+    for (uint32_t i = 0; i < 300; ++i) {
+        glm::mat4 m = glm::translate(glm::mat4(1), vec3(u(rng), u(rng), u(rng)));
+        m = glm::rotate(m, u(rng), glm::normalize(vec3(u(rng), u(rng), u(rng))));
+        m = glm::scale(m, vec3(0.5f + 0.05f * std::abs(u(rng))));
+        world.Add(i % 2, m);
+    }
+    ExpectSameAsBruteForce(world, 25.0f, 3);
+}
+
+TEST(Tlas, AllInstancesAtOnePointAndOneFarOutlier) {
+    TwoLevel world;
+    world.blases.push_back(BuildTriangleBlas(test::RandomTriangles(50, 4)));
+    for (int i = 0; i < 64; ++i) world.Add(0, glm::rotate(glm::mat4(1), 0.1f * i, vec3(0, 1, 0)));
+    world.Add(0, glm::translate(glm::mat4(1), vec3(1e6f, 0, 0)));
+    ExpectSameAsBruteForce(world, 3.0f, 5);
+    // The outlier is reachable.
+    const TlasView scene = world.Build();
+    SceneHit hit;
+    ASSERT_TRUE(IntersectScene(scene, Ray{vec3(1e6f, 0, -50), kInfinity, vec3(0, 0, 1), 0}, &hit) ||
+                IntersectScene(scene, Ray{vec3(1e6f, 0.05f, -50), kInfinity, vec3(0, 0, 1), 0}, &hit));
+    EXPECT_EQ(hit.instance, 64u);
+}
+
+TEST(Tlas, EmptySceneHitsNothing) {
+    TwoLevel world;
+    world.blases.push_back(BuildTriangleBlas(test::RandomTriangles(5, 6)));
+    const TlasView scene = world.Build();
+    SceneHit hit;
+    EXPECT_FALSE(IntersectScene(scene, Ray{vec3(0), kInfinity, vec3(0, 0, 1), 0}, &hit));
+}
+
+}  // namespace
+}  // namespace rtrt
