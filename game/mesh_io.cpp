@@ -136,10 +136,11 @@ std::string ReadGzipFile(const std::string& path) {
 
 // Statements of the OBJ specification that carry nothing a triangle mesh needs.
 constexpr auto kIgnoredObjStatements = std::to_array<std::string_view>(
-    {"vp",   "o",     "g",       "s",    "mg",     "usemtl", "mtllib", "usemap", "maplib",
-     "l",    "p",     "cstype",  "deg",  "bmat",   "step",   "curv",   "curv2",  "surf",
-     "parm", "trim",  "hole",    "scrv", "sp",     "end",    "con",    "bevel",  "c_interp",
-     "d_interp", "lod", "shadow_obj", "trace_obj", "ctech", "stech", "call", "csh"});
+    {"vp",     "o",          "g",         "s",     "mg",     "usemtl",   "mtllib",
+     "usemap", "maplib",     "l",         "p",     "cstype", "deg",      "bmat",
+     "step",   "curv",       "curv2",     "surf",  "parm",   "trim",     "hole",
+     "scrv",   "sp",         "end",       "con",   "bevel",  "c_interp", "d_interp",
+     "lod",    "shadow_obj", "trace_obj", "ctech", "stech",  "call",     "csh"});
 
 constexpr uint32_t kNoNormal = std::numeric_limits<uint32_t>::max();
 
@@ -250,7 +251,7 @@ void ParseObjLine(std::string_view line, ObjData& obj) {
 }
 
 // Gives each distinct (vertex, normal) pair of the faces its own vertex.
-TriangleMesh SplitByNormals(ObjData& obj) {
+TriangleMesh SplitByNormals(const ObjData& obj) {
     TriangleMesh mesh;
     std::unordered_map<uint64_t, uint32_t> vertexOf;
     vertexOf.reserve(obj.positions.size());
@@ -327,14 +328,22 @@ bool ParseScalarType(std::string_view name, ScalarType& type) {
         ScalarType type;
     };
     static constexpr std::array<Named, 16> kTypes = {{
-        {"char", ScalarType::kInt8},      {"int8", ScalarType::kInt8},
-        {"uchar", ScalarType::kUint8},    {"uint8", ScalarType::kUint8},
-        {"short", ScalarType::kInt16},    {"int16", ScalarType::kInt16},
-        {"ushort", ScalarType::kUint16},  {"uint16", ScalarType::kUint16},
-        {"int", ScalarType::kInt32},      {"int32", ScalarType::kInt32},
-        {"uint", ScalarType::kUint32},    {"uint32", ScalarType::kUint32},
-        {"float", ScalarType::kFloat32},  {"float32", ScalarType::kFloat32},
-        {"double", ScalarType::kFloat64}, {"float64", ScalarType::kFloat64},
+        {"char", ScalarType::kInt8},
+        {"int8", ScalarType::kInt8},
+        {"uchar", ScalarType::kUint8},
+        {"uint8", ScalarType::kUint8},
+        {"short", ScalarType::kInt16},
+        {"int16", ScalarType::kInt16},
+        {"ushort", ScalarType::kUint16},
+        {"uint16", ScalarType::kUint16},
+        {"int", ScalarType::kInt32},
+        {"int32", ScalarType::kInt32},
+        {"uint", ScalarType::kUint32},
+        {"uint32", ScalarType::kUint32},
+        {"float", ScalarType::kFloat32},
+        {"float32", ScalarType::kFloat32},
+        {"double", ScalarType::kFloat64},
+        {"float64", ScalarType::kFloat64},
     }};
     for (const Named& named : kTypes) {
         if (named.name == name) {
@@ -348,13 +357,17 @@ bool ParseScalarType(std::string_view name, ScalarType& type) {
 size_t SizeOf(ScalarType type) {
     switch (type) {
         case ScalarType::kInt8:
-        case ScalarType::kUint8: return 1;
+        case ScalarType::kUint8:
+            return 1;
         case ScalarType::kInt16:
-        case ScalarType::kUint16: return 2;
+        case ScalarType::kUint16:
+            return 2;
         case ScalarType::kInt32:
         case ScalarType::kUint32:
-        case ScalarType::kFloat32: return 4;
-        case ScalarType::kFloat64: return 8;
+        case ScalarType::kFloat32:
+            return 4;
+        case ScalarType::kFloat64:
+            return 8;
     }
     return 8;
 }
@@ -369,6 +382,37 @@ std::vector<std::string_view> SplitWords(std::string_view line) {
         words.push_back(word);
     }
     return words;
+}
+
+PlyFormat ParsePlyFormat(const std::string& path, const std::string& field,
+                         const std::vector<std::string_view>& words) {
+    double version = 0.0;
+    if (words.size() != 3 || !ParseNumber(words[2], version) || version != 1.0) {
+        throw InputError(path, field, "expected 'format <type> 1.0'");
+    }
+    if (words[1] == "ascii") return PlyFormat::kAscii;
+    if (words[1] == "binary_little_endian") return PlyFormat::kBinaryLittleEndian;
+    if (words[1] == "binary_big_endian") return PlyFormat::kBinaryBigEndian;
+    throw InputError(path, field, "unknown format " + Quote(words[1]));
+}
+
+// Parses "property <type> <name>" or "property list <count type> <item type> <name>".
+PlyProperty ParsePlyProperty(const std::string& path, const std::string& field,
+                             const std::vector<std::string_view>& words) {
+    PlyProperty property;
+    property.name = words.back();
+    if (words.size() == 3 && ParseScalarType(words[1], property.type)) return property;
+    property.isList = true;
+    if (words.size() != 5 || words[1] != "list" || !ParseScalarType(words[2], property.countType) ||
+        !ParseScalarType(words[3], property.type)) {
+        throw InputError(path, field,
+                         "expected 'property <type> <name>' or 'property list <count type> "
+                         "<item type> <name>' with known types");
+    }
+    if (!IsInteger(property.countType)) {
+        throw InputError(path, field, "list count type must be an integer type");
+    }
+    return property;
 }
 
 // Reads the header up to end_header; throws on anything it does not understand.
@@ -396,19 +440,7 @@ PlyHeader ParsePlyHeaderLines(const std::string& path, std::string_view data) {
             return header;
         }
         if (keyword == "format") {
-            double version = 0.0;
-            if (words.size() != 3 || !ParseNumber(words[2], version) || version != 1.0) {
-                throw InputError(path, field, "expected 'format <type> 1.0'");
-            }
-            if (words[1] == "ascii") {
-                header.format = PlyFormat::kAscii;
-            } else if (words[1] == "binary_little_endian") {
-                header.format = PlyFormat::kBinaryLittleEndian;
-            } else if (words[1] == "binary_big_endian") {
-                header.format = PlyFormat::kBinaryBigEndian;
-            } else {
-                throw InputError(path, field, "unknown format " + Quote(words[1]));
-            }
+            header.format = ParsePlyFormat(path, field, words);
             haveFormat = true;
         } else if (keyword == "element") {
             PlyElement element;
@@ -419,25 +451,7 @@ PlyHeader ParsePlyHeaderLines(const std::string& path, std::string_view data) {
             header.elements.push_back(std::move(element));
         } else if (keyword == "property") {
             if (header.elements.empty()) throw InputError(path, field, "property before element");
-            PlyProperty property;
-            bool ok = false;
-            if (words.size() == 3) {
-                ok = ParseScalarType(words[1], property.type);
-            } else if (words.size() == 5 && words[1] == "list") {
-                property.isList = true;
-                ok = ParseScalarType(words[2], property.countType) &&
-                     ParseScalarType(words[3], property.type);
-                if (ok && !IsInteger(property.countType)) {
-                    throw InputError(path, field, "list count type must be an integer type");
-                }
-            }
-            if (!ok) {
-                throw InputError(path, field,
-                                 "expected 'property <type> <name>' or 'property list <count "
-                                 "type> <type> <name>' with known types");
-            }
-            property.name = words.back();
-            header.elements.back().properties.push_back(std::move(property));
+            header.elements.back().properties.push_back(ParsePlyProperty(path, field, words));
         } else {
             throw InputError(path, field, "unknown keyword " + Quote(keyword));
         }
@@ -460,10 +474,10 @@ int FindProperty(const PlyElement& element, std::string_view name) {
     return -1;
 }
 
-PlyLayout ValidatePlyHeader(const std::string& path, const PlyHeader& header, size_t dataBytes) {
-    PlyLayout layout;
-    // Smallest size of a record: binary values at their size (lists at their count's), ASCII
-    // values at one character and one separator. The final newline of an ASCII file is optional.
+// Rejects element counts that the data could not hold, before anything is allocated for them.
+// A record takes at least its binary values' sizes (a list its count's), or in ASCII one character
+// and one separator per value; the final newline of an ASCII file is optional.
+void CheckPlyCounts(const std::string& path, const PlyHeader& header, size_t dataBytes) {
     bool ascii = header.format == PlyFormat::kAscii;
     uint64_t available = dataBytes + (ascii ? 1 : 0), needed = 0;
     for (const PlyElement& element : header.elements) {
@@ -471,24 +485,36 @@ PlyLayout ValidatePlyHeader(const std::string& path, const PlyHeader& header, si
         for (const PlyProperty& p : element.properties) {
             recordBytes += ascii ? 2 : SizeOf(p.isList ? p.countType : p.type);
         }
-        if (element.count > 0 && recordBytes == 0) {
-            throw InputError(path, "header", "element " + Quote(element.name) + " has no properties");
+        if (element.count == 0) continue;
+        if (recordBytes == 0) {
+            throw InputError(path, "header",
+                             "element " + Quote(element.name) + " has no properties");
         }
-        if (element.count > 0 && element.count > (available - needed) / recordBytes) {
+        if (element.count > (available - needed) / recordBytes) {
             throw InputError(path, "header",
                              "element " + Quote(element.name) + " declares " +
                                  std::to_string(element.count) + " records, more than the " +
                                  std::to_string(dataBytes) + " bytes of data can hold");
         }
         needed += element.count * recordBytes;
-        const PlyElement** slot = element.name == "vertex" ? &layout.vertices
-                                  : element.name == "face" ? &layout.faces
-                                                           : nullptr;
-        if (slot && *slot) {
-            throw InputError(path, "header", "more than one element " + Quote(element.name));
-        }
-        if (slot) *slot = &element;
     }
+}
+
+const PlyElement* FindElement(const std::string& path, const PlyHeader& header,
+                              std::string_view name) {
+    const PlyElement* found = nullptr;
+    for (const PlyElement& element : header.elements) {
+        if (element.name != name) continue;
+        if (found) throw InputError(path, "header", "more than one element " + Quote(name));
+        found = &element;
+    }
+    return found;
+}
+
+PlyLayout FindPlyLayout(const std::string& path, const PlyHeader& header) {
+    PlyLayout layout;
+    layout.vertices = FindElement(path, header, "vertex");
+    layout.faces = FindElement(path, header, "face");
     if (!layout.vertices) throw InputError(path, "header", "no vertex element");
     if (layout.vertices->count > kMaxVertices) {
         throw InputError(path, "header", "more than 2^32 - 1 vertices");
@@ -524,7 +550,7 @@ PlyLayout ValidatePlyHeader(const std::string& path, const PlyHeader& header, si
 const RecordError kTruncated{"unexpected end of data (file truncated)"};
 
 class AsciiReader {
-public:
+  public:
     explicit AsciiReader(std::string_view data) : p_(data.data()), end_(p_ + data.size()) {}
 
     double ReadReal(ScalarType type) {
@@ -552,7 +578,7 @@ public:
         for (uint64_t i = 0; i < count; ++i) Skip(type);
     }
 
-private:
+  private:
     std::string_view Token() {
         while (p_ != end_ && IsSpace(*p_)) ++p_;
         if (p_ == end_) throw kTruncated;
@@ -582,26 +608,36 @@ T LoadScalar(const char* p, bool swapBytes) {
 }
 
 class BinaryReader {
-public:
+  public:
     BinaryReader(std::string_view data, bool swapBytes)
         : p_(data.data()), end_(p_ + data.size()), swapBytes_(swapBytes) {}
 
     double ReadReal(ScalarType type) {
         switch (type) {
-            case ScalarType::kFloat32: return Take<float>();
-            case ScalarType::kFloat64: return Take<double>();
-            default: return static_cast<double>(ReadInteger(type));
+            case ScalarType::kFloat32:
+                return Take<float>();
+            case ScalarType::kFloat64:
+                return Take<double>();
+            default:
+                return static_cast<double>(ReadInteger(type));
         }
     }
     int64_t ReadInteger(ScalarType type) {
         switch (type) {
-            case ScalarType::kInt8: return Take<int8_t>();
-            case ScalarType::kUint8: return Take<uint8_t>();
-            case ScalarType::kInt16: return Take<int16_t>();
-            case ScalarType::kUint16: return Take<uint16_t>();
-            case ScalarType::kInt32: return Take<int32_t>();
-            case ScalarType::kUint32: return Take<uint32_t>();
-            default: throw RecordError{"expected an integer type"};
+            case ScalarType::kInt8:
+                return Take<int8_t>();
+            case ScalarType::kUint8:
+                return Take<uint8_t>();
+            case ScalarType::kInt16:
+                return Take<int16_t>();
+            case ScalarType::kUint16:
+                return Take<uint16_t>();
+            case ScalarType::kInt32:
+                return Take<int32_t>();
+            case ScalarType::kUint32:
+                return Take<uint32_t>();
+            default:
+                throw RecordError{"expected an integer type"};
         }
     }
     void Skip(ScalarType type) { SkipItems(type, 1); }
@@ -610,7 +646,7 @@ public:
         p_ += count * SizeOf(type);
     }
 
-private:
+  private:
     template <class T>
     T Take() {
         if (static_cast<size_t>(end_ - p_) < sizeof(T)) throw kTruncated;
@@ -681,9 +717,8 @@ void ReadPlyFaces(Reader& reader, const PlyLayout& layout, uint64_t& record, Tri
             for (int64_t corner = 0; corner < corners; ++corner) {
                 int64_t index = reader.ReadInteger(indexProperty.type);
                 if (index < 0 || index >= vertexCount) {
-                    throw RecordError{"vertex index " + std::to_string(index) +
-                                      " out of range (" + std::to_string(vertexCount) +
-                                      " vertices)"};
+                    throw RecordError{"vertex index " + std::to_string(index) + " out of range (" +
+                                      std::to_string(vertexCount) + " vertices)"};
                 }
                 uint32_t current = static_cast<uint32_t>(index);
                 if (corner == 0) first = current;
@@ -725,7 +760,8 @@ void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayo
 TriangleMesh ParsePly(const std::string& path, std::string_view data) {
     PlyHeader header = ParsePlyHeaderLines(path, data);
     data.remove_prefix(header.dataOffset);
-    PlyLayout layout = ValidatePlyHeader(path, header, data.size());
+    CheckPlyCounts(path, header, data.size());
+    PlyLayout layout = FindPlyLayout(path, header);
     TriangleMesh mesh;
     if (header.format == PlyFormat::kAscii) {
         AsciiReader reader(data);

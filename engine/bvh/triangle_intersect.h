@@ -51,6 +51,20 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     // t and det share a sign for hits in front of the origin; compare without dividing.
     if (det < 0.0f ? (t >= 0.0f || t < tMax * det) : (t <= 0.0f || t > tMax * det)) return false;
     const float invDet = 1.0f / det;
+    // Reject t that rounding alone could have made positive: a ray leaving a surface must not hit
+    // that surface again (pbrt-v4, "Ensure that computed triangle t is conservatively greater
+    // than zero": bounds on the error of the sheared coordinates, edge functions and t).
+    const float maxZt = fmaxf(fabsf(az), fmaxf(fabsf(bz), fabsf(cz)));
+    const float maxXt = fmaxf(fabsf(ax), fmaxf(fabsf(bx), fabsf(cx)));
+    const float maxYt = fmaxf(fabsf(ay), fmaxf(fabsf(by), fabsf(cy)));
+    const float deltaZ = Gamma(3) * maxZt;
+    const float deltaX = Gamma(5) * (maxXt + maxZt);
+    const float deltaY = Gamma(5) * (maxYt + maxZt);
+    const float deltaE = 2.0f * (Gamma(2) * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
+    const float maxE = fmaxf(fabsf(u), fmaxf(fabsf(v), fabsf(w)));
+    const float deltaT =
+        3.0f * (Gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * fabsf(invDet);
+    if (t * invDet <= deltaT) return false;
     hit->t = t * invDet;
     hit->b1 = v * invDet;
     hit->b2 = w * invDet;

@@ -91,7 +91,8 @@ bool Occluded(const Blas& blas, const RaySetup& r, float tMax) {
 Ray RandomRay(const Blas& blas, std::mt19937& rng) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     const Aabb b = blas.bounds;
-    const vec3 lo = b.min - 0.5f * b.Extent(), hi = b.max + 0.5f * b.Extent();
+    const vec3 margin(0.5f * MaxComponent(b.Extent()));  // flat meshes too
+    const vec3 lo = b.min - margin, hi = b.max + margin;
     Ray ray;
     ray.origin = lo + vec3(u(rng), u(rng), u(rng)) * (hi - lo);
     ray.tMax = kInfinity;

@@ -93,7 +93,13 @@ TEST(SceneFile, MissingFilesAreReported) {
         EXPECT_EQ(e.File(), "/nonexistent/scene.json");
         EXPECT_EQ(e.Reason(), "no such file");
     }
-    ExpectError(R"({"models": {"m": {"type": "mesh", "file": "missing.obj"}}, "instances": []})", "", "");
+    try {
+        ParseScene(R"({"models": {"m": {"type": "mesh", "file": "missing.obj"}}, "instances": []})",
+                   "scene.json", "/nonexistent");
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.File(), "/nonexistent/missing.obj") << e.what();
+    }
 }
 
 TEST(SceneFile, MeshesWithBadDataAreRejected) {

@@ -179,7 +179,7 @@ TEST(VerificationScenes, FullDragonIsRedAndSolid) {
         EXPECT_GT(depth.pixels[i].x, 7.0f);
         EXPECT_LT(depth.pixels[i].x, 13.0f);
     }
-    EXPECT_GT(hits, w * h / 10);
+    EXPECT_GT(hits, w * h / 20);
     EXPECT_LT(hits, w * h / 2);
     EXPECT_GE(red, hits * 99 / 100);
 }
