@@ -82,8 +82,9 @@ bool ParseDouble(std::string_view token, double& value) {
     return ec == std::errc() && next == end && std::isfinite(value);
 }
 
-// Parses "x, y, z" (the text between < and >) and turns POV-Ray's z-up frame of the teapot data
-// into rtrt's y-up one, a rotation by -90 degrees about x.
+// Parses "x, y, z" (the text between < and >) and turns the data's z-up frame (the teapot's
+// height is z, 0 to 3.15) into rtrt's y-up one: a rotation by -90 degrees about x. POV-Ray's frame
+// is left-handed, but the teapot is symmetric in the file's y, so no mirror is needed.
 bool ParseControlPoint(std::string_view text, vec3& point) {
     std::array<double, 3> xyz{};
     for (size_t axis = 0; axis < 3; ++axis) {
@@ -191,7 +192,7 @@ vec3 EvaluateCurve(std::array<vec3, 4> p, int i, int resolution) {
 
 vec3 EvaluatePatch(const Patch& patch, int iu, int iv, int resolution) {
     std::array<vec3, 4> column;
-    for (int row = 0; row < 4; ++row) {
+    for (size_t row = 0; row < 4; ++row) {
         const vec3* p = &patch[4 * row];
         column[row] = EvaluateCurve({p[0], p[1], p[2], p[3]}, iu, resolution);
     }

@@ -23,8 +23,8 @@ struct BlasView {
 
 struct Blas {
     GeometryKind kind = GeometryKind::kTriangles;
-    std::vector<BvhNode> nodes;
-    std::vector<Triangle> triangles;
+    AlignedVector<BvhNode> nodes;
+    AlignedVector<Triangle> triangles;
     std::vector<TriangleNormals> normals;
     std::vector<Sphere> spheres;
     std::vector<uint32_t> primIds;  // leaf slot -> index in the source mesh or sphere list

@@ -31,7 +31,7 @@ inline constexpr float kSahTraversalCost = 1.0f;
 inline constexpr float kSahIntersectionCost = 1.0f;
 
 struct Bvh {
-    std::vector<BvhNode> nodes;      // depth-first order, root at 0, index 1 unused
+    AlignedVector<BvhNode> nodes;      // depth-first order, root at 0, index 1 unused
     std::vector<uint32_t> primOrder; // slot i of the leaves holds input primitive primOrder[i]
 };
 

@@ -1,5 +1,6 @@
 #pragma once
 #include "engine/bvh/aabb.h"
+#include "engine/core/aligned_vector.h"
 
 namespace rtrt {
 

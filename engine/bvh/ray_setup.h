@@ -31,9 +31,10 @@ RT_HD inline RaySetup MakeRaySetup(const Ray& ray) {
         s.kx = s.ky;
         s.ky = t;
     }
-    s.shearX = ray.dir[s.kx] / ray.dir[s.kz];
-    s.shearY = ray.dir[s.ky] / ray.dir[s.kz];
-    s.shearZ = 1.0f / ray.dir[s.kz];
+    const float* d = &ray.dir.x;
+    s.shearZ = 1.0f / d[s.kz];
+    s.shearX = d[s.kx] * s.shearZ;
+    s.shearY = d[s.ky] * s.shearZ;
     return s;
 }
 

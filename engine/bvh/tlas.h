@@ -10,7 +10,7 @@
 namespace rtrt {
 
 struct Tlas {
-    std::vector<BvhNode> nodes;
+    AlignedVector<BvhNode> nodes;
     std::vector<uint32_t> instanceOrder;
 };
 

@@ -24,15 +24,18 @@ RT_HD inline float CrossDiffNoContract(float a, float b, float c, float d) {
 
 RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, float tMax,
                                     TriangleHit* hit) {
-    const vec3 a = tri.v0 - r.origin;
-    const vec3 b = tri.v1 - r.origin;
-    const vec3 c = tri.v2 - r.origin;
-    const float ax = a[r.kx] - r.shearX * a[r.kz];
-    const float ay = a[r.ky] - r.shearY * a[r.kz];
-    const float bx = b[r.kx] - r.shearX * b[r.kz];
-    const float by = b[r.ky] - r.shearY * b[r.kz];
-    const float cx = c[r.kx] - r.shearX * c[r.kz];
-    const float cy = c[r.ky] - r.shearY * c[r.kz];
+    // Vertices relative to the origin, read in the ray's permuted axis order.
+    const float* v0 = &tri.v0.x;
+    const float* v1 = &tri.v1.x;
+    const float* v2 = &tri.v2.x;
+    const float* o = &r.origin.x;
+    const float aKz = v0[r.kz] - o[r.kz], bKz = v1[r.kz] - o[r.kz], cKz = v2[r.kz] - o[r.kz];
+    const float ax = (v0[r.kx] - o[r.kx]) - r.shearX * aKz;
+    const float ay = (v0[r.ky] - o[r.ky]) - r.shearY * aKz;
+    const float bx = (v1[r.kx] - o[r.kx]) - r.shearX * bKz;
+    const float by = (v1[r.ky] - o[r.ky]) - r.shearY * bKz;
+    const float cx = (v2[r.kx] - o[r.kx]) - r.shearX * cKz;
+    const float cy = (v2[r.ky] - o[r.ky]) - r.shearY * cKz;
     float u = CrossDiffNoContract(cx, by, cy, bx);
     float v = CrossDiffNoContract(ax, cy, ay, cx);
     float w = CrossDiffNoContract(bx, ay, by, ax);
@@ -44,9 +47,9 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f)) return false;
     const float det = u + v + w;
     if (det == 0.0f) return false;
-    const float az = r.shearZ * a[r.kz];
-    const float bz = r.shearZ * b[r.kz];
-    const float cz = r.shearZ * c[r.kz];
+    const float az = r.shearZ * aKz;
+    const float bz = r.shearZ * bKz;
+    const float cz = r.shearZ * cKz;
     const float t = u * az + v * bz + w * cz;
     // t and det share a sign for hits in front of the origin; compare without dividing.
     if (det < 0.0f ? (t >= 0.0f || t < tMax * det) : (t <= 0.0f || t > tMax * det)) return false;
@@ -54,14 +57,14 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     // Reject t that rounding alone could have made positive: a ray leaving a surface must not hit
     // that surface again (pbrt-v4, "Ensure that computed triangle t is conservatively greater
     // than zero": bounds on the error of the sheared coordinates, edge functions and t).
-    const float maxZt = fmaxf(fabsf(az), fmaxf(fabsf(bz), fabsf(cz)));
-    const float maxXt = fmaxf(fabsf(ax), fmaxf(fabsf(bx), fabsf(cx)));
-    const float maxYt = fmaxf(fabsf(ay), fmaxf(fabsf(by), fabsf(cy)));
+    const float maxZt = MaxOrKeep(fabsf(az), MaxOrKeep(fabsf(bz), fabsf(cz)));
+    const float maxXt = MaxOrKeep(fabsf(ax), MaxOrKeep(fabsf(bx), fabsf(cx)));
+    const float maxYt = MaxOrKeep(fabsf(ay), MaxOrKeep(fabsf(by), fabsf(cy)));
     const float deltaZ = Gamma(3) * maxZt;
     const float deltaX = Gamma(5) * (maxXt + maxZt);
     const float deltaY = Gamma(5) * (maxYt + maxZt);
     const float deltaE = 2.0f * (Gamma(2) * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
-    const float maxE = fmaxf(fabsf(u), fmaxf(fabsf(v), fabsf(w)));
+    const float maxE = MaxOrKeep(fabsf(u), MaxOrKeep(fabsf(v), fabsf(w)));
     const float deltaT =
         3.0f * (Gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * fabsf(invDet);
     if (t * invDet <= deltaT) return false;

@@ -18,6 +18,23 @@ using glm::vec4;
 inline constexpr float kPi = 3.14159265358979323846f;
 inline constexpr float kInfinity = __builtin_huge_valf();
 
+// Min and max that return `acc` when `candidate` is NaN, and compile to one instruction on both
+// back ends (std::fmin/fmax are library calls on x86 without -ffast-math). `acc` must not be NaN.
+RT_HD inline float MaxOrKeep(float candidate, float acc) {
+#if defined(__CUDA_ARCH__)
+    return fmaxf(candidate, acc);
+#else
+    return candidate > acc ? candidate : acc;
+#endif
+}
+RT_HD inline float MinOrKeep(float candidate, float acc) {
+#if defined(__CUDA_ARCH__)
+    return fminf(candidate, acc);
+#else
+    return candidate < acc ? candidate : acc;
+#endif
+}
+
 RT_HD inline float MaxComponent(vec3 v) { return fmaxf(v.x, fmaxf(v.y, v.z)); }
 RT_HD inline int MaxDimension(vec3 v) {
     return (v.x > v.y) ? (v.x > v.z ? 0 : 2) : (v.y > v.z ? 1 : 2);

@@ -95,7 +95,8 @@ class MeshIoTest : public ::testing::Test {
 
     std::string Write(const std::string& name, std::string_view contents) {
         std::string path = (dir_ / name).string();
-        std::ofstream(path, std::ios::binary).write(contents.data(), contents.size());
+        std::ofstream(path, std::ios::binary)
+            .write(contents.data(), static_cast<std::streamsize>(contents.size()));
         return path;
     }
 
@@ -415,6 +416,15 @@ TEST_F(MeshIoTest, PlyHeaderErrors) {
                      "header line 4", "count type must be an integer");
     ExpectInputError(Write("novertex.ply", "ply\nformat ascii 1.0\nend_header\n"), "header",
                      "no vertex element");
+    ExpectInputError(
+        Write("twice.ply", PlyHeader("ascii", 0, 0)
+                               .replace(std::string_view("ply\nformat ascii 1.0\n").size(), 0,
+                                        "element vertex 0\nproperty float x\n")),
+        "header", "more than one element 'vertex'");
+    ExpectInputError(Write("empty_element.ply",
+                           "ply\nformat ascii 1.0\nelement nothing 5\n"
+                           "end_header\n"),
+                     "header", "element 'nothing' has no properties");
 }
 
 TEST_F(MeshIoTest, PlyCountsBeyondTheFileSizeAreRejectedBeforeAllocating) {
@@ -476,7 +486,8 @@ TEST_F(MeshIoTest, PlyDataErrors) {
     for (float v : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f}) good.Put(v);
     Bytes face = good;
     face.Put<uint8_t>(3).Put<int32_t>(0).Put<int32_t>(1);
-    ExpectInputError(Write("cut.ply", binary + face.Data() + "\x02\x00"), "face 0", "truncated");
+    ExpectInputError(Write("cut.ply", binary + face.Data() + std::string("\x02\x00", 2)), "face 0",
+                     "truncated");
     Bytes big = good;
     big.Put<uint8_t>(3).Put<int32_t>(0).Put<int32_t>(1).Put<int32_t>(1 << 30);
     ExpectInputError(Write("big_index.ply", binary + big.Data()), "face 0",

@@ -25,37 +25,36 @@ fs::path ModelDir() {
 #endif
 }
 
-// POV-Ray's teapot.inc, or an empty path when tools/fetch_models.sh has not fetched it.
-std::string TeapotInc() {
-    fs::path path = ModelDir() / "teapot.inc";
-    return ModelDir().empty() || !fs::exists(path) ? std::string() : path.string();
-}
-
-#define REQUIRE_TEAPOT(path)                                            \
-    std::string path = TeapotInc();                                     \
-    if (path.empty()) {                                                 \
-        GTEST_SKIP() << "teapot.inc is not in '" << ModelDir().string() \
-                     << "': run tools/fetch_models.sh";                 \
+// Tests on POV-Ray's teapot.inc; skipped when tools/fetch_models.sh has not fetched it.
+class TeapotTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        path_ = (ModelDir() / "teapot.inc").string();
+        if (ModelDir().empty() || !fs::exists(path_)) {
+            GTEST_SKIP() << "teapot.inc is not in '" << ModelDir().string()
+                         << "': run tools/fetch_models.sh";
+        }
     }
 
-TEST(TeapotTest, ResolutionSixGives2256Triangles) {
-    REQUIRE_TEAPOT(path);
+    std::string path_;
+};
+
+TEST_F(TeapotTest, ResolutionSixGives2256Triangles) {
     // 32 patches * 36 quads * 2 triangles, less one triangle per quad along the collapsed edges
     // of the four lid-top and four bottom patches.
-    EXPECT_EQ(TessellateTeapot(path, 6).indices.size(), 2256u);
+    EXPECT_EQ(TessellateTeapot(path_, 6).indices.size(), 2256u);
 }
 
-TEST(TeapotTest, TriangleCountFollowsResolution) {
-    REQUIRE_TEAPOT(path);
+TEST_F(TeapotTest, TriangleCountFollowsResolution) {
     for (int r : {1, 2, 3, 5, 8}) {
-        EXPECT_EQ(TessellateTeapot(path, r).indices.size(), static_cast<size_t>(64 * r * r - 8 * r))
+        EXPECT_EQ(TessellateTeapot(path_, r).indices.size(),
+                  static_cast<size_t>(64 * r * r - 8 * r))
             << "resolution " << r;
     }
 }
 
-TEST(TeapotTest, StandsOnYZeroWithSpoutTowardsPlusX) {
-    REQUIRE_TEAPOT(path);
-    TriangleMesh mesh = TessellateTeapot(path, 6);
+TEST_F(TeapotTest, StandsOnYZeroWithSpoutTowardsPlusX) {
+    TriangleMesh mesh = TessellateTeapot(path_, 6);
     Aabb bounds = mesh.Bounds();
     EXPECT_EQ(bounds.min.y, 0.0f);
     EXPECT_EQ(bounds.max.y, 3.15f);
@@ -65,10 +64,9 @@ TEST(TeapotTest, StandsOnYZeroWithSpoutTowardsPlusX) {
     EXPECT_EQ(bounds.max.z, 2.0f);
 }
 
-TEST(TeapotTest, WeldedMeshWithOutwardUnitNormals) {
-    REQUIRE_TEAPOT(path);
+TEST_F(TeapotTest, WeldedMeshWithOutwardUnitNormals) {
     // An odd resolution: plain de Casteljau from one end leaves seams unwelded there.
-    TriangleMesh mesh = TessellateTeapot(path, 7);
+    TriangleMesh mesh = TessellateTeapot(path_, 7);
     ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
         EXPECT_NEAR(glm::length(mesh.normals[i]), 1.0f, 1e-5f);
@@ -149,7 +147,7 @@ TEST_F(TeapotFileTest, UvVectorsAreNotControlPoints) {
     EXPECT_EQ(TessellateTeapot(Write(text), 2).indices.size(), 32u * 8u);
 }
 
-// TessellateTeapot(path, resolution) must throw an InputError naming the file, field and reason.
+// TessellateTeapot(path_, resolution) must throw an InputError naming the file, field and reason.
 void ExpectTeapotError(const std::string& path, int resolution, const std::string& field,
                        const std::string& reason) {
     try {
