@@ -5,11 +5,10 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "engine/core/timer.h"
 #include "engine/render_rt/renderer.h"
@@ -26,7 +25,8 @@ namespace {
 struct BenchOptions {
     int frames = 7;
     std::string output;
-    std::vector<std::string> models{"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"};
+    std::vector<std::string> models{"cube",        "teapot",      "dragon_res4",
+                                    "dragon_res3", "dragon_res2", "dragon"};
     std::vector<std::string> builders{"binned", "sweep", "centroid"};
 };
 
@@ -78,7 +78,8 @@ void RunBench(const BenchOptions& o) {
     nlohmann::json report;
     report["machine"] = MachineInfo();
     report["scene"] = "paper scene, 1920x1080, max depth 2, one ray per pixel centre";
-    std::printf("rtrt bench cpu: %s, %u threads\n", report["machine"]["cpu"].get<std::string>().c_str(),
+    std::printf("rtrt bench cpu: %s, %u threads\n",
+                report["machine"]["cpu"].get<std::string>().c_str(),
                 std::thread::hardware_concurrency());
     std::printf("%-12s %10s %-9s %10s %9s %8s | %10s %8s %9s\n", "model", "triangles", "builder",
                 "build ms", "SAH cost", "nodes", "frame ms", "M rays", "M rays/s");
@@ -86,8 +87,8 @@ void RunBench(const BenchOptions& o) {
         TriangleMesh mesh;
         Stopwatch loadTimer;
         if (!LoadBenchModel(name, &mesh)) {
-            std::printf("%-12s skipped: model file missing in %s (run tools/fetch_models.sh)\n", name.c_str(),
-                        ModelDir().c_str());
+            std::printf("%-12s skipped: model file missing in %s (run tools/fetch_models.sh)\n",
+                        name.c_str(), ModelDir().c_str());
             continue;
         }
         nlohmann::json row;
@@ -107,9 +108,10 @@ void RunBench(const BenchOptions& o) {
                 times.push_back(t.Milliseconds());
             } while (times.size() < 5 && total.Milliseconds() < 1500.0);
             const BvhStats stats = ComputeStats(blas.nodes);
-            row["builders"][builderName] = {{"build_ms", Median(times)}, {"sah_cost", stats.sahCost},
-                                            {"nodes", stats.nodeCount}, {"max_depth", stats.maxDepth},
-                                            {"bytes", blas.Bytes()}, {"runs", times.size()}};
+            row["builders"][builderName] = {
+                {"build_ms", Median(times)}, {"sah_cost", stats.sahCost},
+                {"nodes", stats.nodeCount},  {"max_depth", stats.maxDepth},
+                {"bytes", blas.Bytes()},     {"runs", times.size()}};
             std::printf("%-12s %10zu %-9s %10.1f %9.2f %8u |", name.c_str(), mesh.indices.size(),
                         builderName.c_str(), Median(times), stats.sahCost, stats.nodeCount);
             std::fflush(stdout);
@@ -150,8 +152,10 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     cpu->add_option("--frames", options->frames, "Timed frames per model (median reported)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
-    cpu->add_option("--models", options->models, "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
-        ->check(CLI::IsMember({"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
+    cpu->add_option("--models", options->models,
+                    "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
+        ->check(CLI::IsMember(
+            {"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
         ->delimiter(',');
     cpu->add_option("--builders", options->builders, "binned, sweep, centroid")
         ->check(CLI::IsMember({"binned", "sweep", "centroid"}))

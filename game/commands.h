@@ -6,8 +6,8 @@ namespace rtrt {
 
 // Exit statuses scripts can rely on.
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;     // the work itself failed (GPU error, I/O error)
-inline constexpr int kExitBadInput = 2;    // bad command line, scene, model or output path
+inline constexpr int kExitFailure = 1;   // the work itself failed (GPU error, I/O error)
+inline constexpr int kExitBadInput = 2;  // bad command line, scene, model or output path
 
 void AddRenderCommand(CLI::App& app, int* exitCode);
 void AddBenchCommand(CLI::App& app, int* exitCode);

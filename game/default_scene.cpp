@@ -48,8 +48,8 @@ RenderScene MakeDefaultScene() {
                                              glm::radians(30.0f), vec3(0, 1, 0)),
                                  vec3(1.5f)));
 
-    scene.lights.push_back({glm::normalize(vec3(-1.0f, 2.0f, 1.5f)), LightType::kDirectional,
-                            vec3(0.8f), 0.0f});
+    scene.lights.push_back(
+        {glm::normalize(vec3(-1.0f, 2.0f, 1.5f)), LightType::kDirectional, vec3(0.8f), 0.0f});
     scene.lights.push_back({vec3(3.0f, 4.0f, 3.0f), LightType::kPoint, vec3(0.35f), 0.0f});
     scene.BuildTlas();
     return scene;

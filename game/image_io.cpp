@@ -16,11 +16,14 @@ namespace {
 
 std::string Extension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     return ext;
 }
 
-bool IsFloatFormat(const std::string& ext) { return ext == ".exr" || ext == ".pfm" || ext == ".hdr"; }
+bool IsFloatFormat(const std::string& ext) {
+    return ext == ".exr" || ext == ".pfm" || ext == ".hdr";
+}
 
 void WritePortable(const std::string& path, const Image& image, const std::string& ext) {
     std::ofstream out(path, std::ios::binary);
@@ -42,7 +45,8 @@ void WritePortable(const std::string& path, const Image& image, const std::strin
 
 void CheckImagePath(const std::string& path) {
     const std::string ext = Extension(path);
-    if (ext.empty()) throw InputError(path, "", "the output needs an extension such as .png or .exr");
+    if (ext.empty())
+        throw InputError(path, "", "the output needs an extension such as .png or .exr");
 #if defined(RTRT_WITH_OIIO)
     if (ext != ".ppm" && ext != ".pfm") {
         auto out = OIIO::ImageOutput::create(path);
@@ -74,7 +78,8 @@ void WriteImage(const std::string& path, const Image& image) {
             const bool isFloat = IsFloatFormat(ext);
             OIIO::ImageSpec spec(int(image.width), int(image.height), 3,
                                  isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-            if (!out || !out->open(tmp, spec)) throw InputError(path, "", "cannot open for writing: " + OIIO::geterror());
+            if (!out || !out->open(tmp, spec))
+                throw InputError(path, "", "cannot open for writing: " + OIIO::geterror());
             bool ok;
             if (isFloat) {
                 ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
@@ -82,10 +87,12 @@ void WriteImage(const std::string& path, const Image& image) {
                 std::vector<uint8_t> bytes(image.pixels.size() * 3);
                 for (size_t i = 0; i < image.pixels.size(); ++i)
                     for (int c = 0; c < 3; ++c)
-                        bytes[3 * i + c] = uint8_t(std::clamp(image.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
+                        bytes[3 * i + c] =
+                            uint8_t(std::clamp(image.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
                 ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
             }
-            if (!ok || !out->close()) throw InputError(path, "", "write failed: " + out->geterror());
+            if (!ok || !out->close())
+                throw InputError(path, "", "write failed: " + out->geterror());
 #endif
         }
         std::filesystem::rename(tmp, path);
@@ -106,7 +113,8 @@ Image ReadImage(const std::string& path) {
         throw InputError(path, "", "cannot read image: " + in->geterror());
     Image image(uint32_t(spec.width), uint32_t(spec.height));
     for (size_t i = 0; i < image.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) image.pixels[i][c] = data[i * spec.nchannels + std::min(c, spec.nchannels - 1)];
+        for (int c = 0; c < 3; ++c)
+            image.pixels[i][c] = data[i * spec.nchannels + std::min(c, spec.nchannels - 1)];
     return image;
 #else
     throw InputError(path, "", "reading images needs OpenImageIO");

@@ -15,8 +15,7 @@ RenderScene MakePaperScene(std::shared_ptr<const Blas> blas) {
     red.reflectivity = 0.3f;
     const uint32_t material = scene.AddMaterial(red);
     scene.AddInstance(scene.AddBlas(std::move(blas)), material, glm::mat4(1.0f));
-    scene.lights.push_back(
-        {glm::normalize(vec3(1.0f)), LightType::kDirectional, vec3(1.0f), 0.0f});
+    scene.lights.push_back({glm::normalize(vec3(1.0f)), LightType::kDirectional, vec3(1.0f), 0.0f});
     scene.BuildTlas();
     return scene;
 }

@@ -5,7 +5,7 @@
 
 namespace rtrt {
 
-TriangleMesh MakeBoxMesh(vec3 size);            // centred on the origin
+TriangleMesh MakeBoxMesh(vec3 size);                   // centred on the origin
 TriangleMesh MakePlaneMesh(float sizeX, float sizeZ);  // in y = 0, normal +y, centred
 
 // Scales and moves a mesh in place so its largest extent is `extent` and its bounding box is

@@ -32,7 +32,8 @@ void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
         h = std::stoul(text.substr(x + 1), &used);
         if (used != text.size() - x - 1) throw std::invalid_argument("");
     } catch (const std::exception&) {
-        throw InputError("--size", "", "expected WIDTHxHEIGHT such as 1920x1080, got \"" + text + "\"");
+        throw InputError("--size", "",
+                         "expected WIDTHxHEIGHT such as 1920x1080, got \"" + text + "\"");
     }
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
         throw InputError("--size", "", "width and height must be between 1 and 16384, got " + text);
@@ -52,8 +53,10 @@ void RunRender(const RenderOptions& o) {
     RenderSettings settings;
     LoadedScene loaded;
     Stopwatch loadTimer;
-    if (o.scene == "default") loaded.scene = MakeDefaultScene();
-    else loaded = LoadSceneFile(o.scene);
+    if (o.scene == "default")
+        loaded.scene = MakeDefaultScene();
+    else
+        loaded = LoadSceneFile(o.scene);
     const double loadMs = loadTimer.Milliseconds();
     settings.width = loaded.width.value_or(1280);
     settings.height = loaded.height.value_or(720);
@@ -72,27 +75,35 @@ void RunRender(const RenderOptions& o) {
     const double renderMs = renderTimer.Milliseconds();
     HeatmapScale heat;
     WriteImage(o.output, FinishView(raw, settings.view, &heat));
-    std::printf("rtrt: wrote %s (%ux%u, %s back end, %s view): scene %.1f ms, render %.1f ms, %.2f M rays\n",
-                o.output.c_str(), settings.width, settings.height, o.backend.c_str(), o.view.c_str(),
-                loadMs, renderMs, double(stats.rays) * 1e-6);
+    std::printf(
+        "rtrt: wrote %s (%ux%u, %s back end, %s view): scene %.1f ms, render %.1f ms, %.2f M "
+        "rays\n",
+        o.output.c_str(), settings.width, settings.height, o.backend.c_str(), o.view.c_str(),
+        loadMs, renderMs, double(stats.rays) * 1e-6);
     if (settings.view == ViewMode::kHeatmap)
-        std::printf("rtrt: heatmap scale: 0 to %.0f traversal steps (nodes visited + primitives tested) per primary ray\n",
-                    heat.maxSteps);
+        std::printf(
+            "rtrt: heatmap scale: 0 to %.0f traversal steps (nodes visited + primitives tested) "
+            "per primary ray\n",
+            heat.maxSteps);
 }
 
 }  // namespace
 
 void AddRenderCommand(CLI::App& app, int* exitCode) {
     auto options = std::make_shared<RenderOptions>();
-    CLI::App* cmd = app.add_subcommand("render", "Render a scene file (or the built-in default scene) to an image");
-    cmd->add_option("scene", options->scene, "Scene file (.json), or \"default\" for the built-in scene")
+    CLI::App* cmd = app.add_subcommand(
+        "render", "Render a scene file (or the built-in default scene) to an image");
+    cmd->add_option("scene", options->scene,
+                    "Scene file (.json), or \"default\" for the built-in scene")
         ->capture_default_str();
     cmd->add_option("-o,--output", options->output, "Output image (.png, .exr, ...)")->required();
-    cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the scene's, else 1280x720)");
+    cmd->add_option("--size", options->size,
+                    "Image size WIDTHxHEIGHT (default: the scene's, else 1280x720)");
     cmd->add_option("--backend", options->backend, "cpu or cuda")
         ->check(CLI::IsMember({"cpu", "cuda"}))
         ->capture_default_str();
-    cmd->add_option("--max-depth", options->maxDepth, "Rays per path: 1 = primary only (default: the scene's)")
+    cmd->add_option("--max-depth", options->maxDepth,
+                    "Rays per path: 1 = primary only (default: the scene's)")
         ->check(CLI::Range(1, 16));
     cmd->add_option("--view", options->view, "shaded, normals, depth or heatmap")
         ->check(CLI::IsMember({"shaded", "normals", "depth", "heatmap"}))

@@ -3,12 +3,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <glm/gtc/matrix_transform.hpp>
-#include <nlohmann/json.hpp>
 
 #include "engine/core/error.h"
 #include "game/mesh_io.h"
@@ -26,8 +25,9 @@ const char* TypeName(const Json& j) { return j.type_name(); }
 // One JSON object of the scene file at a known path. Reading a key marks it as known; Finish()
 // rejects any key nobody read, so a typo never passes silently.
 class Fields {
-public:
-    Fields(const Json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {
+  public:
+    Fields(const Json& j, std::string path, const std::string& file)
+        : j_(j), path_(std::move(path)), file_(file) {
         if (!j.is_object()) Fail("", std::string("expected an object, got ") + TypeName(j));
     }
 
@@ -52,7 +52,8 @@ public:
     float InRange(const std::string& key, float lo, float hi, float fallback) {
         const float v = Number(key, fallback);
         if (!(v >= lo && v <= hi))
-            Fail(key, "must be between " + Format(lo) + " and " + Format(hi) + ", got " + Format(v));
+            Fail(key,
+                 "must be between " + Format(lo) + " and " + Format(hi) + ", got " + Format(v));
         return v;
     }
     uint32_t Count(const std::string& key, uint32_t lo, uint32_t hi, uint32_t fallback) {
@@ -72,7 +73,8 @@ public:
         if (!v.is_array() || v.size() != 3)
             Fail(key, std::string("expected an array of 3 numbers, got ") +
                           (v.is_array() ? std::to_string(v.size()) + " elements" : TypeName(v)));
-        return vec3(ToNumber(v[0], key + "[0]"), ToNumber(v[1], key + "[1]"), ToNumber(v[2], key + "[2]"));
+        return vec3(ToNumber(v[0], key + "[0]"), ToNumber(v[1], key + "[1]"),
+                    ToNumber(v[2], key + "[2]"));
     }
     // A colour: 3 numbers, or one number for grey.
     vec3 Colour(const std::string& key, vec3 fallback) {
@@ -105,7 +107,7 @@ public:
         throw InputError(file_, Path(key), reason);
     }
 
-private:
+  private:
     template <typename T>
     [[noreturn]] T Missing(const std::string& key) const {
         Fail(key, "missing required field");
@@ -129,8 +131,9 @@ private:
 };
 
 class SceneParser {
-public:
-    SceneParser(std::string name, std::string baseDir) : file_(std::move(name)), baseDir_(std::move(baseDir)) {}
+  public:
+    SceneParser(std::string name, std::string baseDir)
+        : file_(std::move(name)), baseDir_(std::move(baseDir)) {}
 
     LoadedScene Parse(const std::string& text) {
         Json root;
@@ -160,25 +163,32 @@ public:
         return out;
     }
 
-private:
+  private:
     Camera ParseCamera(const Json& j) {
         Fields f(j, "camera", file_);
         Camera c;
         c.position = f.Vec3("position", c.position);
-        if (f.Has("look_at") && f.Has("forward")) f.Fail("look_at", "give either look_at or forward, not both");
-        if (f.Has("look_at")) c.forward = f.Vec3("look_at") - c.position;
-        else c.forward = f.Vec3("forward", c.forward);
+        if (f.Has("look_at") && f.Has("forward"))
+            f.Fail("look_at", "give either look_at or forward, not both");
+        if (f.Has("look_at"))
+            c.forward = f.Vec3("look_at") - c.position;
+        else
+            c.forward = f.Vec3("forward", c.forward);
         c.up = f.Vec3("up", c.up);
         c.fovYDegrees = f.InRange("fov_y", 1.0f, 179.0f, c.fovYDegrees);
         if (glm::length(c.forward) == 0.0f) f.Fail("forward", "the view direction has zero length");
-        if (glm::length(glm::cross(c.forward, c.up)) < 1e-6f * glm::length(c.forward) * glm::length(c.up))
+        if (glm::length(glm::cross(c.forward, c.up)) <
+            1e-6f * glm::length(c.forward) * glm::length(c.up))
             f.Fail("up", "up must not be parallel to the view direction (or zero)");
         f.Finish();
         return c;
     }
 
     void ParseMaterials(const Json& j, RenderScene& scene) {
-        if (!j.is_object()) throw InputError(file_, "materials", std::string("expected an object of named materials, got ") + TypeName(j));
+        if (!j.is_object())
+            throw InputError(
+                file_, "materials",
+                std::string("expected an object of named materials, got ") + TypeName(j));
         for (const auto& [name, value] : j.items()) {
             Fields f(value, "materials." + name, file_);
             Material m;
@@ -197,7 +207,8 @@ private:
     }
 
     void ParseLights(const Json& j, RenderScene& scene) {
-        if (!j.is_array()) throw InputError(file_, "lights", std::string("expected an array, got ") + TypeName(j));
+        if (!j.is_array())
+            throw InputError(file_, "lights", std::string("expected an array, got ") + TypeName(j));
         for (size_t i = 0; i < j.size(); ++i) {
             Fields f(j[i], "lights[" + std::to_string(i) + "]", file_);
             Light light;
@@ -211,7 +222,8 @@ private:
                 light.type = LightType::kPoint;
                 light.vector = f.Vec3("position");
             } else {
-                f.Fail("type", "unknown light type \"" + type + "\" (expected directional or point)");
+                f.Fail("type",
+                       "unknown light type \"" + type + "\" (expected directional or point)");
             }
             light.color = f.Colour("color", vec3(1.0f));
             f.Finish();
@@ -220,7 +232,9 @@ private:
     }
 
     void ParseModels(const Json& j, RenderScene& scene) {
-        if (!j.is_object()) throw InputError(file_, "models", std::string("expected an object of named models, got ") + TypeName(j));
+        if (!j.is_object())
+            throw InputError(file_, "models",
+                             std::string("expected an object of named models, got ") + TypeName(j));
         for (const auto& [name, value] : j.items()) {
             Fields f(value, "models." + name, file_);
             modelIds_[name] = scene.AddBlas(std::make_shared<const Blas>(ParseModel(f)));
@@ -232,7 +246,8 @@ private:
         BvhBuildOptions options;
         const std::string builder = f.String("builder", "binned");
         if (!ParseBuilder(builder, &options.builder))
-            f.Fail("builder", "unknown builder \"" + builder + "\" (expected binned, sweep or centroid)");
+            f.Fail("builder",
+                   "unknown builder \"" + builder + "\" (expected binned, sweep or centroid)");
         const std::string type = f.String("type");
         if (type == "sphere") {
             const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
@@ -243,18 +258,23 @@ private:
         if (type == "box") {
             mesh = MakeBoxMesh(f.Vec3("size", vec3(1.0f)));
             const vec3 size = mesh.Bounds().Extent();
-            if (!(size.x > 0 && size.y > 0 && size.z > 0)) f.Fail("size", "box sides must be greater than 0");
+            if (!(size.x > 0 && size.y > 0 && size.z > 0))
+                f.Fail("size", "box sides must be greater than 0");
         } else if (type == "plane") {
             const vec3 size = f.Vec3("size", vec3(10.0f, 0.0f, 10.0f));
-            if (!(size.x > 0 && size.z > 0)) f.Fail("size", "plane size x and z must be greater than 0");
+            if (!(size.x > 0 && size.z > 0))
+                f.Fail("size", "plane size x and z must be greater than 0");
             mesh = MakePlaneMesh(size.x, size.z);
         } else if (type == "teapot") {
             const uint32_t resolution = f.Count("resolution", 1, 64, 6);
-            mesh = TessellateTeapot(ResolveModelPath(f.String("file", "@models/teapot.inc"), baseDir_), int(resolution));
+            mesh =
+                TessellateTeapot(ResolveModelPath(f.String("file", "@models/teapot.inc"), baseDir_),
+                                 int(resolution));
         } else if (type == "mesh") {
             mesh = LoadMesh(ResolveModelPath(f.String("file"), baseDir_));
         } else {
-            f.Fail("type", "unknown model type \"" + type + "\" (expected sphere, spheres, box, plane, teapot or mesh)");
+            f.Fail("type", "unknown model type \"" + type +
+                               "\" (expected sphere, spheres, box, plane, teapot or mesh)");
         }
         if (f.Has("fit")) FitMesh(mesh, f.Positive("fit"));
         return BuildTriangleBlas(mesh, options);
@@ -262,33 +282,40 @@ private:
 
     std::vector<Sphere> ParseSphereList(Fields& f) {
         const Json& list = f.Get("spheres");
-        if (!list.is_array() || list.empty()) f.Fail("spheres", "expected a non-empty array of [x, y, z, radius]");
+        if (!list.is_array() || list.empty())
+            f.Fail("spheres", "expected a non-empty array of [x, y, z, radius]");
         std::vector<Sphere> spheres;
         for (size_t i = 0; i < list.size(); ++i) {
             const Json& s = list[i];
             const std::string key = "spheres[" + std::to_string(i) + "]";
             if (!s.is_array() || s.size() != 4) f.Fail(key, "expected [x, y, z, radius]");
             for (const Json& v : s)
-                if (!v.is_number() || !std::isfinite(v.get<double>())) f.Fail(key, "expected finite numbers");
+                if (!v.is_number() || !std::isfinite(v.get<double>()))
+                    f.Fail(key, "expected finite numbers");
             if (!(s[3].get<float>() > 0.0f)) f.Fail(key, "radius must be greater than 0");
-            spheres.push_back({vec3(s[0].get<float>(), s[1].get<float>(), s[2].get<float>()), s[3].get<float>()});
+            spheres.push_back(
+                {vec3(s[0].get<float>(), s[1].get<float>(), s[2].get<float>()), s[3].get<float>()});
         }
         return spheres;
     }
 
     void ParseInstances(const Json& j, RenderScene& scene) {
-        if (!j.is_array()) throw InputError(file_, "instances", std::string("expected an array, got ") + TypeName(j));
+        if (!j.is_array())
+            throw InputError(file_, "instances",
+                             std::string("expected an array, got ") + TypeName(j));
         uint32_t defaultMaterial = UINT32_MAX;
         for (size_t i = 0; i < j.size(); ++i) {
             Fields f(j[i], "instances[" + std::to_string(i) + "]", file_);
             const std::string model = f.String("model");
             auto modelIt = modelIds_.find(model);
-            if (modelIt == modelIds_.end()) f.Fail("model", "no model named \"" + model + "\" in models");
+            if (modelIt == modelIds_.end())
+                f.Fail("model", "no model named \"" + model + "\" in models");
             uint32_t material;
             if (f.Has("material")) {
                 const std::string name = f.String("material");
                 auto it = materialIds_.find(name);
-                if (it == materialIds_.end()) f.Fail("material", "no material named \"" + name + "\" in materials");
+                if (it == materialIds_.end())
+                    f.Fail("material", "no material named \"" + name + "\" in materials");
                 material = it->second;
             } else {
                 if (defaultMaterial == UINT32_MAX) defaultMaterial = scene.AddMaterial(Material{});
@@ -305,9 +332,17 @@ private:
         const vec3 rotation = f.Vec3("rotation", vec3(0.0f));
         vec3 scale(1.0f);
         if (f.Has("scale")) {
-            if (f.Get("scale").is_number()) scale = vec3(f.Positive("scale"));
-            else scale = f.Vec3("scale");
-            if (!(scale.x > 0 && scale.y > 0 && scale.z > 0)) f.Fail("scale", "scale factors must be greater than 0");
+            const Json& value = f.Get("scale");
+            if (value.is_number()) {
+                scale = vec3(f.Positive("scale"));
+            } else if (value.is_array()) {
+                scale = f.Vec3("scale");
+            } else {
+                f.Fail("scale", std::string("expected a number or an array of 3 numbers, got ") +
+                                    TypeName(value));
+            }
+            if (!(scale.x > 0 && scale.y > 0 && scale.z > 0))
+                f.Fail("scale", "scale factors must be greater than 0");
         }
         glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
         m = glm::rotate(m, glm::radians(rotation.z), vec3(0, 0, 1));
@@ -322,14 +357,16 @@ private:
 
 }  // namespace
 
-LoadedScene ParseScene(const std::string& text, const std::string& name, const std::string& baseDir) {
+LoadedScene ParseScene(const std::string& text, const std::string& name,
+                       const std::string& baseDir) {
     return SceneParser(name, baseDir).Parse(text);
 }
 
 LoadedScene LoadSceneFile(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "no such file");
-    if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a scene file");
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(path, "", "is a directory, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, "", "cannot be opened for reading");
     std::stringstream text;

@@ -17,6 +17,7 @@ struct LoadedScene {
 LoadedScene LoadSceneFile(const std::string& path);
 
 // Same, from JSON text; `name` stands for the file in messages and `baseDir` resolves paths.
-LoadedScene ParseScene(const std::string& text, const std::string& name, const std::string& baseDir);
+LoadedScene ParseScene(const std::string& text, const std::string& name,
+                       const std::string& baseDir);
 
 }  // namespace rtrt

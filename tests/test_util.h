@@ -1,11 +1,11 @@
 #pragma once
 // Helpers shared by the test suites.
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "engine/bvh/triangle_mesh.h"
 
@@ -22,10 +22,11 @@ inline std::string FetchedModel(const std::string& name) {
     return std::filesystem::exists(path) ? path : std::string();
 }
 
-#define RTRT_REQUIRE_MODEL(var, name)                                                         \
-    const std::string var = ::rtrt::test::FetchedModel(name);                                 \
-    if (var.empty()) GTEST_SKIP() << name << " is not in " << ::rtrt::test::ModelDir()        \
-                                  << "; run tools/fetch_models.sh"
+#define RTRT_REQUIRE_MODEL(var, name)                                 \
+    const std::string var = ::rtrt::test::FetchedModel(name);         \
+    if (var.empty())                                                  \
+    GTEST_SKIP() << name << " is not in " << ::rtrt::test::ModelDir() \
+                 << "; run tools/fetch_models.sh"
 
 inline std::string SourcePath(const std::string& relative) {
     return std::string(RTRT_SOURCE_DIR) + "/" + relative;
@@ -39,7 +40,8 @@ inline TriangleMesh RandomTriangles(uint32_t count, uint32_t seed) {
     for (uint32_t i = 0; i < count; ++i) {
         const vec3 c(pos(rng), pos(rng), pos(rng));
         const float s = size(rng);
-        for (int k = 0; k < 3; ++k) mesh.positions.push_back(c + s * vec3(pos(rng), pos(rng), pos(rng)));
+        for (int k = 0; k < 3; ++k)
+            mesh.positions.push_back(c + s * vec3(pos(rng), pos(rng), pos(rng)));
         mesh.indices.push_back({3 * i, 3 * i + 1, 3 * i + 2});
     }
     return mesh;

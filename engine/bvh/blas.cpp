@@ -5,8 +5,9 @@
 namespace rtrt {
 
 BlasView Blas::View() const {
-    return {nodes.data(),   triangles.data(), normals.empty() ? nullptr : normals.data(),
-            spheres.data(), kind,             PrimCount()};
+    return {
+        nodes.data(), triangles.data(), normals.empty() ? nullptr : normals.data(), spheres.data(),
+        kind,         PrimCount()};
 }
 
 size_t Blas::Bytes() const {

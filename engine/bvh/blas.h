@@ -14,9 +14,9 @@ namespace rtrt {
 // What the tracer needs of a BLAS: plain pointers, valid in host or device memory.
 struct BlasView {
     const BvhNode* nodes;
-    const Triangle* triangles;        // kTriangles: leaf order
-    const TriangleNormals* normals;   // kTriangles: leaf order, or null for flat shading
-    const Sphere* spheres;            // kSpheres: leaf order
+    const Triangle* triangles;       // kTriangles: leaf order
+    const TriangleNormals* normals;  // kTriangles: leaf order, or null for flat shading
+    const Sphere* spheres;           // kSpheres: leaf order
     GeometryKind kind;
     uint32_t primCount;
 };

@@ -1,10 +1,10 @@
 #include "engine/bvh/bvh_builder.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <atomic>
 #include <numeric>
-
-#include <tbb/parallel_invoke.h>
 
 namespace rtrt {
 namespace {
@@ -16,13 +16,13 @@ constexpr uint32_t kMaxDepth = kBvhStackSize - 4;
 
 struct Split {
     int axis = -1;
-    float position = 0.0f;  // centroid coordinate; binned and centroid splits
+    float position = 0.0f;    // centroid coordinate; binned and centroid splits
     uint32_t sweepIndex = 0;  // sweep: first primitive of the right side, in sorted order
     float cost = kInfinity;
 };
 
 class Builder {
-public:
+  public:
     Builder(std::span<const Aabb> bounds, const BvhBuildOptions& options)
         : bounds_(bounds), options_(options), centroids_(bounds.size()), order_(bounds.size()) {
         for (size_t i = 0; i < bounds.size(); ++i) centroids_[i] = bounds[i].Centroid();
@@ -36,7 +36,7 @@ public:
         return Relayout();
     }
 
-private:
+  private:
     Aabb RangeBounds(uint32_t begin, uint32_t end, Aabb* centroidBounds) const {
         Aabb b, c;
         for (uint32_t i = begin; i < end; ++i) {
@@ -238,8 +238,8 @@ private:
     std::atomic<uint32_t> nodeCount_{0};
 };
 
-void AccumulateStats(std::span<const BvhNode> nodes, uint32_t index, uint32_t depth,
-                     float rootArea, BvhStats* stats, uint64_t* leafPrims) {
+void AccumulateStats(std::span<const BvhNode> nodes, uint32_t index, uint32_t depth, float rootArea,
+                     BvhStats* stats, uint64_t* leafPrims) {
     const BvhNode& node = nodes[index];
     ++stats->nodeCount;
     stats->maxDepth = std::max(stats->maxDepth, depth);
@@ -260,15 +260,19 @@ void AccumulateStats(std::span<const BvhNode> nodes, uint32_t index, uint32_t de
 
 std::string_view BuilderName(BvhBuilder builder) {
     switch (builder) {
-        case BvhBuilder::kBinnedSah: return "binned";
-        case BvhBuilder::kSweepSah: return "sweep";
-        case BvhBuilder::kCentroidSplit: return "centroid";
+        case BvhBuilder::kBinnedSah:
+            return "binned";
+        case BvhBuilder::kSweepSah:
+            return "sweep";
+        case BvhBuilder::kCentroidSplit:
+            return "centroid";
     }
     return "unknown";
 }
 
 bool ParseBuilder(std::string_view name, BvhBuilder* builder) {
-    for (BvhBuilder b : {BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit}) {
+    for (BvhBuilder b :
+         {BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit}) {
         if (name == BuilderName(b)) {
             *builder = b;
             return true;

@@ -22,7 +22,8 @@ bool ParseBuilder(std::string_view name, BvhBuilder* builder);
 
 struct BvhBuildOptions {
     BvhBuilder builder = BvhBuilder::kBinnedSah;
-    uint32_t maxLeafSize = 8;  // leaves hold at most this many primitives (unless the depth cap hits)
+    uint32_t maxLeafSize =
+        8;  // leaves hold at most this many primitives (unless the depth cap hits)
     uint32_t binCount = 32;
 };
 
@@ -31,8 +32,8 @@ inline constexpr float kSahTraversalCost = 1.0f;
 inline constexpr float kSahIntersectionCost = 1.0f;
 
 struct Bvh {
-    AlignedVector<BvhNode> nodes;      // depth-first order, root at 0, index 1 unused
-    std::vector<uint32_t> primOrder; // slot i of the leaves holds input primitive primOrder[i]
+    AlignedVector<BvhNode> nodes;     // depth-first order, root at 0, index 1 unused
+    std::vector<uint32_t> primOrder;  // slot i of the leaves holds input primitive primOrder[i]
 };
 
 Bvh BuildBvh(std::span<const Aabb> primBounds, const BvhBuildOptions& options = {});

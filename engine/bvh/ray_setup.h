@@ -9,7 +9,7 @@ namespace rtrt {
 struct RaySetup {
     vec3 origin;
     vec3 dir;
-    vec3 invDir;         // 1/d; +-inf for +-0 components (the sign of zero is kept)
+    vec3 invDir;           // 1/d; +-inf for +-0 components (the sign of zero is kept)
     uint32_t negative[3];  // signbit(invDir): which slab plane is near
     // Watertight test (Woop, Benthin, Wald 2013): axes permuted so that kz is the dominant one.
     int kx, ky, kz;

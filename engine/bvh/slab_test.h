@@ -8,8 +8,7 @@
 
 namespace rtrt {
 
-RT_HD inline bool SlabTest(vec3 boxMin, vec3 boxMax, const RaySetup& r, float tMax,
-                           float* tEntry) {
+RT_HD inline bool SlabTest(vec3 boxMin, vec3 boxMax, const RaySetup& r, float tMax, float* tEntry) {
     const vec3 lo[2] = {boxMin, boxMax};
     const float tx0 = (lo[r.negative[0]].x - r.origin.x) * r.invDir.x;
     const float tx1 = (lo[1 - r.negative[0]].x - r.origin.x) * r.invDir.x;

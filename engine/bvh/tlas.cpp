@@ -16,7 +16,8 @@ Aabb TransformBounds(const Affine& m, const Aabb& b) {
 Tlas BuildTlas(std::span<const Instance> instances, std::span<const Aabb> blasBounds) {
     std::vector<Aabb> worldBounds(instances.size());
     for (size_t i = 0; i < instances.size(); ++i)
-        worldBounds[i] = TransformBounds(instances[i].objectToWorld, blasBounds[instances[i].blasId]);
+        worldBounds[i] =
+            TransformBounds(instances[i].objectToWorld, blasBounds[instances[i].blasId]);
     BvhBuildOptions options;
     options.maxLeafSize = 1;  // one instance per leaf: each costs a full BLAS descent
     Bvh bvh = BuildBvh(worldBounds, options);

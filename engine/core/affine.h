@@ -13,7 +13,8 @@ struct Affine {
         return {{vec4(1, 0, 0, 0), vec4(0, 1, 0, 0), vec4(0, 0, 1, 0)}};
     }
     RT_HD vec3 Point(vec3 p) const {
-        return vec3(Dot3(row[0], p) + row[0].w, Dot3(row[1], p) + row[1].w, Dot3(row[2], p) + row[2].w);
+        return vec3(Dot3(row[0], p) + row[0].w, Dot3(row[1], p) + row[1].w,
+                    Dot3(row[2], p) + row[2].w);
     }
     RT_HD vec3 Vector(vec3 v) const {
         return vec3(Dot3(row[0], v), Dot3(row[1], v), Dot3(row[2], v));
@@ -37,7 +38,7 @@ struct Affine {
         return err;
     }
 
-private:
+  private:
     RT_HD static float Dot3(const vec4& r, vec3 v) { return r.x * v.x + r.y * v.y + r.z * v.z; }
 };
 static_assert(sizeof(Affine) == 48);

@@ -8,13 +8,13 @@ namespace rtrt {
 // Bad input from a user: a file, a field inside it and the reason. what() reads
 // "FILE: FIELD: REASON" (FIELD omitted when empty), the one line the CLI prints.
 class InputError : public std::runtime_error {
-public:
+  public:
     InputError(std::string file, std::string field, std::string reason);
     const std::string& File() const { return file_; }
     const std::string& Field() const { return field_; }
     const std::string& Reason() const { return reason_; }
 
-private:
+  private:
     std::string file_, field_, reason_;
 };
 

@@ -3,7 +3,6 @@
 // After pbrt-v4 (Pharr, Jakob, Humphreys), section 6.8 "Managing Rounding Error".
 #include <cstring>
 
-
 #include "engine/core/math.h"
 
 namespace rtrt {

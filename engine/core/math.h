@@ -3,7 +3,6 @@
 // (do not define GLM_FORCE_CUDA, see BUILD_NOTES.md).
 #include <cmath>
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 #include "engine/core/rt_hd.h"

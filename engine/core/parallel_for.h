@@ -1,10 +1,10 @@
 #pragma once
 // Host-side data parallelism (TBB). The CUDA back end launches kernels instead; both run the same
 // RT_HD body per item.
-#include <cstddef>
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include <cstddef>
 
 namespace rtrt {
 

@@ -6,14 +6,14 @@
 namespace rtrt {
 
 class Stopwatch {
-public:
+  public:
     Stopwatch() : start_(Clock::now()) {}
     void Restart() { start_ = Clock::now(); }
     double Milliseconds() const {
         return std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
     }
 
-private:
+  private:
     using Clock = std::chrono::steady_clock;
     Clock::time_point start_;
 };

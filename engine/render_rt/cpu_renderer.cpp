@@ -1,7 +1,7 @@
-#include <atomic>
-
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
+
+#include <atomic>
 
 #include "engine/render_rt/pixel_kernel.h"
 #include "engine/render_rt/renderer.h"

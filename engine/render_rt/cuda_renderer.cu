@@ -78,8 +78,7 @@ bool CudaBackendAvailable(std::string* why) {
     return true;
 }
 
-Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings,
-                    RenderStats* stats) {
+Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, RenderStats* stats) {
     std::string why;
     if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use --backend cpu");
     DeviceScene device(scene);
@@ -92,7 +91,8 @@ Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings,
     DeviceBuffer<vec3> frame;
     frame.Resize(size_t(settings.width) * settings.height);
     const dim3 block(8, 8);
-    const dim3 grid((settings.width + block.x - 1) / block.x, (settings.height + block.y - 1) / block.y);
+    const dim3 grid((settings.width + block.x - 1) / block.x,
+                    (settings.height + block.y - 1) / block.y);
     const uint32_t features =
         EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
     DispatchFeatures(features, [&](auto featureTag) {

@@ -9,7 +9,7 @@ namespace rtrt {
 
 template <typename T>
 class DeviceBuffer {
-public:
+  public:
     DeviceBuffer() = default;
     explicit DeviceBuffer(std::span<const T> host) { Upload(host); }
     DeviceBuffer(const DeviceBuffer&) = delete;
@@ -35,7 +35,8 @@ public:
     void Upload(std::span<const T> host) {
         Resize(host.size());
         if (!host.empty())
-            RT_CUDA_CHECK(cudaMemcpy(data_, host.data(), host.size_bytes(), cudaMemcpyHostToDevice));
+            RT_CUDA_CHECK(
+                cudaMemcpy(data_, host.data(), host.size_bytes(), cudaMemcpyHostToDevice));
     }
     void Download(std::span<T> host) const {
         RT_CUDA_CHECK(cudaMemcpy(host.data(), data_, std::min(host.size(), size_) * sizeof(T),
@@ -44,7 +45,7 @@ public:
     T* Data() const { return data_; }
     size_t Size() const { return size_; }
 
-private:
+  private:
     T* data_ = nullptr;
     size_t size_ = 0;
 };

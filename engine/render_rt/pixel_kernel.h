@@ -15,11 +15,14 @@ RT_HD inline vec3 RawPixel(const RenderSceneView& scene, ViewMode view, uint32_t
     const PixelResult r = TracePixel<kFeatures>(scene, x, y);
     *rays += r.rays;
     switch (view) {
-        case ViewMode::kNormals: return r.normal;
-        case ViewMode::kDepth: return vec3(r.depth);
+        case ViewMode::kNormals:
+            return r.normal;
+        case ViewMode::kDepth:
+            return vec3(r.depth);
         case ViewMode::kHeatmap:
             return vec3(float(r.stats.nodesVisited), float(r.stats.primsTested), 0.0f);
-        default: return r.color;
+        default:
+            return r.color;
     }
 }
 
@@ -32,14 +35,22 @@ inline uint32_t EffectiveFeatures(uint32_t sceneFeatures, uint32_t enabled, View
 template <typename Fn>
 decltype(auto) DispatchFeatures(uint32_t features, Fn&& fn) {
     switch (features & kAllFeatures) {
-        case 0: return fn(std::integral_constant<uint32_t, 0>{});
-        case 1: return fn(std::integral_constant<uint32_t, 1>{});
-        case 2: return fn(std::integral_constant<uint32_t, 2>{});
-        case 3: return fn(std::integral_constant<uint32_t, 3>{});
-        case 4: return fn(std::integral_constant<uint32_t, 4>{});
-        case 5: return fn(std::integral_constant<uint32_t, 5>{});
-        case 6: return fn(std::integral_constant<uint32_t, 6>{});
-        default: return fn(std::integral_constant<uint32_t, 7>{});
+        case 0:
+            return fn(std::integral_constant<uint32_t, 0>{});
+        case 1:
+            return fn(std::integral_constant<uint32_t, 1>{});
+        case 2:
+            return fn(std::integral_constant<uint32_t, 2>{});
+        case 3:
+            return fn(std::integral_constant<uint32_t, 3>{});
+        case 4:
+            return fn(std::integral_constant<uint32_t, 4>{});
+        case 5:
+            return fn(std::integral_constant<uint32_t, 5>{});
+        case 6:
+            return fn(std::integral_constant<uint32_t, 6>{});
+        default:
+            return fn(std::integral_constant<uint32_t, 7>{});
     }
 }
 

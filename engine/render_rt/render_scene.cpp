@@ -1,7 +1,6 @@
 #include "engine/render_rt/render_scene.h"
 
 #include <algorithm>
-
 #include <glm/gtc/matrix_inverse.hpp>
 
 namespace rtrt {

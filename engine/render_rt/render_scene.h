@@ -34,7 +34,7 @@ struct RenderScene {
     // View into host memory for the CPU back end.
     RenderSceneView HostView(uint32_t width, uint32_t height, uint32_t maxDepth) const;
 
-private:
+  private:
     Tlas tlas_;
     std::vector<BlasView> blasViews_;
 };

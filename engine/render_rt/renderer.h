@@ -38,8 +38,8 @@ Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings,
                     RenderStats* stats = nullptr);
 
 inline Image Render(const RenderScene& scene, const RenderSettings& settings, Backend backend) {
-    Image raw = backend == Backend::kCuda ? RenderRawCuda(scene, settings)
-                                          : RenderRaw(scene, settings);
+    Image raw =
+        backend == Backend::kCuda ? RenderRawCuda(scene, settings) : RenderRaw(scene, settings);
     return FinishView(raw, settings.view);
 }
 

@@ -14,7 +14,8 @@ struct Surface {
     uint32_t materialId;
 };
 
-RT_HD inline Surface MakeSurface(const RenderSceneView& scene, const Ray& ray, const SceneHit& hit) {
+RT_HD inline Surface MakeSurface(const RenderSceneView& scene, const Ray& ray,
+                                 const SceneHit& hit) {
     const Instance& inst = scene.tlas.instances[hit.instance];
     const BlasView& blas = scene.tlas.blases[inst.blasId];
     vec3 p, pError, ng, ns;

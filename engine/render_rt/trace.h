@@ -10,8 +10,8 @@ namespace rtrt {
 
 struct PixelResult {
     vec3 color;
-    vec3 normal;    // primary hit's shading normal, zero on a miss
-    float depth;    // primary hit distance, infinity on a miss
+    vec3 normal;           // primary hit's shading normal, zero on a miss
+    float depth;           // primary hit distance, infinity on a miss
     TraversalStats stats;  // primary ray's closest-hit traversal
     uint32_t rays;         // rays traced for this pixel: primary, shadow and secondary
 };
@@ -97,7 +97,8 @@ RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, ui
         }
         const float localWeight = fmaxf(0.0f, 1.0f - m.reflectivity - m.transmissivity);
         if (localWeight > 0.0f)
-            result.color += pending.weight * localWeight * ShadeLocal<kFeatures>(scene, s, m, toViewer, &result.rays);
+            result.color += pending.weight * localWeight *
+                            ShadeLocal<kFeatures>(scene, s, m, toViewer, &result.rays);
         if (pending.depth >= scene.maxDepth) continue;
         if (reflectWeight > 0.0f) {
             const vec3 dir = Reflect(toViewer, s.shadingNormal);

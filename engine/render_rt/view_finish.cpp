@@ -9,8 +9,11 @@ namespace {
 
 // Blue -> cyan -> green -> yellow -> red: a perceptually ordered scale for counts.
 vec3 HeatColour(float t) {
-    static const vec3 kStops[] = {{0.05f, 0.05f, 0.35f}, {0.0f, 0.55f, 0.9f}, {0.1f, 0.8f, 0.2f},
-                                  {0.95f, 0.9f, 0.1f},   {0.9f, 0.1f, 0.05f}};
+    static const vec3 kStops[] = {{0.05f, 0.05f, 0.35f},
+                                  {0.0f, 0.55f, 0.9f},
+                                  {0.1f, 0.8f, 0.2f},
+                                  {0.95f, 0.9f, 0.1f},
+                                  {0.9f, 0.1f, 0.05f}};
     t = std::clamp(t, 0.0f, 1.0f) * 4.0f;
     const int i = std::min(int(t), 3);
     return glm::mix(kStops[i], kStops[i + 1], t - float(i));
@@ -47,8 +50,8 @@ void DrawLegend(Image& image, float maxSteps) {
     if (top < 0) return;
     for (int y = top; y < int(image.height); ++y)
         for (uint32_t x = 0; x < image.width; ++x)
-            image.At(x, y) = y < top + barHeight ? HeatColour(float(x) / float(image.width - 1))
-                                                 : vec3(0.0f);
+            image.At(x, y) =
+                y < top + barHeight ? HeatColour(float(x) / float(image.width - 1)) : vec3(0.0f);
     const vec3 white(1.0f);
     const int labelY = top + barHeight + scale;
     const uint32_t maxLabel = uint32_t(maxSteps);
@@ -64,10 +67,10 @@ void DrawLegend(Image& image, float maxSteps) {
 Image FinishView(const Image& raw, ViewMode view, HeatmapScale* heatmap) {
     Image out = raw;
     switch (view) {
-        case ViewMode::kShaded: return out;
+        case ViewMode::kShaded:
+            return out;
         case ViewMode::kNormals:
-            for (vec3& p : out.pixels)
-                p = (p == vec3(0.0f)) ? vec3(0.0f) : 0.5f * p + vec3(0.5f);
+            for (vec3& p : out.pixels) p = (p == vec3(0.0f)) ? vec3(0.0f) : 0.5f * p + vec3(0.5f);
             return out;
         case ViewMode::kDepth: {
             float nearest = kInfinity, farthest = 0.0f;
@@ -82,8 +85,13 @@ Image FinishView(const Image& raw, ViewMode view, HeatmapScale* heatmap) {
             return out;
         }
         case ViewMode::kHeatmap: {
-            float maxSteps = 1.0f;
-            for (const vec3& p : raw.pixels) maxSteps = std::max(maxSteps, p.x + p.y);
+            // The top of the scale is the 99.5th percentile, so a few extreme pixels do not
+            // wash out the rest; pixels above it take the top colour.
+            std::vector<float> steps(raw.pixels.size());
+            for (size_t i = 0; i < steps.size(); ++i) steps[i] = raw.pixels[i].x + raw.pixels[i].y;
+            auto top = steps.begin() + std::ptrdiff_t(0.995 * double(steps.size() - 1));
+            std::nth_element(steps.begin(), top, steps.end());
+            const float maxSteps = std::max(1.0f, std::ceil(*top));
             for (size_t i = 0; i < out.pixels.size(); ++i)
                 out.pixels[i] = HeatColour((raw.pixels[i].x + raw.pixels[i].y) / maxSteps);
             DrawLegend(out, maxSteps);

@@ -1,7 +1,7 @@
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <numeric>
-
-#include <gtest/gtest.h>
 
 #include "engine/bvh/blas.h"
 #include "game/mesh_io.h"
@@ -44,7 +44,8 @@ void ExpectWellFormed(const Blas& blas) {
 
 TEST(BvhBuilder, EveryBuilderMakesAWellFormedTree) {
     const TriangleMesh mesh = test::RandomTriangles(5000, 1);
-    for (BvhBuilder b : {BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit}) {
+    for (BvhBuilder b :
+         {BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit}) {
         SCOPED_TRACE(std::string(BuilderName(b)));
         BvhBuildOptions o;
         o.builder = b;

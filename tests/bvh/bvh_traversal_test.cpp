@@ -1,8 +1,8 @@
 // BVH traversal against brute force: on at least 100,000 rays per mesh, the same hit or miss,
 // the same primitive and the same t (bit for bit: both use the same intersection test).
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "engine/bvh/blas.h"
 #include "engine/bvh/sphere_intersect.h"
@@ -145,7 +145,7 @@ void ExpectMatchesBruteForce(const Blas& blas, uint32_t seed) {
 }
 
 class TraversalTest : public ::testing::TestWithParam<BvhBuilder> {
-protected:
+  protected:
     BvhBuildOptions Options() const {
         BvhBuildOptions o;
         o.builder = GetParam();
@@ -165,7 +165,8 @@ TEST_P(TraversalTest, SpheresMatchBruteForce) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> pos(-5.0f, 5.0f), radius(0.01f, 0.6f);
     std::vector<Sphere> spheres;
-    for (int i = 0; i < 2000; ++i) spheres.push_back({vec3(pos(rng), pos(rng), pos(rng)), radius(rng)});
+    for (int i = 0; i < 2000; ++i)
+        spheres.push_back({vec3(pos(rng), pos(rng), pos(rng)), radius(rng)});
     ExpectMatchesBruteForce(BuildSphereBlas(spheres, Options()), 13);
 }
 
@@ -191,7 +192,8 @@ TEST(Traversal, RefitKeepsResultsAfterTheMeshMoves) {
     std::vector<Aabb> slotBounds(blas.PrimCount());
     for (uint32_t slot = 0; slot < blas.PrimCount(); ++slot) {
         Triangle& t = blas.triangles[slot];
-        for (vec3* v : {&t.v0, &t.v1, &t.v2}) *v = vec3(v->x + 0.5f * v->y, v->y, v->z) + vec3(3, 0, 0);
+        for (vec3* v : {&t.v0, &t.v1, &t.v2})
+            *v = vec3(v->x + 0.5f * v->y, v->y, v->z) + vec3(3, 0, 0);
         slotBounds[slot] = t.Bounds();
     }
     Refit(blas.nodes, slotBounds);

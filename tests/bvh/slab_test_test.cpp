@@ -1,8 +1,8 @@
 // The slab test's hard cases: zero and negative-zero direction components, rays lying in a box
 // face, flat boxes, NaN rays.
-#include <gtest/gtest.h>
-
 #include "engine/bvh/slab_test.h"
+
+#include <gtest/gtest.h>
 
 namespace rtrt {
 namespace {
@@ -40,7 +40,7 @@ TEST(SlabTest, FlatBoxIsHit) {
 TEST(SlabTest, RespectsTMaxAndStartsAtZero) {
     EXPECT_FALSE(Hits(vec3(-1), vec3(1), vec3(0, 0, -5), vec3(0, 0, 1), 3.9f));
     EXPECT_TRUE(Hits(vec3(-1), vec3(1), vec3(0, 0, -5), vec3(0, 0, 1), 4.0f));
-    EXPECT_TRUE(Hits(vec3(-1), vec3(1), vec3(0), vec3(0, 0, 1)));  // origin inside
+    EXPECT_TRUE(Hits(vec3(-1), vec3(1), vec3(0), vec3(0, 0, 1)));         // origin inside
     EXPECT_FALSE(Hits(vec3(-1), vec3(1), vec3(0, 0, 5), vec3(0, 0, 1)));  // box behind
 }
 

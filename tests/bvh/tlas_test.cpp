@@ -1,12 +1,13 @@
 // Two-level traversal: a TLAS over instances finds what testing every instance finds.
-#include <random>
+#include "engine/bvh/tlas.h"
+
+#include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <gtest/gtest.h>
+#include <random>
 
 #include "engine/bvh/scene_traversal.h"
-#include "engine/bvh/tlas.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

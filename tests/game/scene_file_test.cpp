@@ -1,11 +1,12 @@
 // Scene files: what parses, and one clear message (file, field, reason) for what does not.
-#include <filesystem>
-#include <fstream>
+#include "game/scene_file.h"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "engine/core/error.h"
-#include "game/scene_file.h"
 #include "tests/test_util.h"
 
 namespace rtrt {
@@ -59,24 +60,28 @@ TEST(SceneFile, MistypedFieldsAreRejected) {
 }
 
 TEST(SceneFile, ImpossibleValuesAreRejected) {
-    ExpectError(R"({"instances": [], "image": {"width": 0}})", "image.width", "between 1 and 16384");
+    ExpectError(R"({"instances": [], "image": {"width": 0}})", "image.width",
+                "between 1 and 16384");
     ExpectError(R"({"instances": [], "max_depth": 99})", "max_depth", "between 1 and 16");
     ExpectError(R"({"instances": [], "camera": {"fov_y": 180}})", "camera.fov_y", "between");
     ExpectError(R"({"instances": [], "camera": {"forward": [0, 1, 0]}})", "camera.up", "parallel");
-    ExpectError(R"({"instances": [], "materials": {"m": {"reflectivity": 0.7, "transmissivity": 0.7}}})",
-                "materials.m.transmissivity", "must not exceed 1");
+    ExpectError(
+        R"({"instances": [], "materials": {"m": {"reflectivity": 0.7, "transmissivity": 0.7}}})",
+        "materials.m.transmissivity", "must not exceed 1");
     ExpectError(R"({"instances": [], "models": {"b": {"type": "sphere", "radius": -1}}})",
                 "models.b.radius", "greater than 0");
 }
 
 TEST(SceneFile, DanglingReferencesAreRejected) {
     ExpectError(R"({"instances": [{"model": "nothing"}]})", "instances[0].model", "no model named");
-    ExpectError(R"({"models": {"b": {"type": "sphere"}}, "instances": [{"model": "b", "material": "x"}]})",
-                "instances[0].material", "no material named");
+    ExpectError(
+        R"({"models": {"b": {"type": "sphere"}}, "instances": [{"model": "b", "material": "x"}]})",
+        "instances[0].material", "no material named");
     ExpectError(R"({"models": {"b": {"type": "cone"}}, "instances": []})", "models.b.type",
                 "unknown model type");
     ExpectError(R"({"instances": []}, "lights": [{"type": "spot"}])", "", "malformed JSON");
-    ExpectError(R"({"instances": [], "lights": [{"type": "spot"}]})", "lights[0].type", "unknown light type");
+    ExpectError(R"({"instances": [], "lights": [{"type": "spot"}]})", "lights[0].type",
+                "unknown light type");
 }
 
 TEST(SceneFile, MissingRequiredFieldsAreNamed) {
@@ -108,8 +113,8 @@ TEST(SceneFile, MeshesWithBadDataAreRejected) {
     std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
     std::ofstream(dir / "empty.obj") << "v 0 0 0\nv 1 0 0\n";
     for (const char* name : {"nan.obj", "empty.obj"}) {
-        const std::string json = std::string(R"({"models": {"m": {"type": "mesh", "file": ")") + name +
-                                 R"("}}, "instances": [{"model": "m"}]})";
+        const std::string json = std::string(R"({"models": {"m": {"type": "mesh", "file": ")") +
+                                 name + R"("}}, "instances": [{"model": "m"}]})";
         try {
             ParseScene(json, "scene.json", dir.string());
             FAIL() << name;
@@ -120,14 +125,17 @@ TEST(SceneFile, MeshesWithBadDataAreRejected) {
 }
 
 TEST(SceneFile, EveryShippedSceneParses) {
-    for (const auto& entry : std::filesystem::directory_iterator(test::SourcePath("assets/scenes"))) {
+    for (const auto& entry :
+         std::filesystem::directory_iterator(test::SourcePath("assets/scenes"))) {
         const std::string text = entry.path().filename().string();
         bool needsModels = false;
         std::ifstream in(entry.path());
         std::string content((std::istreambuf_iterator<char>(in)), {});
-        needsModels = content.find("@models/") != std::string::npos || content.find("teapot") != std::string::npos;
+        needsModels = content.find("@models/") != std::string::npos ||
+                      content.find("teapot") != std::string::npos;
         if (needsModels && test::FetchedModel("teapot.inc").empty()) continue;
-        if (content.find("dragon_vrip.ply.gz") != std::string::npos) continue;  // slow; tested elsewhere
+        if (content.find("dragon_vrip.ply.gz") != std::string::npos)
+            continue;  // slow; tested elsewhere
         SCOPED_TRACE(text);
         EXPECT_NO_THROW(LoadSceneFile(entry.path().string()));
     }

@@ -1,9 +1,9 @@
 // Snell's law and the exact Fresnel equations at known angles.
-#include <cmath>
+#include "engine/render_rt/optics.h"
 
 #include <gtest/gtest.h>
 
-#include "engine/render_rt/optics.h"
+#include <cmath>
 
 namespace rtrt {
 namespace {
@@ -49,7 +49,8 @@ TEST(Optics, IndexOneIsInvisible) {
 }
 
 TEST(Optics, ReflectMirrorsAboutTheNormal) {
-    EXPECT_EQ(Reflect(glm::normalize(vec3(1, 1, 0)), vec3(0, 1, 0)), glm::normalize(vec3(-1, 1, 0)));
+    EXPECT_EQ(Reflect(glm::normalize(vec3(1, 1, 0)), vec3(0, 1, 0)),
+              glm::normalize(vec3(-1, 1, 0)));
 }
 
 }  // namespace

@@ -3,9 +3,9 @@
 // Tolerance: RMSE over all channels <= 1/255, and at most 0.1% of pixels off by more than
 // 8/255 in any channel; the CPU back end is deterministic, so on the same build the images are
 // identical and the tolerance absorbs compiler and libm differences between machines.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "engine/render_rt/renderer.h"
 #include "game/default_scene.h"
@@ -57,19 +57,21 @@ void ExpectMatchesReference(const RenderScene& scene, const std::string& name) {
 TEST(ReferenceImages, DefaultScene) { ExpectMatchesReference(MakeDefaultScene(), "default"); }
 
 TEST(ReferenceImages, ReflectiveSphere) {
-    ExpectMatchesReference(LoadSceneFile(test::SourcePath("assets/scenes/reflective_sphere.json")).scene,
-                           "reflective_sphere");
+    ExpectMatchesReference(
+        LoadSceneFile(test::SourcePath("assets/scenes/reflective_sphere.json")).scene,
+        "reflective_sphere");
 }
 
 TEST(ReferenceImages, RefractiveSphere) {
-    ExpectMatchesReference(LoadSceneFile(test::SourcePath("assets/scenes/refractive_sphere.json")).scene,
-                           "refractive_sphere");
+    ExpectMatchesReference(
+        LoadSceneFile(test::SourcePath("assets/scenes/refractive_sphere.json")).scene,
+        "refractive_sphere");
 }
 
 TEST(ReferenceImages, TeapotShadow) {
     RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
-    ExpectMatchesReference(LoadSceneFile(test::SourcePath("assets/scenes/teapot_shadow.json")).scene,
-                           "teapot_shadow");
+    ExpectMatchesReference(
+        LoadSceneFile(test::SourcePath("assets/scenes/teapot_shadow.json")).scene, "teapot_shadow");
 }
 
 // The test itself can fail: a changed scene differs from its reference.

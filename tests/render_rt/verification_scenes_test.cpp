@@ -1,8 +1,8 @@
 // The paper's verification scenes (assets/scenes/), checked for what a person would check by eye,
 // against analytic expectations computed here independently of the tracer.
-#include <optional>
-
 #include <gtest/gtest.h>
+
+#include <optional>
 
 #include "engine/bvh/triangle_intersect.h"
 #include "engine/render_rt/renderer.h"
@@ -16,7 +16,8 @@ LoadedScene LoadAsset(const std::string& name) {
     return LoadSceneFile(test::SourcePath("assets/scenes/" + name));
 }
 
-Image RenderCpu(const RenderScene& scene, uint32_t w, uint32_t h, ViewMode view = ViewMode::kShaded) {
+Image RenderCpu(const RenderScene& scene, uint32_t w, uint32_t h,
+                ViewMode view = ViewMode::kShaded) {
     RenderSettings s;
     s.width = w;
     s.height = h;
@@ -65,7 +66,8 @@ TEST(VerificationScenes, ReflectiveSphereShowsObjectsAtTheirMirroredPositions) {
             const auto tMirror = HitSphere(ray.origin, ray.dir, vec3(0), 1.0f);
             bool occluded = false;
             for (const Ball& b : balls)
-                if (auto t = HitSphere(ray.origin, ray.dir, b.c, b.r); t && (!tMirror || *t < *tMirror))
+                if (auto t = HitSphere(ray.origin, ray.dir, b.c, b.r);
+                    t && (!tMirror || *t < *tMirror))
                     occluded = true;
             if (!tMirror || occluded) continue;
             ++mirrorPixels;
@@ -146,7 +148,8 @@ TEST(VerificationScenes, TeapotShadowFallsWhereTheGeometrySays) {
             if (ray.dir.y >= 0) continue;
             const float tFloor = -ray.origin.y / ray.dir.y;
             const vec3 p = ray.origin + tFloor * ray.dir;
-            if (std::abs(p.x) > 14 || std::abs(p.z) > 14 || hitsTeapot(ray.origin, ray.dir, tFloor)) continue;
+            if (std::abs(p.x) > 14 || std::abs(p.z) > 14 || hitsTeapot(ray.origin, ray.dir, tFloor))
+                continue;
             ++floorPixels;
             const bool inShadow = hitsTeapot(p + vec3(0, 1e-3f, 0), toLight, kInfinity);
             shadowed += inShadow;
