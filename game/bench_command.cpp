@@ -119,11 +119,12 @@ void RunBench(const BenchOptions& o) {
             const RenderScene scene = MakePaperScene(std::make_shared<const Blas>(std::move(blas)));
             RenderSettings settings{kPaperWidth, kPaperHeight, kPaperMaxDepth};
             RenderStats renderStats;
-            RenderRaw(scene, settings, &renderStats);  // warm-up
+            Image frame;
+            RenderInto(scene, settings, frame, &renderStats);  // warm-up
             std::vector<double> frameTimes;
             for (int i = 0; i < o.frames; ++i) {
                 Stopwatch t;
-                RenderRaw(scene, settings, &renderStats);
+                RenderInto(scene, settings, frame, &renderStats);
                 frameTimes.push_back(t.Milliseconds());
             }
             const double frameMs = Median(frameTimes);

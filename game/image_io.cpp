@@ -103,6 +103,14 @@ void WriteImage(const std::string& path, const Image& image) {
     }
 }
 
+bool CanReadImages() {
+#if defined(RTRT_WITH_OIIO)
+    return true;
+#else
+    return false;
+#endif
+}
+
 Image ReadImage(const std::string& path) {
 #if defined(RTRT_WITH_OIIO)
     auto in = OIIO::ImageInput::open(path);

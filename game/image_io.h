@@ -13,6 +13,8 @@ void CheckImagePath(const std::string& path);
 // 8-bit formats store clamp(value) * 255 rounded; float formats store the values.
 void WriteImage(const std::string& path, const Image& image);
 
+// Reading needs OpenImageIO; false in builds without it (the GPU machine's).
+bool CanReadImages();
 Image ReadImage(const std::string& path);
 
 }  // namespace rtrt

@@ -8,8 +8,10 @@
 
 namespace rtrt {
 
-Image RenderRaw(const RenderScene& scene, const RenderSettings& settings, RenderStats* stats) {
-    Image image(settings.width, settings.height);
+void RenderInto(const RenderScene& scene, const RenderSettings& settings, Image& image,
+                RenderStats* stats) {
+    if (image.width != settings.width || image.height != settings.height)
+        image = Image(settings.width, settings.height);
     const RenderSceneView view = scene.HostView(settings.width, settings.height, settings.maxDepth);
     const uint32_t features =
         EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
@@ -28,7 +30,6 @@ Image RenderRaw(const RenderScene& scene, const RenderSettings& settings, Render
             });
     });
     if (stats) stats->rays = rays.load();
-    return image;
 }
 
 }  // namespace rtrt

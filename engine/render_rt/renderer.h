@@ -20,9 +20,16 @@ struct RenderStats {
     uint64_t rays = 0;  // primary, shadow and secondary rays traced
 };
 
-// Traces one frame on the CPU (TBB over 16x16 tiles); the same image on every run.
-Image RenderRaw(const RenderScene& scene, const RenderSettings& settings,
+// Traces one frame on the CPU (TBB over 16x16 tiles) into target, resized to the settings' size
+// (a frame loop reuses it, so no frame pays for a fresh allocation); the same image on every run.
+void RenderInto(const RenderScene& scene, const RenderSettings& settings, Image& target,
                 RenderStats* stats = nullptr);
+inline Image RenderRaw(const RenderScene& scene, const RenderSettings& settings,
+                       RenderStats* stats = nullptr) {
+    Image image;
+    RenderInto(scene, settings, image, stats);
+    return image;
+}
 
 // Raw view values -> a displayable image: normals to colours, depth to grey, heatmap counts to
 // the colour scale with a legend. Shaded images pass through.
