@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# One GPU round on the device machine: build for sm_90 without OpenImageIO, run the GPU tests
+# (ctest -L gpu), render the verification scenes on the GPU, and leave logs, JSON and images in
+# $OUT. Expects .device/ from tools/device/pack.sh.
+set -uo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+cd "$root"
+out=${OUT:-$root/build/device-out}
+mkdir -p "$out"
+prefix=$root/.device/prefix/usr
+export LD_LIBRARY_PATH=$prefix/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
+export RTRT_MODEL_DIR=$root/.device/models
+export PATH=/usr/local/cuda/bin:$PATH
+{
+    nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv
+    git log -1 --format='commit %h %cd' 2>/dev/null || true
+} | tee "$out/device.txt"
+cmake --preset gpu -DCMAKE_PREFIX_PATH="$prefix" -DRTRT_MODEL_DIR="$RTRT_MODEL_DIR" \
+    >"$out/configure.log" 2>&1 || { tail -40 "$out/configure.log"; exit 1; }
+cmake --build --preset gpu -j 16 >"$out/build.log" 2>&1 || { grep -m20 -A5 error "$out/build.log"; exit 1; }
+ctest --test-dir build/gpu -L gpu --output-on-failure -j 1 2>&1 | tee "$out/gpu_tests.log" | tail -25
+rtrt=build/gpu/game/rtrt
+for scene in dragon reflective_sphere refractive_sphere teapot_shadow; do
+    "$rtrt" render "assets/scenes/$scene.json" --backend cuda -o "$out/$scene.ppm" --size 640x360 2>&1
+done | tee "$out/renders.log"
+"$rtrt" render default --backend cuda -o "$out/default.ppm" --size 1920x1080 | tee -a "$out/renders.log"
+if [ "${RTRT_DEVICE_EXTRA:-}" != "" ]; then eval "$RTRT_DEVICE_EXTRA" 2>&1 | tee "$out/extra.log"; fi
