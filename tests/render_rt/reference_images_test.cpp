@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "engine/render_rt/renderer.h"
 #include "game/default_scene.h"
@@ -86,6 +87,30 @@ TEST(ReferenceImages, ADifferentSceneDoesNotMatch) {
     const Difference d = Compare(Render(scene, s, Backend::kCpu),
                                  ReadImage(test::SourcePath("tests/reference/default.png")));
     EXPECT_GT(d.rmse, 1.0 / 255.0);
+}
+
+}  // namespace
+}  // namespace rtrt
+
+namespace rtrt {
+namespace {
+
+// The CPU back end gives the same image, bit for bit, on every run: tiles are independent and
+// each pixel's computation does not depend on which thread ran it or when.
+TEST(Determinism, SameSceneSameImageEveryRun) {
+    const RenderScene scene = MakeDefaultScene();
+    RenderSettings s;
+    s.width = 160;
+    s.height = 90;
+    s.maxDepth = 6;
+    const Image first = RenderRaw(scene, s);
+    for (int run = 0; run < 3; ++run) {
+        const Image again = RenderRaw(scene, s);
+        ASSERT_EQ(std::memcmp(first.pixels.data(), again.pixels.data(),
+                              first.pixels.size() * sizeof(vec3)),
+                  0)
+            << "run " << run;
+    }
 }
 
 }  // namespace
