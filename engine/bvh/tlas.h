@@ -1,6 +1,6 @@
 #pragma once
-// Top-level acceleration structure over instances. This is the simple CPU build (binned SAH over
-// instance world bounds); the per-frame LBVH replaces it in the runtime.
+// Top-level acceleration structure over instances: a binned SAH build (best trees, for static
+// scenes) or the LBVH (fast, rebuilt every frame in the runtime).
 #include <span>
 #include <vector>
 
@@ -17,6 +17,13 @@ struct Tlas {
 // World bounds of a box under an affine transform (the 8 transformed corners' bounds).
 Aabb TransformBounds(const Affine& m, const Aabb& b);
 
-Tlas BuildTlas(std::span<const Instance> instances, std::span<const Aabb> blasBounds);
+enum class TlasBuilder { kSah, kLbvh };
+
+// World bounds of every instance (its BLAS bounds under its transform).
+std::vector<Aabb> InstanceWorldBounds(std::span<const Instance> instances,
+                                      std::span<const Aabb> blasBounds);
+
+Tlas BuildTlas(std::span<const Instance> instances, std::span<const Aabb> blasBounds,
+               TlasBuilder builder = TlasBuilder::kSah);
 
 }  // namespace rtrt

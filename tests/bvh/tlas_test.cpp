@@ -26,14 +26,14 @@ struct TwoLevel {
         inst.blasId = blas;
         instances.push_back(inst);
     }
-    TlasView Build() {
+    TlasView Build(TlasBuilder builder = TlasBuilder::kSah) {
         std::vector<Aabb> bounds;
         views.clear();
         for (const Blas& b : blases) {
             bounds.push_back(b.bounds);
             views.push_back(b.View());
         }
-        tlas = BuildTlas(instances, bounds);
+        tlas = BuildTlas(instances, bounds, builder);
         return {tlas.nodes.data(), tlas.instanceOrder.data(), instances.data(), views.data()};
     }
 };
@@ -57,8 +57,9 @@ bool BruteForce(const TlasView& scene, uint32_t count, const Ray& ray, SceneHit*
     return found;
 }
 
-void ExpectSameAsBruteForce(TwoLevel& world, float spread, uint32_t seed) {
-    const TlasView scene = world.Build();
+void ExpectSameAsBruteForce(TwoLevel& world, float spread, uint32_t seed, TlasBuilder builder) {
+    SCOPED_TRACE(builder == TlasBuilder::kSah ? "SAH TLAS" : "LBVH TLAS");
+    const TlasView scene = world.Build(builder);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     uint32_t hits = 0;
@@ -94,7 +95,8 @@ TEST(Tlas, ManyTransformedInstancesMatchBruteForce) {
         m = glm::scale(m, vec3(0.5f + 0.05f * std::abs(u(rng))));
         world.Add(i % 2, m);
     }
-    ExpectSameAsBruteForce(world, 25.0f, 3);
+    ExpectSameAsBruteForce(world, 25.0f, 3, TlasBuilder::kSah);
+    ExpectSameAsBruteForce(world, 25.0f, 3, TlasBuilder::kLbvh);
 }
 
 TEST(Tlas, AllInstancesAtOnePointAndOneFarOutlier) {
@@ -104,9 +106,10 @@ TEST(Tlas, AllInstancesAtOnePointAndOneFarOutlier) {
     world.blases.push_back(BuildSphereBlas(std::span<const Sphere>(&s, 1)));
     for (int i = 0; i < 64; ++i) world.Add(0, glm::rotate(glm::mat4(1), 0.1f * i, vec3(0, 1, 0)));
     world.Add(1, glm::translate(glm::mat4(1), vec3(1e6f, 0, 0)));
-    ExpectSameAsBruteForce(world, 3.0f, 5);
+    ExpectSameAsBruteForce(world, 3.0f, 5, TlasBuilder::kSah);
+    ExpectSameAsBruteForce(world, 3.0f, 5, TlasBuilder::kLbvh);
     // The outlier is reachable.
-    const TlasView scene = world.Build();
+    const TlasView scene = world.Build(TlasBuilder::kLbvh);
     SceneHit hit;
     ASSERT_TRUE(IntersectScene(scene, Ray{vec3(1e6f, 0, -50), kInfinity, vec3(0, 0, 1), 0}, &hit));
     EXPECT_EQ(hit.instance, 64u);

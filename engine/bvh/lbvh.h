@@ -1,0 +1,35 @@
+#pragma once
+// Linear BVH over instance bounds, rebuilt every frame: Morton codes, a sort, the hierarchy of
+// Karras 2012 ("Maximizing Parallelism in the Construction of BVHs, Octrees, and k-d Trees"),
+// bottom-up bounds. The CPU version here runs the same steps the CUDA version runs per thread.
+//
+// Layout in the common BvhNode array: the root at 0 (index 1 unused), and the two children of
+// Karras internal node k at 2 + 2k and 3 + 2k; leaf slot s holds sorted primitive s.
+#include <span>
+#include <vector>
+
+#include "engine/bvh/bvh_node.h"
+
+namespace rtrt {
+
+struct Lbvh {
+    AlignedVector<BvhNode> nodes;
+    std::vector<uint32_t> primOrder;  // leaf slot -> primitive index (sorted by Morton code)
+    std::vector<uint32_t> parents;    // node position -> parent position (root: UINT32_MAX)
+};
+
+Lbvh BuildLbvh(std::span<const Aabb> primBounds);
+
+// Karras 2012: the range [first, last] of sorted keys covered by internal node i, and its split
+// (children are split and split + 1; a child is a leaf when it is an end of the range). Keys equal
+// in their 30 bits are told apart by their index (the paper's "augmented" keys).
+struct KarrasNode {
+    uint32_t first, last, split;
+};
+KarrasNode KarrasInternalNode(std::span<const uint32_t> sortedCodes, uint32_t i);
+
+// Recomputes bounds bottom-up for a new set of primitive bounds (same primitives, moved); the
+// topology stays. Works for any node layout.
+void RefitLbvh(Lbvh& bvh, std::span<const Aabb> primBounds);
+
+}  // namespace rtrt
