@@ -1,5 +1,6 @@
 // `rtrt bench cpu`: BLAS build time and SAH cost per builder, and CPU frame time and rays per
 // second on the paper scene (paper_scene.h), for the cube, the teapot and the dragons.
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "engine/core/error.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/renderer.h"
 #include "game/commands.h"
@@ -24,6 +26,7 @@ namespace {
 
 struct BenchOptions {
     int frames = 7;
+    int gpuFrames = 200;
     std::string output;
     std::vector<std::string> models{"cube",        "teapot",      "dragon_res4",
                                     "dragon_res3", "dragon_res2", "dragon"};
@@ -142,6 +145,53 @@ void RunBench(const BenchOptions& o) {
     }
 }
 
+// The paper scene on the GPU: the trace kernel timed with CUDA events, median of many frames.
+void RunGpuBench(const BenchOptions& o) {
+    nlohmann::json report;
+    report["machine"] = MachineInfo();
+    report["machine"]["gpu"] = CommandOutput(
+        "nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null");
+    report["scene"] = "paper scene, 1920x1080, max depth 2, one ray per pixel centre";
+    report["timing"] = "CUDA events around the trace kernel, 20 warm-up frames, median of the rest";
+    std::printf("rtrt bench gpu: %s\n", report["machine"]["gpu"].get<std::string>().c_str());
+    std::printf("%-12s %10s %10s %10s %8s %9s %10s\n", "model", "triangles", "median ms", "min ms",
+                "M rays", "G rays/s", "B/tri");
+    for (const std::string& name : o.models) {
+        TriangleMesh mesh;
+        if (!LoadBenchModel(name, &mesh)) {
+            std::printf("%-12s skipped: model file missing (run tools/fetch_models.sh)\n",
+                        name.c_str());
+            continue;
+        }
+        auto blas = std::make_shared<const Blas>(BuildTriangleBlas(mesh));
+        const size_t blasBytes = blas->Bytes();
+        const RenderScene scene = MakePaperScene(blas);
+        RenderSettings settings{kPaperWidth, kPaperHeight, kPaperMaxDepth};
+        RenderStats stats;
+        const std::vector<double> times = TimeCudaTrace(scene, settings, 20, o.gpuFrames, &stats);
+        const double median = Median(times);
+        const double best = *std::min_element(times.begin(), times.end());
+        const double grays = double(stats.rays) / (median * 1e-3) * 1e-9;
+        const double bytesPerTri = double(blasBytes) / double(mesh.indices.size());
+        std::printf("%-12s %10zu %10.3f %10.3f %8.2f %9.2f %10.1f\n", name.c_str(),
+                    mesh.indices.size(), median, best, double(stats.rays) * 1e-6, grays,
+                    bytesPerTri);
+        report["models"].push_back({{"model", name},
+                                    {"triangles", mesh.indices.size()},
+                                    {"trace_ms_median", median},
+                                    {"trace_ms_min", best},
+                                    {"frames", times.size()},
+                                    {"rays", stats.rays},
+                                    {"grays_per_s", grays},
+                                    {"blas_bytes", blasBytes},
+                                    {"bytes_per_triangle", bytesPerTri}});
+    }
+    if (!o.output.empty()) {
+        std::ofstream(o.output) << report.dump(2) << "\n";
+        std::printf("rtrt: wrote %s\n", o.output.c_str());
+    }
+}
+
 }  // namespace
 
 void AddBenchCommand(CLI::App& app, int* exitCode) {
@@ -164,6 +214,24 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     cpu->add_option("-o,--output", options->output, "Write the results as JSON here");
     cpu->callback([options, exitCode] {
         RunBench(*options);
+        *exitCode = kExitOk;
+    });
+    CLI::App* gpu = bench->add_subcommand(
+        "gpu", "Trace time on the GPU (CUDA events) of the paper scene, median of --frames");
+    gpu->add_option("--frames", options->gpuFrames,
+                    "Timed frames per model after 20 warm-up frames")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    gpu->add_option("--models", options->models,
+                    "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
+        ->check(CLI::IsMember(
+            {"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
+        ->delimiter(',');
+    gpu->add_option("-o,--output", options->output, "Write the results as JSON here");
+    gpu->callback([options, exitCode] {
+        std::string why;
+        if (!CudaBackendAvailable(&why)) throw InputError("bench gpu", "", why);
+        RunGpuBench(*options);
         *exitCode = kExitOk;
     });
 }

@@ -78,6 +78,51 @@ bool CudaBackendAvailable(std::string* why) {
     return true;
 }
 
+std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings& settings,
+                                  int warmup, int frames, RenderStats* stats) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) throw std::runtime_error(why);
+    DeviceScene device(scene);
+    const RenderSceneView view = device.View(scene, settings);
+    DeviceBuffer<vec3> frame;
+    frame.Resize(size_t(settings.width) * settings.height);
+    DeviceBuffer<unsigned long long> rayCount;
+    rayCount.Resize(1);
+    const dim3 block(8, 8);
+    const dim3 grid((settings.width + block.x - 1) / block.x,
+                    (settings.height + block.y - 1) / block.y);
+    const uint32_t features =
+        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
+    cudaEvent_t start, stop;
+    RT_CUDA_CHECK(cudaEventCreate(&start));
+    RT_CUDA_CHECK(cudaEventCreate(&stop));
+    std::vector<double> times;
+    for (int i = 0; i < warmup + frames; ++i) {
+        const bool count = i == 0;  // the atomic ray count runs once, outside the timed frames
+        RT_CUDA_CHECK(cudaMemset(rayCount.Data(), 0, sizeof(unsigned long long)));
+        RT_CUDA_CHECK(cudaEventRecord(start));
+        DispatchFeatures(features, [&](auto featureTag) {
+            constexpr uint32_t kFeatures = decltype(featureTag)::value;
+            TraceKernel<kFeatures><<<grid, block>>>(view, settings.view, frame.Data(),
+                                                    count ? rayCount.Data() : nullptr);
+            RT_CUDA_CHECK_LAUNCH();
+        });
+        RT_CUDA_CHECK(cudaEventRecord(stop));
+        RT_CUDA_CHECK(cudaEventSynchronize(stop));
+        float ms = 0.0f;
+        RT_CUDA_CHECK(cudaEventElapsedTime(&ms, start, stop));
+        if (i >= warmup) times.push_back(ms);
+        if (count && stats) {
+            unsigned long long rays = 0;
+            rayCount.Download(std::span<unsigned long long>(&rays, 1));
+            stats->rays = rays;
+        }
+    }
+    RT_CUDA_CHECK(cudaEventDestroy(start));
+    RT_CUDA_CHECK(cudaEventDestroy(stop));
+    return times;
+}
+
 Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, RenderStats* stats) {
     std::string why;
     if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use --backend cpu");

@@ -15,3 +15,12 @@ Image RenderRawCuda(const RenderScene&, const RenderSettings&, RenderStats*) {
 }
 
 }  // namespace rtrt
+
+namespace rtrt {
+
+std::vector<double> TimeCudaTrace(const RenderScene&, const RenderSettings&, int, int,
+                                  RenderStats*) {
+    throw std::runtime_error("the CUDA back end is not built into this rtrt");
+}
+
+}  // namespace rtrt

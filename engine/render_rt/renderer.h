@@ -1,5 +1,6 @@
 #pragma once
 #include <string>
+#include <vector>
 
 #include "engine/render_rt/image.h"
 #include "engine/render_rt/render_scene.h"
@@ -43,6 +44,11 @@ bool CudaBackendAvailable(std::string* why);
 // Traces one frame on the GPU; throws std::runtime_error if the CUDA back end is unavailable.
 Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings,
                     RenderStats* stats = nullptr);
+
+// Times the CUDA trace kernel alone with CUDA events: the scene is uploaded once, then `warmup`
+// untimed and `frames` timed launches into a device framebuffer. Returns the per-frame times (ms).
+std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings& settings,
+                                  int warmup, int frames, RenderStats* stats = nullptr);
 
 inline Image Render(const RenderScene& scene, const RenderSettings& settings, Backend backend) {
     Image raw =
