@@ -2,6 +2,7 @@
 // second on the paper scene (paper_scene.h), for the cube, the teapot and the dragons.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -49,7 +50,10 @@ nlohmann::json MachineInfo() {
     m["cpu"] = CommandOutput("grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //'");
     m["threads"] = std::thread::hardware_concurrency();
     m["host"] = CommandOutput("hostname");
-    m["commit"] = CommandOutput("git rev-parse --short HEAD 2>/dev/null");
+    // RTRT_COMMIT names the commit where the tree has no .git (the GPU machine's copy).
+    const char* commit = std::getenv("RTRT_COMMIT");
+    m["commit"] = commit && *commit ? std::string(commit)
+                                    : CommandOutput("git rev-parse --short HEAD 2>/dev/null");
     std::time_t now = std::time(nullptr);
     char date[32];
     std::strftime(date, sizeof(date), "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
