@@ -5,14 +5,21 @@
 namespace rtrt {
 
 BlasView Blas::View() const {
-    return {
-        nodes.data(), triangles.data(), normals.empty() ? nullptr : normals.data(), spheres.data(),
-        kind,         PrimCount()};
+    BlasView view;
+    view.nodes = nodes.data();
+    view.nodes4 = nodes4.empty() ? nullptr : nodes4.data();
+    view.triangles = triangles.data();
+    view.normals = normals.empty() ? nullptr : normals.data();
+    view.spheres = spheres.data();
+    view.kind = kind;
+    view.primCount = PrimCount();
+    return view;
 }
 
 size_t Blas::Bytes() const {
-    return nodes.size() * sizeof(BvhNode) + triangles.size() * sizeof(Triangle) +
-           normals.size() * sizeof(TriangleNormals) + spheres.size() * sizeof(Sphere);
+    return nodes.size() * sizeof(BvhNode) + nodes4.size() * sizeof(Bvh4Node) +
+           triangles.size() * sizeof(Triangle) + normals.size() * sizeof(TriangleNormals) +
+           spheres.size() * sizeof(Sphere);
 }
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options) {
@@ -41,6 +48,7 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
             blas.normals[slot] = {mesh.normals[idx.x], mesh.normals[idx.y], mesh.normals[idx.z]};
         }
     });
+    blas.nodes4 = CollapseToBvh4(blas.nodes);
     blas.bounds = blas.nodes[0].Bounds();
     return blas;
 }

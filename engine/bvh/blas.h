@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "engine/bvh/bvh4.h"
 #include "engine/bvh/bvh_builder.h"
 #include "engine/bvh/primitives.h"
 #include "engine/bvh/triangle_mesh.h"
@@ -14,6 +15,7 @@ namespace rtrt {
 // What the tracer needs of a BLAS: plain pointers, valid in host or device memory.
 struct BlasView {
     const BvhNode* nodes;
+    const Bvh4Node* nodes4;          // CPU only: the 4-wide collapse of nodes, or null
     const Triangle* triangles;       // kTriangles: leaf order
     const TriangleNormals* normals;  // kTriangles: leaf order, or null for flat shading
     const Sphere* spheres;           // kSpheres: leaf order
@@ -24,6 +26,7 @@ struct BlasView {
 struct Blas {
     GeometryKind kind = GeometryKind::kTriangles;
     AlignedVector<BvhNode> nodes;
+    AlignedVector<Bvh4Node> nodes4;  // CollapseToBvh4(nodes); redo after a refit
     AlignedVector<Triangle> triangles;
     std::vector<TriangleNormals> normals;
     std::vector<Sphere> spheres;

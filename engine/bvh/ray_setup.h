@@ -9,29 +9,42 @@ namespace rtrt {
 struct RaySetup {
     vec3 origin;
     vec3 dir;
-    vec3 invDir;           // 1/d; +-inf for +-0 components (the sign of zero is kept)
-    uint32_t negative[3];  // signbit(invDir): which slab plane is near
+    vec3 invDir;  // 1/d; +-inf for +-0 components (the sign of zero is kept)
+    // Float offsets into a BvhNode of the near and far slab planes per axis: boundsMin is at
+    // 0..2 and boundsMax at 4..6, so a negative direction component swaps them.
+    uint32_t nearOffset[3], farOffset[3];
     // Watertight test (Woop, Benthin, Wald 2013): axes permuted so that kz is the dominant one.
     int kx, ky, kz;
     float shearX, shearY, shearZ;
 };
 
-RT_HD inline RaySetup MakeRaySetup(const Ray& ray) {
+// What the slab test needs; enough for traversing a TLAS or a sphere BLAS.
+RT_HD inline RaySetup MakeBoxRaySetup(const Ray& ray) {
     RaySetup s;
     s.origin = ray.origin;
     s.dir = ray.dir;
     s.invDir = vec3(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z);
-    for (int i = 0; i < 3; ++i) s.negative[i] = SignBit(s.invDir[i]) ? 1u : 0u;
+    for (int i = 0; i < 3; ++i) {
+        const bool negative = SignBit(s.invDir[i]);
+        s.nearOffset[i] = uint32_t(i) + (negative ? 4u : 0u);
+        s.farOffset[i] = uint32_t(i) + (negative ? 0u : 4u);
+    }
+    return s;
+}
+
+// The slab test's values and the triangle test's shear.
+RT_HD inline RaySetup MakeRaySetup(const Ray& ray) {
+    RaySetup s = MakeBoxRaySetup(ray);
     s.kz = MaxDimension(Abs(ray.dir));
     s.kx = s.kz + 1 == 3 ? 0 : s.kz + 1;
     s.ky = s.kx + 1 == 3 ? 0 : s.kx + 1;
+    const float* d = &ray.dir.x;
     // Swapping kx and ky keeps the winding, so U, V, W keep their signs for front faces.
-    if (ray.dir[s.kz] < 0.0f) {
+    if (d[s.kz] < 0.0f) {
         int t = s.kx;
         s.kx = s.ky;
         s.ky = t;
     }
-    const float* d = &ray.dir.x;
     s.shearZ = 1.0f / d[s.kz];
     s.shearX = d[s.kx] * s.shearZ;
     s.shearY = d[s.ky] * s.shearZ;

@@ -7,6 +7,13 @@
 #include "engine/bvh/traversal.h"
 #include "engine/bvh/triangle_intersect.h"
 
+// The CPU back end traverses triangle BLASes through their 4-wide collapse (SSE); the GPU and the
+// heatmap's node counts use the binary BVH.
+#if !defined(__CUDACC__)
+#include "engine/bvh/bvh4_traversal.h"
+#define RTRT_HOST_WIDE_BVH 1
+#endif
+
 namespace rtrt {
 
 struct TlasView {
@@ -34,22 +41,24 @@ RT_HD inline Ray ToObjectSpace(const Ray& ray, const Instance& inst) {
 
 RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, float& tMax,
                                 SceneHit* hit, TraversalStats* stats) {
-    const RaySetup setup = MakeRaySetup(objectRay);
     if (blas.kind == GeometryKind::kTriangles) {
-        return TraverseClosest(
-            blas.nodes, setup, tMax,
-            [&](uint32_t slot, float& tBest) {
-                TriangleHit h;
-                if (!IntersectTriangle(blas.triangles[slot], setup, tBest, &h)) return false;
-                tBest = h.t;
-                hit->t = h.t;
-                hit->prim = slot;
-                hit->b1 = h.b1;
-                hit->b2 = h.b2;
-                return true;
-            },
-            stats);
+        const RaySetup setup = MakeRaySetup(objectRay);
+        auto intersect = [&](uint32_t slot, float& tBest) {
+            TriangleHit h;
+            if (!IntersectTriangle(blas.triangles[slot], setup, tBest, &h)) return false;
+            tBest = h.t;
+            hit->t = h.t;
+            hit->prim = slot;
+            hit->b1 = h.b1;
+            hit->b2 = h.b2;
+            return true;
+        };
+#if defined(RTRT_HOST_WIDE_BVH)
+        if (blas.nodes4 && !stats) return TraverseClosest4(blas.nodes4, setup, tMax, intersect);
+#endif
+        return TraverseClosest(blas.nodes, setup, tMax, intersect, stats);
     }
+    const RaySetup setup = MakeBoxRaySetup(objectRay);
     return TraverseClosest(
         blas.nodes, setup, tMax,
         [&](uint32_t slot, float& tBest) {
@@ -66,16 +75,18 @@ RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, floa
 
 RT_HD inline bool OccludedBlas(const BlasView& blas, const Ray& objectRay, float tMax,
                                TraversalStats* stats) {
-    const RaySetup setup = MakeRaySetup(objectRay);
     if (blas.kind == GeometryKind::kTriangles) {
-        return TraverseAny(
-            blas.nodes, setup, tMax,
-            [&](uint32_t slot, float tLimit) {
-                TriangleHit h;
-                return IntersectTriangle(blas.triangles[slot], setup, tLimit, &h);
-            },
-            stats);
+        const RaySetup setup = MakeRaySetup(objectRay);
+        auto occludes = [&](uint32_t slot, float tLimit) {
+            TriangleHit h;
+            return IntersectTriangle(blas.triangles[slot], setup, tLimit, &h);
+        };
+#if defined(RTRT_HOST_WIDE_BVH)
+        if (blas.nodes4 && !stats) return TraverseAny4(blas.nodes4, setup, tMax, occludes);
+#endif
+        return TraverseAny(blas.nodes, setup, tMax, occludes, stats);
     }
+    const RaySetup setup = MakeBoxRaySetup(objectRay);
     return TraverseAny(
         blas.nodes, setup, tMax,
         [&](uint32_t slot, float tLimit) {
@@ -89,7 +100,7 @@ RT_HD inline bool OccludedBlas(const BlasView& blas, const Ray& objectRay, float
 RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit* hit,
                                  TraversalStats* stats = nullptr) {
     if (!IsTraceable(ray)) return false;
-    const RaySetup setup = MakeRaySetup(ray);
+    const RaySetup setup = MakeBoxRaySetup(ray);
     float tMax = ray.tMax;
     return TraverseClosest(
         scene.nodes, setup, tMax,
@@ -109,7 +120,7 @@ RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit
 RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
                                 TraversalStats* stats = nullptr) {
     if (!IsTraceable(ray)) return false;
-    const RaySetup setup = MakeRaySetup(ray);
+    const RaySetup setup = MakeBoxRaySetup(ray);
     return TraverseAny(
         scene.nodes, setup, ray.tMax,
         [&](uint32_t slot, float tLimit) {

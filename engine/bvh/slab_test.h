@@ -8,14 +8,15 @@
 
 namespace rtrt {
 
-RT_HD inline bool SlabTest(vec3 boxMin, vec3 boxMax, const RaySetup& r, float tMax, float* tEntry) {
-    const vec3 lo[2] = {boxMin, boxMax};
-    const float tx0 = (lo[r.negative[0]].x - r.origin.x) * r.invDir.x;
-    const float tx1 = (lo[1 - r.negative[0]].x - r.origin.x) * r.invDir.x;
-    const float ty0 = (lo[r.negative[1]].y - r.origin.y) * r.invDir.y;
-    const float ty1 = (lo[1 - r.negative[1]].y - r.origin.y) * r.invDir.y;
-    const float tz0 = (lo[r.negative[2]].z - r.origin.z) * r.invDir.z;
-    const float tz1 = (lo[1 - r.negative[2]].z - r.origin.z) * r.invDir.z;
+RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax, float* tEntry) {
+    // Reads the near and far planes straight from the node (no copy of its bounds).
+    const float* b = &node.boundsMin.x;
+    const float tx0 = (b[r.nearOffset[0]] - r.origin.x) * r.invDir.x;
+    const float tx1 = (b[r.farOffset[0]] - r.origin.x) * r.invDir.x;
+    const float ty0 = (b[r.nearOffset[1]] - r.origin.y) * r.invDir.y;
+    const float ty1 = (b[r.farOffset[1]] - r.origin.y) * r.invDir.y;
+    const float tz0 = (b[r.nearOffset[2]] - r.origin.z) * r.invDir.z;
+    const float tz1 = (b[r.farOffset[2]] - r.origin.z) * r.invDir.z;
     // The accumulators start from 0 and tMax, never NaN, so NaN lanes are dropped.
     const float t0 = MaxOrKeep(tz0, MaxOrKeep(ty0, MaxOrKeep(tx0, 0.0f)));
     const float t1 = MinOrKeep(tz1, MinOrKeep(ty1, MinOrKeep(tx1, tMax)));
@@ -23,8 +24,8 @@ RT_HD inline bool SlabTest(vec3 boxMin, vec3 boxMax, const RaySetup& r, float tM
     return t0 <= t1 * (1.0f + 2.0f * Gamma(3));
 }
 
-RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax, float* tEntry) {
-    return SlabTest(node.boundsMin, node.boundsMax, r, tMax, tEntry);
+RT_HD inline bool SlabTest(vec3 boxMin, vec3 boxMax, const RaySetup& r, float tMax, float* tEntry) {
+    return SlabTest(BvhNode{boxMin, 0, boxMax, 0}, r, tMax, tEntry);
 }
 
 }  // namespace rtrt

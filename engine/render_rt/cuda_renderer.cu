@@ -42,6 +42,7 @@ struct DeviceScene {
             spheres.emplace_back(std::span<const Sphere>(blas->spheres));
             BlasView v = blas->View();
             v.nodes = blasNodes.back().Data();
+            v.nodes4 = nullptr;  // the GPU traverses the binary BVH
             v.triangles = triangles.back().Data();
             v.normals = blas->normals.empty() ? nullptr : normals.back().Data();
             v.spheres = spheres.back().Data();

@@ -12,7 +12,7 @@ namespace rtrt {
 template <uint32_t kFeatures>
 RT_HD inline vec3 RawPixel(const RenderSceneView& scene, ViewMode view, uint32_t x, uint32_t y,
                            uint32_t* rays) {
-    const PixelResult r = TracePixel<kFeatures>(scene, x, y);
+    const PixelResult r = TracePixel<kFeatures>(scene, x, y, view == ViewMode::kHeatmap);
     *rays += r.rays;
     switch (view) {
         case ViewMode::kNormals:

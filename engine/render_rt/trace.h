@@ -12,7 +12,7 @@ struct PixelResult {
     vec3 color;
     vec3 normal;           // primary hit's shading normal, zero on a miss
     float depth;           // primary hit distance, infinity on a miss
-    TraversalStats stats;  // primary ray's closest-hit traversal
+    TraversalStats stats;  // primary ray's binary-BVH traversal, when countTraversal
     uint32_t rays;         // rays traced for this pixel: primary, shadow and secondary
 };
 
@@ -47,7 +47,8 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
 }
 
 template <uint32_t kFeatures>
-RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, uint32_t y) {
+RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, uint32_t y,
+                                    bool countTraversal = false) {
     struct PendingRay {
         Ray ray;
         vec3 weight;
@@ -63,8 +64,8 @@ RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, ui
         const PendingRay pending = stack[--stackSize];
         SceneHit hit;
         ++result.rays;
-        const bool found =
-            IntersectScene(scene.tlas, pending.ray, &hit, primary ? &result.stats : nullptr);
+        const bool found = IntersectScene(scene.tlas, pending.ray, &hit,
+                                          primary && countTraversal ? &result.stats : nullptr);
         if (!found) {
             result.color += pending.weight * scene.background;
             primary = false;

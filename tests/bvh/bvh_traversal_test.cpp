@@ -5,6 +5,7 @@
 #include <random>
 
 #include "engine/bvh/blas.h"
+#include "engine/bvh/bvh4_traversal.h"
 #include "engine/bvh/sphere_intersect.h"
 #include "engine/bvh/traversal.h"
 #include "engine/bvh/triangle_intersect.h"
@@ -70,6 +71,26 @@ Found Traverse(const Blas& blas, const RaySetup& r, float tMax) {
         },
         nullptr);
     return f;
+}
+
+// The CPU's 4-wide traversal of the same BLAS (triangles only).
+Found Traverse4(const Blas& blas, const RaySetup& r, float tMax) {
+    Found f;
+    f.hit = TraverseClosest4(blas.nodes4.data(), r, tMax, [&](uint32_t slot, float& tBest) {
+        TriangleHit h;
+        if (!IntersectTriangle(blas.triangles[slot], r, tBest, &h)) return false;
+        tBest = f.t = h.t;
+        f.slot = slot;
+        return true;
+    });
+    return f;
+}
+
+bool Occluded4(const Blas& blas, const RaySetup& r, float tMax) {
+    return TraverseAny4(blas.nodes4.data(), r, tMax, [&](uint32_t slot, float tLimit) {
+        TriangleHit h;
+        return IntersectTriangle(blas.triangles[slot], r, tLimit, &h);
+    });
 }
 
 bool Occluded(const Blas& blas, const RaySetup& r, float tMax) {
@@ -139,6 +160,17 @@ void ExpectMatchesBruteForce(const Blas& blas, uint32_t seed) {
         const float tLimit = expected.hit ? expected.t * 1.001f : 1e30f;
         if (Occluded(blas, r, tLimit) != expected.hit && ++mismatches <= 5)
             ADD_FAILURE() << "ray " << i << ": any-hit disagrees with brute force";
+        if (blas.nodes4.empty()) continue;
+        const Found wide = Traverse4(blas, r, ray.tMax);
+        const bool wideSame =
+            wide.hit == expected.hit &&
+            (!wide.hit || (wide.t == expected.t &&
+                           (wide.slot == expected.slot || HitsAt(blas, wide.slot, r, wide.t))));
+        if (!wideSame && ++mismatches <= 5)
+            ADD_FAILURE() << "ray " << i << ": 4-wide BVH " << wide.hit << " t=" << wide.t
+                          << ", brute force " << expected.hit << " t=" << expected.t;
+        if (Occluded4(blas, r, tLimit) != expected.hit && ++mismatches <= 5)
+            ADD_FAILURE() << "ray " << i << ": 4-wide any-hit disagrees with brute force";
     }
     EXPECT_EQ(mismatches, 0u);
     EXPECT_GT(hits, kRayCount / 4) << "too few hits for the comparison to mean much";
@@ -197,6 +229,7 @@ TEST(Traversal, RefitKeepsResultsAfterTheMeshMoves) {
         slotBounds[slot] = t.Bounds();
     }
     Refit(blas.nodes, slotBounds);
+    blas.nodes4 = CollapseToBvh4(blas.nodes);
     blas.bounds = blas.nodes[0].Bounds();
     ExpectMatchesBruteForce(blas, 21);
 }
