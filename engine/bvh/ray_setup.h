@@ -54,10 +54,12 @@ RT_HD inline RaySetup MakeRaySetup(const Ray& ray) {
 // A ray with NaN or infinite components, or a zero direction, hits nothing. Checked once at the
 // top of a traversal so that NaN never walks the whole tree.
 RT_HD inline bool IsTraceable(const Ray& ray) {
-    float sum = ray.origin.x + ray.origin.y + ray.origin.z + ray.dir.x + ray.dir.y + ray.dir.z;
-    bool finite = sum - sum == 0.0f;  // false for NaN and +-inf
-    bool nonZero = ray.dir.x != 0.0f || ray.dir.y != 0.0f || ray.dir.z != 0.0f;
-    return finite && nonZero && !(ray.tMax != ray.tMax);
+    constexpr float kMaxFinite = 3.40282347e+38f;
+    auto finite = [](float v) { return fabsf(v) <= kMaxFinite; };  // false for NaN and +-inf
+    const bool finiteRay = finite(ray.origin.x) && finite(ray.origin.y) && finite(ray.origin.z) &&
+                           finite(ray.dir.x) && finite(ray.dir.y) && finite(ray.dir.z);
+    const bool nonZero = ray.dir.x != 0.0f || ray.dir.y != 0.0f || ray.dir.z != 0.0f;
+    return finiteRay && nonZero && !(ray.tMax != ray.tMax);
 }
 
 }  // namespace rtrt

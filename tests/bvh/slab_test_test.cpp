@@ -51,6 +51,8 @@ TEST(SlabTest, NanAndInfiniteRaysAreNotTraceable) {
     EXPECT_FALSE(IsTraceable(Ray{vec3(0), kInfinity, vec3(0), 0}));
     EXPECT_FALSE(IsTraceable(Ray{vec3(0), nan, vec3(0, 0, 1), 0}));
     EXPECT_TRUE(IsTraceable(Ray{vec3(0), kInfinity, vec3(0, 0, 1), 0}));
+    // Large but finite coordinates are fine (their sum would overflow).
+    EXPECT_TRUE(IsTraceable(Ray{vec3(3e38f), kInfinity, vec3(3e38f, 3e38f, 1), 0}));
 }
 
 }  // namespace

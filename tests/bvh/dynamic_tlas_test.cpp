@@ -1,0 +1,88 @@
+// The TLAS policy: rebuild on topology changes, refit while quality holds, rebuild once the SAH
+// cost has drifted past the threshold; the tree stays valid over many frames of motion.
+#include "engine/bvh/dynamic_tlas.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace rtrt {
+namespace {
+
+std::vector<Instance> Grid(uint32_t side, float spacing) {
+    std::vector<Instance> instances;
+    for (uint32_t i = 0; i < side * side * side; ++i) {
+        const vec3 p(float(i % side), float((i / side) % side), float(i / (side * side)));
+        const glm::mat4 m = glm::translate(glm::mat4(1.0f), spacing * p);
+        Instance inst{};
+        inst.objectToWorld = AffineFromMat4(m);
+        inst.worldToObject = AffineFromMat4(glm::affineInverse(m));
+        instances.push_back(inst);
+    }
+    return instances;
+}
+
+void Move(std::vector<Instance>& instances, uint32_t frame, float amount) {
+    for (size_t i = 0; i < instances.size(); ++i) {
+        // Each instance wanders its own way; neighbours drift apart.
+        const float phase = 0.37f * float(i) + 0.1f * float(frame);
+        instances[i].objectToWorld.row[0].w += amount * std::sin(phase);
+        instances[i].objectToWorld.row[2].w += amount * std::cos(1.3f * phase);
+    }
+}
+
+void ExpectBoundsNested(const Lbvh& tree) {
+    for (size_t p = 0; p < tree.nodes.size(); ++p) {
+        if (p == 1 || tree.nodes[p].IsLeaf()) continue;
+        const BvhNode& n = tree.nodes[p];
+        ASSERT_TRUE(n.Bounds().Contains(tree.nodes[n.leftFirst].Bounds()));
+        ASSERT_TRUE(n.Bounds().Contains(tree.nodes[n.leftFirst + 1].Bounds()));
+    }
+}
+
+const Aabb kUnitBox{vec3(-0.5f), vec3(0.5f)};
+
+TEST(DynamicTlas, AlwaysRebuildModeRebuildsEveryFrame) {
+    std::vector<Instance> instances = Grid(4, 1.5f);
+    DynamicTlas tlas;  // default policy: rebuild every frame
+    for (int frame = 0; frame < 3; ++frame)
+        EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+}
+
+TEST(DynamicTlas, RefitsWhileQualityHoldsThenRebuilds) {
+    std::vector<Instance> instances = Grid(8, 1.5f);
+    DynamicTlas tlas(TlasPolicy{false, 0.25f});
+    EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+    // Small motion: refit, quality within the threshold.
+    Move(instances, 1, 0.01f);
+    TlasUpdateStats stats = tlas.Update(instances, std::span(&kUnitBox, 1), false);
+    EXPECT_FALSE(stats.rebuilt);
+    EXPECT_LE(stats.sahCost, 1.25f * stats.rebuiltSahCost);
+    ExpectBoundsNested(tlas.Tree());
+    // Large motion over many frames: refit boxes overlap more and more, so a rebuild comes.
+    bool rebuilt = false;
+    for (uint32_t frame = 2; frame < 200 && !rebuilt; ++frame) {
+        Move(instances, frame, 0.5f);
+        stats = tlas.Update(instances, std::span(&kUnitBox, 1), false);
+        ExpectBoundsNested(tlas.Tree());
+        rebuilt = stats.rebuilt;
+        if (!rebuilt) {
+            EXPECT_LE(stats.sahCost, 1.25f * stats.rebuiltSahCost);
+        }
+    }
+    EXPECT_TRUE(rebuilt);
+}
+
+TEST(DynamicTlas, TopologyChangeForcesARebuild) {
+    std::vector<Instance> instances = Grid(3, 1.5f);
+    DynamicTlas tlas(TlasPolicy{false, 0.25f});
+    tlas.Update(instances, std::span(&kUnitBox, 1), false);
+    EXPECT_FALSE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+    instances.pop_back();
+    EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), true).rebuilt);
+    EXPECT_EQ(tlas.Tree().primOrder.size(), instances.size());
+}
+
+}  // namespace
+}  // namespace rtrt
