@@ -14,6 +14,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
+#include "engine/ecs/ecs_benchmark.h"
 #include "engine/render_rt/renderer.h"
 #include "game/commands.h"
 #include "game/mesh_io.h"
@@ -198,6 +199,18 @@ void RunGpuBench(const BenchOptions& o) {
 
 }  // namespace
 
+void RunEcsBench(uint32_t count) {
+    const ecs::EcsBenchResult r = ecs::RunEcsBenchmark(count);
+    std::printf("rtrt bench ecs: %u entities (Position + Velocity, every 4th a third component)\n",
+                count);
+    std::printf("  create  %8.2f ms  (%.1f ns per entity)\n", r.createMs, r.createMs * 1e6 / count);
+    std::printf("  iterate %8.2f ms  (2-component view, %.2f ns per entity)\n", r.iterateMs,
+                r.iterateMs * 1e6 / count);
+    std::printf("  destroy %8.2f ms  (%.1f ns per entity)\n", r.destroyMs,
+                r.destroyMs * 1e6 / count);
+    std::printf("  checksum %llu (medians of 3 runs)\n", (unsigned long long)r.checksum);
+}
+
 void AddBenchCommand(CLI::App& app, int* exitCode) {
     CLI::App* bench = app.add_subcommand("bench", "Benchmarks (see README: Benchmarks)");
     bench->require_subcommand(1);
@@ -218,6 +231,16 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     cpu->add_option("-o,--output", options->output, "Write the results as JSON here");
     cpu->callback([options, exitCode] {
         RunBench(*options);
+        *exitCode = kExitOk;
+    });
+    auto ecsCount = std::make_shared<uint32_t>(1000000);
+    CLI::App* ecsBench = bench->add_subcommand(
+        "ecs", "Create, iterate and destroy entities in the entity-component system");
+    ecsBench->add_option("--count", *ecsCount, "Entities")
+        ->check(CLI::Range(1, 50000000))
+        ->capture_default_str();
+    ecsBench->callback([ecsCount, exitCode] {
+        RunEcsBench(*ecsCount);
         *exitCode = kExitOk;
     });
     CLI::App* gpu = bench->add_subcommand(
