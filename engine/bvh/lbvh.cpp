@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <bit>
 #include <memory>
 #include <numeric>
 
@@ -13,15 +12,6 @@ namespace rtrt {
 namespace {
 
 constexpr uint32_t kNoParent = UINT32_MAX;
-
-// Length of the common prefix of keys i and j, -1 outside the array; equal keys compare their
-// indices instead, so every pair of keys differs (Karras 2012, section 4).
-int CommonPrefix(std::span<const uint32_t> codes, int64_t i, int64_t j) {
-    if (j < 0 || j >= int64_t(codes.size())) return -1;
-    const uint32_t a = codes[size_t(i)], b = codes[size_t(j)];
-    if (a == b) return 32 + std::countl_zero(uint32_t(i) ^ uint32_t(j));
-    return std::countl_zero(a ^ b);
-}
 
 BvhNode LeafNode(const Aabb& bounds, uint32_t slot) {
     BvhNode node;
@@ -52,29 +42,6 @@ void BoundsBottomUp(Lbvh& bvh) {
 }
 
 }  // namespace
-
-KarrasNode KarrasInternalNode(std::span<const uint32_t> codes, uint32_t index) {
-    const int64_t i = index;
-    const int d = CommonPrefix(codes, i, i + 1) - CommonPrefix(codes, i, i - 1) > 0 ? 1 : -1;
-    // The range extends in direction d while keys share more than deltaMin prefix bits with i.
-    const int deltaMin = CommonPrefix(codes, i, i - d);
-    int64_t lengthMax = 2;
-    while (CommonPrefix(codes, i, i + lengthMax * d) > deltaMin) lengthMax *= 2;
-    int64_t length = 0;
-    for (int64_t t = lengthMax / 2; t >= 1; t /= 2)
-        if (CommonPrefix(codes, i, i + (length + t) * d) > deltaMin) length += t;
-    const int64_t j = i + length * d;
-    // The split is where the prefix shared with i shrinks below the node's own prefix.
-    const int deltaNode = CommonPrefix(codes, i, j);
-    int64_t split = 0;
-    int64_t t = length;
-    do {
-        t = (t + 1) / 2;
-        if (CommonPrefix(codes, i, i + (split + t) * d) > deltaNode) split += t;
-    } while (t > 1);
-    const int64_t gamma = i + split * d + std::min(d, 0);
-    return {uint32_t(std::min(i, j)), uint32_t(std::max(i, j)), uint32_t(gamma)};
-}
 
 Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
     Lbvh bvh;
@@ -108,7 +75,7 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
     // Internal node k sits where its parent put it: position 0 for the root, else a child slot.
     std::vector<uint32_t> positionOf(n - 1, 0);
     ParallelFor(0, n - 1, 1024, [&](size_t k) {
-        const KarrasNode range = KarrasInternalNode(codes, uint32_t(k));
+        const KarrasNode range = KarrasInternalNode(codes.data(), n, uint32_t(k));
         const uint32_t pair = 2 + 2 * uint32_t(k);
         const uint32_t children[2] = {range.split, range.split + 1};
         const bool isLeaf[2] = {range.split == range.first, range.split + 1 == range.last};

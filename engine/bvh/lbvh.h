@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/bvh/bvh_node.h"
+#include "engine/bvh/karras.h"
 
 namespace rtrt {
 
@@ -19,14 +20,6 @@ struct Lbvh {
 };
 
 Lbvh BuildLbvh(std::span<const Aabb> primBounds);
-
-// Karras 2012: the range [first, last] of sorted keys covered by internal node i, and its split
-// (children are split and split + 1; a child is a leaf when it is an end of the range). Keys equal
-// in their 30 bits are told apart by their index (the paper's "augmented" keys).
-struct KarrasNode {
-    uint32_t first, last, split;
-};
-KarrasNode KarrasInternalNode(std::span<const uint32_t> sortedCodes, uint32_t i);
 
 // Recomputes bounds bottom-up for a new set of primitive bounds (same primitives, moved); the
 // topology stays. Works for any node layout.

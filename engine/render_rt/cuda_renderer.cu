@@ -2,7 +2,7 @@
 // scene feature set.
 #include <vector>
 
-#include "engine/render_rt/device_buffer.h"
+#include "engine/core/device_buffer.h"
 #include "engine/render_rt/pixel_kernel.h"
 #include "engine/render_rt/renderer.h"
 

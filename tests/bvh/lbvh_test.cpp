@@ -100,11 +100,11 @@ TEST(Lbvh, OneFarOutlier) {
 
 TEST(Lbvh, KarrasRootCoversEverything) {
     const std::vector<uint32_t> codes{1, 2, 4, 5, 19, 24, 25, 30};  // the paper's Figure 3
-    const KarrasNode root = KarrasInternalNode(codes, 0);
+    const KarrasNode root = KarrasInternalNode(codes.data(), uint32_t(codes.size()), 0);
     EXPECT_EQ(root.first, 0u);
     EXPECT_EQ(root.last, 7u);
     EXPECT_EQ(root.split, 3u);  // 00101 | 10011: the first bit that differs
-    const KarrasNode left = KarrasInternalNode(codes, 3);
+    const KarrasNode left = KarrasInternalNode(codes.data(), uint32_t(codes.size()), 3);
     EXPECT_EQ(left.first, 0u);
     EXPECT_EQ(left.last, 3u);
 }

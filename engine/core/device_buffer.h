@@ -3,7 +3,7 @@
 #include <span>
 #include <utility>
 
-#include "engine/render_rt/cuda_check.h"
+#include "engine/core/cuda_check.h"
 
 namespace rtrt {
 
