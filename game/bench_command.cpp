@@ -169,7 +169,7 @@ void RunGpuBench(const BenchOptions& o) {
             continue;
         }
         auto blas = std::make_shared<const Blas>(BuildTriangleBlas(mesh));
-        const size_t blasBytes = blas->Bytes();
+        const size_t blasBytes = blas->DeviceBytes();
         const RenderScene scene = MakePaperScene(blas);
         RenderSettings settings{kPaperWidth, kPaperHeight, kPaperMaxDepth};
         RenderStats stats;

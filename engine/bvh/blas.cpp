@@ -22,6 +22,8 @@ size_t Blas::Bytes() const {
            spheres.size() * sizeof(Sphere);
 }
 
+size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4Node); }
+
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     const size_t count = mesh.indices.size();
     std::vector<Triangle> source(count);

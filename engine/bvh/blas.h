@@ -35,7 +35,8 @@ struct Blas {
 
     uint32_t PrimCount() const { return uint32_t(primIds.size()); }
     BlasView View() const;
-    size_t Bytes() const;  // what the tracer keeps of it (nodes, primitives, normals)
+    size_t Bytes() const;        // what the CPU tracer keeps of it (both node layouts too)
+    size_t DeviceBytes() const;  // what the GPU holds: binary nodes, primitives, normals
 };
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options = {});

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Prepares .device/, the folder the GPU machine needs beside the working tree (it has CUDA, CMake
 # and ninja but no package registry): Debian 12 development packages unpacked into a private
-# prefix, and the fetched models. Call the device tool with carry [".device"].
+# prefix, the fetched models and the commit. Call the device tool with carry [".device"]; after a
+# new commit, refresh just the commit: git rev-parse --short HEAD > .device/commit
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 dest=$root/.device
@@ -15,4 +16,5 @@ for deb in *.deb; do dpkg -x "$deb" "$dest/prefix"; done
 rm -rf "$dest/debs" "$dest/prefix/usr/share/doc"
 "$root/tools/fetch_models.sh" >/dev/null
 cp "$root"/.cache/models/* "$dest/models/"
+git -C "$root" rev-parse --short HEAD >"$dest/commit"
 du -sh "$dest"

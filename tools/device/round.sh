@@ -11,9 +11,11 @@ prefix=$root/.device/prefix/usr
 export LD_LIBRARY_PATH=$prefix/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
 export RTRT_MODEL_DIR=$root/.device/models
 export PATH=/usr/local/cuda/bin:$PATH
+# The tree there has no .git: the commit comes from .device/commit (see tools/device/pack.sh).
+export RTRT_COMMIT=$(cat "$root/.device/commit" 2>/dev/null || echo unknown)
 {
     nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv
-    git log -1 --format='commit %h %cd' 2>/dev/null || true
+    echo "commit $RTRT_COMMIT"
 } | tee "$out/device.txt"
 cmake --preset gpu -DCMAKE_PREFIX_PATH="$prefix" -DRTRT_MODEL_DIR="$RTRT_MODEL_DIR" \
     >"$out/configure.log" 2>&1 || { tail -40 "$out/configure.log"; exit 1; }
