@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Plots a `rtrt bench cpu` JSON result: frame time and BLAS build time per model and builder.
+"""Plots a `rtrt bench cpu` JSON result (frame time and BLAS build time per model and builder) and
+prints its table as Markdown for the README.
 
 usage: tools/plot_bench.py bench/results/cpu-....json docs/images/bench_cpu.png
 Needs Debian's python3-matplotlib.
@@ -43,6 +44,14 @@ def main(source, target):
                  fontsize=9)
     fig.tight_layout()
     fig.savefig(target, dpi=110)
+    print("| model | triangles | builder | BLAS build ms | SAH cost | frame ms | M rays | M rays/s |")
+    print("|---|---:|---|---:|---:|---:|---:|---:|")
+    for m in models:
+        for b in builders:
+            v = m["builders"][b]
+            print(f'| {m["model"]} | {m["triangles"]:,} | {b} | {v["build_ms"]:.1f} | '
+                  f'{v["sah_cost"]:.2f} | {v["frame_ms"]:.1f} | {v["rays"] / 1e6:.2f} | '
+                  f'{v["mrays_per_s"]:.1f} |')
 
 
 if __name__ == "__main__":
