@@ -17,6 +17,7 @@
 #include "engine/ecs/ecs_benchmark.h"
 #include "engine/render_rt/renderer.h"
 #include "game/commands.h"
+#include "game/instance_grid_bench.h"
 #include "game/mesh_io.h"
 #include "game/model_dir.h"
 #include "game/paper_scene.h"
@@ -199,6 +200,41 @@ void RunGpuBench(const BenchOptions& o) {
 
 }  // namespace
 
+void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::string& output) {
+    TriangleMesh mesh;
+    if (!LoadBenchModel("dragon_res4", &mesh))
+        throw InputError(ModelDir() + "/dragon_vrip_res4.ply.gz", "",
+                         "missing; run tools/fetch_models.sh");
+    FitMesh(mesh, 1.0f);  // the grid's instances have largest extent 1
+    auto blas = std::make_shared<const Blas>(BuildTriangleBlas(mesh));
+    nlohmann::json report;
+    report["machine"] = MachineInfo();
+    report["machine"]["gpu"] = CommandOutput(
+        "nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null");
+    report["scene"] =
+        "instance grid of dragon res4, 1920x1080, max depth 2, TLAS rebuilt every frame";
+    report["timing"] = "CUDA events per stage, 20 warm-up frames, median of the rest";
+    std::printf("rtrt bench grid: %s\n", report["machine"]["gpu"].get<std::string>().c_str());
+    std::printf("%10s %10s %10s %10s %10s %8s %8s\n", "instances", "update ms", "TLAS ms",
+                "trace ms", "total ms", "M rays", "B/inst");
+    for (const InstanceGridRow& r : RunInstanceGridBench(blas, counts, frames)) {
+        std::printf("%10u %10.3f %10.3f %10.3f %10.3f %8.2f %8.0f\n", r.instances, r.updateMs,
+                    r.tlasMs, r.traceMs, r.totalMs, double(r.rays) * 1e-6, r.bytesPerInstance);
+        report["rows"].push_back({{"instances", r.instances},
+                                  {"update_ms", r.updateMs},
+                                  {"tlas_build_ms", r.tlasMs},
+                                  {"trace_ms", r.traceMs},
+                                  {"total_ms", r.totalMs},
+                                  {"rays", r.rays},
+                                  {"bytes_per_instance", r.bytesPerInstance},
+                                  {"frames", frames}});
+    }
+    if (!output.empty()) {
+        std::ofstream(output) << report.dump(2) << "\n";
+        std::printf("rtrt: wrote %s\n", output.c_str());
+    }
+}
+
 void RunEcsBench(uint32_t count) {
     const ecs::EcsBenchResult r = ecs::RunEcsBenchmark(count);
     std::printf("rtrt bench ecs: %u entities (Position + Velocity, every 4th a third component)\n",
@@ -241,6 +277,27 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         ->capture_default_str();
     ecsBench->callback([ecsCount, exitCode] {
         RunEcsBench(*ecsCount);
+        *exitCode = kExitOk;
+    });
+    struct GridOptions {
+        std::vector<uint32_t> counts{1000, 10000, 100000, 1000000};
+        int frames = 200;
+        std::string output;
+    };
+    auto grid = std::make_shared<GridOptions>();
+    CLI::App* gridBench = bench->add_subcommand(
+        "grid", "GPU: N moving dragon instances, TLAS rebuilt every frame (update, TLAS, trace)");
+    gridBench->add_option("--counts", grid->counts, "Instance counts")
+        ->delimiter(',')
+        ->check(CLI::Range(1u, 10000000u));
+    gridBench->add_option("--frames", grid->frames, "Timed frames per count")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    gridBench->add_option("-o,--output", grid->output, "Write the results as JSON here");
+    gridBench->callback([grid, exitCode] {
+        std::string why;
+        if (!CudaBackendAvailable(&why)) throw InputError("bench grid", "", why);
+        RunGridBench(grid->counts, grid->frames, grid->output);
         *exitCode = kExitOk;
     });
     CLI::App* gpu = bench->add_subcommand(

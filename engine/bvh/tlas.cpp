@@ -5,17 +5,6 @@
 
 namespace rtrt {
 
-Aabb TransformBounds(const Affine& m, const Aabb& b) {
-    Aabb out;
-    if (b.IsEmpty()) return out;
-    for (int corner = 0; corner < 8; ++corner) {
-        vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
-               (corner & 4) ? b.max.z : b.min.z);
-        out.Grow(m.Point(p));
-    }
-    return out;
-}
-
 std::vector<Aabb> InstanceWorldBounds(std::span<const Instance> instances,
                                       std::span<const Aabb> blasBounds) {
     std::vector<Aabb> worldBounds(instances.size());

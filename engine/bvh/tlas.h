@@ -15,7 +15,16 @@ struct Tlas {
 };
 
 // World bounds of a box under an affine transform (the 8 transformed corners' bounds).
-Aabb TransformBounds(const Affine& m, const Aabb& b);
+RT_HD inline Aabb TransformBounds(const Affine& m, const Aabb& b) {
+    Aabb out;
+    if (b.IsEmpty()) return out;
+    for (int corner = 0; corner < 8; ++corner) {
+        const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                     (corner & 4) ? b.max.z : b.min.z);
+        out.Grow(m.Point(p));
+    }
+    return out;
+}
 
 enum class TlasBuilder { kSah, kLbvh };
 

@@ -3,6 +3,8 @@
 #include <vector>
 
 #include "engine/core/device_buffer.h"
+#include "engine/render_rt/cuda_trace.h"
+#include "engine/render_rt/device_scene.h"
 #include "engine/render_rt/pixel_kernel.h"
 #include "engine/render_rt/renderer.h"
 
@@ -20,52 +22,18 @@ __global__ void TraceKernel(RenderSceneView scene, ViewMode view, vec3* out,
     if (rayCount) atomicAdd(rayCount, (unsigned long long)rays);
 }
 
-// The scene's arrays in device memory, uploaded once per render call.
-struct DeviceScene {
-    std::vector<DeviceBuffer<BvhNode>> blasNodes;
-    std::vector<DeviceBuffer<Triangle>> triangles;
-    std::vector<DeviceBuffer<TriangleNormals>> normals;
-    std::vector<DeviceBuffer<Sphere>> spheres;
-    DeviceBuffer<BlasView> blasViews;
-    DeviceBuffer<BvhNode> tlasNodes;
-    DeviceBuffer<uint32_t> instanceOrder;
-    DeviceBuffer<Instance> instances;
-    DeviceBuffer<Material> materials;
-    DeviceBuffer<Light> lights;
-
-    explicit DeviceScene(const RenderScene& scene) {
-        std::vector<BlasView> views;
-        for (const auto& blas : scene.blases) {
-            blasNodes.emplace_back(std::span<const BvhNode>(blas->nodes));
-            triangles.emplace_back(std::span<const Triangle>(blas->triangles));
-            normals.emplace_back(std::span<const TriangleNormals>(blas->normals));
-            spheres.emplace_back(std::span<const Sphere>(blas->spheres));
-            BlasView v = blas->View();
-            v.nodes = blasNodes.back().Data();
-            v.nodes4 = nullptr;  // the GPU traverses the binary BVH
-            v.triangles = triangles.back().Data();
-            v.normals = blas->normals.empty() ? nullptr : normals.back().Data();
-            v.spheres = spheres.back().Data();
-            views.push_back(v);
-        }
-        blasViews.Upload(views);
-        tlasNodes.Upload(scene.GetTlas().nodes);
-        instanceOrder.Upload(scene.GetTlas().instanceOrder);
-        instances.Upload(scene.instances);
-        materials.Upload(scene.materials);
-        lights.Upload(scene.lights);
-    }
-
-    RenderSceneView View(const RenderScene& scene, const RenderSettings& s) const {
-        RenderSceneView view = scene.HostView(s.width, s.height, s.maxDepth);
-        view.tlas = {tlasNodes.Data(), instanceOrder.Data(), instances.Data(), blasViews.Data()};
-        view.materials = materials.Data();
-        view.lights = lights.Data();
-        return view;
-    }
-};
-
 }  // namespace
+
+void LaunchTrace(const RenderSceneView& view, ViewMode mode, uint32_t features, vec3* frame,
+                 unsigned long long* rayCount, cudaStream_t stream) {
+    const dim3 block(8, 8);
+    const dim3 grid((view.width + block.x - 1) / block.x, (view.height + block.y - 1) / block.y);
+    DispatchFeatures(features, [&](auto featureTag) {
+        constexpr uint32_t kFeatures = decltype(featureTag)::value;
+        TraceKernel<kFeatures><<<grid, block, 0, stream>>>(view, mode, frame, rayCount);
+        RT_CUDA_CHECK_LAUNCH();
+    });
+}
 
 bool CudaBackendAvailable(std::string* why) {
     int count = 0;
@@ -89,9 +57,6 @@ std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings
     frame.Resize(size_t(settings.width) * settings.height);
     DeviceBuffer<unsigned long long> rayCount;
     rayCount.Resize(1);
-    const dim3 block(8, 8);
-    const dim3 grid((settings.width + block.x - 1) / block.x,
-                    (settings.height + block.y - 1) / block.y);
     const uint32_t features =
         EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
     cudaEvent_t start, stop;
@@ -102,12 +67,7 @@ std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings
         const bool count = i == 0;  // the atomic ray count runs once, outside the timed frames
         RT_CUDA_CHECK(cudaMemset(rayCount.Data(), 0, sizeof(unsigned long long)));
         RT_CUDA_CHECK(cudaEventRecord(start));
-        DispatchFeatures(features, [&](auto featureTag) {
-            constexpr uint32_t kFeatures = decltype(featureTag)::value;
-            TraceKernel<kFeatures><<<grid, block>>>(view, settings.view, frame.Data(),
-                                                    count ? rayCount.Data() : nullptr);
-            RT_CUDA_CHECK_LAUNCH();
-        });
+        LaunchTrace(view, settings.view, features, frame.Data(), count ? rayCount.Data() : nullptr);
         RT_CUDA_CHECK(cudaEventRecord(stop));
         RT_CUDA_CHECK(cudaEventSynchronize(stop));
         float ms = 0.0f;
@@ -136,16 +96,9 @@ Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, Re
     }
     DeviceBuffer<vec3> frame;
     frame.Resize(size_t(settings.width) * settings.height);
-    const dim3 block(8, 8);
-    const dim3 grid((settings.width + block.x - 1) / block.x,
-                    (settings.height + block.y - 1) / block.y);
-    const uint32_t features =
-        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
-    DispatchFeatures(features, [&](auto featureTag) {
-        constexpr uint32_t kFeatures = decltype(featureTag)::value;
-        TraceKernel<kFeatures><<<grid, block>>>(view, settings.view, frame.Data(), rayCount.Data());
-        RT_CUDA_CHECK_LAUNCH();
-    });
+    LaunchTrace(view, settings.view,
+                EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
+                frame.Data(), rayCount.Data());
     RT_CUDA_CHECK(cudaDeviceSynchronize());
     Image image(settings.width, settings.height);
     frame.Download(image.pixels);

@@ -27,4 +27,5 @@ for scene in dragon reflective_sphere refractive_sphere teapot_shadow; do
 done | tee "$out/renders.log"
 "$rtrt" render default --backend cuda -o "$out/default.ppm" --size 1920x1080 | tee -a "$out/renders.log"
 "$rtrt" bench gpu -o "$out/gpu-bench.json" 2>&1 | tee "$out/gpu-bench.log"
+"$rtrt" bench grid -o "$out/grid-bench.json" 2>&1 | tee "$out/grid-bench.log"
 if [ "${RTRT_DEVICE_EXTRA:-}" != "" ]; then eval "$RTRT_DEVICE_EXTRA" 2>&1 | tee "$out/extra.log"; fi
