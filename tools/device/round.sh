@@ -22,10 +22,15 @@ cmake --preset gpu -DCMAKE_PREFIX_PATH="$prefix" -DRTRT_MODEL_DIR="$RTRT_MODEL_D
 cmake --build --preset gpu -j 16 >"$out/build.log" 2>&1 || { grep -m20 -A5 error "$out/build.log"; exit 1; }
 ctest --test-dir build/gpu -L gpu --output-on-failure -j 1 2>&1 | tee "$out/gpu_tests.log" | tail -25
 rtrt=build/gpu/game/rtrt
+# At most 8 files come back from $OUT: renders travel as one tar, both benchmarks log to one file.
+renders=$(mktemp -d)
 for scene in dragon reflective_sphere refractive_sphere teapot_shadow; do
-    "$rtrt" render "assets/scenes/$scene.json" --backend cuda -o "$out/$scene.ppm" --size 640x360 2>&1
-done | tee "$out/renders.log"
-"$rtrt" render default --backend cuda -o "$out/default.ppm" --size 1920x1080 | tee -a "$out/renders.log"
-"$rtrt" bench gpu -o "$out/gpu-bench.json" 2>&1 | tee "$out/gpu-bench.log"
-"$rtrt" bench grid -o "$out/grid-bench.json" 2>&1 | tee "$out/grid-bench.log"
-if [ "${RTRT_DEVICE_EXTRA:-}" != "" ]; then eval "$RTRT_DEVICE_EXTRA" 2>&1 | tee "$out/extra.log"; fi
+    "$rtrt" render "assets/scenes/$scene.json" --backend cuda -o "$renders/$scene.ppm" --size 640x360
+done 2>&1 | tee "$out/renders.log"
+tar -C "$renders" -cf "$out/renders.tar" .
+{
+    "$rtrt" bench gpu -o "$out/gpu-bench.json"
+    "$rtrt" bench grid -o "$out/grid-bench.json"
+} 2>&1 | tee "$out/bench.log"
+if [ "${RTRT_DEVICE_EXTRA:-}" != "" ]; then eval "$RTRT_DEVICE_EXTRA" 2>&1 | tee -a "$out/bench.log"; fi
+rm -f "$out/configure.log"
