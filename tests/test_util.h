@@ -47,6 +47,18 @@ inline TriangleMesh RandomTriangles(uint32_t count, uint32_t seed) {
     return mesh;
 }
 
+// n boxes with centres in [-spread, spread]^3 and half sizes in [0.01, 0.5].
+inline std::vector<Aabb> RandomBoxes(uint32_t n, float spread, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-spread, spread), s(0.01f, 0.5f);
+    std::vector<Aabb> boxes(n);
+    for (Aabb& b : boxes) {
+        const vec3 c(u(rng), u(rng), u(rng));
+        b = {c - vec3(s(rng)), c + vec3(s(rng))};
+    }
+    return boxes;
+}
+
 // An n x n grid of quads in y = 0 spanning [-1, 1]^2: shared edges and vertices everywhere.
 inline TriangleMesh GridMesh(uint32_t n) {
     TriangleMesh mesh;

@@ -9,20 +9,10 @@
 #include <random>
 
 #include "engine/render_rt/renderer.h"
+#include "tests/test_util.h"
 
 namespace rtrt {
 namespace {
-
-std::vector<Aabb> RandomBoxes(uint32_t n, float spread, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-spread, spread), s(0.01f, 0.5f);
-    std::vector<Aabb> boxes(n);
-    for (Aabb& b : boxes) {
-        const vec3 c(u(rng), u(rng), u(rng));
-        b = {c - vec3(s(rng)), c + vec3(s(rng))};
-    }
-    return boxes;
-}
 
 void ExpectSameTree(const Lbvh& cpu, const Lbvh& gpu) {
     ASSERT_EQ(cpu.nodes.size(), gpu.nodes.size());
@@ -45,7 +35,7 @@ void ExpectGpuEqualsCpu(const std::vector<Aabb>& boxes) {
 TEST(GpuLbvh, EqualsCpuForManySizes) {
     for (uint32_t n : {0u, 1u, 2u, 3u, 1000u, 1000000u}) {
         SCOPED_TRACE(n);
-        ExpectGpuEqualsCpu(RandomBoxes(n, 100.0f, n + 1));
+        ExpectGpuEqualsCpu(test::RandomBoxes(n, 100.0f, n + 1));
     }
 }
 
@@ -54,7 +44,7 @@ TEST(GpuLbvh, EqualsCpuWithAllAtOnePoint) {
 }
 
 TEST(GpuLbvh, EqualsCpuWithOneFarOutlier) {
-    std::vector<Aabb> boxes = RandomBoxes(5000, 1.0f, 7);
+    std::vector<Aabb> boxes = test::RandomBoxes(5000, 1.0f, 7);
     boxes.push_back({vec3(1e7f), vec3(1e7f + 1.0f)});
     ExpectGpuEqualsCpu(boxes);
 }
@@ -62,7 +52,7 @@ TEST(GpuLbvh, EqualsCpuWithOneFarOutlier) {
 TEST(GpuLbvh, RefitEqualsCpuRefit) {
     std::string why;
     if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
-    std::vector<Aabb> boxes = RandomBoxes(20000, 30.0f, 3);
+    std::vector<Aabb> boxes = test::RandomBoxes(20000, 30.0f, 3);
     DeviceBuffer<Aabb> device{std::span<const Aabb>(boxes)};
     GpuLbvh gpu;
     gpu.Build(device.Data(), uint32_t(boxes.size()));

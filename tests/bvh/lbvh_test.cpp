@@ -7,20 +7,10 @@
 #include <random>
 
 #include "engine/bvh/morton.h"
+#include "tests/test_util.h"
 
 namespace rtrt {
 namespace {
-
-std::vector<Aabb> RandomBoxes(uint32_t n, float spread, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-spread, spread), s(0.01f, 0.5f);
-    std::vector<Aabb> boxes(n);
-    for (Aabb& b : boxes) {
-        const vec3 c(u(rng), u(rng), u(rng));
-        b = {c - vec3(s(rng)), c + vec3(s(rng))};
-    }
-    return boxes;
-}
 
 // Walks the tree: each slot once, bounds nested, depth within the traversal stack.
 void ExpectValid(const Lbvh& bvh, std::span<const Aabb> boxes) {
@@ -74,7 +64,7 @@ TEST(Morton, FlatAndNanInputsMapToZero) {
 TEST(Lbvh, ValidForSmallAndLargeCounts) {
     for (uint32_t n : {0u, 1u, 2u, 3u, 7u, 1000u, 100000u}) {
         SCOPED_TRACE(n);
-        const std::vector<Aabb> boxes = RandomBoxes(n, 50.0f, n);
+        const std::vector<Aabb> boxes = test::RandomBoxes(n, 50.0f, n);
         const Lbvh bvh = BuildLbvh(boxes);
         if (n == 0) {
             EXPECT_TRUE(bvh.nodes[0].Bounds().IsEmpty());
@@ -93,7 +83,7 @@ TEST(Lbvh, AllInstancesAtOnePoint) {
 }
 
 TEST(Lbvh, OneFarOutlier) {
-    std::vector<Aabb> boxes = RandomBoxes(1000, 1.0f, 9);
+    std::vector<Aabb> boxes = test::RandomBoxes(1000, 1.0f, 9);
     boxes.push_back({vec3(1e7f), vec3(1e7f + 1.0f)});
     ExpectValid(BuildLbvh(boxes), boxes);
 }
@@ -110,7 +100,7 @@ TEST(Lbvh, KarrasRootCoversEverything) {
 }
 
 TEST(Lbvh, RefitFollowsMovedBoxes) {
-    std::vector<Aabb> boxes = RandomBoxes(5000, 20.0f, 4);
+    std::vector<Aabb> boxes = test::RandomBoxes(5000, 20.0f, 4);
     Lbvh bvh = BuildLbvh(boxes);
     for (Aabb& b : boxes) {
         b.min += vec3(3, -1, 0.5f);

@@ -16,21 +16,15 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "tests/test_util.h"
 
 namespace rtrt {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Real models come from tools/fetch_models.sh: $RTRT_MODEL_DIR, else the build's default.
-fs::path ModelDir() {
-    if (const char* dir = std::getenv("RTRT_MODEL_DIR"); dir && *dir) return dir;
-#ifdef RTRT_TEST_MODEL_DIR
-    return RTRT_TEST_MODEL_DIR;
-#else
-    return {};
-#endif
-}
+// Real models come from tools/fetch_models.sh (tests/test_util.h finds them).
+fs::path ModelDir() { return test::ModelDir(); }
 
 uint32_t Crc32(std::string_view data) {
     uint32_t crc = 0xFFFFFFFFu;

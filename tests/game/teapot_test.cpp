@@ -9,21 +9,15 @@
 #include <string>
 
 #include "engine/core/error.h"
+#include "tests/test_util.h"
 
 namespace rtrt {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Real models come from tools/fetch_models.sh: $RTRT_MODEL_DIR, else the build's default.
-fs::path ModelDir() {
-    if (const char* dir = std::getenv("RTRT_MODEL_DIR"); dir && *dir) return dir;
-#ifdef RTRT_TEST_MODEL_DIR
-    return RTRT_TEST_MODEL_DIR;
-#else
-    return {};
-#endif
-}
+// Real models come from tools/fetch_models.sh (tests/test_util.h finds them).
+fs::path ModelDir() { return test::ModelDir(); }
 
 // Tests on POV-Ray's teapot.inc; skipped when tools/fetch_models.sh has not fetched it.
 class TeapotTest : public ::testing::Test {
