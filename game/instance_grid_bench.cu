@@ -46,8 +46,6 @@ __global__ void WorldBoundsKernel(const Instance* instances, uint32_t n, Aabb bl
     out[i] = TransformBounds(instances[i].objectToWorld, blasBounds);
 }
 
-double MedianOf(std::vector<double>& v) { return Median(v); }
-
 }  // namespace
 
 std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> model,
@@ -109,10 +107,10 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
             total.push_back(ms[0] + ms[1] + ms[2]);
         }
         for (cudaEvent_t e : events) RT_CUDA_CHECK(cudaEventDestroy(e));
-        row.updateMs = MedianOf(update);
-        row.tlasMs = MedianOf(build);
-        row.traceMs = MedianOf(trace);
-        row.totalMs = MedianOf(total);
+        row.updateMs = Median(update);
+        row.tlasMs = Median(build);
+        row.traceMs = Median(trace);
+        row.totalMs = Median(total);
         // Per instance: the record, its world box, and the TLAS build's arrays (2 nodes, leaf
         // order, parents x2, Morton codes x2, sort indices, node position, arrival counter).
         row.bytesPerInstance = double(sizeof(Instance) + sizeof(Aabb) + 2 * sizeof(BvhNode) +

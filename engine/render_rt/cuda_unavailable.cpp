@@ -14,10 +14,6 @@ Image RenderRawCuda(const RenderScene&, const RenderSettings&, RenderStats*) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
 }
 
-}  // namespace rtrt
-
-namespace rtrt {
-
 std::vector<double> TimeCudaTrace(const RenderScene&, const RenderSettings&, int, int,
                                   RenderStats*) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt");
