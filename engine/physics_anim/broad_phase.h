@@ -1,0 +1,44 @@
+#pragma once
+// Candidate pairs for the narrow phase: axis-aligned boxes that overlap.
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "engine/core/math.h"
+
+namespace rtrt::physics {
+
+struct BroadPhaseBox {
+    vec3 min;
+    vec3 max;
+    bool isStatic;  // two static boxes never make a pair
+};
+
+// Sort and sweep (Baraff 1992, "Dynamic Simulation of Non-Penetrating Rigid Bodies", ch. 7): the
+// boxes sorted by their lower bound on the axis along which their centres spread most; each box
+// is tested against the following ones until their lower bound passes its upper bound. Cost is
+// O(n log n) plus the overlaps on that axis. The order of the pairs depends only on the boxes.
+class SweepAndPrune {
+  public:
+    // Replaces pairs with every overlapping (i, j), i < j, that is not static-static; touching
+    // boxes (equal bounds) overlap.
+    void FindPairs(std::span<const BroadPhaseBox> boxes,
+                   std::vector<std::pair<uint32_t, uint32_t>>& pairs);
+
+  private:
+    struct Entry {
+        float min;
+        uint32_t box;
+    };
+    // A box with its bounds on the sweep axis (0) and the two others (1, 2); 32 bytes.
+    struct SweptBox {
+        float min0, max0, min1, max1, min2, max2;
+        uint32_t box;
+        uint32_t isStatic;
+    };
+    std::vector<Entry> order_;
+    std::vector<SweptBox> sorted_;  // in sweep order
+};
+
+}  // namespace rtrt::physics

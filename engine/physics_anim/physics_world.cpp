@@ -1,0 +1,415 @@
+#include "engine/physics_anim/physics_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "engine/physics_anim/narrow_phase.h"
+#include "engine/physics_anim/quat_interp.h"
+
+namespace rtrt::physics {
+
+using ecs::Entity;
+using ecs::Registry;
+
+namespace {
+
+glm::mat3 WorldInverseInertia(const glm::mat3& rotation, vec3 invInertiaLocal) {
+    glm::mat3 scaled = rotation;
+    scaled[0] *= invInertiaLocal.x;
+    scaled[1] *= invInertiaLocal.y;
+    scaled[2] *= invInertiaLocal.z;
+    return scaled * glm::transpose(rotation);
+}
+
+OrientedBox BoxOf(const SimBody& body) {
+    return {body.position, body.rotation, body.collider.halfExtents};
+}
+
+bool PairLess(Entity a1, Entity b1, Entity a2, Entity b2) {
+    return std::tie(a1.index, a1.generation, b1.index, b1.generation) <
+           std::tie(a2.index, a2.generation, b2.index, b2.generation);
+}
+
+void ClampLength(vec3& v, float maxLength) {
+    const float length2 = glm::dot(v, v);
+    if (length2 > maxLength * maxLength) v *= maxLength / std::sqrt(length2);
+}
+
+}  // namespace
+
+PhysicsWorld::PhysicsWorld(PhysicsSettings settings)
+    : settings_(settings),
+      solver_{settings.fixedStep,
+              settings.gravity,
+              settings.velocityIterations,
+              settings.positionIterations,
+              settings.restitutionThreshold,
+              settings.linearSlop,
+              settings.positionCorrection} {}
+
+void PhysicsWorld::Advance(Registry& registry, float frameDt) {
+    if (registry.Count<RigidBody>() == 0) return;  // no bodies, no cost
+    ++stats_.frames;
+    const double step = settings_.fixedStep;
+    if (frameDt > 0.0f) accumulator_ += frameDt;
+    const auto due = static_cast<int>(accumulator_ / step);
+    const int steps = std::min(due, settings_.maxStepsPerFrame);
+    accumulator_ -= steps * step;
+    if (accumulator_ >= step) accumulator_ = std::fmod(accumulator_, step);  // drop what is late
+
+    Gather(registry);
+    for (int i = 0; i < steps; ++i) TakeStep();
+    WriteBack(registry, InterpolationAlpha());
+}
+
+void PhysicsWorld::Step(Registry& registry, int steps) {
+    if (registry.Count<RigidBody>() == 0) return;
+    Gather(registry);
+    for (int i = 0; i < steps; ++i) TakeStep();
+    WriteBack(registry, 1.0f);
+}
+
+void PhysicsWorld::Gather(Registry& registry) {
+    bodies_.clear();
+    planes_.clear();
+    registry.View<RigidBody, LocalTransform>().Each([&](Entity e, RigidBody& rb,
+                                                        LocalTransform& local) {
+        SimBody s;
+        s.entity = e;
+        s.body = &rb;
+        s.local = &local;
+        if (const Collider* collider = registry.Get<Collider>(e)) {
+            s.hasCollider = true;
+            s.collider = *collider;
+        }
+        const bool isPlane = s.hasCollider && s.collider.shape == ColliderShape::kPlane;
+        s.dynamic = rb.mass > 0.0f && !isPlane;
+        s.restitution = rb.restitution;
+        s.friction = rb.friction;
+        s.rollingResistance = rb.rollingResistance;
+        s.boundingRadius = s.hasCollider ? BoundingRadius(s.collider) : 0.0f;
+        if (s.dynamic) {
+            if (!rb.state.initialized) {
+                Teleport(rb, local.translation, glm::normalize(local.rotation));
+            }
+            // Sleeping zeroes the velocities, so a non-zero one was set by the user.
+            if (rb.state.sleeping &&
+                (rb.velocity != vec3(0.0f) || rb.angularVelocity != vec3(0.0f))) {
+                WakeUp(rb);
+            }
+            s.awake = !rb.state.sleeping;
+            s.position = rb.state.position;
+            s.orientation = rb.state.orientation;
+            s.previousPosition = rb.state.previousPosition;
+            s.previousOrientation = rb.state.previousOrientation;
+            s.velocity = rb.velocity;
+            s.angularVelocity = rb.angularVelocity;
+            s.restingTime = rb.state.restingTime;
+            s.invMass = 1.0f / rb.mass;
+            const vec3 inertia = s.hasCollider ? InertiaDiagonal(s.collider, rb.mass) : vec3(0.0f);
+            if (!rb.fixedRotation && inertia.x > 0.0f && inertia.y > 0.0f && inertia.z > 0.0f) {
+                s.invInertiaLocal = 1.0f / inertia;
+            }
+        } else {
+            s.position = s.previousPosition = local.translation;
+            s.orientation = s.previousOrientation = glm::normalize(local.rotation);
+        }
+        if (isPlane) planes_.push_back(static_cast<uint32_t>(bodies_.size()));
+        bodies_.push_back(s);
+    });
+}
+
+void PhysicsWorld::TakeStep() {
+    ++stats_.steps;
+    stats_.bodySteps += bodies_.size();
+    stats_.lastBodies = static_cast<uint32_t>(bodies_.size());
+    for (SimBody& s : bodies_) {
+        s.previousPosition = s.position;
+        s.previousOrientation = s.orientation;
+        s.rotation = glm::mat3_cast(s.orientation);
+        s.startVelocity = s.velocity;
+        s.startAngularVelocity = s.angularVelocity;
+        s.invInertiaWorld =
+            s.awake ? WorldInverseInertia(s.rotation, s.invInertiaLocal) : glm::mat3(0.0f);
+    }
+    FindPairs();
+    WakeTouched();
+    IntegrateVelocities();
+    FindContacts();
+    PrepareContacts(bodies_, contacts_, solver_);
+    SeedFromLastStep();
+    WarmStart(bodies_, contacts_);
+    SolveVelocities(bodies_, contacts_, solver_);
+    ApplyRestitution(bodies_, contacts_, solver_);
+    SolvePositions(bodies_, contacts_, solver_);
+    RememberImpulses();
+    IntegratePositions();
+    UpdateSleep();
+}
+
+float PhysicsWorld::Margin(const SimBody& s) const {
+    const float h = settings_.fixedStep;
+    if (!s.awake) return 0.5f * settings_.contactMargin;
+    // Gravity is added after the broad phase: allow for one step of it.
+    const float speed = glm::length(s.velocity) + glm::length(settings_.gravity) * h;
+    return 0.5f * settings_.contactMargin + (std::min(speed, settings_.maxLinearSpeed) +
+                                             glm::length(s.angularVelocity) * s.boundingRadius) *
+                                                h;
+}
+
+void PhysicsWorld::FindPairs() {
+    boxes_.clear();
+    broadBodies_.clear();
+    for (uint32_t i = 0; i < bodies_.size(); ++i) {
+        const SimBody& s = bodies_[i];
+        if (!s.hasCollider || s.collider.shape == ColliderShape::kPlane) continue;
+        vec3 extent(s.collider.radius);
+        if (s.collider.shape == ColliderShape::kBox) {
+            const glm::mat3& r = s.rotation;
+            const vec3 h = s.collider.halfExtents;
+            for (int k = 0; k < 3; ++k) {
+                extent[k] =
+                    std::fabs(r[0][k]) * h.x + std::fabs(r[1][k]) * h.y + std::fabs(r[2][k]) * h.z;
+            }
+        }
+        extent += vec3(Margin(s));
+        boxes_.push_back({s.position - extent, s.position + extent, !s.dynamic});
+        broadBodies_.push_back(i);
+    }
+    sweep_.FindPairs(boxes_, pairs_);
+    for (auto& [a, b] : pairs_) {
+        a = broadBodies_[a];
+        b = broadBodies_[b];
+    }
+    stats_.lastPairs = static_cast<uint32_t>(pairs_.size());
+}
+
+void PhysicsWorld::WakeTouched() {
+    // A sleeper near a body that moved during the last step wakes; one it wakes counts as moving,
+    // so a disturbance spreads through a resting pile (within this pass, or over the next steps).
+    auto wake = [&](SimBody& sleeper, const SimBody& other) {
+        if (!sleeper.dynamic || sleeper.awake || !other.awake || other.restingTime > 0.0f) return;
+        sleeper.awake = true;
+        sleeper.restingTime = 0.0f;
+        sleeper.invInertiaWorld = WorldInverseInertia(sleeper.rotation, sleeper.invInertiaLocal);
+    };
+    for (const auto& [a, b] : pairs_) {
+        wake(bodies_[a], bodies_[b]);
+        wake(bodies_[b], bodies_[a]);
+    }
+}
+
+void PhysicsWorld::IntegrateVelocities() {
+    const float h = settings_.fixedStep;
+    const float linearDamping = 1.0f / (1.0f + h * settings_.linearDamping);
+    const float angularDamping = 1.0f / (1.0f + h * settings_.angularDamping);
+    uint32_t awake = 0;
+    for (SimBody& s : bodies_) {
+        if (!s.awake) continue;
+        ++awake;
+        s.velocity = (s.velocity + settings_.gravity * h) * linearDamping;
+        s.angularVelocity *= angularDamping;
+        ClampLength(s.velocity, settings_.maxLinearSpeed);
+        ClampLength(s.angularVelocity, settings_.maxAngularSpeed);
+    }
+    stats_.lastAwake = awake;
+}
+
+void PhysicsWorld::FindContacts() {
+    const float h = settings_.fixedStep;
+    contacts_.clear();
+    Manifold m;
+    for (const auto& [i, j] : pairs_) {
+        const SimBody& a = bodies_[i];
+        const SimBody& b = bodies_[j];
+        if (!a.awake && !b.awake) continue;
+        const float margin = settings_.contactMargin + glm::length(a.velocity - b.velocity) * h +
+                             (glm::length(a.angularVelocity) * a.boundingRadius +
+                              glm::length(b.angularVelocity) * b.boundingRadius) *
+                                 h;
+        const bool aSphere = a.collider.shape == ColliderShape::kSphere;
+        const bool bSphere = b.collider.shape == ColliderShape::kSphere;
+        if (aSphere && bSphere) {
+            if (CollideSpheres(a.position, a.collider.radius, b.position, b.collider.radius, margin,
+                               m)) {
+                AddContacts(i, j, m, std::min(a.collider.radius, b.collider.radius));
+            }
+        } else if (aSphere) {
+            if (CollideBoxSphere(BoxOf(b), a.position, a.collider.radius, margin, m)) {
+                AddContacts(j, i, m, a.collider.radius);
+            }
+        } else if (bSphere) {
+            if (CollideBoxSphere(BoxOf(a), b.position, b.collider.radius, margin, m)) {
+                AddContacts(i, j, m, b.collider.radius);
+            }
+        } else if (CollideBoxes(BoxOf(a), BoxOf(b), margin, m)) {
+            AddContacts(i, j, m, 0.0f);
+        }
+    }
+    for (const uint32_t p : planes_) {
+        const SimBody& plane = bodies_[p];
+        PlaneShape shape;
+        shape.normal = glm::normalize(plane.orientation * plane.collider.normal);
+        shape.offset = glm::dot(shape.normal, plane.position);
+        for (uint32_t i = 0; i < bodies_.size(); ++i) {
+            const SimBody& s = bodies_[i];
+            if (!s.awake || !s.hasCollider) continue;
+            const float margin = settings_.contactMargin + glm::length(s.velocity) * h +
+                                 glm::length(s.angularVelocity) * s.boundingRadius * h;
+            if (s.collider.shape == ColliderShape::kSphere) {
+                if (CollidePlaneSphere(shape, s.position, s.collider.radius, margin, m)) {
+                    AddContacts(p, i, m, s.collider.radius);
+                }
+            } else if (s.collider.shape == ColliderShape::kBox) {
+                if (CollidePlaneBox(shape, BoxOf(s), margin, m)) AddContacts(p, i, m, 0.0f);
+            }
+        }
+    }
+    stats_.lastContacts = static_cast<uint32_t>(contacts_.size());
+}
+
+void PhysicsWorld::AddContacts(uint32_t first, uint32_t second, const Manifold& manifold,
+                               float lever) {
+    const float rolling =
+        lever * std::max(bodies_[first].rollingResistance, bodies_[second].rollingResistance);
+    for (int k = 0; k < manifold.count; ++k) {
+        Contact c{};
+        c.a = first;
+        c.b = second;
+        c.normal = manifold.normal;
+        c.point = manifold.points[k].point;
+        c.separation = manifold.points[k].separation;
+        c.rollingLimit = rolling;
+        contacts_.push_back(c);
+    }
+}
+
+void PhysicsWorld::SeedFromLastStep() {
+    const float maxDistance2 = settings_.warmStartDistance * settings_.warmStartDistance;
+    for (Contact& c : contacts_) {
+        const SimBody& a = bodies_[c.a];
+        const Entity ea = a.entity;
+        const Entity eb = bodies_[c.b].entity;
+        auto it = std::lower_bound(
+            cache_.begin(), cache_.end(), c,
+            [&](const CachedContact& k, const Contact&) { return PairLess(k.a, k.b, ea, eb); });
+        const vec3 local = glm::transpose(a.rotation) * (c.point - a.position);
+        const CachedContact* best = nullptr;
+        float bestDistance2 = maxDistance2;
+        for (; it != cache_.end() && it->a == ea && it->b == eb; ++it) {
+            const vec3 d = it->localPoint - local;
+            const float distance2 = glm::dot(d, d);
+            if (distance2 < bestDistance2) {
+                bestDistance2 = distance2;
+                best = &*it;
+            }
+        }
+        if (best == nullptr) continue;
+        c.normalImpulse = best->normalImpulse;
+        c.tangentImpulse1 = best->tangentImpulse1;
+        c.tangentImpulse2 = best->tangentImpulse2;
+    }
+}
+
+void PhysicsWorld::RememberImpulses() {
+    nextCache_.clear();
+    for (const Contact& c : contacts_) {
+        if (c.normalImpulse <= 0.0f) continue;
+        const SimBody& a = bodies_[c.a];
+        nextCache_.push_back({a.entity, bodies_[c.b].entity,
+                              glm::transpose(a.rotation) * (c.point - a.position), c.normalImpulse,
+                              c.tangentImpulse1, c.tangentImpulse2});
+    }
+    std::stable_sort(nextCache_.begin(), nextCache_.end(),
+                     [](const CachedContact& x, const CachedContact& y) {
+                         return PairLess(x.a, x.b, y.a, y.b);
+                     });
+    std::swap(cache_, nextCache_);
+}
+
+void PhysicsWorld::IntegratePositions() {
+    const float h = settings_.fixedStep;
+    for (SimBody& s : bodies_) {
+        if (!s.awake) continue;
+        s.position += (s.velocity + s.pseudoVelocity) * h;
+        const vec3 w = s.angularVelocity + s.pseudoAngularVelocity;
+        // dq/dt = 1/2 (0, w) q, then renormalised.
+        s.orientation = glm::normalize(s.orientation +
+                                       glm::quat(0.0f, w.x, w.y, w.z) * s.orientation * (0.5f * h));
+        s.pseudoVelocity = vec3(0.0f);
+        s.pseudoAngularVelocity = vec3(0.0f);
+    }
+}
+
+void PhysicsWorld::UpdateSleep() {
+    const float h = settings_.fixedStep;
+    const float linear2 = settings_.sleepLinearSpeed * settings_.sleepLinearSpeed;
+    const float angular2 = settings_.sleepAngularSpeed * settings_.sleepAngularSpeed;
+    for (SimBody& s : bodies_) {
+        if (!s.awake) continue;
+        const bool slow = glm::dot(s.velocity, s.velocity) < linear2 &&
+                          glm::dot(s.angularVelocity, s.angularVelocity) < angular2;
+        s.restingTime = slow ? s.restingTime + h : 0.0f;
+        if (s.restingTime >= settings_.timeToSleep) {
+            s.awake = false;
+            s.velocity = vec3(0.0f);
+            s.angularVelocity = vec3(0.0f);
+        }
+    }
+}
+
+void PhysicsWorld::WriteBack(Registry& registry, float alpha) {
+    for (const SimBody& s : bodies_) {
+        if (!s.dynamic) continue;
+        RigidBody& rb = *s.body;
+        rb.velocity = s.velocity;
+        rb.angularVelocity = s.angularVelocity;
+        rb.state.position = s.position;
+        rb.state.orientation = s.orientation;
+        rb.state.previousPosition = s.previousPosition;
+        rb.state.previousOrientation = s.previousOrientation;
+        rb.state.restingTime = s.restingTime;
+        rb.state.sleeping = !s.awake;
+
+        vec3 translation = s.position;
+        glm::quat rotation = s.orientation;
+        if (alpha < 1.0f) {
+            translation = glm::mix(s.previousPosition, s.position, alpha);
+            rotation = Slerp(s.previousOrientation, s.orientation, alpha);
+        }
+        LocalTransform& local = *s.local;
+        if (local.translation == translation && local.rotation == rotation) continue;
+        local.translation = translation;
+        local.rotation = rotation;
+        registry.MarkChanged<LocalTransform>(s.entity);
+    }
+}
+
+double PhysicsWorld::MechanicalEnergy(const Registry& registry) const {
+    double energy = 0.0;
+    const glm::dvec3 gravity(settings_.gravity);
+    registry.View<const RigidBody, const LocalTransform>().Each(
+        [&](Entity e, const RigidBody& rb, const LocalTransform& local) {
+            const Collider* collider = registry.Get<Collider>(e);
+            if (rb.mass <= 0.0f || (collider && collider->shape == ColliderShape::kPlane)) return;
+            const bool placed = rb.state.initialized;
+            const glm::dvec3 position(placed ? rb.state.position : local.translation);
+            const glm::quat orientation = placed ? rb.state.orientation : local.rotation;
+            const glm::dvec3 v(rb.velocity);
+            energy += 0.5 * rb.mass * glm::dot(v, v) - rb.mass * glm::dot(gravity, position);
+            if (collider != nullptr) {
+                const glm::dvec3 inertia(InertiaDiagonal(*collider, rb.mass));
+                const glm::dvec3 w(glm::conjugate(orientation) * rb.angularVelocity);  // body frame
+                energy += 0.5 * glm::dot(inertia, w * w);
+            }
+        });
+    return energy;
+}
+
+void AddPhysicsSystem(ecs::Scheduler& scheduler, PhysicsWorld& world) {
+    scheduler.AddSystem("simulation", "physics",
+                        [&world](Registry& registry, float dt) { world.Advance(registry, dt); });
+}
+
+}  // namespace rtrt::physics

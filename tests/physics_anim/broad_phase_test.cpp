@@ -1,0 +1,71 @@
+// Sort and sweep finds exactly the overlapping pairs that brute force finds.
+#include "engine/physics_anim/broad_phase.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+namespace rtrt::physics {
+namespace {
+
+using Pairs = std::vector<std::pair<uint32_t, uint32_t>>;
+
+bool Overlap(const BroadPhaseBox& a, const BroadPhaseBox& b) {
+    for (int k = 0; k < 3; ++k) {
+        if (a.min[k] > b.max[k] || b.min[k] > a.max[k]) return false;
+    }
+    return true;
+}
+
+Pairs BruteForce(const std::vector<BroadPhaseBox>& boxes) {
+    Pairs pairs;
+    for (uint32_t i = 0; i < boxes.size(); ++i) {
+        for (uint32_t j = i + 1; j < boxes.size(); ++j) {
+            if (!(boxes[i].isStatic && boxes[j].isStatic) && Overlap(boxes[i], boxes[j]))
+                pairs.emplace_back(i, j);
+        }
+    }
+    return pairs;
+}
+
+std::vector<BroadPhaseBox> RandomBoxes(uint32_t count, uint32_t seed) {
+    std::mt19937 rng(seed);
+    auto unit = [&] { return static_cast<float>(rng() >> 8) * 0x1p-24f; };
+    std::vector<BroadPhaseBox> boxes;
+    for (uint32_t i = 0; i < count; ++i) {
+        const vec3 c(unit() * 20.0f, unit() * 4.0f, unit() * 20.0f);
+        const vec3 h(0.1f + unit() * 0.6f);
+        boxes.push_back({c - h, c + h, unit() < 0.2f});
+    }
+    return boxes;
+}
+
+TEST(BroadPhaseTest, SweepFindsTheSamePairsAsBruteForce) {
+    for (uint32_t seed = 1; seed <= 5; ++seed) {
+        const std::vector<BroadPhaseBox> boxes = RandomBoxes(800, seed);
+        SweepAndPrune sweep;
+        Pairs found;
+        sweep.FindPairs(boxes, found);
+        std::sort(found.begin(), found.end());
+        const Pairs expected = BruteForce(boxes);
+        EXPECT_FALSE(expected.empty());
+        EXPECT_EQ(found, expected) << "seed " << seed;
+    }
+}
+
+TEST(BroadPhaseTest, TouchingBoxesPairButStaticPairsDoNot) {
+    std::vector<BroadPhaseBox> boxes{
+        {vec3(0.0f), vec3(1.0f), false},
+        {vec3(1.0f, 0.0f, 0.0f), vec3(2.0f, 1.0f, 1.0f), true},
+        {vec3(1.5f, 0.0f, 0.0f), vec3(3.0f, 1.0f, 1.0f), true},
+        {vec3(5.0f), vec3(6.0f), false},
+    };
+    SweepAndPrune sweep;
+    Pairs found;
+    sweep.FindPairs(boxes, found);
+    EXPECT_EQ(found, (Pairs{{0, 1}}));
+}
+
+}  // namespace
+}  // namespace rtrt::physics
