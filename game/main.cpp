@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     int exitCode = rtrt::kExitOk;
     rtrt::AddRenderCommand(app, &exitCode);
+    rtrt::AddPlayCommand(app, &exitCode);
     rtrt::AddBenchCommand(app, &exitCode);
     try {
         app.parse(argc, argv);

@@ -21,6 +21,8 @@ struct RenderOptions {
     int maxDepth = 0;  // 0: the scene's own
 };
 
+}  // namespace
+
 void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
     unsigned long w = 0, h = 0;
     size_t x = text.find('x');
@@ -40,6 +42,8 @@ void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
     *width = uint32_t(w);
     *height = uint32_t(h);
 }
+
+namespace {
 
 ViewMode ParseView(const std::string& view) {
     if (view == "normals") return ViewMode::kNormals;

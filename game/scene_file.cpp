@@ -1,11 +1,14 @@
 #include "game/scene_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -157,8 +160,20 @@ class SceneParser {
         if (top.Has("materials")) ParseMaterials(top.Get("materials"), scene);
         if (top.Has("lights")) ParseLights(top.Get("lights"), scene);
         if (top.Has("models")) ParseModels(top.Get("models"), scene);
-        ParseInstances(top.Get("instances"), scene);
+        ParseInstances(top.Get("instances"), out);
+        if (top.Has("spawners")) ParseSpawners(top.Get("spawners"), out);
+        if (top.Has("camera_path")) ParseCameraPath(top.Get("camera_path"), out);
         top.Finish();
+        std::stable_sort(
+            out.entities.begin(), out.entities.end(),
+            [](const EntityDesc& a, const EntityDesc& b) { return a.spawnTime < b.spawnTime; });
+        for (const EntityDesc& e : out.entities) {
+            out.dynamic |= e.animator.has_value() || e.body.has_value() || e.spawnTime > 0.0f;
+            if (e.spawnTime == 0.0f)
+                scene.AddInstance(e.blasId, e.materialId, physics::ToMatrix(e.local));
+        }
+        out.dynamic |= !out.cameraPath.empty();
+        if (!out.cameraPath.empty()) scene.camera = CameraAt(out, 0.0f);
         scene.BuildTlas();
         return out;
     }
@@ -237,7 +252,10 @@ class SceneParser {
                              std::string("expected an object of named models, got ") + TypeName(j));
         for (const auto& [name, value] : j.items()) {
             Fields f(value, "models." + name, file_);
+            shape_ = {};
             modelIds_[name] = scene.AddBlas(std::make_shared<const Blas>(ParseModel(f)));
+            modelShapes_[modelIds_[name]] = shape_;
+            modelNames_[modelIds_[name]] = name;
             f.Finish();
         }
     }
@@ -251,12 +269,14 @@ class SceneParser {
         const std::string type = f.String("type");
         if (type == "sphere") {
             const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
+            shape_ = {ModelShape::kSphere, s.radius, vec3(0.0f)};
             return BuildSphereBlas(std::span<const Sphere>(&s, 1), options);
         }
         if (type == "spheres") return BuildSphereBlas(ParseSphereList(f), options);
         TriangleMesh mesh;
         if (type == "box") {
             mesh = MakeBoxMesh(f.Vec3("size", vec3(1.0f)));
+            shape_ = {ModelShape::kBox, 0.0f, 0.5f * mesh.Bounds().Extent()};
             const vec3 size = mesh.Bounds().Extent();
             if (!(size.x > 0 && size.y > 0 && size.z > 0))
                 f.Fail("size", "box sides must be greater than 0");
@@ -265,6 +285,7 @@ class SceneParser {
             if (!(size.x > 0 && size.z > 0))
                 f.Fail("size", "plane size x and z must be greater than 0");
             mesh = MakePlaneMesh(size.x, size.z);
+            shape_ = {ModelShape::kPlane, 0.0f, vec3(0.0f)};
         } else if (type == "teapot") {
             const uint32_t resolution = f.Count("resolution", 1, 64, 6);
             mesh =
@@ -299,35 +320,227 @@ class SceneParser {
         return spheres;
     }
 
-    void ParseInstances(const Json& j, RenderScene& scene) {
+    void ParseInstances(const Json& j, LoadedScene& out) {
         if (!j.is_array())
             throw InputError(file_, "instances",
                              std::string("expected an array, got ") + TypeName(j));
-        uint32_t defaultMaterial = UINT32_MAX;
         for (size_t i = 0; i < j.size(); ++i) {
             Fields f(j[i], "instances[" + std::to_string(i) + "]", file_);
-            const std::string model = f.String("model");
-            auto modelIt = modelIds_.find(model);
-            if (modelIt == modelIds_.end())
-                f.Fail("model", "no model named \"" + model + "\" in models");
-            uint32_t material;
-            if (f.Has("material")) {
-                const std::string name = f.String("material");
-                auto it = materialIds_.find(name);
-                if (it == materialIds_.end())
-                    f.Fail("material", "no material named \"" + name + "\" in materials");
-                material = it->second;
-            } else {
-                if (defaultMaterial == UINT32_MAX) defaultMaterial = scene.AddMaterial(Material{});
-                material = defaultMaterial;
-            }
-            scene.AddInstance(modelIt->second, material, ParseTransform(f));
+            out.entities.push_back(ParseEntity(f, out.scene));
             f.Finish();
         }
     }
 
+    // The fields an instance and a spawner share: model, material, pose, animation, rigid body.
+    EntityDesc ParseEntity(Fields& f, RenderScene& scene) {
+        EntityDesc e;
+        const std::string model = f.String("model");
+        auto modelIt = modelIds_.find(model);
+        if (modelIt == modelIds_.end())
+            f.Fail("model", "no model named \"" + model + "\" in models");
+        e.blasId = modelIt->second;
+        if (f.Has("material")) {
+            const std::string name = f.String("material");
+            auto it = materialIds_.find(name);
+            if (it == materialIds_.end())
+                f.Fail("material", "no material named \"" + name + "\" in materials");
+            e.materialId = it->second;
+        } else {
+            if (defaultMaterial_ == UINT32_MAX) defaultMaterial_ = scene.AddMaterial(Material{});
+            e.materialId = defaultMaterial_;
+        }
+        e.local = ParseTransform(f);
+        if (f.Has("animate"))
+            e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local);
+        if (f.Has("rigid_body")) {
+            if (e.animator)
+                f.Fail("rigid_body", "an entity is either animated or simulated, not both");
+            ParseRigidBody(f.Get("rigid_body"), f.Path("rigid_body"), e);
+        }
+        return e;
+    }
+
+    // Motions apply in a fixed order: orbit, then spin, then bob.
+    physics::Animator ParseAnimator(const Json& j, const std::string& path,
+                                    const physics::LocalTransform& base) {
+        Fields f(j, path, file_);
+        physics::Animator a;
+        a.base = base;
+        if (f.Has("orbit")) {
+            Fields o(f.Get("orbit"), f.Path("orbit"), file_);
+            physics::Orbit orbit;
+            orbit.centre = o.Vec3("centre", base.translation);
+            orbit.radius = o.Positive("radius", 1.0f);
+            orbit.axis = NonZero(o, "axis", vec3(0, 1, 0));
+            orbit.period = o.Positive("period", 4.0f);
+            o.Finish();
+            a.motions.push_back(orbit);
+        }
+        if (f.Has("spin")) {
+            Fields sp(f.Get("spin"), f.Path("spin"), file_);
+            physics::Spin spin;
+            spin.axis = NonZero(sp, "axis", vec3(0, 1, 0));
+            spin.angularSpeed = sp.Number("speed", 1.0f);
+            sp.Finish();
+            a.motions.push_back(spin);
+        }
+        if (f.Has("bob")) {
+            Fields b(f.Get("bob"), f.Path("bob"), file_);
+            physics::Bob bob;
+            bob.amplitude = b.Number("amplitude", 0.25f);
+            bob.frequency = b.Positive("frequency", 0.5f);
+            bob.axis = NonZero(b, "axis", vec3(0, 1, 0));
+            b.Finish();
+            a.motions.push_back(bob);
+        }
+        f.Finish();
+        if (a.motions.empty()) f.Fail("", "give at least one of orbit, spin, bob");
+        return a;
+    }
+
+    vec3 NonZero(Fields& f, const std::string& key, vec3 fallback) {
+        const vec3 v = f.Vec3(key, fallback);
+        if (glm::length(v) == 0.0f) f.Fail(key, "must not be the zero vector");
+        return glm::normalize(v);
+    }
+
+    // The collider follows the model: a sphere (radius x largest scale), a box (half size x
+    // scale) or a plane (its normal turned by the rotation).
+    void ParseRigidBody(const Json& j, const std::string& path, EntityDesc& e) {
+        Fields f(j, path, file_);
+        physics::RigidBody body;
+        body.mass = f.InRange("mass", 0.0f, 1e9f, body.mass);
+        if (f.Has("static") && f.Get("static").is_boolean() && f.Get("static").get<bool>())
+            body.mass = 0.0f;
+        body.restitution = f.InRange("restitution", 0.0f, 1.0f, body.restitution);
+        body.friction = f.InRange("friction", 0.0f, 10.0f, body.friction);
+        body.velocity = f.Vec3("velocity", vec3(0.0f));
+        f.Finish();
+        const ModelShape& shape = modelShapes_[e.blasId];
+        const vec3 scale = e.local.scale;
+        switch (shape.kind) {
+            case ModelShape::kSphere:
+                e.collider = physics::Collider::Sphere(shape.radius * MaxComponent(scale));
+                break;
+            case ModelShape::kBox:
+                e.collider = physics::Collider::Box(shape.halfExtents * scale);
+                break;
+            case ModelShape::kPlane:
+                e.collider = physics::Collider::Plane(e.local.rotation * vec3(0, 1, 0));
+                body.mass = 0.0f;  // planes do not move
+                break;
+            default:
+                throw InputError(file_, path,
+                                 "a rigid body needs a sphere, box or plane model; \"" +
+                                     modelNames_[e.blasId] + "\" is a mesh");
+        }
+        e.body = body;
+    }
+
+    // Spawners place many copies of one entity: on a grid, or as a rain at random (seeded)
+    // places in a region, at a given time.
+    void ParseSpawners(const Json& j, LoadedScene& out) {
+        if (!j.is_array())
+            throw InputError(file_, "spawners",
+                             std::string("expected an array, got ") + TypeName(j));
+        for (size_t i = 0; i < j.size(); ++i) {
+            Fields f(j[i], "spawners[" + std::to_string(i) + "]", file_);
+            EntityDesc proto = ParseEntity(f, out.scene);
+            proto.spawnTime = f.InRange("time", 0.0f, 1e6f, 0.0f);
+            const bool grid = f.Has("grid"), rain = f.Has("rain");
+            if (grid == rain) f.Fail("", "give exactly one of grid or rain");
+            const std::vector<vec3> places =
+                grid ? GridPlaces(f, proto) : RainPlaces(f, out, proto);
+            for (const vec3& p : places) {
+                EntityDesc e = proto;
+                e.local.translation = p;
+                if (e.animator) {
+                    e.animator->base.translation = p;
+                    for (physics::ProceduralMotion& m : e.animator->motions)
+                        if (auto* orbit = std::get_if<physics::Orbit>(&m))
+                            orbit->centre += p - proto.local.translation;
+                }
+                out.entities.push_back(e);
+            }
+            f.Finish();
+        }
+    }
+
+    std::vector<vec3> GridPlaces(Fields& f, const EntityDesc& proto) {
+        Fields g(f.Get("grid"), f.Path("grid"), file_);
+        const vec3 count = g.Vec3("count");
+        const float spacing = g.Positive("spacing", 1.5f);
+        g.Finish();
+        if (count.x < 1 || count.y < 1 || count.z < 1 || count.x * count.y * count.z > 2e6f ||
+            count != glm::floor(count))
+            f.Fail("grid.count", "expected 3 whole numbers >= 1 (at most 2,000,000 places)");
+        std::vector<vec3> places;
+        const vec3 half = 0.5f * (count - vec3(1.0f));
+        for (int z = 0; z < int(count.z); ++z)
+            for (int y = 0; y < int(count.y); ++y)
+                for (int x = 0; x < int(count.x); ++x)
+                    places.push_back(proto.local.translation + spacing * (vec3(x, y, z) - half));
+        return places;
+    }
+
+    // Jittered cells of a grid that fills [min, max], chosen in a seeded order: places never
+    // overlap, so a rain of bodies starts without interpenetration.
+    std::vector<vec3> RainPlaces(Fields& f, const LoadedScene& out, const EntityDesc& proto) {
+        Fields r(f.Get("rain"), f.Path("rain"), file_);
+        const uint32_t count = r.Count("count", 1, 1000000, 100);
+        const vec3 lo = r.Vec3("min"), hi = r.Vec3("max");
+        const uint32_t seed = r.Count("seed", 0, UINT32_MAX - 1, 1);
+        r.Finish();
+        const Aabb bounds = out.scene.blases[proto.blasId]->bounds;
+        const ModelShape& shape = modelShapes_[proto.blasId];
+        const float radius = shape.kind == ModelShape::kSphere
+                                 ? shape.radius * MaxComponent(proto.local.scale)
+                                 : 0.5f * glm::length(bounds.Extent() * proto.local.scale);
+        const float cell = 2.2f * radius;
+        const glm::ivec3 cells = glm::ivec3(glm::max(hi - lo, vec3(0.0f)) / cell);
+        const int64_t total = int64_t(cells.x) * cells.y * cells.z;
+        if (total < int64_t(count))
+            f.Fail("rain", "the region holds only " + std::to_string(std::max<int64_t>(total, 0)) +
+                               " bodies of this size, not " + std::to_string(count));
+        if (total > 50000000)
+            f.Fail("rain", "the region is too large for bodies of this size (over 50M cells)");
+        std::vector<uint32_t> order(static_cast<size_t>(total));
+        for (size_t i = 0; i < order.size(); ++i) order[i] = uint32_t(i);
+        std::mt19937 rng(seed);
+        std::shuffle(order.begin(), order.end(), rng);
+        std::uniform_real_distribution<float> jitter(-1.0f, 1.0f);
+        const float slack = 0.5f * (cell - 2.0f * radius);
+        std::vector<vec3> places;
+        for (uint32_t i = 0; i < count; ++i) {
+            const uint32_t c = order[i];
+            const vec3 index(float(c % cells.x), float((c / cells.x) % cells.y),
+                             float(c / (cells.x * cells.y)));
+            places.push_back(lo + cell * (index + vec3(0.5f)) +
+                             slack * vec3(jitter(rng), jitter(rng), jitter(rng)));
+        }
+        return places;
+    }
+
+    // camera_path: keys {time, position, look_at}, in increasing time.
+    void ParseCameraPath(const Json& j, LoadedScene& out) {
+        if (!j.is_array() || j.empty())
+            throw InputError(file_, "camera_path", "expected a non-empty array of camera keys");
+        for (size_t i = 0; i < j.size(); ++i) {
+            Fields f(j[i], "camera_path[" + std::to_string(i) + "]", file_);
+            CameraKey key;
+            key.time = f.InRange("time", 0.0f, 1e6f, 0.0f);
+            key.position = f.Vec3("position");
+            key.lookAt = f.Vec3("look_at");
+            f.Finish();
+            if (!out.cameraPath.empty() && key.time <= out.cameraPath.back().time)
+                f.Fail("time", "camera keys must come in increasing time");
+            if (key.position == key.lookAt) f.Fail("look_at", "must differ from position");
+            out.cameraPath.push_back(key);
+        }
+    }
+
     // position * rotation (degrees about x, then y, then z) * scale.
-    glm::mat4 ParseTransform(Fields& f) {
+    physics::LocalTransform ParseTransform(Fields& f) {
         const vec3 position = f.Vec3("position", vec3(0.0f));
         const vec3 rotation = f.Vec3("rotation", vec3(0.0f));
         vec3 scale(1.0f);
@@ -344,18 +557,45 @@ class SceneParser {
             if (!(scale.x > 0 && scale.y > 0 && scale.z > 0))
                 f.Fail("scale", "scale factors must be greater than 0");
         }
-        glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
-        m = glm::rotate(m, glm::radians(rotation.z), vec3(0, 0, 1));
-        m = glm::rotate(m, glm::radians(rotation.y), vec3(0, 1, 0));
-        m = glm::rotate(m, glm::radians(rotation.x), vec3(1, 0, 0));
-        return glm::scale(m, scale);
+        physics::LocalTransform t;
+        t.translation = position;
+        t.rotation = glm::angleAxis(glm::radians(rotation.z), vec3(0, 0, 1)) *
+                     glm::angleAxis(glm::radians(rotation.y), vec3(0, 1, 0)) *
+                     glm::angleAxis(glm::radians(rotation.x), vec3(1, 0, 0));
+        t.scale = scale;
+        return t;
     }
+
+    struct ModelShape {
+        enum Kind { kOther, kSphere, kBox, kPlane } kind = kOther;
+        float radius = 0.0f;
+        vec3 halfExtents{0.0f};
+    };
 
     std::string file_, baseDir_;
     std::map<std::string, uint32_t> materialIds_, modelIds_;
+    std::map<uint32_t, ModelShape> modelShapes_;
+    std::map<uint32_t, std::string> modelNames_;
+    ModelShape shape_;  // of the model being parsed
+    uint32_t defaultMaterial_ = UINT32_MAX;
 };
 
 }  // namespace
+
+Camera CameraAt(const LoadedScene& loaded, float t) {
+    Camera camera = loaded.scene.camera;
+    const std::vector<CameraKey>& path = loaded.cameraPath;
+    if (path.empty()) return camera;
+    size_t next = 0;
+    while (next < path.size() && path[next].time <= t) ++next;
+    const CameraKey& a = path[next == 0 ? 0 : next - 1];
+    const CameraKey& b = path[next == path.size() ? path.size() - 1 : next];
+    const float span = b.time - a.time;
+    const float w = span > 0.0f ? std::clamp((t - a.time) / span, 0.0f, 1.0f) : 0.0f;
+    camera.position = glm::mix(a.position, b.position, w);
+    camera.forward = glm::mix(a.lookAt, b.lookAt, w) - camera.position;
+    return camera;
+}
 
 LoadedScene ParseScene(const std::string& text, const std::string& name,
                        const std::string& baseDir) {

@@ -36,6 +36,12 @@ void RenderScene::BuildTlas() {
     tlas_ = rtrt::BuildTlas(instances, blasBounds);
 }
 
+void RenderScene::SetTlas(Tlas tlas) {
+    blasViews_.clear();
+    for (const auto& blas : blases) blasViews_.push_back(blas->View());
+    tlas_ = std::move(tlas);
+}
+
 uint32_t RenderScene::Features() const {
     uint32_t features = lights.empty() ? 0u : kFeatureShadows;
     for (const Material& m : materials) {

@@ -25,6 +25,8 @@ struct RenderScene {
 
     // Rebuilds the TLAS over the current instances; call after adding or moving instances.
     void BuildTlas();
+    // Takes a TLAS built elsewhere (the runtime's per-frame LBVH) over the current instances.
+    void SetTlas(Tlas tlas);
     // The SceneFeature bits this scene's materials and lights call for.
     uint32_t Features() const;
     uint64_t TriangleCount() const;  // over all instances

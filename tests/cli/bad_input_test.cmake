@@ -46,3 +46,21 @@ execute_process(COMMAND ${RTRT} render --help RESULT_VARIABLE status OUTPUT_VARI
 if(NOT status EQUAL 0 OR NOT stdout MATCHES "--max-depth")
     message(FATAL_ERROR "render --help: status ${status}")
 endif()
+
+# rtrt play: bad invocations exit 2 and write nothing; a good one writes every frame.
+foreach(args "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--frames;2;-o;${WORK_DIR}/f_%02d.png"
+             "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;--frames;2;-o;${WORK_DIR}/f.png"
+             "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;-o;${WORK_DIR}/f_%02d.png")
+    execute_process(COMMAND ${RTRT} ${args} RESULT_VARIABLE status ERROR_VARIABLE stderr)
+    file(GLOB written ${WORK_DIR}/f*.png)
+    if(NOT status EQUAL 2 OR written)
+        message(FATAL_ERROR "${args}: status ${status}, files ${written}: ${stderr}")
+    endif()
+endforeach()
+execute_process(COMMAND ${RTRT} play ${SOURCE_DIR}/assets/scenes/demo_glass.json --headless --frames 3
+    --size 64x36 -o ${WORK_DIR}/frame_%04d.png RESULT_VARIABLE status ERROR_VARIABLE stderr)
+foreach(i 0000 0001 0002)
+    if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/frame_${i}.png)
+        message(FATAL_ERROR "play: status ${status}, frame ${i} missing: ${stderr}")
+    endif()
+endforeach()

@@ -1,0 +1,60 @@
+#pragma once
+// The runtime: a scene's entities in the ECS, moved by animation and physics on a fixed schedule,
+// and extracted every frame into the RenderScene the back ends trace. Only changed transforms are
+// re-extracted; the TLAS is an LBVH refit or rebuilt by the DynamicTlas policy.
+#include <cstdint>
+#include <vector>
+
+#include "engine/bvh/dynamic_tlas.h"
+#include "engine/ecs/registry.h"
+#include "engine/ecs/scheduler.h"
+#include "engine/physics_anim/physics_world.h"
+#include "engine/physics_anim/transform_system.h"
+#include "game/scene_file.h"
+
+namespace rtrt {
+
+// Links an entity to its instance record in the RenderScene.
+struct Renderable {
+    uint32_t blasId = 0;
+    uint32_t materialId = 0;
+    uint32_t instance = UINT32_MAX;  // index in RenderScene::instances once extracted
+};
+
+struct FrameStats {
+    uint32_t spawned = 0;
+    uint32_t extracted = 0;  // instance records rewritten this frame
+    bool tlasRebuilt = false;
+    double simulateMs = 0.0, extractMs = 0.0, tlasMs = 0.0;
+};
+
+class World {
+  public:
+    explicit World(const LoadedScene& scene, TlasPolicy policy = {false, 0.25f});
+
+    // Advances time by dt: spawns what is due, runs the phases (physics, animation, transforms),
+    // extracts changed instances and brings the TLAS up to date.
+    FrameStats Advance(float dt);
+
+    const RenderScene& Scene() const { return scene_; }
+    double Time() const { return time_; }
+    ecs::Registry& Registry() { return registry_; }
+
+  private:
+    void SpawnDue();
+    uint32_t Extract();
+
+    const LoadedScene& source_;
+    RenderScene scene_;
+    ecs::Registry registry_;
+    ecs::Scheduler scheduler_;
+    physics::PhysicsWorld physics_;
+    physics::TransformSystem transforms_;
+    DynamicTlas tlas_;
+    std::vector<Aabb> blasBounds_;
+    size_t nextSpawn_ = 0;
+    bool topologyChanged_ = true;
+    double time_ = 0.0;
+};
+
+}  // namespace rtrt
