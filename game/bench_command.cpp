@@ -22,7 +22,9 @@
 #include "game/model_dir.h"
 #include "game/paper_scene.h"
 #include "game/procedural_shapes.h"
+#include "game/scene_file.h"
 #include "game/teapot.h"
+#include "game/world.h"
 
 namespace rtrt {
 namespace {
@@ -235,6 +237,33 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
     }
 }
 
+// Runtime cost per stage on a played scene: what a scene does not use must cost ~nothing.
+void RunRuntimeBench(const std::vector<std::string>& scenes, int frames) {
+    std::printf("rtrt bench runtime: medians over %d frames at 60 fps (CPU, ms)\n", frames);
+    std::printf("%-28s %9s %9s %9s %11s %9s %9s %9s\n", "scene", "instances", "moving", "physics",
+                "animators", "transform", "extract", "TLAS");
+    for (const std::string& path : scenes) {
+        const LoadedScene loaded = LoadSceneFile(path);
+        World world(loaded);
+        std::vector<double> physics, animators, transforms, extract, tlas, moving;
+        for (int i = 0; i < frames; ++i) {
+            const FrameStats stats = world.Advance(1.0f / 60.0f);
+            for (const ecs::SystemTiming& t : world.Scheduler().SystemTimings()) {
+                if (t.name == "physics") physics.push_back(t.milliseconds);
+                if (t.name == "animators") animators.push_back(t.milliseconds);
+                if (t.name == "transforms") transforms.push_back(t.milliseconds);
+            }
+            extract.push_back(stats.extractMs);
+            tlas.push_back(stats.tlasMs);
+            moving.push_back(stats.extracted);
+        }
+        std::printf("%-28s %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f\n",
+                    std::filesystem::path(path).filename().string().c_str(),
+                    world.Scene().instances.size(), Median(moving), Median(physics),
+                    Median(animators), Median(transforms), Median(extract), Median(tlas));
+    }
+}
+
 void RunEcsBench(uint32_t count) {
     const ecs::EcsBenchResult r = ecs::RunEcsBenchmark(count);
     std::printf("rtrt bench ecs: %u entities (Position + Velocity, every 4th a third component)\n",
@@ -298,6 +327,23 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         std::string why;
         if (!CudaBackendAvailable(&why)) throw InputError("bench grid", "", why);
         RunGridBench(grid->counts, grid->frames, grid->output);
+        *exitCode = kExitOk;
+    });
+    struct RuntimeOptions {
+        std::vector<std::string> scenes;
+        int frames = 300;
+    };
+    auto runtime = std::make_shared<RuntimeOptions>();
+    CLI::App* runtimeBench = bench->add_subcommand(
+        "runtime", "CPU time per runtime stage (physics, animation, transforms, extraction, TLAS)");
+    runtimeBench->add_option("scenes", runtime->scenes, "Scene files to play")
+        ->required()
+        ->check(CLI::ExistingFile);
+    runtimeBench->add_option("--frames", runtime->frames, "Frames to play")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    runtimeBench->callback([runtime, exitCode] {
+        RunRuntimeBench(runtime->scenes, runtime->frames);
         *exitCode = kExitOk;
     });
     CLI::App* gpu = bench->add_subcommand(

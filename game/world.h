@@ -39,6 +39,8 @@ class World {
     const RenderScene& Scene() const { return scene_; }
     double Time() const { return time_; }
     ecs::Registry& Registry() { return registry_; }
+    // Per-system times of the last frame (physics, animators, transforms), for benchmarks.
+    const ecs::Scheduler& Scheduler() const { return scheduler_; }
 
   private:
     void SpawnDue();
