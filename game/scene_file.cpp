@@ -393,9 +393,72 @@ class SceneParser {
             b.Finish();
             a.motions.push_back(bob);
         }
+        if (f.Has("keyframes")) a.clip = ParseClip(f.Get("keyframes"), f.Path("keyframes"));
         f.Finish();
-        if (a.motions.empty()) f.Fail("", "give at least one of orbit, spin, bob");
+        if (a.motions.empty() && !a.clip)
+            f.Fail("", "give at least one of keyframes, orbit, spin, bob");
         return a;
+    }
+
+    // keyframes: {"translation": [[t, x, y, z], ...], "rotation": [[t, degrees x, y, z], ...],
+    // "scale": [[t, x, y, z], ...], "interpolation": "step" | "linear" | "slerp", "loop": bool}.
+    // The clip sets the channels it has keys for; the motions apply after it.
+    std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std::string& path) {
+        Fields f(j, path, file_);
+        auto clip = std::make_shared<physics::KeyframeClip>();
+        physics::Interpolation mode = physics::Interpolation::kLinear;
+        const std::string interpolation = f.String("interpolation", "linear");
+        if (interpolation == "step")
+            mode = physics::Interpolation::kStep;
+        else if (interpolation == "slerp")
+            mode = physics::Interpolation::kSlerp;
+        else if (interpolation != "linear")
+            f.Fail("interpolation",
+                   "expected step, linear or slerp, got \"" + interpolation + "\"");
+        if (f.Has("loop")) {
+            if (!f.Get("loop").is_boolean()) f.Fail("loop", "expected true or false");
+            clip->wrap =
+                f.Get("loop").get<bool>() ? physics::WrapMode::kLoop : physics::WrapMode::kClamp;
+        }
+        auto keys = [&](const std::string& channel, auto&& add) {
+            if (!f.Has(channel)) return;
+            const Json& list = f.Get(channel);
+            if (!list.is_array() || list.empty())
+                f.Fail(channel, "expected a non-empty array of [time, x, y, z]");
+            for (size_t k = 0; k < list.size(); ++k) {
+                const Json& key = list[k];
+                const std::string at = channel + "[" + std::to_string(k) + "]";
+                if (!key.is_array() || key.size() != 4) f.Fail(at, "expected [time, x, y, z]");
+                for (const Json& v : key)
+                    if (!v.is_number() || !std::isfinite(v.get<double>()))
+                        f.Fail(at, "expected finite numbers");
+                add(key[0].get<float>(),
+                    vec3(key[1].get<float>(), key[2].get<float>(), key[3].get<float>()));
+            }
+        };
+        keys("translation", [&](float t, vec3 v) {
+            clip->translation.times.push_back(t);
+            clip->translation.values.push_back(v);
+        });
+        keys("rotation", [&](float t, vec3 degrees) {
+            clip->rotation.times.push_back(t);
+            clip->rotation.values.push_back(glm::angleAxis(glm::radians(degrees.z), vec3(0, 0, 1)) *
+                                            glm::angleAxis(glm::radians(degrees.y), vec3(0, 1, 0)) *
+                                            glm::angleAxis(glm::radians(degrees.x), vec3(1, 0, 0)));
+        });
+        keys("scale", [&](float t, vec3 v) {
+            clip->scale.times.push_back(t);
+            clip->scale.values.push_back(v);
+        });
+        clip->translation.interpolation = clip->scale.interpolation = mode;
+        clip->rotation.interpolation =
+            mode == physics::Interpolation::kLinear ? physics::Interpolation::kSlerp : mode;
+        f.Finish();
+        if (clip->translation.Empty() && clip->rotation.Empty() && clip->scale.Empty())
+            f.Fail("", "give keys for at least one of translation, rotation, scale");
+        if (const std::string problem = physics::ValidateClip(*clip); !problem.empty())
+            f.Fail("", problem);
+        return clip;
     }
 
     vec3 NonZero(Fields& f, const std::string& key, vec3 fallback) {

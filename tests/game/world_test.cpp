@@ -100,6 +100,19 @@ TEST(World, CameraFollowsItsPath) {
     EXPECT_NEAR(world.Scene().camera.position.z, 10.0f, 1e-4f);
 }
 
+TEST(World, KeyframesMoveAnEntity) {
+    const LoadedScene scene = ParseScene(R"({
+      "models": { "ball": { "type": "sphere" } },
+      "instances": [ { "model": "ball", "animate": { "keyframes": {
+          "translation": [[0, 0, 0, 0], [1, 0, 4, 0]], "loop": true } } } ] })",
+                                         "keys.json", "");
+    World world(scene);
+    for (int i = 0; i < 5; ++i) world.Advance(0.125f);  // t = 0.625: linear between the keys
+    EXPECT_NEAR(world.Scene().instances[0].objectToWorld.row[1].w, 2.5f, 1e-5f);
+    for (int i = 0; i < 4; ++i) world.Advance(0.125f);  // t = 1.125: looped to 0.125
+    EXPECT_NEAR(world.Scene().instances[0].objectToWorld.row[1].w, 0.5f, 1e-5f);
+}
+
 TEST(World, BadDynamicFieldsAreRejected) {
     auto expectError = [](const std::string& json, const std::string& field) {
         try {
