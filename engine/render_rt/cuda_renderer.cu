@@ -11,8 +11,16 @@
 namespace rtrt {
 namespace {
 
+// Optional register cap (blocks of 64 threads that must fit per SM), for occupancy experiments:
+// cmake -DRTRT_TRACE_MIN_BLOCKS=N.
+#if defined(RTRT_TRACE_MIN_BLOCKS)
+#define RTRT_TRACE_LAUNCH_BOUNDS __launch_bounds__(64, RTRT_TRACE_MIN_BLOCKS)
+#else
+#define RTRT_TRACE_LAUNCH_BOUNDS
+#endif
+
 template <uint32_t kFeatures>
-__global__ void TraceKernel(RenderSceneView scene, ViewMode view, vec3* out,
+__global__ void RTRT_TRACE_LAUNCH_BOUNDS TraceKernel(RenderSceneView scene, ViewMode view, vec3* out,
                             unsigned long long* rayCount) {
     const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
     const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
