@@ -25,6 +25,13 @@ using Json = nlohmann::json;
 
 const char* TypeName(const Json& j) { return j.type_name(); }
 
+// Rotation by degrees about x, then y, then z (the scene files' convention).
+glm::quat EulerDegrees(vec3 degrees) {
+    return glm::angleAxis(glm::radians(degrees.z), vec3(0, 0, 1)) *
+           glm::angleAxis(glm::radians(degrees.y), vec3(0, 1, 0)) *
+           glm::angleAxis(glm::radians(degrees.x), vec3(1, 0, 0));
+}
+
 // One JSON object of the scene file at a known path. Reading a key marks it as known; Finish()
 // rejects any key nobody read, so a typo never passes silently.
 class Fields {
@@ -442,9 +449,7 @@ class SceneParser {
         });
         keys("rotation", [&](float t, vec3 degrees) {
             clip->rotation.times.push_back(t);
-            clip->rotation.values.push_back(glm::angleAxis(glm::radians(degrees.z), vec3(0, 0, 1)) *
-                                            glm::angleAxis(glm::radians(degrees.y), vec3(0, 1, 0)) *
-                                            glm::angleAxis(glm::radians(degrees.x), vec3(1, 0, 0)));
+            clip->rotation.values.push_back(EulerDegrees(degrees));
         });
         keys("scale", [&](float t, vec3 v) {
             clip->scale.times.push_back(t);
@@ -622,9 +627,7 @@ class SceneParser {
         }
         physics::LocalTransform t;
         t.translation = position;
-        t.rotation = glm::angleAxis(glm::radians(rotation.z), vec3(0, 0, 1)) *
-                     glm::angleAxis(glm::radians(rotation.y), vec3(0, 1, 0)) *
-                     glm::angleAxis(glm::radians(rotation.x), vec3(1, 0, 0));
+        t.rotation = EulerDegrees(rotation);
         t.scale = scale;
         return t;
     }

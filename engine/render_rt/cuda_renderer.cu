@@ -20,8 +20,8 @@ namespace {
 #endif
 
 template <uint32_t kFeatures>
-__global__ void RTRT_TRACE_LAUNCH_BOUNDS TraceKernel(RenderSceneView scene, ViewMode view, vec3* out,
-                            unsigned long long* rayCount) {
+__global__ void RTRT_TRACE_LAUNCH_BOUNDS TraceKernel(RenderSceneView scene, ViewMode view,
+                                                     vec3* out, unsigned long long* rayCount) {
     const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
     const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
     if (x >= scene.width || y >= scene.height) return;
