@@ -19,10 +19,14 @@ World::World(const LoadedScene& scene, TlasPolicy policy) : source_(scene), tlas
     SpawnDue();
     transforms_.Update(registry_);
     Extract();
-    const TlasUpdateStats stats = tlas_.Update(scene_.instances, blasBounds_, true);
-    (void)stats;
+    UpdateTlas();
+}
+
+bool World::UpdateTlas() {
+    const bool rebuilt = tlas_.Update(scene_.instances, blasBounds_, topologyChanged_).rebuilt;
     scene_.SetTlas({tlas_.Tree().nodes, tlas_.Tree().primOrder});
     topologyChanged_ = false;
+    return rebuilt;
 }
 
 void World::SpawnDue() {
@@ -73,12 +77,7 @@ FrameStats World::Advance(float dt) {
     stats.extracted = Extract();
     stats.extractMs = timer.Milliseconds();
     timer.Restart();
-    if (stats.extracted > 0 || topologyChanged_) {
-        const TlasUpdateStats t = tlas_.Update(scene_.instances, blasBounds_, topologyChanged_);
-        stats.tlasRebuilt = t.rebuilt;
-        scene_.SetTlas({tlas_.Tree().nodes, tlas_.Tree().primOrder});
-    }
-    topologyChanged_ = false;
+    if (stats.extracted > 0 || topologyChanged_) stats.tlasRebuilt = UpdateTlas();
     stats.tlasMs = timer.Milliseconds();
     scene_.camera = CameraAt(source_, float(time_));
     return stats;

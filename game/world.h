@@ -45,6 +45,8 @@ class World {
   private:
     void SpawnDue();
     uint32_t Extract();
+    // Refits or rebuilds the TLAS (per the policy) and hands it to the RenderScene.
+    bool UpdateTlas();
 
     const LoadedScene& source_;
     RenderScene scene_;
