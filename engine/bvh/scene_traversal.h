@@ -1,11 +1,11 @@
 #pragma once
 // Two-level traversal: the TLAS over instances, then each reached instance's BLAS in object
 // space. Object-space directions are not renormalised, so t means the same in both spaces.
-#include "engine/bvh/blas.h"
-#include "engine/bvh/instance.h"
-#include "engine/bvh/sphere_intersect.h"
-#include "engine/bvh/traversal.h"
-#include "engine/bvh/triangle_intersect.h"
+//
+// The GPU (and the heatmap's counts on either back end) use the single loop of
+// two_level_traversal.h. The CPU otherwise nests a BLAS traversal in the TLAS's leaves, so that
+// triangle BLASes can use their 4-wide SSE collapse; both forms find the same hits.
+#include "engine/bvh/two_level_traversal.h"
 
 // The CPU back end traverses triangle BLASes through their 4-wide collapse (SSE); the GPU and the
 // heatmap's node counts use the binary BVH.
@@ -15,29 +15,6 @@
 #endif
 
 namespace rtrt {
-
-struct TlasView {
-    const BvhNode* nodes;
-    const uint32_t* instanceOrder;  // leaf slot -> instance index
-    const Instance* instances;
-    const BlasView* blases;
-};
-
-struct SceneHit {
-    float t;
-    uint32_t instance;
-    uint32_t prim;  // leaf slot in the instance's BLAS
-    float b1, b2;   // triangle barycentrics
-};
-
-RT_HD inline Ray ToObjectSpace(const Ray& ray, const Instance& inst) {
-    Ray r;
-    r.origin = inst.worldToObject.Point(ray.origin);
-    r.dir = inst.worldToObject.Vector(ray.dir);
-    r.tMax = ray.tMax;
-    r.pad = 0.0f;
-    return r;
-}
 
 RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, float& tMax,
                                 SceneHit* hit, TraversalStats* stats) {
@@ -96,9 +73,9 @@ RT_HD inline bool OccludedBlas(const BlasView& blas, const Ray& objectRay, float
         stats);
 }
 
-// Closest hit along ray within (0, ray.tMax].
-RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit* hit,
-                                 TraversalStats* stats = nullptr) {
+// Closest hit along ray within (0, ray.tMax], nested form.
+RT_HD inline bool IntersectSceneNested(const TlasView& scene, const Ray& ray, SceneHit* hit,
+                                       TraversalStats* stats = nullptr) {
     if (!IsTraceable(ray)) return false;
     const RaySetup setup = MakeBoxRaySetup(ray);
     float tMax = ray.tMax;
@@ -116,9 +93,9 @@ RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit
         stats);
 }
 
-// Whether anything blocks ray within (0, tMax).
-RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
-                                TraversalStats* stats = nullptr) {
+// Whether anything blocks ray within (0, tMax), nested form.
+RT_HD inline bool OccludedSceneNested(const TlasView& scene, const Ray& ray,
+                                      TraversalStats* stats = nullptr) {
     if (!IsTraceable(ray)) return false;
     const RaySetup setup = MakeBoxRaySetup(ray);
     return TraverseAny(
@@ -129,6 +106,26 @@ RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
             return OccludedBlas(scene.blases[inst.blasId], objectRay, tLimit, stats);
         },
         stats);
+}
+
+// Closest hit along ray within (0, ray.tMax].
+RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit* hit,
+                                 TraversalStats* stats = nullptr) {
+#if defined(RTRT_HOST_WIDE_BVH)
+    if (!stats) return IntersectSceneNested(scene, ray, hit);
+#endif
+    float tMax = ray.tMax;
+    return TraverseTwoLevel<false>(scene, ray, tMax, hit, stats);
+}
+
+// Whether anything blocks ray within (0, tMax).
+RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
+                                TraversalStats* stats = nullptr) {
+#if defined(RTRT_HOST_WIDE_BVH)
+    if (!stats) return OccludedSceneNested(scene, ray);
+#endif
+    float tMax = ray.tMax;
+    return TraverseTwoLevel<true>(scene, ray, tMax, nullptr, stats);
 }
 
 }  // namespace rtrt

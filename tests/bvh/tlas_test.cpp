@@ -57,6 +57,31 @@ bool BruteForce(const TlasView& scene, uint32_t count, const Ray& ray, SceneHit*
     return found;
 }
 
+// The single loop of the GPU visits what the nested loops visit: same hit, same counts.
+void ExpectSingleLoopEqualsNested(const TlasView& scene, const Ray& ray) {
+    SceneHit nested{}, single{};
+    TraversalStats nestedStats, singleStats;
+    const bool n = IntersectSceneNested(scene, ray, &nested, &nestedStats);
+    float tMax = ray.tMax;
+    const bool s = TraverseTwoLevel<false>(scene, ray, tMax, &single, &singleStats);
+    ASSERT_EQ(n, s);
+    if (n) {
+        EXPECT_EQ(nested.t, single.t);
+        EXPECT_EQ(nested.instance, single.instance);
+        EXPECT_EQ(nested.prim, single.prim);
+        EXPECT_EQ(nested.b1, single.b1);
+        EXPECT_EQ(nested.b2, single.b2);
+    }
+    EXPECT_EQ(nestedStats.nodesVisited, singleStats.nodesVisited);
+    EXPECT_EQ(nestedStats.primsTested, singleStats.primsTested);
+    TraversalStats nestedAny, singleAny;
+    const bool na = OccludedSceneNested(scene, ray, &nestedAny);
+    tMax = ray.tMax;
+    EXPECT_EQ(na, TraverseTwoLevel<true>(scene, ray, tMax, nullptr, &singleAny));
+    EXPECT_EQ(nestedAny.nodesVisited, singleAny.nodesVisited);
+    EXPECT_EQ(nestedAny.primsTested, singleAny.primsTested);
+}
+
 void ExpectSameAsBruteForce(TwoLevel& world, float spread, uint32_t seed, TlasBuilder builder) {
     SCOPED_TRACE(builder == TlasBuilder::kSah ? "SAH TLAS" : "LBVH TLAS");
     const TlasView scene = world.Build(builder);
@@ -78,6 +103,7 @@ void ExpectSameAsBruteForce(TwoLevel& world, float spread, uint32_t seed, TlasBu
             EXPECT_EQ(expected.t, got.t) << "ray " << i;
             EXPECT_EQ(OccludedScene(scene, Ray{ray.origin, got.t * 1.001f, ray.dir, 0}), true);
         }
+        ExpectSingleLoopEqualsNested(scene, ray);
     }
     EXPECT_GT(hits, 2000u);
 }

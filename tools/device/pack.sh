@@ -3,9 +3,24 @@
 # and ninja but no package registry): Debian 12 development packages unpacked into a private
 # prefix, the fetched models and the commit. Call the device tool with carry [".device"]; after a
 # new commit, refresh just the commit: git rev-parse --short HEAD > .device/commit
+#
+# RTRT_BASELINE=<commit> tools/device/pack.sh --baseline-only adds (or replaces) .device/baseline,
+# the source of an earlier commit that round.sh then benchmarks beside the working tree, so that
+# a change is measured against what it changes in one run on one machine.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 dest=$root/.device
+add_baseline() {
+    rm -rf "$dest/baseline"
+    mkdir -p "$dest/baseline"
+    git -C "$root" archive "$RTRT_BASELINE" | tar -x -C "$dest/baseline"
+    git -C "$root" rev-parse --short "$RTRT_BASELINE" >"$dest/baseline/.commit"
+    echo "baseline $(cat "$dest/baseline/.commit") in $dest/baseline"
+}
+if [ "${1:-}" = "--baseline-only" ]; then
+    add_baseline
+    exit 0
+fi
 rm -rf "$dest"
 mkdir -p "$dest/debs" "$dest/prefix" "$dest/models"
 cd "$dest/debs"
@@ -18,3 +33,4 @@ rm -rf "$dest/debs" "$dest/prefix/usr/share/doc"
 cp "$root"/.cache/models/* "$dest/models/"
 git -C "$root" rev-parse --short HEAD >"$dest/commit"
 du -sh "$dest"
+if [ -n "${RTRT_BASELINE:-}" ]; then add_baseline; fi

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # One GPU round on the device machine: build for sm_90 without OpenImageIO, run the GPU tests
 # (ctest -L gpu), render the verification scenes on the GPU, and leave logs, JSON and images in
-# $OUT. Expects .device/ from tools/device/pack.sh.
+# $OUT. Expects .device/ from tools/device/pack.sh. With .device/baseline (pack.sh's
+# RTRT_BASELINE), the earlier commit is built too and benchmarked right after this tree, on the
+# same machine: baseline.tar holds its JSON, bench.log both tables.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root"
@@ -32,5 +34,18 @@ tar -C "$renders" -cf "$out/renders.tar" .
     "$rtrt" bench gpu -o "$out/gpu-bench.json"
     "$rtrt" bench grid -o "$out/grid-bench.json"
 } 2>&1 | tee "$out/bench.log"
+base=$root/.device/baseline
+if [ -d "$base" ]; then
+    echo "== baseline $(cat "$base/.commit")" | tee -a "$out/bench.log"
+    (cd "$base" && cmake --preset gpu -DCMAKE_PREFIX_PATH="$prefix" -DRTRT_MODEL_DIR="$RTRT_MODEL_DIR" \
+        -DRTRT_BUILD_TESTS=OFF >/dev/null && cmake --build --preset gpu -j 16 --target rtrt >/dev/null) ||
+        echo "baseline build failed" | tee -a "$out/bench.log"
+    bdir=$(mktemp -d)
+    {
+        "$base/build/gpu/game/rtrt" bench gpu -o "$bdir/baseline-gpu-bench.json"
+        "$base/build/gpu/game/rtrt" bench grid -o "$bdir/baseline-grid-bench.json"
+    } 2>&1 | tee -a "$out/bench.log"
+    tar -C "$bdir" -cf "$out/baseline.tar" .
+fi
 if [ "${RTRT_DEVICE_EXTRA:-}" != "" ]; then eval "$RTRT_DEVICE_EXTRA" 2>&1 | tee -a "$out/bench.log"; fi
 rm -f "$out/configure.log"
