@@ -14,8 +14,9 @@ RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax, f
     // load instructions per box on the GPU. Nodes are read-only while a kernel traces.
     const float4 lo = __ldg(reinterpret_cast<const float4*>(&node));
     const float4 hi = __ldg(reinterpret_cast<const float4*>(&node) + 1);
-    // nearOffset[i] is i for a positive direction component and i + 4 for a negative one.
-    const bool nx = r.nearOffset[0] != 0, ny = r.nearOffset[1] != 1, nz = r.nearOffset[2] != 2;
+    // The sign of 1/d picks the planes (1/-0 = -inf): deriving it here rather than reading the
+    // setup's plane offsets leaves those dead, which saves registers in the traversal loops.
+    const bool nx = r.invDir.x < 0.0f, ny = r.invDir.y < 0.0f, nz = r.invDir.z < 0.0f;
     const float tx0 = ((nx ? hi.x : lo.x) - r.origin.x) * r.invDir.x;
     const float tx1 = ((nx ? lo.x : hi.x) - r.origin.x) * r.invDir.x;
     const float ty0 = ((ny ? hi.y : lo.y) - r.origin.y) * r.invDir.y;

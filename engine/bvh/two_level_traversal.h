@@ -40,21 +40,39 @@ RT_HD inline Ray ToObjectSpace(const Ray& ray, const Instance& inst) {
     return r;
 }
 
-// A TLAS pending pair or a BLAS pending pair is a node index; these two kinds of entry are not.
+// Stack entries: a node index of the level in use, or one of these two.
 inline constexpr uint32_t kReturnToWorld = 0xffffffffu;
 inline constexpr uint32_t kInstanceEntry = 0x80000000u;  // | TLAS leaf slot
+inline constexpr uint32_t kNoNode = 0xfffffffeu;
 // One TLAS path, a leaf's waiting instances and one BLAS path.
 inline constexpr uint32_t kTwoLevelStackSize = 2 * kBvhStackSize + 8;
 
+// Whether pred holds for any active lane of the warp; on the CPU, one lane.
+RT_HD inline bool AnyLane(bool pred) {
+#if defined(__CUDA_ARCH__)
+    return __any_sync(__activemask(), pred);
+#else
+    return pred;
+#endif
+}
+
 // Closest hit (kAnyHit false: hit records it, tMax shrinks to it) or any hit before tMax.
+//
+// The loop has the while-while form of Aila and Laine (2009): lanes step through interior nodes
+// together and set a leaf aside when they reach one; on the GPU they keep descending until every
+// lane of the warp holds a leaf ("speculative traversal"), and then the leaves are intersected
+// together. A lane alone (the CPU) intersects each leaf as soon as it is found, which gives the
+// nested form's order exactly.
 template <bool kAnyHit>
 RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float& tMax,
                                    SceneHit* hit, TraversalStats* stats) {
     if (!IsTraceable(ray)) return false;
-    const RaySetup world = MakeBoxRaySetup(ray);
-    RaySetup setup = world;
+    // The world-space setup is recomputed on the way back from an instance rather than kept:
+    // registers, not the three divisions, limit how many rays a GPU keeps in flight.
+    RaySetup setup = MakeBoxRaySetup(ray);
     const BvhNode* nodes = scene.nodes;
     const BlasView* blas = nullptr;  // null while in the TLAS
+    bool triangles = false;          // the BLAS in use holds triangles (else spheres)
     uint32_t instanceId = 0;
     uint32_t stack[kTwoLevelStackSize];
     uint32_t stackSize = 0;
@@ -66,9 +84,9 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
         const Instance& inst = scene.instances[id];
         const BlasView& target = scene.blases[inst.blasId];
         const Ray objectRay = ToObjectSpace(ray, inst);
-        const RaySetup objectSetup = target.kind == GeometryKind::kTriangles
-                                         ? MakeRaySetup(objectRay)
-                                         : MakeBoxRaySetup(objectRay);
+        const bool isTriangles = target.kind == GeometryKind::kTriangles;
+        const RaySetup objectSetup =
+            isTriangles ? MakeRaySetup(objectRay) : MakeBoxRaySetup(objectRay);
         if (stats) {
             ++stats->primsTested;
             ++stats->nodesVisited;
@@ -79,46 +97,70 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
         setup = objectSetup;
         nodes = target.nodes;
         blas = &target;
+        triangles = isTriangles;
         instanceId = id;
         return true;
+    };
+    // The next pending node of the level in use, or kNoNode when the stack is empty or its top
+    // leaves the level (a marker or an instance entry: handled once no leaf is set aside).
+    auto popNode = [&]() {
+        if (stackSize == 0) return kNoNode;
+        const uint32_t top = stack[stackSize - 1];
+        if (top == kReturnToWorld || (blas == nullptr && (top & kInstanceEntry) != 0))
+            return kNoNode;
+        --stackSize;
+        return top;
     };
 
     float tRoot;
     if (stats) ++stats->nodesVisited;
     if (!SlabTest(nodes[0], setup, tMax, &tRoot)) return false;
     uint32_t current = 0;
+    uint32_t postponed = kNoNode;  // a leaf set aside, of the level in use
     for (;;) {
-        const BvhNode& node = nodes[current];
-        bool descended = false;
-        if (!node.IsLeaf()) {
-            const uint32_t left = node.leftFirst;
-            float tLeft, tRight;
-            const bool hitLeft = SlabTest(nodes[left], setup, tMax, &tLeft);
-            const bool hitRight = SlabTest(nodes[left + 1], setup, tMax, &tRight);
-            if (stats) stats->nodesVisited += 2;
-            if (hitLeft && hitRight) {
-                // Closest hit visits the nearer child first; any hit keeps the builder's order.
-                const bool leftFirst = kAnyHit || tLeft <= tRight;
-                stack[stackSize++] = leftFirst ? left + 1 : left;
-                current = leftFirst ? left : left + 1;
-                descended = true;
-            } else if (hitLeft || hitRight) {
-                current = hitLeft ? left : left + 1;
-                descended = true;
+        // Interior nodes, until this lane (and on the GPU every lane) holds a leaf.
+        while (current != kNoNode) {
+            const BvhNode& node = nodes[current];
+            if (node.IsLeaf()) {
+                if (postponed != kNoNode) break;  // intersect the one set aside first
+                postponed = current;
+                current = popNode();
+            } else {
+                const uint32_t left = node.leftFirst;
+                float tLeft, tRight;
+                const bool hitLeft = SlabTest(nodes[left], setup, tMax, &tLeft);
+                const bool hitRight = SlabTest(nodes[left + 1], setup, tMax, &tRight);
+                if (stats) stats->nodesVisited += 2;
+                if (hitLeft && hitRight) {
+                    // Closest hit visits the nearer child first; any hit the builder's order.
+                    const bool leftFirst = kAnyHit || tLeft <= tRight;
+                    stack[stackSize++] = leftFirst ? left + 1 : left;
+                    current = leftFirst ? left : left + 1;
+                } else if (hitLeft || hitRight) {
+                    current = hitLeft ? left : left + 1;
+                } else {
+                    current = popNode();
+                }
             }
-        } else if (blas == nullptr) {
-            for (uint32_t i = node.primCount - 1; i >= 1; --i)
-                stack[stackSize++] = kInstanceEntry | (node.leftFirst + i);
-            if (enterInstance(node.leftFirst)) {
-                current = 0;
-                descended = true;
+            if (!AnyLane(postponed == kNoNode)) break;
+        }
+        if (postponed != kNoNode) {
+            const BvhNode& leaf = nodes[postponed];
+            postponed = kNoNode;
+            if (blas == nullptr) {
+                // An instance leaf: what was pending at this level waits below the instances.
+                if (current != kNoNode) stack[stackSize++] = current;
+                current = kNoNode;
+                for (uint32_t i = leaf.primCount - 1; i >= 1; --i)
+                    stack[stackSize++] = kInstanceEntry | (leaf.leftFirst + i);
+                if (enterInstance(leaf.leftFirst)) current = 0;
+                continue;
             }
-        } else {
-            for (uint32_t i = 0; i < node.primCount; ++i) {
-                const uint32_t slot = node.leftFirst + i;
+            for (uint32_t i = 0; i < leaf.primCount; ++i) {
+                const uint32_t slot = leaf.leftFirst + i;
                 if (stats) ++stats->primsTested;
                 float t;
-                if (blas->kind == GeometryKind::kTriangles) {
+                if (triangles) {
                     TriangleHit h;
                     if (!IntersectTriangle(blas->triangles[slot], setup, tMax, &h)) continue;
                     if constexpr (kAnyHit) return true;
@@ -136,25 +178,20 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                 hit->instance = instanceId;
                 found = true;
             }
+            continue;
         }
-        if (descended) continue;
-        // Pop until there is a node to visit: markers switch back to the world, instance entries
-        // enter their instance.
-        for (;;) {
+        // Nothing in hand: leave the instance at a marker, enter the next waiting instance.
+        if (current == kNoNode) {
             if (stackSize == 0) return found;
             const uint32_t entry = stack[--stackSize];
             if (entry == kReturnToWorld) {
-                setup = world;
+                setup = MakeBoxRaySetup(ray);
                 nodes = scene.nodes;
                 blas = nullptr;
-            } else if ((entry & kInstanceEntry) != 0 && blas == nullptr) {
-                if (enterInstance(entry & ~kInstanceEntry)) {
-                    current = 0;
-                    break;
-                }
+            } else if (blas == nullptr && (entry & kInstanceEntry) != 0) {
+                if (enterInstance(entry & ~kInstanceEntry)) current = 0;
             } else {
                 current = entry;
-                break;
             }
         }
     }

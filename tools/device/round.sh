@@ -28,7 +28,7 @@ rtrt=build/gpu/game/rtrt
 renders=$(mktemp -d)
 for scene in dragon reflective_sphere refractive_sphere teapot_shadow; do
     "$rtrt" render "assets/scenes/$scene.json" --backend cuda -o "$renders/$scene.ppm" --size 640x360
-done 2>&1 | tee "$out/renders.log"
+done 2>&1 | tee "$renders/renders.log"
 tar -C "$renders" -cf "$out/renders.tar" .
 {
     "$rtrt" bench gpu -o "$out/gpu-bench.json"
@@ -48,4 +48,4 @@ if [ -d "$base" ]; then
     tar -C "$bdir" -cf "$out/baseline.tar" .
 fi
 if [ "${RTRT_DEVICE_EXTRA:-}" != "" ]; then eval "$RTRT_DEVICE_EXTRA" 2>&1 | tee -a "$out/bench.log"; fi
-rm -f "$out/configure.log"
+rm -f "$out/configure.log" "$out/build.log"
