@@ -75,7 +75,7 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
         InstanceGridRow row;
         row.instances = n;
         const uint32_t blocks = (n + kBlock - 1) / kBlock;
-        const uint32_t features = scene.Features();
+        const uint32_t features = scene.Features() | InstanceCountFeatures(n);
         for (int f = 0; f < 20 + frames; ++f) {
             const bool count = f == 0;
             if (count) RT_CUDA_CHECK(cudaMemset(rayCount.Data(), 0, sizeof(unsigned long long)));

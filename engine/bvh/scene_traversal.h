@@ -2,9 +2,10 @@
 // Two-level traversal: the TLAS over instances, then each reached instance's BLAS in object
 // space. Object-space directions are not renormalised, so t means the same in both spaces.
 //
-// The GPU (and the heatmap's counts on either back end) use the single loop of
-// two_level_traversal.h. The CPU otherwise nests a BLAS traversal in the TLAS's leaves, so that
-// triangle BLASes can use their 4-wide SSE collapse; both forms find the same hits.
+// This is the nested form: a BLAS traversal in each reached TLAS leaf. The CPU uses it with the
+// triangle BLASes' 4-wide SSE collapse; the GPU uses it for scenes of few instances, where the
+// ray spends its time in one tight BLAS loop. Scenes of many instances run the single loop of
+// two_level_traversal.h on the GPU (see kFeatureManyInstances); both forms find the same hits.
 #include "engine/bvh/two_level_traversal.h"
 
 // The CPU back end traverses triangle BLASes through their 4-wide collapse (SSE); the GPU and the
@@ -73,9 +74,9 @@ RT_HD inline bool OccludedBlas(const BlasView& blas, const Ray& objectRay, float
         stats);
 }
 
-// Closest hit along ray within (0, ray.tMax], nested form.
-RT_HD inline bool IntersectSceneNested(const TlasView& scene, const Ray& ray, SceneHit* hit,
-                                       TraversalStats* stats = nullptr) {
+// Closest hit along ray within (0, ray.tMax].
+RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit* hit,
+                                 TraversalStats* stats = nullptr) {
     if (!IsTraceable(ray)) return false;
     const RaySetup setup = MakeBoxRaySetup(ray);
     float tMax = ray.tMax;
@@ -93,9 +94,9 @@ RT_HD inline bool IntersectSceneNested(const TlasView& scene, const Ray& ray, Sc
         stats);
 }
 
-// Whether anything blocks ray within (0, tMax), nested form.
-RT_HD inline bool OccludedSceneNested(const TlasView& scene, const Ray& ray,
-                                      TraversalStats* stats = nullptr) {
+// Whether anything blocks ray within (0, tMax).
+RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
+                                TraversalStats* stats = nullptr) {
     if (!IsTraceable(ray)) return false;
     const RaySetup setup = MakeBoxRaySetup(ray);
     return TraverseAny(
@@ -106,26 +107,6 @@ RT_HD inline bool OccludedSceneNested(const TlasView& scene, const Ray& ray,
             return OccludedBlas(scene.blases[inst.blasId], objectRay, tLimit, stats);
         },
         stats);
-}
-
-// Closest hit along ray within (0, ray.tMax].
-RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit* hit,
-                                 TraversalStats* stats = nullptr) {
-#if defined(RTRT_HOST_WIDE_BVH)
-    if (!stats) return IntersectSceneNested(scene, ray, hit);
-#endif
-    float tMax = ray.tMax;
-    return TraverseTwoLevel<false>(scene, ray, tMax, hit, stats);
-}
-
-// Whether anything blocks ray within (0, tMax).
-RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
-                                TraversalStats* stats = nullptr) {
-#if defined(RTRT_HOST_WIDE_BVH)
-    if (!stats) return OccludedSceneNested(scene, ray);
-#endif
-    float tMax = ray.tMax;
-    return TraverseTwoLevel<true>(scene, ray, tMax, nullptr, stats);
 }
 
 }  // namespace rtrt

@@ -14,7 +14,9 @@ void RenderInto(const RenderScene& scene, const RenderSettings& settings, Image&
         image = Image(settings.width, settings.height);
     const RenderSceneView view = scene.HostView(settings.width, settings.height, settings.maxDepth);
     const uint32_t features =
-        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
+        // The traversal form matters on the GPU only: one CPU specialisation per effect set.
+        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view) &
+        ~kFeatureManyInstances;
     constexpr uint32_t kTile = 16;
     std::atomic<uint64_t> rays{0};
     DispatchFeatures(features, [&](auto featureTag) {

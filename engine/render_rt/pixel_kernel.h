@@ -27,30 +27,22 @@ RT_HD inline vec3 RawPixel(const RenderSceneView& scene, ViewMode view, uint32_t
 }
 
 // Views other than shaded need only the primary hit: their specialisation has no secondary rays.
+// The traversal form stays as the scene chose it.
 inline uint32_t EffectiveFeatures(uint32_t sceneFeatures, uint32_t enabled, ViewMode view) {
-    if (view != ViewMode::kShaded) return 0u;
-    return sceneFeatures & enabled;
+    const uint32_t shape = sceneFeatures & kFeatureManyInstances;
+    if (view != ViewMode::kShaded) return shape;
+    return (sceneFeatures & enabled & kAllFeatures) | shape;
 }
 
-template <typename Fn>
+// Calls fn with std::integral_constant<uint32_t, features>: one instantiation per combination.
+template <uint32_t kCandidate = 0, typename Fn>
 decltype(auto) DispatchFeatures(uint32_t features, Fn&& fn) {
-    switch (features & kAllFeatures) {
-        case 0:
-            return fn(std::integral_constant<uint32_t, 0>{});
-        case 1:
-            return fn(std::integral_constant<uint32_t, 1>{});
-        case 2:
-            return fn(std::integral_constant<uint32_t, 2>{});
-        case 3:
-            return fn(std::integral_constant<uint32_t, 3>{});
-        case 4:
-            return fn(std::integral_constant<uint32_t, 4>{});
-        case 5:
-            return fn(std::integral_constant<uint32_t, 5>{});
-        case 6:
-            return fn(std::integral_constant<uint32_t, 6>{});
-        default:
-            return fn(std::integral_constant<uint32_t, 7>{});
+    if constexpr (kCandidate == kAllFeatureBits) {
+        return fn(std::integral_constant<uint32_t, kCandidate>{});
+    } else {
+        if ((features & kAllFeatureBits) == kCandidate)
+            return fn(std::integral_constant<uint32_t, kCandidate>{});
+        return DispatchFeatures<kCandidate + 1>(features, std::forward<Fn>(fn));
     }
 }
 

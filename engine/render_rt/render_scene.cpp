@@ -44,6 +44,7 @@ void RenderScene::SetTlas(Tlas tlas) {
 
 uint32_t RenderScene::Features() const {
     uint32_t features = lights.empty() ? 0u : kFeatureShadows;
+    features |= InstanceCountFeatures(instances.size());
     for (const Material& m : materials) {
         if (m.reflectivity > 0.0f) features |= kFeatureReflection;
         if (m.transmissivity > 0.0f) features |= kFeatureRefraction | kFeatureReflection;

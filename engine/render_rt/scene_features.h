@@ -2,6 +2,7 @@
 // Compile-time scene features: each combination is its own kernel instantiation, so a scene
 // without refraction runs code without refraction (Falcor's StaticParams, pbrt's "only launch
 // what the scene has").
+#include <cstddef>
 #include <cstdint>
 
 namespace rtrt {
@@ -10,8 +11,19 @@ enum SceneFeature : uint32_t {
     kFeatureShadows = 1u << 0,
     kFeatureReflection = 1u << 1,
     kFeatureRefraction = 1u << 2,
+    // Not an effect but a shape: a scene of many instances traverses both levels in one loop on
+    // the GPU (two_level_traversal.h), with a register cap that keeps more warps in flight. On
+    // the bench's paper scene (one instance) that form is 1.2-1.5x slower and on its instance
+    // grid 1.1-1.4x faster than the nested one (bench/results/gpu-traversal-forms-*.txt).
+    kFeatureManyInstances = 1u << 3,
 };
 inline constexpr uint32_t kAllFeatures = kFeatureShadows | kFeatureReflection | kFeatureRefraction;
+inline constexpr uint32_t kAllFeatureBits = kAllFeatures | kFeatureManyInstances;
+inline constexpr uint32_t kManyInstances = 64;
+
+inline uint32_t InstanceCountFeatures(size_t instances) {
+    return instances >= kManyInstances ? kFeatureManyInstances : 0u;
+}
 
 // What a pixel stores.
 enum class ViewMode : uint32_t { kShaded = 0, kNormals = 1, kDepth = 2, kHeatmap = 3 };

@@ -16,6 +16,31 @@ struct PixelResult {
     uint32_t rays;         // rays traced for this pixel: primary, shadow and secondary
 };
 
+// The scene traversal a specialisation uses: on the GPU, scenes of many instances take the single
+// loop over both levels; otherwise (and always on the CPU) the nested form.
+template <uint32_t kFeatures>
+RT_HD inline bool TraceClosest(const TlasView& tlas, const Ray& ray, SceneHit* hit,
+                               TraversalStats* stats) {
+#if defined(RT_ON_GPU)
+    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
+        float tMax = ray.tMax;
+        return TraverseTwoLevel<false>(tlas, ray, tMax, hit, stats);
+    }
+#endif
+    return IntersectScene(tlas, ray, hit, stats);
+}
+
+template <uint32_t kFeatures>
+RT_HD inline bool TraceOccluded(const TlasView& tlas, const Ray& ray) {
+#if defined(RT_ON_GPU)
+    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
+        float tMax = ray.tMax;
+        return TraverseTwoLevel<true>(tlas, ray, tMax, nullptr, nullptr);
+    }
+#endif
+    return OccludedScene(tlas, ray);
+}
+
 // Blinn-Phong for one surface point with hard shadows.
 template <uint32_t kFeatures>
 RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, const Material& m,
@@ -37,7 +62,7 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
         if (nDotL <= 0.0f || glm::dot(s.geomNormal, l) <= 0.0f) continue;
         if constexpr ((kFeatures & kFeatureShadows) != 0) {
             ++*rays;
-            if (OccludedScene(scene.tlas, SpawnRay(s, toLight, shadowTMax))) continue;
+            if (TraceOccluded<kFeatures>(scene.tlas, SpawnRay(s, toLight, shadowTMax))) continue;
         }
         const vec3 h = glm::normalize(l + toViewer);
         const float nDotH = fmaxf(0.0f, glm::dot(s.shadingNormal, h));
@@ -64,8 +89,8 @@ RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, ui
         const PendingRay pending = stack[--stackSize];
         SceneHit hit;
         ++result.rays;
-        const bool found = IntersectScene(scene.tlas, pending.ray, &hit,
-                                          primary && countTraversal ? &result.stats : nullptr);
+        const bool found = TraceClosest<kFeatures>(
+            scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
         if (!found) {
             result.color += pending.weight * scene.background;
             primary = false;

@@ -61,7 +61,7 @@ bool BruteForce(const TlasView& scene, uint32_t count, const Ray& ray, SceneHit*
 void ExpectSingleLoopEqualsNested(const TlasView& scene, const Ray& ray) {
     SceneHit nested{}, single{};
     TraversalStats nestedStats, singleStats;
-    const bool n = IntersectSceneNested(scene, ray, &nested, &nestedStats);
+    const bool n = IntersectScene(scene, ray, &nested, &nestedStats);
     float tMax = ray.tMax;
     const bool s = TraverseTwoLevel<false>(scene, ray, tMax, &single, &singleStats);
     ASSERT_EQ(n, s);
@@ -75,7 +75,7 @@ void ExpectSingleLoopEqualsNested(const TlasView& scene, const Ray& ray) {
     EXPECT_EQ(nestedStats.nodesVisited, singleStats.nodesVisited);
     EXPECT_EQ(nestedStats.primsTested, singleStats.primsTested);
     TraversalStats nestedAny, singleAny;
-    const bool na = OccludedSceneNested(scene, ray, &nestedAny);
+    const bool na = OccludedScene(scene, ray, &nestedAny);
     tMax = ray.tMax;
     EXPECT_EQ(na, TraverseTwoLevel<true>(scene, ray, tMax, nullptr, &singleAny));
     EXPECT_EQ(nestedAny.nodesVisited, singleAny.nodesVisited);
