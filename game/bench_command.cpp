@@ -16,6 +16,7 @@
 #include "engine/core/timer.h"
 #include "engine/ecs/ecs_benchmark.h"
 #include "engine/render_rt/renderer.h"
+#include "game/bench_report.h"
 #include "game/commands.h"
 #include "game/instance_grid_bench.h"
 #include "game/mesh_io.h"
@@ -346,6 +347,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         RunRuntimeBench(runtime->scenes, runtime->frames);
         *exitCode = kExitOk;
     });
+    AddFrameBench(*bench, exitCode);
     CLI::App* gpu = bench->add_subcommand(
         "gpu", "Trace time on the GPU (CUDA events) of the paper scene, median of --frames");
     gpu->add_option("--frames", options->gpuFrames,
@@ -364,6 +366,14 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         RunGpuBench(*options);
         *exitCode = kExitOk;
     });
+}
+
+nlohmann::json BenchMachine(bool gpu) {
+    nlohmann::json m = MachineInfo();
+    if (gpu)
+        m["gpu"] = CommandOutput(
+            "nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null");
+    return m;
 }
 
 }  // namespace rtrt

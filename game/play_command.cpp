@@ -2,11 +2,13 @@
 // fixed time step and writes every frame. The window (without --headless) comes with the
 // interactive runtime.
 #include <cstdio>
+#include <memory>
 #include <regex>
 #include <string>
 
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
+#include "engine/render_rt/cuda_frame_renderer.h"
 #include "engine/render_rt/renderer.h"
 #include "game/commands.h"
 #include "game/image_io.h"
@@ -75,17 +77,23 @@ void RunPlay(const PlayOptions& o) {
     if (backend == Backend::kCuda && !CudaBackendAvailable(&why))
         throw InputError("--backend", "cuda", why + "; use --backend cpu");
 
-    World world(loaded);
+    // On the GPU the TLAS lives there: the World keeps none on the host, and each frame sends
+    // only the changed instance records.
+    World world(loaded, {false, 0.25f}, backend == Backend::kCpu);
+    std::unique_ptr<CudaFrameRenderer> gpu;
+    if (backend == Backend::kCuda) gpu = std::make_unique<CudaFrameRenderer>(world.Scene());
     const float dt = float(1.0 / o.fps);
     Image frame;
     double total = 0.0;
     for (int i = 0; i < o.frames; ++i) {
         Stopwatch timer;
         if (i > 0) world.Advance(dt);
-        if (backend == Backend::kCuda)
-            frame = RenderRawCuda(world.Scene(), settings);
-        else
+        if (gpu) {
+            if (i > 0) gpu->Update(world.Scene(), world.ChangedInstances());
+            gpu->Trace(world.Scene(), settings, &frame);
+        } else {
             RenderInto(world.Scene(), settings, frame);
+        }
         WriteImage(FramePath(o.output, i), frame);
         total += timer.Milliseconds();
         PrintProgress(i + 1, o.frames, total / (i + 1));

@@ -7,7 +7,8 @@
 
 namespace rtrt {
 
-World::World(const LoadedScene& scene, TlasPolicy policy) : source_(scene), tlas_(policy) {
+World::World(const LoadedScene& scene, TlasPolicy policy, bool hostTlas)
+    : source_(scene), tlas_(policy), hostTlas_(hostTlas) {
     scene_.blases = scene.scene.blases;
     scene_.materials = scene.scene.materials;
     scene_.lights = scene.scene.lights;
@@ -23,6 +24,10 @@ World::World(const LoadedScene& scene, TlasPolicy policy) : source_(scene), tlas
 }
 
 bool World::UpdateTlas() {
+    if (!hostTlas_) {
+        topologyChanged_ = false;
+        return false;
+    }
     const bool rebuilt = tlas_.Update(scene_.instances, blasBounds_, topologyChanged_).rebuilt;
     scene_.SetTlas({tlas_.Tree().nodes, tlas_.Tree().primOrder});
     topologyChanged_ = false;
@@ -53,10 +58,12 @@ uint32_t World::Extract() {
         if (!r) return;
         if (r->instance == UINT32_MAX) {
             r->instance = scene_.AddInstance(r->blasId, r->materialId, w.objectToWorld);
+            changed_.push_back(r->instance);
         } else {
             Instance& inst = scene_.instances[r->instance];
             inst.objectToWorld = AffineFromMat4(w.objectToWorld);
             inst.worldToObject = AffineFromMat4(glm::affineInverse(w.objectToWorld));
+            changed_.push_back(r->instance);
         }
         ++extracted;
     });
@@ -66,6 +73,7 @@ uint32_t World::Extract() {
 
 FrameStats World::Advance(float dt) {
     FrameStats stats;
+    changed_.clear();
     time_ += dt;
     const size_t before = nextSpawn_;
     SpawnDue();

@@ -30,13 +30,19 @@ struct FrameStats {
 
 class World {
   public:
-    explicit World(const LoadedScene& scene, TlasPolicy policy = {false, 0.25f});
+    // hostTlas: keep the CPU's TLAS up to date (the CPU back end traces it). A GPU frame loop
+    // builds its own on the device (CudaFrameRenderer) and passes false.
+    explicit World(const LoadedScene& scene, TlasPolicy policy = {false, 0.25f},
+                   bool hostTlas = true);
 
     // Advances time by dt: spawns what is due, runs the phases (physics, animation, transforms),
     // extracts changed instances and brings the TLAS up to date.
     FrameStats Advance(float dt);
 
     const RenderScene& Scene() const { return scene_; }
+    // The instance records rewritten or added by the last Advance (all of them after
+    // construction): what a GPU copy of the scene must receive.
+    const std::vector<uint32_t>& ChangedInstances() const { return changed_; }
     double Time() const { return time_; }
     ecs::Registry& Registry() { return registry_; }
     // Per-system times of the last frame (physics, animators, transforms), for benchmarks.
@@ -56,6 +62,8 @@ class World {
     physics::TransformSystem transforms_;
     DynamicTlas tlas_;
     std::vector<Aabb> blasBounds_;
+    std::vector<uint32_t> changed_;
+    bool hostTlas_ = true;
     size_t nextSpawn_ = 0;
     bool topologyChanged_ = true;
     double time_ = 0.0;

@@ -1,6 +1,7 @@
 // Built when nvcc is absent: the CUDA back end reports why it cannot run.
 #include <stdexcept>
 
+#include "engine/render_rt/cuda_frame_renderer.h"
 #include "engine/render_rt/renderer.h"
 
 namespace rtrt {
@@ -18,5 +19,18 @@ std::vector<double> TimeCudaTrace(const RenderScene&, const RenderSettings&, int
                                   RenderStats*) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt");
 }
+
+struct CudaFrameRenderer::Impl {
+    GpuFrameTimes times;
+};
+
+CudaFrameRenderer::CudaFrameRenderer(const RenderScene&, TlasPolicy) {
+    throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
+}
+CudaFrameRenderer::~CudaFrameRenderer() = default;
+void CudaFrameRenderer::Update(const RenderScene&, std::span<const uint32_t>) {}
+void CudaFrameRenderer::Trace(const RenderScene&, const RenderSettings&, Image*, RenderStats*) {}
+const GpuFrameTimes& CudaFrameRenderer::Times() const { return impl_->times; }
+Lbvh CudaFrameRenderer::DownloadTlas() const { return {}; }
 
 }  // namespace rtrt

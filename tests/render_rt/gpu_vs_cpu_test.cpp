@@ -1,29 +1,24 @@
 // GPU images equal CPU images (the reference) within a stated tolerance, for every verification
-// scene: RMSE <= 1/255 and at most 0.5% of pixels off by more than 4/255 in any channel. The two
-// back ends run the same RT_HD code; the tolerance covers float rounding (the GPU contracts
-// multiply-adds outside the watertight edge tests, and its powf/sqrtf round differently), which can
-// flip a pixel on a silhouette or shadow edge. Label gpu: CI has no GPU and skips these.
+// and demo scene (the demos played through the GPU frame loop): RMSE <= 1/255 and at most 0.5% of
+// pixels off by more than 4/255 in any channel. The two back ends run the same RT_HD code; the
+// tolerance covers float rounding (the GPU contracts multiply-adds outside the watertight edge
+// tests, and its powf/sqrtf round differently), which can flip a pixel on a silhouette or shadow
+// edge. Label gpu: CI has no GPU and skips these.
 #include <gtest/gtest.h>
 
+#include "engine/render_rt/cuda_frame_renderer.h"
 #include "engine/render_rt/renderer.h"
 #include "game/default_scene.h"
 #include "game/scene_file.h"
+#include "game/world.h"
 #include "tests/test_util.h"
 
 namespace rtrt {
 namespace {
 
-void ExpectGpuMatchesCpu(const RenderScene& scene, ViewMode view = ViewMode::kShaded) {
-    std::string why;
-    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
-    RenderSettings s;
-    s.width = 320;
-    s.height = 240;
-    s.maxDepth = scene.maxDepth;
-    s.view = view;
-    RenderStats cpuStats, gpuStats;
-    const Image cpu = RenderRaw(scene, s, &cpuStats);
-    const Image gpu = RenderRawCuda(scene, s, &gpuStats);
+void ExpectImagesClose(const Image& cpu, const Image& gpu, const RenderStats& cpuStats,
+                       const RenderStats& gpuStats) {
+    ASSERT_EQ(cpu.pixels.size(), gpu.pixels.size());
     double sum = 0.0;
     size_t outliers = 0;
     for (size_t i = 0; i < cpu.pixels.size(); ++i) {
@@ -43,6 +38,54 @@ void ExpectGpuMatchesCpu(const RenderScene& scene, ViewMode view = ViewMode::kSh
     EXPECT_NEAR(double(gpuStats.rays), double(cpuStats.rays), 0.005 * double(cpuStats.rays));
 }
 
+void ExpectGpuMatchesCpu(const RenderScene& scene, ViewMode view = ViewMode::kShaded) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    RenderSettings s;
+    s.width = 320;
+    s.height = 240;
+    s.maxDepth = scene.maxDepth;
+    s.view = view;
+    RenderStats cpuStats, gpuStats;
+    const Image cpu = RenderRaw(scene, s, &cpuStats);
+    const Image gpu = RenderRawCuda(scene, s, &gpuStats);
+    ExpectImagesClose(cpu, gpu, cpuStats, gpuStats);
+}
+
+// A demo scene played for `frames` frames twice: on the CPU (host TLAS) and through the GPU frame
+// loop (changed records only, TLAS refit or rebuilt on the device). Every 10th frame must match.
+void ExpectPlayedGpuMatchesCpu(const std::string& file, int frames) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    const LoadedScene loaded = LoadSceneFile(test::SourcePath("assets/scenes/" + file));
+    World cpuWorld(loaded);
+    World gpuWorld(loaded, {false, 0.25f}, false);
+    CudaFrameRenderer gpu(gpuWorld.Scene());
+    RenderSettings s;
+    s.width = 320;
+    s.height = 180;
+    s.maxDepth = loaded.scene.maxDepth;
+    uint32_t rebuilds = 0, refits = 0;
+    for (int f = 1; f <= frames; ++f) {
+        cpuWorld.Advance(1.0f / 60.0f);
+        gpuWorld.Advance(1.0f / 60.0f);
+        gpu.Update(gpuWorld.Scene(), gpuWorld.ChangedInstances());
+        rebuilds += gpu.Times().tlasRebuilt;
+        refits += !gpu.Times().tlasRebuilt && gpu.Times().uploaded > 0;
+        if (f % 10 != 0) continue;
+        SCOPED_TRACE("frame " + std::to_string(f));
+        RenderStats cpuStats, gpuStats;
+        const Image cpu = RenderRaw(cpuWorld.Scene(), s, &cpuStats);
+        Image image;
+        gpu.Trace(gpuWorld.Scene(), s, &image, &gpuStats);
+        ExpectImagesClose(cpu, image, cpuStats, gpuStats);
+    }
+    // The scenes move things: the device TLAS was refit, and rebuilt when spawns came.
+    EXPECT_GT(refits, 0u);
+    std::printf("%s: %u rebuilds, %u refits in %d frames\n", file.c_str(), rebuilds, refits,
+                frames);
+}
+
 LoadedScene Asset(const std::string& name) {
     return LoadSceneFile(test::SourcePath("assets/scenes/" + name));
 }
@@ -55,6 +98,44 @@ TEST(GpuVsCpu, RefractiveSphere) { ExpectGpuMatchesCpu(Asset("refractive_sphere.
 TEST(GpuVsCpu, TeapotShadow) {
     RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
     ExpectGpuMatchesCpu(Asset("teapot_shadow.json").scene);
+}
+
+TEST(GpuVsCpu, DemoThousandInstancesPlayed) {
+    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
+    RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
+    ExpectPlayedGpuMatchesCpu("demo_1000_instances.json", 60);
+}
+
+TEST(GpuVsCpu, DemoPhysicsPlayed) {
+    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
+    ExpectPlayedGpuMatchesCpu("demo_physics.json", 90);
+}
+
+TEST(GpuVsCpu, DemoGlassPlayed) {
+    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
+    ExpectPlayedGpuMatchesCpu("demo_glass.json", 30);
+}
+
+// Per frame only the records the World rewrote travel, and an unchanged frame sends none.
+TEST(GpuFrameRenderer, UploadsOnlyChangedRecords) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
+    RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
+    const LoadedScene loaded =
+        LoadSceneFile(test::SourcePath("assets/scenes/demo_1000_instances.json"));
+    World world(loaded, {false, 0.25f}, false);
+    CudaFrameRenderer gpu(world.Scene());
+    world.Advance(1.0f / 60.0f);
+    gpu.Update(world.Scene(), world.ChangedInstances());
+    // Every spawned object moves; the floor never does.
+    EXPECT_EQ(gpu.Times().uploaded, world.Scene().instances.size() - 1);
+    EXPECT_FALSE(gpu.Times().tlasRebuilt);
+    // With nothing changed, nothing travels and the TLAS is left alone.
+    const std::vector<uint32_t> none;
+    gpu.Update(world.Scene(), none);
+    EXPECT_EQ(gpu.Times().uploaded, 0u);
+    EXPECT_FALSE(gpu.Times().tlasRebuilt);
 }
 
 TEST(GpuVsCpu, FullDragon) {

@@ -24,16 +24,32 @@ cmake --preset gpu -DCMAKE_PREFIX_PATH="$prefix" -DRTRT_MODEL_DIR="$RTRT_MODEL_D
 cmake --build --preset gpu -j 16 >"$out/build.log" 2>&1 || { grep -m20 -A5 error "$out/build.log"; exit 1; }
 ctest --test-dir build/gpu -L gpu --output-on-failure -j 1 2>&1 | tee "$out/gpu_tests.log" | tail -25
 rtrt=build/gpu/game/rtrt
-# At most 8 files come back from $OUT: renders travel as one tar, both benchmarks log to one file.
+# At most 8 files come back from $OUT: renders travel as one tar, the benchmarks' JSON as another
+# (results.tar), their tables as one log.
 renders=$(mktemp -d)
 for scene in dragon reflective_sphere refractive_sphere teapot_shadow; do
     "$rtrt" render "assets/scenes/$scene.json" --backend cuda -o "$renders/$scene.ppm" --size 640x360
 done 2>&1 | tee "$renders/renders.log"
 tar -C "$renders" -cf "$out/renders.tar" .
+results=$(mktemp -d)
 {
-    "$rtrt" bench gpu -o "$out/gpu-bench.json"
-    "$rtrt" bench grid -o "$out/grid-bench.json"
+    "$rtrt" bench gpu -o "$results/gpu-bench.json"
+    "$rtrt" bench grid -o "$results/grid-bench.json"
+    "$rtrt" bench frame assets/scenes/demo_1000_instances.json assets/scenes/demo_physics.json \
+        assets/scenes/demo_glass.json -o "$results/frame-bench.json"
+    "$rtrt" bench frame assets/scenes/demo_1000_instances.json assets/scenes/demo_physics.json \
+        assets/scenes/demo_glass.json --size 1920x1080 -o "$results/frame-bench-1080p.json"
 } 2>&1 | tee "$out/bench.log"
+tar -C "$results" -cf "$out/results.tar" .
+# RTRT_SANITIZE=1: the whole GPU suite under compute-sanitizer's memcheck and racecheck.
+if [ "${RTRT_SANITIZE:-0}" = 1 ]; then
+    for tool in memcheck racecheck; do
+        echo "== compute-sanitizer --tool $tool build/gpu/tests/rtrt_gpu_tests"
+        compute-sanitizer --tool "$tool" --error-exitcode 3 build/gpu/tests/rtrt_gpu_tests 2>&1 |
+            grep -E "ERROR SUMMARY|RACECHECK SUMMARY|Hazard|Invalid|PASSED|FAILED|tests ran"
+        echo "exit ${PIPESTATUS[0]}"
+    done 2>&1 | tee "$out/sanitizer.log"
+fi
 base=$root/.device/baseline
 if [ -d "$base" ]; then
     echo "== baseline $(cat "$base/.commit")" | tee -a "$out/bench.log"
