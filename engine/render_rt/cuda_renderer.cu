@@ -13,10 +13,11 @@ namespace {
 
 // Scenes of many instances trace with a register cap (blocks of 64 threads that must fit per
 // SM): their time goes into long, divergent traversals that more warps in flight hide better.
-// On the H100, 10 blocks made the instance grid 1.2-1.3x faster; the paper scene (few
+// On the H100, 16 blocks (64 registers, some spilled) made the instance grid 1.6-1.8x faster than
+// no cap (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt); the paper scene (few
 // instances) runs fastest uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N overrides it, for experiments.
 #if !defined(RTRT_TRACE_MIN_BLOCKS)
-#define RTRT_TRACE_MIN_BLOCKS 10
+#define RTRT_TRACE_MIN_BLOCKS 16
 #endif
 constexpr int TraceMinBlocks(uint32_t features) {
     return (features & kFeatureManyInstances) != 0 ? RTRT_TRACE_MIN_BLOCKS : 1;

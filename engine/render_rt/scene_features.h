@@ -13,8 +13,9 @@ enum SceneFeature : uint32_t {
     kFeatureRefraction = 1u << 2,
     // Not an effect but a shape: a scene of many instances traverses both levels in one loop on
     // the GPU (two_level_traversal.h), with a register cap that keeps more warps in flight. On
-    // the bench's paper scene (one instance) that form is 1.2-1.5x slower and on its instance
-    // grid 1.1-1.4x faster than the nested one (bench/results/gpu-traversal-forms-*.txt).
+    // the H100 that made the instance grid 1.4-1.8x faster, while on the paper scene (one
+    // instance) the single loop is 1.2-1.5x slower than the nested form
+    // (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt).
     kFeatureManyInstances = 1u << 3,
 };
 inline constexpr uint32_t kAllFeatures = kFeatureShadows | kFeatureReflection | kFeatureRefraction;
