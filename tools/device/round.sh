@@ -57,6 +57,7 @@ if [ -d "$base" ]; then
         -DRTRT_BUILD_TESTS=OFF >/dev/null && cmake --build --preset gpu -j 16 --target rtrt >/dev/null) ||
         echo "baseline build failed" | tee -a "$out/bench.log"
     bdir=$(mktemp -d)
+    export RTRT_COMMIT=$(cat "$base/.commit")
     {
         "$base/build/gpu/game/rtrt" bench gpu -o "$bdir/baseline-gpu-bench.json"
         "$base/build/gpu/game/rtrt" bench grid -o "$bdir/baseline-grid-bench.json"
