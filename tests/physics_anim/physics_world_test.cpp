@@ -386,10 +386,9 @@ TEST(PhysicsWorldTest, SchedulerFrameMovesOnlyTheDynamicBodysWorldTransform) {
 
 // Real time: 2,000 bodies (a fifth of them boxes) falling into a pit and piling up; the mean
 // step must fit the 1/120 s it simulates with room to spare.
-TEST(PhysicsWorldTest, TwoThousandBodiesStepInRealTime) {
-#ifndef NDEBUG
-    GTEST_SKIP() << "timings mean something only in an optimised build";
-#endif
+// A large pile steps and keeps its contacts. Its speed is reported, not asserted: timings belong to
+// benchmarks (rtrt bench runtime / frame), and a loaded CI machine would make an assertion flaky.
+TEST(PhysicsWorldTest, TwoThousandBodiesPileUp) {
     Registry registry;
     AddPit(registry, 4.0f);
     SpawnDesc desc;
@@ -414,7 +413,6 @@ TEST(PhysicsWorldTest, TwoThousandBodiesStepInRealTime) {
     std::printf("2000 bodies: %.3f ms per step, %.0f contacts per step\n", msPerStep,
                 static_cast<double>(contacts) / kSteps);
     EXPECT_GT(contacts, 2000u * 60u);
-    EXPECT_LT(msPerStep, 1000.0 * kStep);
 }
 
 }  // namespace
