@@ -36,18 +36,66 @@ bool World::UpdateTlas() {
 
 void World::SpawnDue() {
     const std::vector<EntityDesc>& entities = source_.entities;
-    for (; nextSpawn_ < entities.size() && entities[nextSpawn_].spawnTime <= time_; ++nextSpawn_) {
-        const EntityDesc& d = entities[nextSpawn_];
-        const ecs::Entity e = registry_.Create();
-        registry_.Add(e, d.local);
-        registry_.Add(e, Renderable{d.blasId, d.materialId});
-        if (d.animator) registry_.Add(e, *d.animator);
-        if (d.body) {
-            registry_.Add(e, *d.body);
-            registry_.Add(e, d.collider);
-        }
-        topologyChanged_ = true;
+    for (; nextSpawn_ < entities.size() && entities[nextSpawn_].spawnTime <= time_; ++nextSpawn_)
+        Create(entities[nextSpawn_]);
+}
+
+ecs::Entity World::Create(const EntityDesc& d) {
+    const ecs::Entity e = registry_.Create();
+    registry_.Add(e, d.local);
+    registry_.Add(e, Renderable{d.blasId, d.materialId});
+    if (d.animator) registry_.Add(e, *d.animator);
+    if (d.body) {
+        registry_.Add(e, *d.body);
+        registry_.Add(e, d.collider);
     }
+    topologyChanged_ = true;
+    return e;
+}
+
+uint32_t World::AddBlas(std::shared_ptr<const Blas> blas) {
+    blasBounds_.push_back(blas->bounds);
+    return scene_.AddBlas(std::move(blas));
+}
+
+uint32_t World::AddMaterial(const Material& material) { return scene_.AddMaterial(material); }
+
+ecs::Entity World::Spawn(const EntityDesc& desc) { return Create(desc); }
+
+bool World::SetPose(ecs::Entity e, vec3 position, glm::quat rotation) {
+    physics::LocalTransform* local = registry_.Get<physics::LocalTransform>(e);
+    if (!local) return false;
+    local->translation = position;
+    local->rotation = rotation;
+    registry_.MarkChanged<physics::LocalTransform>(e);
+    if (physics::RigidBody* body = registry_.Get<physics::RigidBody>(e)) {
+        physics::Teleport(*body, position, rotation);
+        body->velocity = body->angularVelocity = vec3(0.0f);
+    }
+    return true;
+}
+
+bool World::Remove(ecs::Entity e) {
+    const Renderable* r = registry_.Get<Renderable>(e);
+    if (!r) return false;
+    const uint32_t slot = r->instance;
+    if (slot != UINT32_MAX) {
+        const uint32_t last = uint32_t(scene_.instances.size() - 1);
+        if (slot != last) {
+            scene_.instances[slot] = scene_.instances[last];
+            instanceOwner_[slot] = instanceOwner_[last];
+            registry_.Get<Renderable>(instanceOwner_[slot])->instance = slot;
+        }
+        scene_.instances.pop_back();
+        instanceOwner_.pop_back();
+    }
+    registry_.Destroy(e);
+    topologyChanged_ = true;
+    return true;
+}
+
+ecs::Entity World::EntityOfInstance(uint32_t instance) const {
+    return instance < instanceOwner_.size() ? instanceOwner_[instance] : ecs::Entity{};
 }
 
 // Rewrites the instance records of the entities whose world transform changed.
@@ -58,6 +106,7 @@ uint32_t World::Extract() {
         if (!r) return;
         if (r->instance == UINT32_MAX) {
             r->instance = scene_.AddInstance(r->blasId, r->materialId, w.objectToWorld);
+            instanceOwner_.push_back(e);
             changed_.push_back(r->instance);
         } else {
             Instance& inst = scene_.instances[r->instance];

@@ -3,6 +3,7 @@
 // and extracted every frame into the RenderScene the back ends trace. Only changed transforms are
 // re-extracted; the TLAS is an LBVH refit or rebuilt by the DynamicTlas policy.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "engine/bvh/dynamic_tlas.h"
@@ -45,11 +46,27 @@ class World {
     const std::vector<uint32_t>& ChangedInstances() const { return changed_; }
     double Time() const { return time_; }
     ecs::Registry& Registry() { return registry_; }
+    // Interactive edits (the window's spawn, drag and delete). They take effect at the next
+    // Advance, which a paused frame loop calls with dt = 0.
+    //
+    // Adds a model or a material for later spawns; call before a GPU renderer uploads the scene.
+    uint32_t AddBlas(std::shared_ptr<const Blas> blas);
+    uint32_t AddMaterial(const Material& material);
+    // Creates an entity as a scene file's spawner would (its spawnTime is ignored).
+    ecs::Entity Spawn(const EntityDesc& desc);
+    // Moves an entity; a rigid body is teleported there and stops.
+    bool SetPose(ecs::Entity e, vec3 position, glm::quat rotation);
+    // Destroys an entity and drops its instance: the last instance record moves into its slot.
+    bool Remove(ecs::Entity e);
+    // The entity an instance record belongs to (a null entity for none).
+    ecs::Entity EntityOfInstance(uint32_t instance) const;
+
     // Per-system times of the last frame (physics, animators, transforms), for benchmarks.
     const ecs::Scheduler& Scheduler() const { return scheduler_; }
 
   private:
     void SpawnDue();
+    ecs::Entity Create(const EntityDesc& desc);
     uint32_t Extract();
     // Refits or rebuilds the TLAS (per the policy) and hands it to the RenderScene.
     bool UpdateTlas();
@@ -63,6 +80,7 @@ class World {
     DynamicTlas tlas_;
     std::vector<Aabb> blasBounds_;
     std::vector<uint32_t> changed_;
+    std::vector<ecs::Entity> instanceOwner_;  // instance record -> entity
     bool hostTlas_ = true;
     size_t nextSpawn_ = 0;
     bool topologyChanged_ = true;

@@ -140,5 +140,60 @@ TEST(World, BadDynamicFieldsAreRejected) {
         "camera_path[1].time");
 }
 
+// Every instance record holds its entity's world transform (the invariant edits must keep).
+void ExpectRecordsMatchEntities(World& world) {
+    const RenderScene& scene = world.Scene();
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const ecs::Entity e = world.EntityOfInstance(i);
+        ASSERT_FALSE(e.IsNull()) << "instance " << i;
+        const auto* w = world.Registry().Get<physics::WorldTransform>(e);
+        const auto* r = world.Registry().Get<Renderable>(e);
+        ASSERT_TRUE(w && r);
+        EXPECT_EQ(r->instance, i);
+        const Affine expected = AffineFromMat4(w->objectToWorld);
+        for (int row = 0; row < 3; ++row)
+            EXPECT_EQ(scene.instances[i].objectToWorld.row[row], expected.row[row]) << i;
+    }
+}
+
+TEST(WorldEdits, SpawnMoveAndRemoveKeepRecordsInStep) {
+    const LoadedScene loaded = ParseScene(kPhysics, "physics.json", "");
+    World world(loaded);
+    world.Advance(1.0f / 60.0f);
+    const size_t before = world.Scene().instances.size();
+    EntityDesc desc = loaded.entities[1];  // a ball with its rigid body
+    desc.local.translation = vec3(0.0f, 9.0f, 0.0f);
+    const ecs::Entity spawned = world.Spawn(desc);
+    world.Advance(0.0f);  // what a paused frame loop calls
+    ASSERT_EQ(world.Scene().instances.size(), before + 1);
+    const uint32_t slot = world.Registry().Get<Renderable>(spawned)->instance;
+    EXPECT_EQ(world.EntityOfInstance(slot), spawned);
+    // The new record travels to a GPU copy: it is among the changed ones.
+    const auto& changed = world.ChangedInstances();
+    EXPECT_NE(std::find(changed.begin(), changed.end(), slot), changed.end());
+    EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[1].w, 9.0f);
+
+    // A drag: the body is teleported and stops.
+    ASSERT_TRUE(world.SetPose(spawned, vec3(1.0f, 5.0f, -1.0f), glm::identity<glm::quat>()));
+    world.Advance(0.0f);
+    EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[0].w, 1.0f);
+    EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[1].w, 5.0f);
+    EXPECT_EQ(world.Registry().Get<physics::RigidBody>(spawned)->velocity, vec3(0.0f));
+    ExpectRecordsMatchEntities(world);
+
+    // Removing an entity from the middle moves the last record into its slot.
+    const ecs::Entity middle = world.EntityOfInstance(3);
+    const ecs::Entity last = world.EntityOfInstance(uint32_t(before));
+    ASSERT_TRUE(world.Remove(middle));
+    EXPECT_FALSE(world.Registry().Valid(middle));
+    EXPECT_EQ(world.Scene().instances.size(), before);
+    EXPECT_EQ(world.EntityOfInstance(3), last);
+    world.Advance(1.0f / 60.0f);
+    ExpectRecordsMatchEntities(world);
+    EXPECT_FALSE(world.Remove(middle));  // already gone
+    // The host TLAS was rebuilt over the new set: a ray at the moved record finds it.
+    EXPECT_EQ(world.Scene().GetTlas().instanceOrder.size(), world.Scene().instances.size());
+}
+
 }  // namespace
 }  // namespace rtrt
