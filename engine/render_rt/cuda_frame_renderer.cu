@@ -48,6 +48,12 @@ __global__ void SahTermsKernel(const BvhNode* nodes, uint32_t positions, float* 
     terms[i] = term;
 }
 
+__global__ void PickKernel(TlasView tlas, Ray ray, SceneHit* hit, uint32_t* found) {
+    SceneHit h{};
+    *found = IntersectScene(tlas, ray, &h) ? 1u : 0u;
+    *hit = h;
+}
+
 double Elapsed(cudaEvent_t a, cudaEvent_t b) {
     float ms = 0.0f;
     RT_CUDA_CHECK(cudaEventElapsedTime(&ms, a, b));
@@ -227,6 +233,22 @@ void CudaFrameRenderer::Trace(const RenderScene& scene, const RenderSettings& se
         m.rayCount.Download(std::span<unsigned long long>(&rays, 1));
         stats->rays = rays;
     }
+}
+
+bool CudaFrameRenderer::Pick(const Ray& ray, SceneHit* hit) {
+    Impl& m = *impl_;
+    DeviceBuffer<SceneHit> deviceHit;
+    deviceHit.Resize(1);
+    DeviceBuffer<uint32_t> found;
+    found.Resize(1);
+    const TlasView tlas{m.tlas.Nodes(), m.tlas.PrimOrder(), m.instances.Data(),
+                        m.device.blasViews.Data()};
+    PickKernel<<<1, 1>>>(tlas, ray, deviceHit.Data(), found.Data());
+    RT_CUDA_CHECK_LAUNCH();
+    uint32_t f = 0;
+    found.Download(std::span<uint32_t>(&f, 1));
+    deviceHit.Download(std::span<SceneHit>(hit, 1));
+    return f != 0;
 }
 
 const GpuFrameTimes& CudaFrameRenderer::Times() const { return impl_->times; }

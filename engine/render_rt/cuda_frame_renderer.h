@@ -35,6 +35,9 @@ class CudaFrameRenderer {
     // Traces the frame on the GPU and waits for it; copies it into `image` when given.
     void Trace(const RenderScene& scene, const RenderSettings& settings, Image* image,
                RenderStats* stats = nullptr);
+    // The closest hit of one ray through the device's TLAS and BLASes (the window's picking): the
+    // same structures the frame was traced with. False on a miss.
+    bool Pick(const Ray& ray, SceneHit* hit);
     // The stages of the last Update and Trace.
     const GpuFrameTimes& Times() const;
     // The TLAS as it is on the device (tests compare it with the CPU's).

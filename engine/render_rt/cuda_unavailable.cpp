@@ -30,6 +30,7 @@ CudaFrameRenderer::CudaFrameRenderer(const RenderScene&, TlasPolicy) {
 CudaFrameRenderer::~CudaFrameRenderer() = default;
 void CudaFrameRenderer::Update(const RenderScene&, std::span<const uint32_t>) {}
 void CudaFrameRenderer::Trace(const RenderScene&, const RenderSettings&, Image*, RenderStats*) {}
+bool CudaFrameRenderer::Pick(const Ray&, SceneHit*) { return false; }
 const GpuFrameTimes& CudaFrameRenderer::Times() const { return impl_->times; }
 Lbvh CudaFrameRenderer::DownloadTlas() const { return {}; }
 
