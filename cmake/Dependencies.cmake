@@ -12,3 +12,17 @@ endif()
 if(RTRT_BUILD_TESTS)
     find_package(GTest REQUIRED)
 endif()
+
+# The interactive window: GLFW 3.3, OpenGL through GLVND (libOpenGL + libGLX) and Dear ImGui, whose
+# Debian static library already holds its GLFW and OpenGL 3 back ends.
+if(NOT RTRT_WINDOW STREQUAL "OFF")
+    find_package(glfw3 3.3 QUIET)
+    set(OpenGL_GL_PREFERENCE GLVND)
+    find_package(OpenGL QUIET COMPONENTS OpenGL GLX)
+    pkg_check_modules(IMGUI QUIET IMPORTED_TARGET imgui)
+    if(glfw3_FOUND AND OpenGL_OpenGL_FOUND AND IMGUI_FOUND)
+        set(RTRT_HAVE_WINDOW ON)
+    elseif(RTRT_WINDOW STREQUAL "ON")
+        message(FATAL_ERROR "RTRT_WINDOW=ON needs libglfw3-dev, libgl-dev and libimgui-dev")
+    endif()
+endif()

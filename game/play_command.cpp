@@ -5,6 +5,7 @@
 #include <memory>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
@@ -14,16 +15,21 @@
 #include "game/image_io.h"
 #include "game/scene_file.h"
 #include "game/world.h"
+#if defined(RTRT_HAVE_WINDOW)
+#include "game/app/interactive_app.h"
+#endif
 
 namespace rtrt {
 namespace {
 
 struct PlayOptions {
-    std::string scene;
+    std::vector<std::string> scenes;
     std::string output;
     std::string size;
-    std::string backend = "cpu";
+    std::string backend = "auto";
+    std::string record, script;
     bool headless = false;
+    bool noVsync = false;
     int frames = 0;
     double fps = 60.0;
 };
@@ -56,25 +62,55 @@ void PrintProgress(int done, int total, double ms) {
     std::fflush(stderr);
 }
 
+void RunWindowed(const PlayOptions& o) {
+#if defined(RTRT_HAVE_WINDOW)
+    WindowOptions w;
+    w.scenes = o.scenes;
+    w.backend = o.backend;
+    if (!o.size.empty()) {
+        ParseSize(o.size, &w.width, &w.height);
+    } else {
+        // The first scene's image size, checked here so that a bad file fails before a window.
+        const LoadedScene first = LoadSceneFile(o.scenes[0]);
+        w.width = first.width.value_or(1280);
+        w.height = first.height.value_or(720);
+    }
+    for (const std::string& scene : o.scenes) LoadSceneFile(scene);
+    w.vsync = !o.noVsync;
+    w.record = o.record;
+    w.script = o.script;
+    w.frames = o.frames;
+    w.fps = float(o.fps);
+    RunWindow(w);
+#else
+    (void)o;
+    throw InputError("play", "",
+                     "this rtrt was built without the window (libglfw3-dev, libgl-dev and "
+                     "libimgui-dev were missing at configure time); add --headless --frames N -o "
+                     "DIR/frame_%04d.png");
+#endif
+}
+
 void RunPlay(const PlayOptions& o) {
-    if (!o.headless)
-        throw InputError("play", "",
-                         "the interactive window is not built yet; add --headless --frames N -o "
-                         "DIR/frame_%04d.png");
+    if (!o.headless) return RunWindowed(o);
+    if (o.scenes.size() != 1)
+        throw InputError("play", "", "--headless plays one scene; give exactly one");
     if (o.frames < 1) throw InputError("--frames", "", "give the number of frames to write (>= 1)");
     if (o.output.empty())
         throw InputError("--output", "", "give where frames go, e.g. out/frame_%04d.png");
     CheckPattern(o.output);
     CheckImagePath(FramePath(o.output, 0));
-    const LoadedScene loaded = LoadSceneFile(o.scene);
+    const LoadedScene loaded = LoadSceneFile(o.scenes[0]);
     RenderSettings settings;
     settings.width = loaded.width.value_or(1280);
     settings.height = loaded.height.value_or(720);
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
     settings.maxDepth = loaded.scene.maxDepth;
-    const Backend backend = o.backend == "cuda" ? Backend::kCuda : Backend::kCpu;
     std::string why;
-    if (backend == Backend::kCuda && !CudaBackendAvailable(&why))
+    const bool cuda = CudaBackendAvailable(&why);
+    const Backend backend =
+        o.backend == "cuda" || (o.backend == "auto" && cuda) ? Backend::kCuda : Backend::kCpu;
+    if (backend == Backend::kCuda && !cuda)
         throw InputError("--backend", "cuda", why + "; use --backend cpu");
 
     // On the GPU the TLAS lives there: the World keeps none on the host, and each frame sends
@@ -110,17 +146,27 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
     auto options = std::make_shared<PlayOptions>();
     CLI::App* cmd =
         app.add_subcommand("play", "Play a scene: animation, physics, spawners, camera path");
-    cmd->add_option("scene", options->scene, "Scene file (.json)")->required();
+    cmd->add_option("scenes", options->scenes,
+                    "Scene files (.json); in the window PageDown/PageUp switch between them")
+        ->required();
     cmd->add_flag("--headless", options->headless, "Render to files instead of a window");
-    cmd->add_option("--frames", options->frames, "Frames to write")->check(CLI::Range(1, 1000000));
+    cmd->add_option("--frames", options->frames,
+                    "Frames to write (headless), or to show before closing the window")
+        ->check(CLI::Range(1, 1000000));
+    cmd->add_option("--record", options->record,
+                    "Window: write every frame shown to DIR/frame_NNNNN.png (fixed time step)");
+    cmd->add_option("--script", options->script,
+                    "Window: scripted input, for tests (see game/app/input_script.h)")
+        ->check(CLI::ExistingFile);
+    cmd->add_flag("--no-vsync", options->noVsync, "Window: start with vsync off (V toggles it)");
     cmd->add_option("--fps", options->fps,
                     "Frames per second of scene time (the fixed step is 1/fps)")
         ->check(CLI::Range(1.0, 1000.0))
         ->capture_default_str();
     cmd->add_option("-o,--output", options->output, "Frame file pattern, e.g. out/frame_%04d.png");
     cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the scene's)");
-    cmd->add_option("--backend", options->backend, "cpu or cuda")
-        ->check(CLI::IsMember({"cpu", "cuda"}))
+    cmd->add_option("--backend", options->backend, "auto (CUDA when usable), cpu or cuda")
+        ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
         ->capture_default_str();
     cmd->callback([options, exitCode] {
         RunPlay(*options);

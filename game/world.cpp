@@ -94,6 +94,26 @@ bool World::Remove(ecs::Entity e) {
     return true;
 }
 
+void World::OverrideCamera(const Camera& camera) {
+    cameraOverride_ = camera;
+    scene_.camera = camera;
+}
+
+void World::SetHostTlas(bool on) {
+    if (on == hostTlas_) return;
+    hostTlas_ = on;
+    if (on) {
+        topologyChanged_ = true;
+        UpdateTlas();
+    }
+}
+
+bool World::HasPhysics() const {
+    for (const EntityDesc& d : source_.entities)
+        if (d.body) return true;
+    return false;
+}
+
 ecs::Entity World::EntityOfInstance(uint32_t instance) const {
     return instance < instanceOwner_.size() ? instanceOwner_[instance] : ecs::Entity{};
 }
@@ -136,7 +156,7 @@ FrameStats World::Advance(float dt) {
     timer.Restart();
     if (stats.extracted > 0 || topologyChanged_) stats.tlasRebuilt = UpdateTlas();
     stats.tlasMs = timer.Milliseconds();
-    scene_.camera = CameraAt(source_, float(time_));
+    scene_.camera = cameraOverride_ ? *cameraOverride_ : CameraAt(source_, float(time_));
     return stats;
 }
 

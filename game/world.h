@@ -4,6 +4,7 @@
 // re-extracted; the TLAS is an LBVH refit or rebuilt by the DynamicTlas policy.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "engine/bvh/dynamic_tlas.h"
@@ -61,6 +62,13 @@ class World {
     // The entity an instance record belongs to (a null entity for none).
     ecs::Entity EntityOfInstance(uint32_t instance) const;
 
+    // The window's camera replaces the scene's (and its camera path) from now on.
+    void OverrideCamera(const Camera& camera);
+    // Whether the host keeps a TLAS (the CPU back end traces it); turning it on builds one now.
+    void SetHostTlas(bool on);
+    // Any entity of the scene file has a rigid body: spawned objects are thrown, not placed.
+    bool HasPhysics() const;
+
     // Per-system times of the last frame (physics, animators, transforms), for benchmarks.
     const ecs::Scheduler& Scheduler() const { return scheduler_; }
 
@@ -80,6 +88,7 @@ class World {
     DynamicTlas tlas_;
     std::vector<Aabb> blasBounds_;
     std::vector<uint32_t> changed_;
+    std::optional<Camera> cameraOverride_;
     std::vector<ecs::Entity> instanceOwner_;  // instance record -> entity
     bool hostTlas_ = true;
     size_t nextSpawn_ = 0;

@@ -251,6 +251,8 @@ bool CudaFrameRenderer::Pick(const Ray& ray, SceneHit* hit) {
     return f != 0;
 }
 
+const vec3* CudaFrameRenderer::DeviceFrame() const { return impl_->frame.Data(); }
+
 const GpuFrameTimes& CudaFrameRenderer::Times() const { return impl_->times; }
 
 Lbvh CudaFrameRenderer::DownloadTlas() const { return impl_->tlas.Download(); }

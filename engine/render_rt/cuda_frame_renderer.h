@@ -38,6 +38,8 @@ class CudaFrameRenderer {
     // The closest hit of one ray through the device's TLAS and BLASes (the window's picking): the
     // same structures the frame was traced with. False on a miss.
     bool Pick(const Ray& ray, SceneHit* hit);
+    // The last traced frame in device memory (width x height linear RGB), for interop.
+    const vec3* DeviceFrame() const;
     // The stages of the last Update and Trace.
     const GpuFrameTimes& Times() const;
     // The TLAS as it is on the device (tests compare it with the CPU's).

@@ -31,6 +31,7 @@ CudaFrameRenderer::~CudaFrameRenderer() = default;
 void CudaFrameRenderer::Update(const RenderScene&, std::span<const uint32_t>) {}
 void CudaFrameRenderer::Trace(const RenderScene&, const RenderSettings&, Image*, RenderStats*) {}
 bool CudaFrameRenderer::Pick(const Ray&, SceneHit*) { return false; }
+const vec3* CudaFrameRenderer::DeviceFrame() const { return nullptr; }
 const GpuFrameTimes& CudaFrameRenderer::Times() const { return impl_->times; }
 Lbvh CudaFrameRenderer::DownloadTlas() const { return {}; }
 

@@ -1,0 +1,107 @@
+#include "game/app/input_script.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "engine/core/error.h"
+#include "game/app/controls.h"
+
+namespace rtrt {
+namespace {
+
+// How many numbers each command takes (-1: one word instead).
+int Arity(const std::string& command) {
+    if (command == "click" || command == "look") return 2;
+    if (command == "drag") return 4;
+    if (command == "key" || command == "screenshot") return -1;
+    if (command == "quit") return 0;
+    return -2;
+}
+
+}  // namespace
+
+InputScript InputScript::Load(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path, "", "cannot read the script");
+    InputScript script;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        const std::string field = "line " + std::to_string(number);
+        if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+        std::istringstream words(line);
+        Event e;
+        if (!(words >> e.frame)) {
+            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+            throw InputError(path, field, "expected FRAME COMMAND ARGS");
+        }
+        if (e.frame < 0) throw InputError(path, field, "the frame must be >= 0");
+        if (!(words >> e.command)) throw InputError(path, field, "missing command");
+        const int arity = Arity(e.command);
+        if (arity == -2)
+            throw InputError(path, field,
+                             "unknown command \"" + e.command +
+                                 "\" (expected key, click, drag, look, screenshot or quit)");
+        if (arity == -1) {
+            std::string word;
+            if (!(words >> word)) throw InputError(path, field, e.command + " needs an argument");
+            e.text.push_back(word);
+            if (e.command == "key" && (e.key = KeyByName(word)) < 0)
+                throw InputError(path, field, "unknown key \"" + word + "\"");
+        }
+        for (int i = 0; i < arity; ++i) {
+            float v;
+            if (!(words >> v))
+                throw InputError(path, field,
+                                 e.command + " needs " + std::to_string(arity) + " numbers");
+            e.numbers.push_back(v);
+        }
+        std::string extra;
+        if (words >> extra) throw InputError(path, field, "unexpected \"" + extra + "\"");
+        script.events_.push_back(std::move(e));
+    }
+    return script;
+}
+
+int InputScript::LastFrame() const {
+    int last = 0;
+    for (const Event& e : events_) last = std::max(last, e.frame + 2);
+    return last;
+}
+
+InputScript::Effects InputScript::Apply(int frame, Input& input) {
+    Effects effects;
+    for (const Event& e : events_) {
+        const int age = frame - e.frame;  // 0: due now; 1, 2: its follow-ups
+        if (age < 0 || age > 2) continue;
+        if (e.command == "key") {
+            if (age == 0) input.Key(e.key, true);
+            if (age == 1) input.Key(e.key, false);
+        } else if (e.command == "click") {
+            if (age == 0) {
+                input.MouseMove(vec2(e.numbers[0], e.numbers[1]));
+                input.MouseButton(0, true);
+            }
+            if (age == 1) input.MouseButton(0, false);
+        } else if (e.command == "drag") {
+            if (age == 0) {
+                input.MouseMove(vec2(e.numbers[0], e.numbers[1]));
+                input.MouseButton(0, true);
+            }
+            if (age == 1) input.MouseMove(vec2(e.numbers[2], e.numbers[3]));
+            if (age == 2) input.MouseButton(0, false);
+        } else if (e.command == "look") {
+            if (age == 0) {
+                input.MouseButton(1, true);
+                input.MouseMove(input.mouse + vec2(e.numbers[0], e.numbers[1]));
+            }
+            if (age == 1) input.MouseButton(1, false);
+        } else if (age == 0 && e.command == "screenshot") {
+            effects.screenshots.push_back(e.text[0]);
+        } else if (age == 0 && e.command == "quit") {
+            effects.quit = true;
+        }
+    }
+    return effects;
+}
+
+}  // namespace rtrt

@@ -1,0 +1,395 @@
+#include "game/app/interactive_app.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "engine/bvh/tlas.h"
+#include "engine/core/timer.h"
+#include "engine/render_rt/cuda_frame_renderer.h"
+#include "game/app/camera_controller.h"
+#include "game/app/controls.h"
+#include "game/app/cuda_gl_frame.h"
+#include "game/app/frame_display.h"
+#include "game/app/input_script.h"
+#include "game/app/overlay.h"
+#include "game/app/spawn_palette.h"
+#include "game/app/window.h"
+#include "game/image_io.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+namespace rtrt {
+namespace {
+
+constexpr float kSpawnDistance = 4.0f;
+
+class App {
+  public:
+    explicit App(const WindowOptions& o)
+        : o_(o),
+          window_(int(o.width), int(o.height), "rtrt", o.vsync),
+          overlay_(window_.Handle()),
+          camera_(Camera{}, 1.0f) {
+        std::string why;
+        model_.cudaAvailable = CudaBackendAvailable(&why);
+        if (o.backend == "cuda" && !model_.cudaAvailable)
+            throw std::runtime_error(why + "; use --backend cpu");
+        model_.useCuda = o.backend != "cpu" && model_.cudaAvailable;
+        model_.glRenderer = window_.Renderer();
+        if (!o.script.empty()) script_ = InputScript::Load(o.script);
+        if (!o.record.empty()) std::filesystem::create_directories(o.record);
+        LoadScene(0);
+    }
+
+    int Run() {
+        Stopwatch clock;
+        for (frame_ = 0; !window_.ShouldClose(); ++frame_) {
+            if (o_.frames > 0 && frame_ >= o_.frames) break;
+            if (script_ && frame_ > script_->LastFrame()) break;
+            const double wallDt = clock.Milliseconds() * 1e-3;
+            clock.Restart();
+            Stopwatch frameTimer;
+            window_.PollEvents();
+            InputScript::Effects effects;
+            if (script_) effects = script_->Apply(frame_, window_.GetInput());
+            if (effects.quit) window_.RequestClose();
+            HandleInput(float(wallDt));
+            const bool fixedStep = script_ || !o_.record.empty();
+            float dt = fixedStep ? 1.0f / o_.fps : float(std::min(wallDt, 0.1));
+            dt *= model_.timeScale;
+            if (model_.paused) dt = stepOnce_ ? model_.timeScale / o_.fps : 0.0f;
+            stepOnce_ = false;
+            const FrameStats fs = world_->Advance(dt);
+            model_.times.simulate = fs.simulateMs;
+            model_.times.extract = fs.extractMs;
+            model_.times.tlas = fs.tlasMs;
+            RenderFrame();
+            Stopwatch displayTimer;
+            const ivec2 fb = window_.FramebufferSize();
+            display_.Draw(fb.x, fb.y);
+            // Screenshots and recordings read back what the window shows, before the overlay.
+            if (!effects.screenshots.empty() || screenshotKey_ || !o_.record.empty()) {
+                const Image shown = FrameDisplay::ReadBack(fb.x, fb.y);
+                for (const std::string& path : effects.screenshots) WriteImage(path, shown);
+                if (screenshotKey_) {
+                    const std::string path =
+                        "rtrt-screenshot-" + std::to_string(screenshotCount_++) + ".png";
+                    WriteImage(path, shown);
+                    std::printf("rtrt: wrote %s\n", path.c_str());
+                    screenshotKey_ = false;
+                }
+                if (!o_.record.empty()) {
+                    char name[32];
+                    std::snprintf(name, sizeof(name), "/frame_%05d.png", recorded_++);
+                    WriteImage(o_.record + name, shown);
+                }
+            }
+            overlay_.Draw(model_);
+            window_.SwapBuffers();
+            model_.times.display = displayTimer.Milliseconds();
+            model_.times.frame = frameTimer.Milliseconds();
+            model_.frameMs.push_back(float(model_.times.frame));
+            if (model_.frameMs.size() > OverlayModel::kHistory) model_.frameMs.pop_front();
+        }
+        std::printf("rtrt: %d frames, %zu instances at the end\n", frame_,
+                    world_->Scene().instances.size());
+        return 0;
+    }
+
+  private:
+    void LoadScene(size_t index) {
+        sceneIndex_ = index;
+        gpu_.reset();
+        world_.reset();
+        loaded_ = std::make_unique<LoadedScene>(LoadSceneFile(o_.scenes[index]));
+        world_ = std::make_unique<World>(*loaded_, TlasPolicy{false, 0.25f}, !model_.useCuda);
+        std::vector<std::string> notes;
+        palette_ = std::make_unique<SpawnPalette>(*world_, &notes);
+        for (const std::string& n : notes) std::printf("rtrt: %s\n", n.c_str());
+        if (model_.useCuda) gpu_ = std::make_unique<CudaFrameRenderer>(world_->Scene());
+        model_.scene = std::filesystem::path(o_.scenes[index]).filename().string();
+        model_.maxDepth = int(loaded_->scene.maxDepth);
+        // Flying speed: a quarter of the scene's size per second.
+        Aabb bounds;
+        std::vector<Aabb> blasBounds;
+        for (const auto& b : world_->Scene().blases) blasBounds.push_back(b->bounds);
+        for (const Aabb& b : InstanceWorldBounds(world_->Scene().instances, blasBounds))
+            bounds.Grow(b);
+        const float size = bounds.IsEmpty() ? 10.0f : glm::length(bounds.max - bounds.min);
+        camera_ = CameraController(world_->Scene().camera, std::max(0.25f * size, 1.0f));
+        cameraTaken_ = false;
+        selected_ = {};
+        std::printf("rtrt: playing %s (%zu instances, %s back end)\n", model_.scene.c_str(),
+                    world_->Scene().instances.size(), model_.useCuda ? "cuda" : "cpu");
+    }
+
+    void SwitchBackend(bool useCuda) {
+        if (useCuda == (gpu_ != nullptr)) return;
+        model_.useCuda = useCuda;
+        world_->SetHostTlas(!useCuda);
+        if (useCuda)
+            gpu_ = std::make_unique<CudaFrameRenderer>(world_->Scene());
+        else
+            gpu_.reset();
+        interop_.Unregister();
+    }
+
+    Ray RayThroughMouse() const {
+        const ivec2 fb = window_.FramebufferSize();
+        int ww = 0, wh = 0;
+        glfwGetWindowSize(window_.Handle(), &ww, &wh);
+        const vec2 scale = vec2(fb) / vec2(std::max(ww, 1), std::max(wh, 1));
+        const vec2 p = window_.GetInputConst().mouse * scale;
+        const uint32_t x = uint32_t(std::clamp(p.x, 0.0f, float(fb.x - 1)));
+        const uint32_t y = uint32_t(std::clamp(p.y, 0.0f, float(fb.y - 1)));
+        return PrimaryRay(MakeCameraFrame(world_->Scene().camera, fb.x, fb.y), x, y, fb.x, fb.y);
+    }
+
+    void Pick() {
+        const Ray ray = RayThroughMouse();
+        SceneHit hit{};
+        bool found = false;
+        if (gpu_) {
+            found = gpu_->Pick(ray, &hit);
+        } else {
+            const RenderSceneView view = world_->Scene().HostView(1, 1, 1);
+            found = IntersectScene(view.tlas, ray, &hit);
+        }
+        selected_ = found ? world_->EntityOfInstance(hit.instance) : ecs::Entity{};
+        model_.selected.clear();
+        if (selected_.IsNull()) return;
+        const auto* local = world_->Registry().Get<physics::LocalTransform>(selected_);
+        grabDistance_ = hit.t;
+        grabOffset_ = local->translation - (ray.origin + hit.t * ray.dir);
+        model_.selected =
+            "instance " + std::to_string(hit.instance) + " at distance " + std::to_string(hit.t);
+        std::printf("rtrt: picked instance %u at distance %.3f\n", hit.instance, hit.t);
+    }
+
+    void Drag() {
+        const auto* local = world_->Registry().Get<physics::LocalTransform>(selected_);
+        if (!local) return;
+        const Ray ray = RayThroughMouse();
+        world_->SetPose(selected_, ray.origin + grabDistance_ * ray.dir + grabOffset_,
+                        local->rotation);
+    }
+
+    void Spawn(const char* name) {
+        const SpawnKind* kind = palette_->Find(name);
+        if (!kind) {
+            std::printf("rtrt: no %s to spawn (its model was not fetched)\n", name);
+            return;
+        }
+        selected_ = palette_->SpawnInFront(*world_, *kind, world_->Scene().camera, kSpawnDistance);
+        model_.selected = std::string("a new ") + name;
+    }
+
+    void HandleInput(float wallDt) {
+        Input& in = window_.GetInput();
+        const bool scripted = script_.has_value();
+        const bool uiMouse = !scripted && overlay_.WantsMouse();
+        const bool uiKeys = !scripted && overlay_.WantsKeyboard();
+        // Mouse first: a pick in the same frame as a delete uses the TLAS it was traced with.
+        if (!uiMouse && in.leftPressed) Pick();
+        if (!uiMouse && in.leftDown && !in.leftPressed && !selected_.IsNull() &&
+            world_->Registry().Valid(selected_) && in.mouseDelta != vec2(0.0f))
+            Drag();
+        if (!uiKeys)
+            for (int key : in.pressed)
+                for (const Control& c : Controls())
+                    if (c.key == key) Do(c.action);
+        CameraInput ci;
+        if (!uiKeys) {
+            auto down = [&](int k) { return in.down[k] ? 1.0f : 0.0f; };
+            ci.move = vec3(down(GLFW_KEY_D) - down(GLFW_KEY_A), down(GLFW_KEY_E) - down(GLFW_KEY_Q),
+                           down(GLFW_KEY_W) - down(GLFW_KEY_S));
+            ci.fast = in.down[GLFW_KEY_LEFT_SHIFT] || in.down[GLFW_KEY_RIGHT_SHIFT];
+        }
+        if (!uiMouse) {
+            if (in.rightDown) ci.look = in.mouseDelta;
+            ci.zoom = in.scroll;
+        }
+        if (ci.move != vec3(0.0f) || ci.look != vec2(0.0f) || ci.zoom != 0.0f) cameraTaken_ = true;
+        if (cameraTaken_) {
+            camera_.Update(ci, script_ ? 1.0f / o_.fps : wallDt);
+            world_->OverrideCamera(camera_.Get());
+        } else {
+            camera_.Reset(world_->Scene().camera);  // follow the scene's camera path
+        }
+        SwitchBackend(model_.useCuda);  // the overlay's radio buttons
+    }
+
+    void Do(Action action) {
+        auto flip = [](bool& b) { b = !b; };
+        switch (action) {
+            case Action::kSpawnSphere:
+                return Spawn("sphere");
+            case Action::kSpawnTeapot:
+                return Spawn("teapot");
+            case Action::kSpawnDragon:
+                return Spawn("dragon");
+            case Action::kSpawnGlassSphere:
+                return Spawn("glass sphere");
+            case Action::kSpawnMirrorBox:
+                return Spawn("mirror box");
+            case Action::kDeleteSelected:
+                if (!selected_.IsNull() && world_->Remove(selected_))
+                    std::printf("rtrt: deleted\n");
+                selected_ = {};
+                model_.selected.clear();
+                return;
+            case Action::kRotateSelected:
+                if (const auto* l = world_->Registry().Get<physics::LocalTransform>(selected_))
+                    world_->SetPose(
+                        selected_, l->translation,
+                        glm::angleAxis(glm::radians(15.0f), vec3(0, 1, 0)) * l->rotation);
+                return;
+            case Action::kPause:
+                return flip(model_.paused);
+            case Action::kStep:
+                stepOnce_ = true;
+                return;
+            case Action::kSlower:
+                model_.timeScale *= 0.5f;
+                return;
+            case Action::kFaster:
+                model_.timeScale = std::min(model_.timeScale * 2.0f, 16.0f);
+                return;
+            case Action::kNextScene:
+                return LoadScene((sceneIndex_ + 1) % o_.scenes.size());
+            case Action::kPreviousScene:
+                return LoadScene((sceneIndex_ + o_.scenes.size() - 1) % o_.scenes.size());
+            case Action::kScreenshot:
+                screenshotKey_ = true;
+                return;
+            case Action::kToggleHelp:
+                return flip(model_.showHelp);
+            case Action::kToggleOverlay:
+                return flip(model_.show);
+            case Action::kFullscreen:
+                return window_.ToggleFullscreen();
+            case Action::kVsync:
+                return window_.SetVsync(!window_.Vsync());
+            case Action::kOrbitMode:
+                camera_.SetMode(camera_.GetMode() == CameraController::Mode::kFly
+                                    ? CameraController::Mode::kOrbit
+                                    : CameraController::Mode::kFly);
+                cameraTaken_ = true;
+                return;
+            case Action::kShadows:
+                return flip(model_.shadows);
+            case Action::kReflection:
+                return flip(model_.reflection);
+            case Action::kRefraction:
+                return flip(model_.refraction);
+            case Action::kNextView:
+                model_.view = (model_.view + 1) % 4;
+                return;
+            case Action::kDepthUp:
+                model_.maxDepth = std::min(model_.maxDepth + 1, 8);
+                return;
+            case Action::kDepthDown:
+                model_.maxDepth = std::max(model_.maxDepth - 1, 1);
+                return;
+            case Action::kBackend:
+                if (model_.cudaAvailable) model_.useCuda = !model_.useCuda;
+                return;
+            case Action::kQuit:
+                return window_.RequestClose();
+        }
+    }
+
+    RenderSettings Settings() const {
+        const ivec2 fb = window_.FramebufferSize();
+        RenderSettings s;
+        s.width = uint32_t(std::max(fb.x, 1));
+        s.height = uint32_t(std::max(fb.y, 1));
+        s.maxDepth = uint32_t(model_.maxDepth);
+        s.view = ViewMode(model_.view);
+        s.enabledFeatures = (model_.shadows ? kFeatureShadows : 0u) |
+                            (model_.reflection ? kFeatureReflection : 0u) |
+                            (model_.refraction ? kFeatureRefraction : 0u);
+        return s;
+    }
+
+    // Traces the frame and puts it in the display's texture: on the GPU through CUDA-GL interop
+    // when it works, otherwise (and on the CPU) through host memory.
+    void RenderFrame() {
+        const RenderScene& scene = world_->Scene();
+        const RenderSettings s = Settings();
+        RenderStats stats;
+        if (gpu_) {
+            gpu_->Update(scene, world_->ChangedInstances());
+            // Views other than shaded are finished on the host (FinishView).
+            const bool viaHost = s.view != ViewMode::kShaded || interopFailed_;
+            gpu_->Trace(scene, s, viaHost ? &raw_ : nullptr, &stats);
+            const GpuFrameTimes& t = gpu_->Times();
+            model_.times.upload = t.uploadMs;
+            model_.times.tlas = t.tlasMs;
+            model_.times.trace = t.traceMs;
+            if (viaHost) {
+                shown_ = FinishView(raw_, s.view);
+                display_.Upload(shown_);
+                model_.display = "frames through host memory";
+            } else {
+                if (display_.Resize(s.width, s.height) || !interop_.Registered()) {
+                    std::string why;
+                    if (!interop_.Register(display_.Texture(), &why)) {
+                        std::printf(
+                            "rtrt: CUDA-GL interop is not available (%s); frames are copied "
+                            "through host memory\n",
+                            why.c_str());
+                        interopFailed_ = true;
+                        return RenderFrame();
+                    }
+                }
+                interop_.Present(gpu_->DeviceFrame(), s.width, s.height);
+                model_.display = "CUDA-GL interop";
+            }
+        } else {
+            Stopwatch trace;
+            RenderInto(scene, s, raw_, &stats);
+            model_.times.trace = trace.Milliseconds();
+            model_.times.upload = 0.0;
+            shown_ = FinishView(raw_, s.view);
+            display_.Upload(shown_);
+            model_.display = "CPU upload";
+        }
+        model_.backend = gpu_ ? "CUDA" : "CPU";
+        model_.rays = stats.rays;
+        model_.instances = scene.instances.size();
+        model_.triangles = scene.TriangleCount();
+        model_.tlasNodes = scene.instances.empty() ? 0 : 2 * scene.instances.size() - 1;
+    }
+
+    WindowOptions o_;
+    Window window_;
+    FrameDisplay display_;
+    Overlay overlay_;
+    CudaGlFrame interop_;
+    bool interopFailed_ = false;
+    std::optional<InputScript> script_;
+    std::unique_ptr<LoadedScene> loaded_;
+    std::unique_ptr<World> world_;
+    std::unique_ptr<SpawnPalette> palette_;
+    std::unique_ptr<CudaFrameRenderer> gpu_;
+    CameraController camera_;
+    bool cameraTaken_ = false;
+    OverlayModel model_;
+    Image raw_, shown_;
+    ecs::Entity selected_;
+    float grabDistance_ = 0.0f;
+    vec3 grabOffset_{0.0f};
+    size_t sceneIndex_ = 0;
+    int frame_ = 0, recorded_ = 0, screenshotCount_ = 0;
+    bool stepOnce_ = false, screenshotKey_ = false;
+};
+
+}  // namespace
+
+int RunWindow(const WindowOptions& options) { return App(options).Run(); }
+
+}  // namespace rtrt

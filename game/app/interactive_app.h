@@ -1,0 +1,23 @@
+#pragma once
+// `rtrt play SCENE...` in a window: the scene plays on its timeline while the user flies around,
+// spawns, picks, drags and deletes objects, toggles effects and watches the overlay.
+#include <string>
+#include <vector>
+
+namespace rtrt {
+
+struct WindowOptions {
+    std::vector<std::string> scenes;  // PageDown / PageUp cycle through them
+    std::string backend = "auto";     // auto (CUDA when usable), cpu, cuda
+    uint32_t width = 1280, height = 720;
+    bool vsync = true;
+    std::string record;  // folder: each frame shown is written there as frame_NNNNN.png
+    std::string script;  // scripted input (input_script.h), for tests
+    int frames = 0;      // stop after this many frames (0: when the window closes)
+    float fps = 60.0f;   // the fixed time step with --record or --script; else the wall clock
+};
+
+// Runs until the window closes (or the script or frame count ends); returns the exit status.
+int RunWindow(const WindowOptions& options);
+
+}  // namespace rtrt

@@ -1,0 +1,46 @@
+#pragma once
+// The Dear ImGui overlay: frame-time graph, FPS, per-stage times, counters, the feature toggles
+// and the help panel. The model holds what is shown; toggles edit it in place.
+#include <deque>
+#include <string>
+
+struct GLFWwindow;
+
+namespace rtrt {
+
+struct StageTimes {
+    double simulate = 0, extract = 0, upload = 0, tlas = 0, trace = 0, display = 0, frame = 0;
+};
+
+struct OverlayModel {
+    static constexpr size_t kHistory = 300;
+    std::deque<float> frameMs;  // the last kHistory frames
+    StageTimes times;
+    uint64_t instances = 0, triangles = 0, rays = 0, tlasNodes = 0;
+    std::string scene, backend, display, glRenderer;
+    std::string selected;  // the picked object, or empty
+    bool paused = false;
+    float timeScale = 1.0f;
+    // Edited by the overlay.
+    bool shadows = true, reflection = true, refraction = true;
+    int maxDepth = 2;
+    int view = 0;  // ViewMode
+    bool useCuda = false;
+    bool cudaAvailable = false;
+    bool showHelp = false;
+    bool show = true;
+};
+
+class Overlay {
+  public:
+    explicit Overlay(GLFWwindow* window);
+    ~Overlay();
+    Overlay(const Overlay&) = delete;
+    Overlay& operator=(const Overlay&) = delete;
+
+    void Draw(OverlayModel& model);  // a whole ImGui frame, rendered into the bound framebuffer
+    bool WantsMouse() const;
+    bool WantsKeyboard() const;
+};
+
+}  // namespace rtrt

@@ -1,0 +1,92 @@
+#include "game/app/spawn_palette.h"
+
+#include <filesystem>
+
+#include "game/mesh_io.h"
+#include "game/model_dir.h"
+#include "game/procedural_shapes.h"
+#include "game/teapot.h"
+
+namespace rtrt {
+namespace {
+
+Material Colored(vec3 diffuse, float reflectivity = 0.0f) {
+    Material m;
+    m.diffuse = diffuse;
+    m.ambient = 0.1f * diffuse;
+    m.specular = vec3(0.5f);
+    m.shininess = 48.0f;
+    m.reflectivity = reflectivity;
+    return m;
+}
+
+std::shared_ptr<const Blas> FittedMeshBlas(TriangleMesh mesh) {
+    FitMesh(mesh, 1.0f);
+    return std::make_shared<const Blas>(BuildTriangleBlas(mesh));
+}
+
+}  // namespace
+
+SpawnPalette::SpawnPalette(World& world, std::vector<std::string>* notes) {
+    const Sphere unitSphere{vec3(0.0f), 0.5f};
+    const uint32_t sphere =
+        world.AddBlas(std::make_shared<const Blas>(BuildSphereBlas({&unitSphere, 1})));
+    kinds_.push_back({"sphere", sphere, world.AddMaterial(Colored(vec3(0.85f, 0.25f, 0.2f), 0.1f)),
+                      physics::Collider::Sphere(0.5f)});
+
+    const std::string teapot = ModelDir() + "/teapot.inc";
+    if (std::filesystem::exists(teapot)) {
+        kinds_.push_back({"teapot", world.AddBlas(FittedMeshBlas(TessellateTeapot(teapot, 6))),
+                          world.AddMaterial(Colored(vec3(0.9f, 0.7f, 0.2f))),
+                          physics::Collider::Sphere(0.45f)});
+    } else if (notes) {
+        notes->push_back("no teapot to spawn: run tools/fetch_models.sh");
+    }
+    const std::string dragon = ModelDir() + "/dragon_vrip_res4.ply.gz";
+    if (std::filesystem::exists(dragon)) {
+        kinds_.push_back({"dragon", world.AddBlas(FittedMeshBlas(LoadMesh(dragon))),
+                          world.AddMaterial(Colored(vec3(0.2f, 0.7f, 0.3f), 0.2f)),
+                          physics::Collider::Sphere(0.4f)});
+    } else if (notes) {
+        notes->push_back("no dragon to spawn: run tools/fetch_models.sh");
+    }
+    Material glass;
+    glass.diffuse = vec3(0.0f);
+    glass.ambient = vec3(0.0f);
+    glass.specular = vec3(0.8f);
+    glass.shininess = 200.0f;
+    glass.transmissivity = 0.95f;
+    glass.ior = 1.5f;
+    kinds_.push_back(
+        {"glass sphere", sphere, world.AddMaterial(glass), physics::Collider::Sphere(0.5f)});
+    const uint32_t box =
+        world.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(MakeBoxMesh(vec3(1.0f)))));
+    kinds_.push_back({"mirror box", box, world.AddMaterial(Colored(vec3(0.1f), 0.9f)),
+                      physics::Collider::Box(vec3(0.5f))});
+}
+
+const SpawnKind* SpawnPalette::Find(const std::string& name) const {
+    for (const SpawnKind& k : kinds_)
+        if (k.name == name) return &k;
+    return nullptr;
+}
+
+ecs::Entity SpawnPalette::SpawnInFront(World& world, const SpawnKind& kind, const Camera& camera,
+                                       float distance) const {
+    const vec3 forward = glm::normalize(camera.forward);
+    EntityDesc desc;
+    desc.blasId = kind.blasId;
+    desc.materialId = kind.materialId;
+    desc.local.translation = camera.position + distance * forward;
+    desc.local.scale = vec3(kind.scale);
+    if (world.HasPhysics()) {
+        physics::RigidBody body;
+        body.mass = 1.0f;
+        body.velocity = kThrowSpeed * forward;
+        desc.body = body;
+        desc.collider = kind.collider;
+    }
+    return world.Spawn(desc);
+}
+
+}  // namespace rtrt

@@ -1,0 +1,36 @@
+#pragma once
+// What the window can spawn in front of the camera: a sphere, the teapot, the dragon (res4), a
+// glass sphere and a mirror box. Their models and materials are added to the World once, before
+// a GPU renderer uploads the scene; models whose files are missing are left out with a note.
+#include <string>
+#include <vector>
+
+#include "game/world.h"
+
+namespace rtrt {
+
+struct SpawnKind {
+    std::string name;
+    uint32_t blasId = 0, materialId = 0;
+    physics::Collider collider;  // used when the scene has physics
+    float scale = 1.0f;
+};
+
+class SpawnPalette {
+  public:
+    // Adds the models and materials to the world; `notes` receives what was left out and why.
+    SpawnPalette(World& world, std::vector<std::string>* notes);
+
+    const std::vector<SpawnKind>& Kinds() const { return kinds_; }
+    const SpawnKind* Find(const std::string& name) const;
+    // Spawns `kind` `distance` ahead of the camera; with physics it is thrown along the view.
+    ecs::Entity SpawnInFront(World& world, const SpawnKind& kind, const Camera& camera,
+                             float distance) const;
+
+    static constexpr float kThrowSpeed = 6.0f;  // m/s
+
+  private:
+    std::vector<SpawnKind> kinds_;
+};
+
+}  // namespace rtrt

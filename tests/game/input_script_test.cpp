@@ -1,0 +1,74 @@
+// Scripted window input: malformed scripts name the line and the reason; events reach Input over
+// the frames they span, as GLFW's callbacks would deliver them.
+#include "game/app/input_script.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "engine/core/error.h"
+#include "game/app/controls.h"
+
+namespace rtrt {
+namespace {
+
+std::string Write(const std::string& text) {
+    static int count = 0;
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("rtrt_script_" + std::to_string(count++) + ".txt"))
+                                 .string();
+    std::ofstream(path) << text;
+    return path;
+}
+
+void ExpectError(const std::string& text, const std::string& field, const std::string& reason) {
+    try {
+        InputScript::Load(Write(text));
+        FAIL() << "no error for: " << text;
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.Field(), field);
+        EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+    }
+}
+
+TEST(InputScript, MalformedLinesNameTheLineAndReason) {
+    ExpectError("1 key 1\n\n3 jump\n", "line 3", "unknown command \"jump\"");
+    ExpectError("1 key Hyper\n", "line 1", "unknown key \"Hyper\"");
+    ExpectError("# comment\n2 click 10\n", "line 2", "click needs 2 numbers");
+    ExpectError("2 quit now\n", "line 1", "unexpected \"now\"");
+    ExpectError("-1 quit\n", "line 1", "frame must be >= 0");
+    ExpectError("key 1\n", "line 1", "expected FRAME COMMAND ARGS");
+}
+
+TEST(InputScript, DragSpansThreeFramesAndKeysRelease) {
+    InputScript script =
+        InputScript::Load(Write("1 drag 10 20 50 20 # comment\n1 key F5\n"
+                                "4 screenshot shot.png\n5 quit\n"));
+    EXPECT_EQ(script.LastFrame(), 7);
+    Input in;
+    in.BeginFrame();
+    script.Apply(0, in);
+    EXPECT_FALSE(in.leftDown);
+    in.BeginFrame();
+    script.Apply(1, in);
+    EXPECT_TRUE(in.leftPressed && in.leftDown);
+    EXPECT_EQ(in.mouse, vec2(10, 20));
+    EXPECT_TRUE(in.Pressed(KeyByName("F5")));
+    in.BeginFrame();
+    script.Apply(2, in);
+    EXPECT_EQ(in.mouseDelta, vec2(40, 0));
+    EXPECT_TRUE(in.leftDown && !in.leftPressed);
+    EXPECT_FALSE(in.down[KeyByName("F5")]);
+    in.BeginFrame();
+    script.Apply(3, in);
+    EXPECT_TRUE(in.leftReleased && !in.leftDown);
+    in.BeginFrame();
+    const InputScript::Effects shot = script.Apply(4, in);
+    ASSERT_EQ(shot.screenshots.size(), 1u);
+    EXPECT_EQ(shot.screenshots[0], "shot.png");
+    EXPECT_TRUE(script.Apply(5, in).quit);
+}
+
+}  // namespace
+}  // namespace rtrt
