@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # One step from a fresh Debian 12 machine to a running rtrt:
-#   tools/setup.sh demo   install what is missing, build, render the default scene
+#   tools/setup.sh demo   install what is missing, build, then play the demos in a window (with a
+#                         display) or render the default scene to rtrt-default.png (without)
 #   tools/setup.sh test   install what is missing, build, run the test suite (no GPU needed)
 #   tools/setup.sh build  install what is missing and build
 # Debian packages are installed with apt-get (as root, or through sudo); the real models are
@@ -49,9 +50,19 @@ cmake --build --preset release -j "$(nproc)"
 
 case "$action" in
     demo)
-        out="$root/rtrt-default.png"
-        "$root/build/release/game/rtrt" render default -o "$out"
-        echo "rtrt setup: the default scene is in $out"
+        rtrt="$root/build/release/game/rtrt"
+        if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ] && "$rtrt" play --help | grep -q -- --script; then
+            # A display: the demos in a window (PageDown for the next, F1 for the controls).
+            scenes="$root/assets/scenes"
+            "$rtrt" play "$scenes/demo_1000_instances.json" "$scenes/demo_physics.json" \
+                "$scenes/demo_glass.json" && exit 0
+            echo "rtrt setup: no window could open; rendering to an image instead" >&2
+        fi
+        if true; then
+            out="$root/rtrt-default.png"
+            "$rtrt" render default -o "$out"
+            echo "rtrt setup: no display, so the default scene went to $out"
+        fi
         ;;
     test)
         ctest --preset release -j "$(nproc)"
