@@ -111,7 +111,33 @@ bool CanReadImages() {
 #endif
 }
 
+namespace {
+
+// Binary 8-bit PPM (P6), read without OpenImageIO: what the GPU machine's screenshots use.
+Image ReadPpm(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot read image");
+    char magic[2] = {};
+    uint32_t width = 0, height = 0, maxValue = 0;
+    in.read(magic, 2);
+    in >> width >> height >> maxValue;
+    if (magic[0] != 'P' || magic[1] != '6' || width == 0 || height == 0 || width > 16384 || height > 16384 ||
+        maxValue != 255)
+        throw InputError(path, "", "expected a binary 8-bit PPM (P6, maximum 255)");
+    in.get();  // the one whitespace byte before the pixels
+    std::vector<unsigned char> bytes(size_t(width) * height * 3);
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size())))
+        throw InputError(path, "", "the file ends before its pixels do");
+    Image image(width, height);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        image.pixels[i] = vec3(bytes[3 * i], bytes[3 * i + 1], bytes[3 * i + 2]) / 255.0f;
+    return image;
+}
+
+}  // namespace
+
 Image ReadImage(const std::string& path) {
+    if (std::filesystem::path(path).extension() == ".ppm") return ReadPpm(path);
 #if defined(RTRT_WITH_OIIO)
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw InputError(path, "", "cannot read image: " + OIIO::geterror());
@@ -125,7 +151,7 @@ Image ReadImage(const std::string& path) {
             image.pixels[i][c] = data[i * spec.nchannels + std::min(c, spec.nchannels - 1)];
     return image;
 #else
-    throw InputError(path, "", "reading images needs OpenImageIO");
+    throw InputError(path, "", "this rtrt reads only .ppm images (built without OpenImageIO)");
 #endif
 }
 

@@ -13,7 +13,8 @@ void CheckImagePath(const std::string& path);
 // 8-bit formats store clamp(value) * 255 rounded; float formats store the values.
 void WriteImage(const std::string& path, const Image& image);
 
-// Reading needs OpenImageIO; false in builds without it (the GPU machine's).
+// Reading needs OpenImageIO, except binary 8-bit .ppm, which every build reads. CanReadImages:
+// whether other formats can be read (false in builds without OpenImageIO, the GPU machine's).
 bool CanReadImages();
 Image ReadImage(const std::string& path);
 
