@@ -66,9 +66,11 @@ void WriteImage(const std::string& path, const Image& image) {
     CheckImagePath(path);
     const std::string ext = Extension(path);
     // The temporary keeps the extension so the writer picks the same format.
-    const std::string tmp = (std::filesystem::path(path).parent_path() /
-                             ("." + std::filesystem::path(path).stem().string() + ".partial" + ext))
-                                .string();
+    std::string name = ".";  // appended piecewise: GCC 12 warns falsely on a + chain here
+    name += std::filesystem::path(path).stem().string();
+    name += ".partial";
+    name += ext;
+    const std::string tmp = (std::filesystem::path(path).parent_path() / name).string();
     try {
         if (ext == ".ppm" || ext == ".pfm") {
             WritePortable(tmp, image, ext);
