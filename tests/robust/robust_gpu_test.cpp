@@ -7,6 +7,7 @@
 #include "tests/robust/spawn_checks.h"
 #include "tests/robust/sphere_checks.h"
 #include "tests/robust/traversal_checks.h"
+#include "tests/robust/triangle_checks.h"
 #include "tests/robust/watertight_checks.h"
 
 namespace rtrt::robust {
@@ -23,6 +24,8 @@ class GpuRobust : public ::testing::Test {
 
 TEST_F(GpuRobust, Watertight) { CheckWatertightAll(run); }
 TEST_F(GpuRobust, SlabCases) { CheckSlabCases(run); }
+TEST_F(GpuRobust, TriangleDirectionScale) { CheckTriangleDirectionScale(run); }
+TEST_F(GpuRobust, TriangleTMaxIdempotent) { CheckTriangleTMaxIdempotent(run); }
 TEST_F(GpuRobust, SphereCases) { CheckSphereCases(run); }
 TEST_F(GpuRobust, TraversalMatchesBruteForce) { CheckTraversalMatchesBruteForce(run, 2'000'000); }
 TEST_F(GpuRobust, BadRays) { CheckBadRays(run); }
