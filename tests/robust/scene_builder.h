@@ -25,4 +25,9 @@ inline glm::mat4 Placement(vec3 t, float radians = 0.0f, vec3 axis = vec3(0, 1, 
 
 inline vec3 TransformPoint(const glm::mat4& m, vec3 p) { return vec3(m * glm::vec4(p, 1.0f)); }
 
+// A unit vector perpendicular to the unit vector n.
+inline vec3 Perpendicular(vec3 n) {
+    return glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+}
+
 }  // namespace rtrt::robust

@@ -21,8 +21,7 @@ namespace rtrt::robust {
 // A 10 x 10 quad, two triangles, centred on `centre` in the plane with normal n.
 inline TriangleMesh Quad(vec3 centre, vec3 n) {
     n = glm::normalize(n);
-    const vec3 u =
-        glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+    const vec3 u = Perpendicular(n);
     const vec3 v = glm::cross(n, u);
     TriangleMesh m;
     for (vec3 c : {-u - v, u - v, u + v, -u + v}) m.positions.push_back(centre + 5.0f * c);
@@ -35,8 +34,7 @@ inline TriangleMesh Quad(vec3 centre, vec3 n) {
 inline std::vector<SpawnCase> CasesAround(vec3 at, vec3 n, float spread, SpawnMode mode,
                                           vec3 given = vec3(0)) {
     n = glm::normalize(n);
-    const vec3 u =
-        glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+    const vec3 u = Perpendicular(n);
     const vec3 v = glm::cross(n, u);
     const vec3 eye = at + 3.0f * n + 0.37f * u;
     std::vector<SpawnCase> cases;
@@ -55,8 +53,7 @@ void ExpectLeavesSurface(const Runner& run, const RenderScene& scene, vec3 at, v
                          const std::string& what) {
     SCOPED_TRACE(std::string(Runner::kName) + " " + what);
     n = glm::normalize(n);
-    const vec3 side =
-        glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+    const vec3 side = Perpendicular(n);
     const vec3 light = std::cos(0.7f) * n + std::sin(0.7f) * side;
     std::vector<SpawnCase> cases = CasesAround(at, n, spread, SpawnMode::kReflect);
     for (const SpawnCase& c : CasesAround(at, n, spread, SpawnMode::kGiven, light))
