@@ -6,6 +6,7 @@
 #include "tests/robust/slab_checks.h"
 #include "tests/robust/spawn_checks.h"
 #include "tests/robust/sphere_checks.h"
+#include "tests/robust/tlas_checks.h"
 #include "tests/robust/traversal_checks.h"
 #include "tests/robust/triangle_checks.h"
 #include "tests/robust/watertight_checks.h"
@@ -31,6 +32,7 @@ TEST_F(GpuRobust, TraversalMatchesBruteForce) { CheckTraversalMatchesBruteForce(
 TEST_F(GpuRobust, BadRays) { CheckBadRays(run); }
 TEST_F(GpuRobust, SpawnFromFarSurfaces) { CheckSpawnFromFarPlanes(run); }
 TEST_F(GpuRobust, SpawnIntoFarObjects) { CheckSpawnIntoFarObjects(run); }
+TEST_F(GpuRobust, TlasDegenerateInputs) { CheckTlasDegenerateInputs(run); }
 
 }  // namespace
 }  // namespace rtrt::robust
