@@ -90,11 +90,14 @@ inline bool TraverseClosest4(const Bvh4Node* nodes, const RaySetup& ray, float& 
                 continue;
             }
         }
-        // Pop, skipping entries the closest hit so far already lies before.
+        // Pop, skipping entries the closest hit so far already lies before. The entry distance
+        // is rounded like the slab test's, so it gets the slab test's widening: a triangle lying
+        // in a box face can have t one ulp below the box's computed entry, and an unwidened
+        // compare dropped such boxes and returned a farther hit (tests/robust, traversal).
         for (;;) {
             if (stackSize == 0) return found;
             current = stack[--stackSize];
-            if (current.tEntry <= tMax) break;
+            if (current.tEntry <= tMax * (1.0f + 2.0f * Gamma(3))) break;
         }
     }
 }

@@ -51,8 +51,14 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     const float bz = r.shearZ * bKz;
     const float cz = r.shearZ * cKz;
     const float t = u * az + v * bz + w * cz;
-    // t and det share a sign for hits in front of the origin; compare without dividing.
-    if (det < 0.0f ? (t >= 0.0f || t < tMax * det) : (t <= 0.0f || t > tMax * det)) return false;
+    // t and det share a sign for hits in front of the origin.
+    if (det < 0.0f ? t >= 0.0f : t <= 0.0f) return false;
+    // Beyond tMax, compared without dividing. The slack covers the rounding of both sides, so
+    // that this early out never rejects a hit whose divided t rounds to <= tMax (the exact test
+    // is the last line): without it a hit one ulp nearer than tMax could be rejected or not
+    // depending on rounding, and the closest of several hits at nearly equal t depended on the
+    // order the triangles were tested in (tests/robust, overlapping TLAS instances).
+    if (fabsf(t) > tMax * fabsf(det) * (1.0f + 2.0f * Gamma(3))) return false;
     const float invDet = 1.0f / det;
     // Reject t that rounding alone could have made positive: a ray leaving a surface must not hit
     // that surface again (pbrt-v4, "Ensure that computed triangle t is conservatively greater
@@ -61,8 +67,14 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     const float maxXt = MaxOrKeep(fabsf(ax), MaxOrKeep(fabsf(bx), fabsf(cx)));
     const float maxYt = MaxOrKeep(fabsf(ay), MaxOrKeep(fabsf(by), fabsf(cy)));
     const float deltaZ = Gamma(3) * maxZt;
-    const float deltaX = Gamma(5) * (maxXt + maxZt);
-    const float deltaY = Gamma(5) * (maxYt + maxZt);
+    // The shear x' = x - shearX z errs by at most gamma(5) (|x| + |z|) with the unscaled z
+    // (|shearX| <= 1: kz is the dominant axis). pbrt-v4 uses the z already scaled by 1/d_kz,
+    // which bounds it only for |d_kz| <= 1: object-space directions are not unit length here,
+    // so a large instance (short direction) rejected every hit and a small one (long direction)
+    // under-estimated the error (tests/robust: direction scale invariance).
+    const float maxZ = MaxOrKeep(fabsf(aKz), MaxOrKeep(fabsf(bKz), fabsf(cKz)));
+    const float deltaX = Gamma(5) * (maxXt + maxZ);
+    const float deltaY = Gamma(5) * (maxYt + maxZ);
     const float deltaE = 2.0f * (Gamma(2) * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
     const float maxE = MaxOrKeep(fabsf(u), MaxOrKeep(fabsf(v), fabsf(w)));
     const float deltaT =

@@ -125,22 +125,7 @@ TEST(Tlas, ManyTransformedInstancesMatchBruteForce) {
     ExpectSameAsBruteForce(world, 25.0f, 3, TlasBuilder::kLbvh);
 }
 
-TEST(Tlas, AllInstancesAtOnePointAndOneFarOutlier) {
-    TwoLevel world;
-    world.blases.push_back(BuildTriangleBlas(test::RandomTriangles(50, 4)));
-    const Sphere s{vec3(0), 1.0f};
-    world.blases.push_back(BuildSphereBlas(std::span<const Sphere>(&s, 1)));
-    for (int i = 0; i < 64; ++i) world.Add(0, glm::rotate(glm::mat4(1), 0.1f * i, vec3(0, 1, 0)));
-    world.Add(1, glm::translate(glm::mat4(1), vec3(1e6f, 0, 0)));
-    ExpectSameAsBruteForce(world, 3.0f, 5, TlasBuilder::kSah);
-    ExpectSameAsBruteForce(world, 3.0f, 5, TlasBuilder::kLbvh);
-    // The outlier is reachable.
-    const TlasView scene = world.Build(TlasBuilder::kLbvh);
-    SceneHit hit;
-    ASSERT_TRUE(IntersectScene(scene, Ray{vec3(1e6f, 0, -50), kInfinity, vec3(0, 0, 1), 0}, &hit));
-    EXPECT_EQ(hit.instance, 64u);
-    EXPECT_NEAR(hit.t, 49.0f, 0.01f);
-}
+// All instances at one point and a far outlier: tests/robust/tlas_checks.h.
 
 TEST(Tlas, EmptySceneHitsNothing) {
     TwoLevel world;
