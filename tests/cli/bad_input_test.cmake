@@ -48,7 +48,7 @@ if(NOT status EQUAL 0 OR NOT stdout MATCHES "--max-depth")
 endif()
 
 # rtrt play: bad invocations exit 2 and write nothing; a good one writes every frame.
-foreach(args "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--frames;2;-o;${WORK_DIR}/f_%02d.png"
+foreach(args "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;--frames;2;-o;${WORK_DIR}/f_%02d.png"
              "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;--frames;2;-o;${WORK_DIR}/f.png"
              "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;-o;${WORK_DIR}/f_%02d.png")
     execute_process(COMMAND ${RTRT} ${args} RESULT_VARIABLE status ERROR_VARIABLE stderr)
@@ -57,6 +57,14 @@ foreach(args "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--frames;2;-o;${W
         message(FATAL_ERROR "${args}: status ${status}, files ${written}: ${stderr}")
     endif()
 endforeach()
+# No display: the window cannot open; rtrt says so and points to --headless (exit 1; 2 in a
+# build without the window).
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY
+    ${RTRT} play ${SOURCE_DIR}/assets/scenes/demo_glass.json --frames 2
+    RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(status EQUAL 0 OR NOT stderr MATCHES "--headless")
+    message(FATAL_ERROR "play without a display: status ${status}: ${stderr}")
+endif()
 execute_process(COMMAND ${RTRT} play ${SOURCE_DIR}/assets/scenes/demo_glass.json --headless --frames 3
     --size 64x36 -o ${WORK_DIR}/frame_%04d.png RESULT_VARIABLE status ERROR_VARIABLE stderr)
 foreach(i 0000 0001 0002)
