@@ -12,6 +12,8 @@ inline constexpr int kExitBadInput = 2;  // bad command line, scene, model or ou
 void AddRenderCommand(CLI::App& app, int* exitCode);
 void AddBenchCommand(CLI::App& app, int* exitCode);
 void AddPlayCommand(CLI::App& app, int* exitCode);
+void AddConvertCommand(CLI::App& app, int* exitCode);
+void AddInfoCommand(CLI::App& app, int* exitCode);
 
 // Parses WIDTHxHEIGHT (1..16384 each); InputError naming --size otherwise.
 void ParseSize(const std::string& text, uint32_t* width, uint32_t* height);

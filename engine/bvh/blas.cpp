@@ -70,4 +70,22 @@ Blas BuildSphereBlas(std::span<const Sphere> spheres, const BvhBuildOptions& opt
     return blas;
 }
 
+void ScaleAndMoveBlas(Blas& blas, vec3 centre, float scale) {
+    auto move = [&](vec3 p) { return (p - centre) * scale; };
+    ParallelFor(0, blas.triangles.size(), 4096, [&](size_t i) {
+        Triangle& t = blas.triangles[i];
+        t = {move(t.v0), move(t.v1), move(t.v2)};
+    });
+    for (BvhNode& node : blas.nodes) node.SetBounds({move(node.boundsMin), move(node.boundsMax)});
+    for (Bvh4Node& node : blas.nodes4) {
+        for (int i = 0; i < 4; ++i) {
+            const vec3 lo = move({node.minX[i], node.minY[i], node.minZ[i]});
+            const vec3 hi = move({node.maxX[i], node.maxY[i], node.maxZ[i]});
+            node.minX[i] = lo.x, node.minY[i] = lo.y, node.minZ[i] = lo.z;
+            node.maxX[i] = hi.x, node.maxY[i] = hi.y, node.maxZ[i] = hi.z;
+        }
+    }
+    blas.bounds = blas.nodes[0].Bounds();
+}
+
 }  // namespace rtrt

@@ -251,7 +251,11 @@ void AccumulateStats(std::span<const BvhNode> nodes, uint32_t index, uint32_t de
     const float relArea = rootArea > 0.0f ? node.Bounds().Area() / rootArea : 1.0f;
     if (node.IsLeaf()) {
         ++stats->leafCount;
+        stats->minLeafSize = std::min(stats->minLeafSize, node.primCount);
         stats->maxLeafSize = std::max(stats->maxLeafSize, node.primCount);
+        if (node.primCount >= stats->leafSizeHistogram.size())
+            stats->leafSizeHistogram.resize(node.primCount + 1, 0);
+        ++stats->leafSizeHistogram[node.primCount];
         *leafPrims += node.primCount;
         stats->sahCost += kSahIntersectionCost * float(node.primCount) * relArea;
         return;
@@ -302,6 +306,7 @@ BvhStats ComputeStats(std::span<const BvhNode> nodes) {
     BvhStats stats;
     if (nodes.empty() || (nodes[0].IsLeaf() && nodes[0].Bounds().IsEmpty())) return stats;
     uint64_t leafPrims = 0;
+    stats.minLeafSize = UINT32_MAX;
     AccumulateStats(nodes, 0, 0, nodes[0].Bounds().Area(), &stats, &leafPrims);
     stats.meanLeafSize = stats.leafCount ? double(leafPrims) / stats.leafCount : 0.0;
     stats.bytes = nodes.size_bytes();
