@@ -22,7 +22,7 @@ case "$action" in
 esac
 
 packages=(g++ cmake ninja-build pkg-config git ca-certificates libglm-dev libtbb-dev libcli11-dev
-    nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev)
+    nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev libxxhash-dev)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -26,15 +26,15 @@ size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4N
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     const size_t count = mesh.indices.size();
-    std::vector<Triangle> source(count);
-    std::vector<Aabb> bounds(count);
-    ParallelFor(0, count, 4096, [&](size_t i) {
+    auto triangle = [&](size_t i) {
         const glm::uvec3 idx = mesh.indices[i];
-        source[i] = {mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
-        bounds[i] = source[i].Bounds();
-    });
+        return Triangle{mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
+    };
+    std::vector<Aabb> bounds(count);
+    ParallelFor(0, count, 4096, [&](size_t i) { bounds[i] = triangle(i).Bounds(); });
     Bvh bvh = BuildBvh(bounds, options);
 
+    // Triangles go straight from the mesh into leaf order: no intermediate copy.
     Blas blas;
     blas.kind = GeometryKind::kTriangles;
     blas.nodes = std::move(bvh.nodes);
@@ -44,7 +44,7 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
     if (smooth) blas.normals.resize(count);
     ParallelFor(0, count, 4096, [&](size_t slot) {
         const uint32_t prim = blas.primIds[slot];
-        blas.triangles[slot] = source[prim];
+        blas.triangles[slot] = triangle(prim);
         if (smooth) {
             const glm::uvec3 idx = mesh.indices[prim];
             blas.normals[slot] = {mesh.normals[idx.x], mesh.normals[idx.y], mesh.normals[idx.z]};
