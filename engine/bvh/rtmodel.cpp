@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <tbb/parallel_invoke.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -133,13 +134,16 @@ class Reader {
     Blas ReadPayload() {
         Blas blas;
         blas.kind = GeometryKind(h_.kind);
-        ReadSection(kNodes, blas.nodes);
-        ReadSection(kNodes4, blas.nodes4);
-        ReadSection(kTriangles, blas.triangles);
-        ReadSection(kNormals, blas.normals);
-        ReadSection(kSpheres, blas.spheres);
-        ReadSection(kPrimIds, blas.primIds);
-        if (hash_.Digest() != h_.payloadChecksum)
+        // The sections are read and hashed in parallel: loading is bound by page faults on the
+        // new arrays, and both cores can take them.
+        uint64_t hashes[kSectionCount];
+        tbb::parallel_invoke([&] { hashes[kNodes] = ReadSection(kNodes, blas.nodes); },
+                             [&] { hashes[kNodes4] = ReadSection(kNodes4, blas.nodes4); },
+                             [&] { hashes[kTriangles] = ReadSection(kTriangles, blas.triangles); },
+                             [&] { hashes[kNormals] = ReadSection(kNormals, blas.normals); },
+                             [&] { hashes[kSpheres] = ReadSection(kSpheres, blas.spheres); },
+                             [&] { hashes[kPrimIds] = ReadSection(kPrimIds, blas.primIds); });
+        if (PayloadChecksum(hashes) != h_.payloadChecksum)
             Fail("payloadChecksum", "checksum mismatch: the file is corrupt");
         CheckBlas(blas, path_);
         blas.bounds = blas.nodes[0].Bounds();
@@ -168,26 +172,27 @@ class Reader {
         return info;
     }
 
-    // One read straight into the array, then its padding; both go into the payload checksum.
+    // One read straight into the array, then its padding; returns the hash of both.
     template <typename Vector>
-    void ReadSection(Section s, Vector& out) {
+    uint64_t ReadSection(Section s, Vector& out) const {
         out.resize(h_.counts[s]);
         const uint64_t bytes = h_.counts[s] * kElementBytes[s];
         if (!ReadAt(file_.Fd(), out.data(), bytes, layout_.offset[s]))
             Fail(kSectionNames[s], "read error");
-        hash_.Update(out.data(), bytes);
         const uint64_t end = layout_.offset[s] + bytes;
         const uint64_t next = s + 1 < kSectionCount ? layout_.offset[s + 1] : layout_.fileBytes;
         char pad[kAlignment];
         if (!ReadAt(file_.Fd(), pad, next - end, end)) Fail(kSectionNames[s], "read error");
-        hash_.Update(pad, next - end);
+        StreamHash hash;
+        hash.Update(out.data(), bytes);
+        hash.Update(pad, next - end);
+        return hash.Digest();
     }
 
     std::string path_;
     File file_;
     RtModelHeader h_{};
     Layout layout_{};
-    StreamHash hash_;
 };
 
 }  // namespace
@@ -230,19 +235,19 @@ void WriteRtModel(const std::string& path, const Blas& blas, const RtModelInfo& 
     const Layout layout = LayoutOf(h.counts);
     h.fileBytes = layout.fileBytes;
 
-    // The payload checksum needs the padding too: hash the sections and their zero padding in
-    // file order.
     static const char kZeros[kAlignment] = {};
-    StreamHash hash;
     auto padOf = [&](int s) {
         const uint64_t end = layout.offset[s] + sections[s].count * kElementBytes[s];
         return (s + 1 < kSectionCount ? layout.offset[s + 1] : layout.fileBytes) - end;
     };
+    uint64_t hashes[kSectionCount];
     for (int s = 0; s < kSectionCount; ++s) {
+        StreamHash hash;
         hash.Update(sections[s].data, sections[s].count * kElementBytes[s]);
         hash.Update(kZeros, padOf(s));
+        hashes[s] = hash.Digest();
     }
-    h.payloadChecksum = hash.Digest();
+    h.payloadChecksum = PayloadChecksum(hashes);
     SealHeader(h);
 
     const std::string temp = path + ".tmp" + std::to_string(::getpid());

@@ -36,7 +36,7 @@ struct RtModelHeader {
     float sahCost;
     uint32_t reserved0;
     uint64_t fileBytes;
-    uint64_t payloadChecksum;  // HashBytes of bytes [256, fileBytes)
+    uint64_t payloadChecksum;  // PayloadChecksum of the sections' hashes
     uint8_t reserved[104];
     uint64_t headerChecksum;  // HashBytes of the header's first 248 bytes
 };
@@ -60,6 +60,22 @@ inline Layout LayoutOf(const uint64_t counts[kSectionCount]) {
     }
     layout.fileBytes = at;
     return layout;
+}
+
+// Each section is hashed with its padding (HashBytes of [offset, next offset)), so that sections
+// can be read and hashed in parallel; the payload checksum is the hash of those six hashes.
+inline uint64_t PayloadChecksum(const uint64_t (&sectionHashes)[kSectionCount]) {
+    return HashBytes(sectionHashes, sizeof(sectionHashes));
+}
+
+// The payload checksum of a whole file held in memory (tests and tools craft files this way).
+inline uint64_t PayloadChecksumOf(const char* file, const Layout& layout) {
+    uint64_t hashes[kSectionCount];
+    for (int s = 0; s < kSectionCount; ++s) {
+        const uint64_t end = s + 1 < kSectionCount ? layout.offset[s + 1] : layout.fileBytes;
+        hashes[s] = HashBytes(file + layout.offset[s], end - layout.offset[s]);
+    }
+    return PayloadChecksum(hashes);
 }
 
 // Recomputes headerChecksum after the header's other fields changed.

@@ -159,7 +159,7 @@ std::string EditPayload(std::string bytes, Section section, size_t index, Edit e
     std::memcpy(&value, bytes.data() + at, sizeof(T));
     edit(value);
     std::memcpy(bytes.data() + at, &value, sizeof(T));
-    h.payloadChecksum = HashBytes(bytes.data() + sizeof(h), bytes.size() - sizeof(h));
+    h.payloadChecksum = PayloadChecksumOf(bytes.data(), LayoutOf(h.counts));
     SealHeader(h);
     PutHeader(bytes, h);
     return bytes;
@@ -291,7 +291,8 @@ TEST_F(RtModelTest, EveryTruncationIsRejected) {
     }
 }
 
-// A single-bit flip anywhere in the file (every 53rd byte here) is caught (by a checksum or a field check).
+// A single-bit flip anywhere in the file (every 53rd byte here) is caught (by a checksum or a field
+// check).
 TEST_F(RtModelTest, EveryBitFlipIsRejected) {
     const std::string valid = ValidCorpusFile(dir_.string());
     for (size_t byte = 0; byte < valid.size(); byte += 53) {
