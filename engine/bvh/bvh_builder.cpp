@@ -135,7 +135,7 @@ class Builder {
     // Binned SAH (Wald 2007): one pass bins every axis at once; bins are compared by index so
     // partitioning agrees exactly with binning.
     Split FindBinnedSplit(uint32_t begin, uint32_t end, const BinMapping& mapping) const {
-        SahBins bins(binCount_);
+        SahBins bins;
         if (end - begin < kParallelScanThreshold) {
             bins.Add(refs_.data() + begin, refs_.data() + end, mapping);
         } else {

@@ -3,6 +3,7 @@
 // Hierarchies"): per axis, the union box and the count of the primitives whose centroid falls in
 // each of binCount equal slices of the centroid bounds. Host only (SSE).
 #include <algorithm>
+#include <bit>
 
 #include "engine/bvh/prim_ref.h"
 
@@ -46,37 +47,24 @@ class BinMapping {
     bool splittable_[3];
 };
 
+// Only the bins primitives fall into are touched: a bit mask per axis says which hold anything,
+// so that the many small nodes near the leaves pay for their primitives, not for binCount.
 class SahBins {
   public:
-    explicit SahBins(uint32_t binCount) : binCount_(binCount) {
-        for (int a = 0; a < 3; ++a)
-            for (uint32_t b = 0; b < binCount_; ++b) {
-                lo_[a][b] = _mm_set1_ps(kInfinity);
-                hi_[a][b] = _mm_set1_ps(-kInfinity);
-                count_[a][b] = 0;
-            }
-    }
-
     void Add(const PrimRef* first, const PrimRef* last, const BinMapping& mapping) {
         for (const PrimRef* r = first; r != last; ++r) {
             const __m128 lo = r->Lo(), hi = r->Hi();
             int bins[4];
             mapping.Bins(lo, hi, bins);
-            for (int a = 0; a < 3; ++a) {
-                const int b = bins[a];
-                lo_[a][b] = GrowMin(lo_[a][b], lo);
-                hi_[a][b] = GrowMax(hi_[a][b], hi);
-                ++count_[a][b];
-            }
+            for (int a = 0; a < 3; ++a) Put(a, uint32_t(bins[a]), lo, hi, 1);
         }
     }
 
     void Merge(const SahBins& o) {
         for (int a = 0; a < 3; ++a)
-            for (uint32_t b = 0; b < binCount_; ++b) {
-                lo_[a][b] = GrowMin(lo_[a][b], o.lo_[a][b]);
-                hi_[a][b] = GrowMax(hi_[a][b], o.hi_[a][b]);
-                count_[a][b] += o.count_[a][b];
+            for (uint64_t bits = o.used_[a]; bits != 0; bits &= bits - 1) {
+                const uint32_t b = uint32_t(std::countr_zero(bits));
+                Put(a, b, o.lo_[a][b], o.hi_[a][b], o.count_[a][b]);
             }
     }
 
@@ -95,8 +83,8 @@ class SahBins {
             if (!mapping.Splittable(axis)) continue;
             uint32_t used[kMaxSahBins];
             uint32_t usedCount = 0;
-            for (uint32_t b = 0; b < binCount_; ++b)
-                if (count_[axis][b] > 0) used[usedCount++] = b;
+            for (uint64_t bits = used_[axis]; bits != 0; bits &= bits - 1)
+                used[usedCount++] = uint32_t(std::countr_zero(bits));
             if (usedCount < 2) continue;
             float rightCost[kMaxSahBins];
             __m128 lo = _mm_set1_ps(kInfinity), hi = _mm_set1_ps(-kInfinity);
@@ -124,6 +112,22 @@ class SahBins {
     }
 
   private:
+    // A bin's first primitive sets its box (what growing the empty box would give); later ones
+    // grow it.
+    void Put(int a, uint32_t b, __m128 lo, __m128 hi, uint32_t count) {
+        const uint64_t bit = uint64_t(1) << b;
+        if (used_[a] & bit) {
+            lo_[a][b] = GrowMin(lo_[a][b], lo);
+            hi_[a][b] = GrowMax(hi_[a][b], hi);
+            count_[a][b] += count;
+        } else {
+            used_[a] |= bit;
+            lo_[a][b] = lo;
+            hi_[a][b] = hi;
+            count_[a][b] = count;
+        }
+    }
+
     // Aabb::Area's arithmetic, in its order, for a non-empty box.
     static float Area(__m128 lo, __m128 hi) {
         const __m128 e = _mm_sub_ps(hi, lo);
@@ -132,7 +136,7 @@ class SahBins {
         return 2.0f * (p[0] + p[1] + p[2]);
     }
 
-    uint32_t binCount_;
+    uint64_t used_[3] = {0, 0, 0};  // bit b: bin b holds primitives
     __m128 lo_[3][kMaxSahBins], hi_[3][kMaxSahBins];
     uint32_t count_[3][kMaxSahBins];
 };
