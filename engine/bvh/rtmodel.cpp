@@ -90,7 +90,7 @@ class Reader {
     explicit Reader(const std::string& path) : path_(path), file_(path, O_RDONLY) {}
 
     RtModelInfo ReadHeader() {
-        if (file_.Fd() < 0) Fail("", std::strerror(errno));
+        if (file_.Fd() < 0) Fail("", errno == ENOENT ? "no such file" : std::strerror(errno));
         struct stat st;
         if (::fstat(file_.Fd(), &st) != 0 || !S_ISREG(st.st_mode)) Fail("", "not a regular file");
         const uint64_t size = uint64_t(st.st_size);
