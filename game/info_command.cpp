@@ -119,7 +119,7 @@ void PrintScene(const std::string& path) {
     }
     std::printf(
         "  instances     %s at time 0 (%s entities: %zu animated, %zu rigid bodies, %zu "
-        "spawned later); %s triangles in view\n",
+        "spawned later); %s triangles over all instances\n",
         Grouped(scene.instances.size()).c_str(), Grouped(loaded.entities.size()).c_str(), animated,
         bodies, later, Grouped(scene.TriangleCount()).c_str());
     std::printf("  models        %zu\n", scene.blases.size());
