@@ -14,6 +14,7 @@
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
 #include "game/commands.h"
+#include "game/heap_tuning.h"
 #include "game/model_cache.h"
 #include "game/model_dir.h"
 
@@ -39,6 +40,7 @@ struct Run {
 };
 
 void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine) {
+    KeepLargeAllocationsInHeap();  // as rtrt convert does
     BvhBuildOptions options;
     ParseBuilder(o.builder, &options.builder);
     const fs::path dir =

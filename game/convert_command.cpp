@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
 #include "game/commands.h"
+#include "game/heap_tuning.h"
 #include "game/model_cache.h"
 #include "game/progress_bar.h"
 
@@ -75,6 +76,7 @@ void Convert(const ConvertOptions& o) {
 
 void RunConvert(const ConvertOptions& o) {
     CheckPaths(o);
+    KeepLargeAllocationsInHeap();
     try {
         Convert(o);
     } catch (...) {
