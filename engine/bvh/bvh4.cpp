@@ -21,6 +21,9 @@ class Collapser {
     explicit Collapser(std::span<const BvhNode> binary) : binary_(binary) {}
 
     AlignedVector<Bvh4Node> Run() {
+        // Each wide node stands for at least one binary interior node, of which there are at
+        // most half the array: reserving that spares the copies of a growing array.
+        nodes_.reserve(binary_.size() / 2 + 1);
         nodes_.emplace_back();
         const BvhNode& root = binary_[0];
         if (root.Bounds().IsEmpty()) {
