@@ -17,6 +17,7 @@
 #include "game/mesh_io.h"
 #include "game/paper_scene.h"
 #include "game/procedural_shapes.h"
+#include "game/scene_file.h"
 #include "tests/test_util.h"
 
 namespace rtrt {
@@ -196,6 +197,30 @@ TEST_F(ModelCacheTest, ConvertedDragonRendersIdentically) {
     size_t lit = 0;
     for (vec3 p : a.pixels) lit += p.x > 0.4f;  // the red dragon is in the picture
     EXPECT_GT(lit, 500u);
+}
+
+// Scene files load their meshes through the cache: the second load reads the entry the first
+// wrote and gives the same BLAS, fitted as FitMesh would fit the mesh.
+TEST_F(ModelCacheTest, SceneMeshesComeThroughTheCache) {
+    Write("quad.obj", kQuadObj);
+    const std::string scene = Write("scene.json", R"({
+        "models": { "q": { "type": "mesh", "file": "quad.obj", "fit": 4 } },
+        "instances": [ { "model": "q" } ] })");
+    const LoadedScene first = LoadSceneFile(scene);
+    ASSERT_EQ(CacheEntries(), 1u);
+    const fs::path entry = fs::directory_iterator(dir_ / "cache")->path();
+    const auto written = fs::last_write_time(entry);
+    const LoadedScene second = LoadSceneFile(scene);
+    EXPECT_EQ(CacheEntries(), 1u);
+    EXPECT_EQ(fs::last_write_time(entry), written);  // read, not rebuilt
+    ASSERT_EQ(first.scene.blases.size(), 1u);
+    ExpectIdentical(*first.scene.blases[0], *second.scene.blases[0]);
+    TriangleMesh mesh = LoadMesh((dir_ / "quad.obj").string());
+    FitMesh(mesh, 4.0f);
+    const Blas& blas = *second.scene.blases[0];
+    for (uint32_t slot = 0; slot < blas.PrimCount(); ++slot)
+        EXPECT_EQ(blas.triangles[slot].v1, mesh.positions[mesh.indices[blas.primIds[slot]].y]);
+    EXPECT_EQ(MaxComponent(blas.bounds.Extent()), 4.0f);
 }
 
 }  // namespace
