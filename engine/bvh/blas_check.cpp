@@ -3,6 +3,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <cmath>
+#include <exception>
 #include <vector>
 
 #include "engine/core/error.h"
@@ -26,12 +27,27 @@ class Checker {
 
     void Run() {
         CheckSizes();
-        // The checks are independent; an exception in any of them reaches the caller.
-        tbb::parallel_invoke([&] { CheckBinaryTree(); },
-                             [&] {
-                                 if (!blas_.nodes4.empty()) CheckWideTree();
-                             },
-                             [&] { CheckPrimIds(); }, [&] { CheckGeometry(); });
+        // The checks are independent and run in parallel; when several fail, the first in this
+        // order is reported, so a file always gets the same message.
+        std::exception_ptr failures[4];
+        auto guarded = [&](int i, auto check) {
+            return [&failures, i, check] {
+                try {
+                    check();
+                } catch (...) {
+                    failures[i] = std::current_exception();
+                }
+            };
+        };
+        tbb::parallel_invoke(guarded(0, [&] { CheckBinaryTree(); }),
+                             guarded(1,
+                                     [&] {
+                                         if (!blas_.nodes4.empty()) CheckWideTree();
+                                     }),
+                             guarded(2, [&] { CheckPrimIds(); }),
+                             guarded(3, [&] { CheckGeometry(); }));
+        for (const std::exception_ptr& failure : failures)
+            if (failure) std::rethrow_exception(failure);
     }
 
   private:

@@ -303,6 +303,25 @@ TEST_F(RtModelTest, EveryBitFlipIsRejected) {
     }
 }
 
+// With several defects the checks, which run in parallel, still report the same one every time.
+TEST_F(RtModelTest, SeveralDefectsGiveTheSameMessageEveryTime) {
+    const std::string valid = ValidCorpusFile(dir_.string());
+    std::string bytes = EditPayload<Triangle>(valid, kTriangles, 2, [](Triangle& t) {
+        t.v0.z = std::numeric_limits<float>::quiet_NaN();
+    });
+    bytes = EditPayload<uint32_t>(bytes, kPrimIds, 7, [](uint32_t& id) { id = 99999; });
+    bytes = EditPayload<BvhNode>(bytes, kNodes, 0, [](BvhNode& n) { n.boundsMax.y = -1e30f; });
+    WriteBytes(Path("several.rtmodel"), bytes);
+    for (int i = 0; i < 20; ++i) {
+        try {
+            ReadRtModel(Path("several.rtmodel"));
+            ADD_FAILURE() << "read without an error";
+        } catch (const InputError& e) {
+            ASSERT_EQ(e.Field(), "nodes[0]") << e.what();
+        }
+    }
+}
+
 TEST_F(RtModelTest, MissingFileAndFolderAreInputErrors) {
     EXPECT_THROW(ReadRtModel(Path("none.rtmodel")), InputError);
     EXPECT_THROW(ReadRtModel(dir_.string()), InputError);
