@@ -282,6 +282,7 @@ void RunEcsBench(uint32_t count) {
 void AddBenchCommand(CLI::App& app, int* exitCode) {
     CLI::App* bench = app.add_subcommand("bench", "Benchmarks (see README: Benchmarks)");
     bench->require_subcommand(1);
+    AddConvertBench(*bench, exitCode, &MachineInfo);
     auto options = std::make_shared<BenchOptions>();
     CLI::App* cpu = bench->add_subcommand(
         "cpu", "BLAS build time and SAH cost per builder, CPU frame time on the paper scene");

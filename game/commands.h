@@ -1,6 +1,7 @@
 #pragma once
 // The rtrt subcommands. Each registers itself on the app and sets *exitCode when it runs.
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 namespace rtrt {
 
@@ -14,6 +15,11 @@ void AddBenchCommand(CLI::App& app, int* exitCode);
 void AddPlayCommand(CLI::App& app, int* exitCode);
 // `rtrt bench frame`, registered by AddBenchCommand.
 void AddFrameBench(CLI::App& bench, int* exitCode);
+void AddConvertCommand(CLI::App& app, int* exitCode);
+void AddInfoCommand(CLI::App& app, int* exitCode);
+// `rtrt bench convert`, registered by AddBenchCommand; machineInfo describes the machine for the
+// JSON report.
+void AddConvertBench(CLI::App& bench, int* exitCode, nlohmann::json (*machineInfo)());
 
 // Parses WIDTHxHEIGHT (1..16384 each); InputError naming --size otherwise.
 void ParseSize(const std::string& text, uint32_t* width, uint32_t* height);

@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
     int exitCode = rtrt::kExitOk;
     rtrt::AddRenderCommand(app, &exitCode);
     rtrt::AddPlayCommand(app, &exitCode);
+    rtrt::AddConvertCommand(app, &exitCode);
+    rtrt::AddInfoCommand(app, &exitCode);
     rtrt::AddBenchCommand(app, &exitCode);
     try {
         app.parse(argc, argv);

@@ -45,4 +45,10 @@ void FitMesh(TriangleMesh& mesh, float extent) {
     for (vec3& p : mesh.positions) p = (p - centre) * scale;
 }
 
+void FitBlas(Blas& blas, const Aabb& sourceBounds, float extent) {
+    const float largest = MaxComponent(sourceBounds.Extent());
+    if (sourceBounds.IsEmpty() || largest <= 0.0f) return;
+    ScaleAndMoveBlas(blas, sourceBounds.Centroid(), extent / largest);
+}
+
 }  // namespace rtrt

@@ -14,6 +14,7 @@
 
 #include "engine/core/error.h"
 #include "game/mesh_io.h"
+#include "game/model_cache.h"
 #include "game/model_dir.h"
 #include "game/procedural_shapes.h"
 #include "game/teapot.h"
@@ -154,6 +155,7 @@ class SceneParser {
         }
         Fields top(root, "", file_);
         LoadedScene out;
+        out_ = &out;
         RenderScene& scene = out.scene;
         if (top.Has("camera")) scene.camera = ParseCamera(top.Get("camera"));
         scene.background = top.Colour("background", scene.background);
@@ -225,6 +227,7 @@ class SceneParser {
                 f.Fail("transmissivity", "reflectivity + transmissivity must not exceed 1");
             f.Finish();
             materialIds_[name] = scene.AddMaterial(m);
+            out_->materialNames.push_back(name);
         }
     }
 
@@ -263,6 +266,7 @@ class SceneParser {
             modelIds_[name] = scene.AddBlas(std::make_shared<const Blas>(ParseModel(f)));
             modelShapes_[modelIds_[name]] = shape_;
             modelNames_[modelIds_[name]] = name;
+            out_->modelNames.push_back(name);
             f.Finish();
         }
     }
@@ -299,7 +303,11 @@ class SceneParser {
                 TessellateTeapot(ResolveModelPath(f.String("file", "@models/teapot.inc"), baseDir_),
                                  int(resolution));
         } else if (type == "mesh") {
-            mesh = LoadMesh(ResolveModelPath(f.String("file"), baseDir_));
+            // Meshes come through the BLAS cache; fitting moves the built BLAS exactly as
+            // FitMesh would have moved the mesh's vertices.
+            MeshModel model = LoadMeshModel(ResolveModelPath(f.String("file"), baseDir_), options);
+            if (f.Has("fit")) FitBlas(model.blas, model.info.sourceBounds, f.Positive("fit"));
+            return std::move(model.blas);
         } else {
             f.Fail("type", "unknown model type \"" + type +
                                "\" (expected sphere, spheres, box, plane, teapot or mesh)");
@@ -642,7 +650,8 @@ class SceneParser {
     std::map<std::string, uint32_t> materialIds_, modelIds_;
     std::map<uint32_t, ModelShape> modelShapes_;
     std::map<uint32_t, std::string> modelNames_;
-    ModelShape shape_;  // of the model being parsed
+    ModelShape shape_;            // of the model being parsed
+    LoadedScene* out_ = nullptr;  // the scene being parsed
     uint32_t defaultMaterial_ = UINT32_MAX;
 };
 

@@ -33,10 +33,12 @@ struct CameraKey {
 struct LoadedScene {
     // The scene at time 0: every entity with spawnTime 0 in its initial pose, TLAS built.
     RenderScene scene;
-    std::optional<uint32_t> width, height;  // the file's "image" size, if it gives one
-    std::vector<EntityDesc> entities;       // everything the file places or spawns, by time
-    std::vector<CameraKey> cameraPath;      // empty: the camera stays where "camera" puts it
-    bool dynamic = false;                   // any animator, rigid body, later spawn or camera path
+    std::optional<uint32_t> width, height;   // the file's "image" size, if it gives one
+    std::vector<EntityDesc> entities;        // everything the file places or spawns, by time
+    std::vector<CameraKey> cameraPath;       // empty: the camera stays where "camera" puts it
+    bool dynamic = false;                    // any animator, rigid body, later spawn or camera path
+    std::vector<std::string> modelNames;     // by BLAS id
+    std::vector<std::string> materialNames;  // by material id (a grey default, if used, comes last)
 };
 
 // The camera of a scene at time t (its camera_path if it has one).

@@ -23,7 +23,7 @@ case "$action" in
 esac
 
 packages=(g++ cmake ninja-build pkg-config git ca-certificates libglm-dev libtbb-dev libcli11-dev
-    nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev
+    nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev libxxhash-dev
     libglfw3-dev libgl-dev libimgui-dev xvfb xauth libgl1-mesa-dri)
 missing=()
 for p in "${packages[@]}"; do

@@ -26,15 +26,15 @@ size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4N
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     const size_t count = mesh.indices.size();
-    std::vector<Triangle> source(count);
-    std::vector<Aabb> bounds(count);
-    ParallelFor(0, count, 4096, [&](size_t i) {
+    auto triangle = [&](size_t i) {
         const glm::uvec3 idx = mesh.indices[i];
-        source[i] = {mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
-        bounds[i] = source[i].Bounds();
-    });
+        return Triangle{mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
+    };
+    std::vector<Aabb> bounds(count);
+    ParallelFor(0, count, 4096, [&](size_t i) { bounds[i] = triangle(i).Bounds(); });
     Bvh bvh = BuildBvh(bounds, options);
 
+    // Triangles go straight from the mesh into leaf order: no intermediate copy.
     Blas blas;
     blas.kind = GeometryKind::kTriangles;
     blas.nodes = std::move(bvh.nodes);
@@ -44,7 +44,7 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
     if (smooth) blas.normals.resize(count);
     ParallelFor(0, count, 4096, [&](size_t slot) {
         const uint32_t prim = blas.primIds[slot];
-        blas.triangles[slot] = source[prim];
+        blas.triangles[slot] = triangle(prim);
         if (smooth) {
             const glm::uvec3 idx = mesh.indices[prim];
             blas.normals[slot] = {mesh.normals[idx.x], mesh.normals[idx.y], mesh.normals[idx.z]};
@@ -68,6 +68,24 @@ Blas BuildSphereBlas(std::span<const Sphere> spheres, const BvhBuildOptions& opt
         blas.spheres[slot] = spheres[blas.primIds[slot]];
     blas.bounds = blas.nodes[0].Bounds();
     return blas;
+}
+
+void ScaleAndMoveBlas(Blas& blas, vec3 centre, float scale) {
+    auto move = [&](vec3 p) { return (p - centre) * scale; };
+    ParallelFor(0, blas.triangles.size(), 4096, [&](size_t i) {
+        Triangle& t = blas.triangles[i];
+        t = {move(t.v0), move(t.v1), move(t.v2)};
+    });
+    for (BvhNode& node : blas.nodes) node.SetBounds({move(node.boundsMin), move(node.boundsMax)});
+    for (Bvh4Node& node : blas.nodes4) {
+        for (int i = 0; i < 4; ++i) {
+            const vec3 lo = move({node.minX[i], node.minY[i], node.minZ[i]});
+            const vec3 hi = move({node.maxX[i], node.maxY[i], node.maxZ[i]});
+            node.minX[i] = lo.x, node.minY[i] = lo.y, node.minZ[i] = lo.z;
+            node.maxX[i] = hi.x, node.maxY[i] = hi.y, node.maxZ[i] = hi.z;
+        }
+    }
+    blas.bounds = blas.nodes[0].Bounds();
 }
 
 }  // namespace rtrt

@@ -42,4 +42,9 @@ struct Blas {
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options = {});
 Blas BuildSphereBlas(std::span<const Sphere> spheres, const BvhBuildOptions& options = {});
 
+// Moves and scales a triangle BLAS in place, p -> (p - centre) * scale with scale > 0, on every
+// vertex and node box. Rounding is monotonic, so each box stays exactly the bounds of what it
+// holds: the result equals refitting the transformed triangles. Normals need no change.
+void ScaleAndMoveBlas(Blas& blas, vec3 centre, float scale);
+
 }  // namespace rtrt

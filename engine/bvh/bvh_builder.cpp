@@ -1,22 +1,30 @@
 #include "engine/bvh/bvh_builder.h"
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <atomic>
-#include <numeric>
+#include <memory>
+
+#include "engine/bvh/prim_ref.h"
+#include "engine/bvh/sah_bins.h"
 
 namespace rtrt {
 namespace {
 
 // Subtrees at least this large are built as parallel tasks.
 constexpr uint32_t kParallelThreshold = 4096;
+// Ranges at least this large are binned and bounded by parallel reductions (the top of the tree,
+// where there are fewer subtrees than threads).
+constexpr uint32_t kParallelScanThreshold = 65536;
 // Deeper than this a node becomes a leaf whatever its size, so traversal stacks never overflow.
 constexpr uint32_t kMaxDepth = kBvhStackSize - 4;
 
 struct Split {
     int axis = -1;
-    float position = 0.0f;    // centroid coordinate; binned and centroid splits
+    uint32_t bin = 0;         // binned: first bin of the right side
     uint32_t sweepIndex = 0;  // sweep: first primitive of the right side, in sorted order
     float cost = kInfinity;
 };
@@ -24,39 +32,54 @@ struct Split {
 class Builder {
   public:
     Builder(std::span<const Aabb> bounds, const BvhBuildOptions& options)
-        : bounds_(bounds), options_(options), centroids_(bounds.size()), order_(bounds.size()) {
-        for (size_t i = 0; i < bounds.size(); ++i) centroids_[i] = bounds[i].Centroid();
-        std::iota(order_.begin(), order_.end(), 0u);
-        nodes_.resize(std::max<size_t>(2 * bounds.size() + 2, 2));
+        : options_(options),
+          binCount_(std::clamp(options.binCount, 2u, kMaxSahBins)),
+          refs_(bounds.size()),
+          nodeCapacity_(std::max<size_t>(2 * bounds.size() + 2, 2)),
+          // Default-initialised: only the nodes the build writes are ever touched.
+          nodes_(new BvhNode[nodeCapacity_]) {
+        ParallelRange(0, uint32_t(bounds.size()), [&](uint32_t begin, uint32_t end) {
+            for (uint32_t i = begin; i < end; ++i) refs_[i] = PrimRef(bounds[i], i);
+        });
     }
 
     Bvh Run() {
         nodeCount_ = 2;  // root, then the unused slot that aligns child pairs
-        BuildNode(0, 0, uint32_t(bounds_.size()), 0);
+        BuildNode(0, 0, uint32_t(refs_.size()), 0);
         return Relayout();
     }
 
   private:
-    Aabb RangeBounds(uint32_t begin, uint32_t end, Aabb* centroidBounds) const {
-        Aabb b, c;
-        for (uint32_t i = begin; i < end; ++i) {
-            b.Grow(bounds_[order_[i]]);
-            c.Grow(centroids_[order_[i]]);
-        }
-        *centroidBounds = c;
-        return b;
+    template <typename Body>
+    static void ParallelRange(uint32_t begin, uint32_t end, const Body& body) {
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(begin, end, 16384),
+                          [&](const tbb::blocked_range<uint32_t>& r) { body(r.begin(), r.end()); });
+    }
+
+    RangeBounds BoundsOf(uint32_t begin, uint32_t end) const {
+        if (end - begin < kParallelScanThreshold) return BoundRefs(refs_.data(), begin, end);
+        // Min and max are exact, so the reduction order cannot change the result.
+        return tbb::parallel_deterministic_reduce(
+            tbb::blocked_range<uint32_t>(begin, end, 16384), RangeBounds(),
+            [&](const tbb::blocked_range<uint32_t>& r, RangeBounds acc) {
+                acc.Grow(BoundRefs(refs_.data(), r.begin(), r.end()));
+                return acc;
+            },
+            [](RangeBounds a, const RangeBounds& b) {
+                a.Grow(b);
+                return a;
+            });
     }
 
     void BuildNode(uint32_t nodeIndex, uint32_t begin, uint32_t end, uint32_t depth) {
-        Aabb centroidBounds;
-        const Aabb nodeBounds = RangeBounds(begin, end, &centroidBounds);
+        const RangeBounds range = BoundsOf(begin, end);
         BvhNode& node = nodes_[nodeIndex];
-        node.SetBounds(nodeBounds);
+        node.SetBounds(range.Boxes());
         const uint32_t count = end - begin;
         const float leafCost = kSahIntersectionCost * float(count);
         if (count <= 1 || depth >= kMaxDepth) return MakeLeaf(node, begin, count);
 
-        uint32_t mid = FindAndPartition(begin, end, nodeBounds, centroidBounds, leafCost);
+        const uint32_t mid = FindAndPartition(begin, end, range, leafCost);
         if (mid == begin || mid == end) return MakeLeaf(node, begin, count);
 
         const uint32_t left = nodeCount_.fetch_add(2);
@@ -77,11 +100,12 @@ class Builder {
     }
 
     // Returns where the partitioned range splits; begin or end for "make a leaf".
-    uint32_t FindAndPartition(uint32_t begin, uint32_t end, const Aabb& nodeBounds,
-                              const Aabb& centroidBounds, float leafCost) {
+    uint32_t FindAndPartition(uint32_t begin, uint32_t end, const RangeBounds& range,
+                              float leafCost) {
         const uint32_t count = end - begin;
         const bool mayBeLeaf = count <= options_.maxLeafSize;
-        const float nodeArea = nodeBounds.Area();
+        const Aabb centroidBounds = range.Centroids();
+        const float nodeArea = range.Boxes().Area();
         if (MaxComponent(centroidBounds.Extent()) <= 0.0f) {
             // All centroids coincide: no plane separates them, so halve the list.
             return mayBeLeaf ? begin : begin + count / 2;
@@ -90,9 +114,10 @@ class Builder {
             if (mayBeLeaf) return begin;
             return CentroidSplit(begin, end, centroidBounds);
         }
+        const BinMapping mapping(centroidBounds, binCount_);
         Split split = options_.builder == BvhBuilder::kSweepSah
                           ? FindSweepSplit(begin, end)
-                          : FindBinnedSplit(begin, end, centroidBounds);
+                          : FindBinnedSplit(begin, end, mapping);
         // split.cost is sum N*A over both sides; normalise to this node's area.
         const float splitCost =
             kSahTraversalCost + kSahIntersectionCost * split.cost / std::max(nodeArea, 1e-30f);
@@ -100,61 +125,37 @@ class Builder {
             return mayBeLeaf ? begin : begin + count / 2;
         }
         if (options_.builder == BvhBuilder::kSweepSah) return begin + split.sweepIndex;
-        return Partition(begin, end, split.axis, split.position, centroidBounds);
-    }
-
-    uint32_t Partition(uint32_t begin, uint32_t end, int axis, float position,
-                       const Aabb& centroidBounds) {
-        auto* first = order_.data() + begin;
-        auto* last = order_.data() + end;
-        auto* mid = std::partition(first, last, [&](uint32_t p) {
-            return BinOf(centroids_[p][axis], centroidBounds, axis) < position;
+        PrimRef* first = refs_.data() + begin;
+        PrimRef* mid = std::partition(first, refs_.data() + end, [&](const PrimRef& r) {
+            return mapping.Bin(r, split.axis) < split.bin;
         });
-        return uint32_t(mid - order_.data());
+        return uint32_t(mid - refs_.data());
     }
 
-    // Binned SAH: bins are compared by index so partitioning agrees exactly with binning.
-    float BinOf(float c, const Aabb& centroidBounds, int axis) const {
-        const float lo = centroidBounds.min[axis];
-        const float scale = float(options_.binCount) / (centroidBounds.max[axis] - lo);
-        return float(std::min(options_.binCount - 1, uint32_t((c - lo) * scale)));
-    }
-
-    Split FindBinnedSplit(uint32_t begin, uint32_t end, const Aabb& centroidBounds) const {
-        constexpr uint32_t kMaxBins = 64;
-        const uint32_t binCount = std::min(options_.binCount, kMaxBins);
-        Split best;
-        for (int axis = 0; axis < 3; ++axis) {
-            if (centroidBounds.max[axis] <= centroidBounds.min[axis]) continue;
-            Aabb binBounds[kMaxBins];
-            uint32_t binCounts[kMaxBins] = {};
-            for (uint32_t i = begin; i < end; ++i) {
-                const uint32_t p = order_[i];
-                const uint32_t bin = uint32_t(BinOf(centroids_[p][axis], centroidBounds, axis));
-                binBounds[bin].Grow(bounds_[p]);
-                ++binCounts[bin];
-            }
-            float rightCost[kMaxBins];
-            Aabb acc;
-            uint32_t n = 0;
-            for (uint32_t b = binCount - 1; b > 0; --b) {
-                acc.Grow(binBounds[b]);
-                n += binCounts[b];
-                rightCost[b] = float(n) * acc.Area();
-            }
-            acc = Aabb();
-            n = 0;
-            for (uint32_t b = 0; b + 1 < binCount; ++b) {
-                acc.Grow(binBounds[b]);
-                n += binCounts[b];
-                const float cost = float(n) * acc.Area() + rightCost[b + 1];
-                if (n > 0 && n < end - begin && cost < best.cost) {
-                    best.axis = axis;
-                    best.position = float(b + 1);
-                    best.cost = cost;
-                }
-            }
+    // Binned SAH (Wald 2007): one pass bins every axis at once; bins are compared by index so
+    // partitioning agrees exactly with binning.
+    Split FindBinnedSplit(uint32_t begin, uint32_t end, const BinMapping& mapping) const {
+        SahBins bins;
+        if (end - begin < kParallelScanThreshold) {
+            bins.Add(refs_.data() + begin, refs_.data() + end, mapping);
+        } else {
+            // Bin boxes are unions and counts are sums: exact, so the result is deterministic.
+            bins = tbb::parallel_deterministic_reduce(
+                tbb::blocked_range<uint32_t>(begin, end, 16384), bins,
+                [&](const tbb::blocked_range<uint32_t>& r, SahBins acc) {
+                    acc.Add(refs_.data() + r.begin(), refs_.data() + r.end(), mapping);
+                    return acc;
+                },
+                [](SahBins a, const SahBins& b) {
+                    a.Merge(b);
+                    return a;
+                });
         }
+        const SahBins::Plane plane = bins.BestPlane(mapping);
+        Split best;
+        best.axis = plane.axis;
+        best.bin = plane.bin;
+        best.cost = plane.cost;
         return best;
     }
 
@@ -162,22 +163,23 @@ class Builder {
     Split FindSweepSplit(uint32_t begin, uint32_t end) {
         const uint32_t count = end - begin;
         Split best;
-        std::vector<uint32_t> sorted[3];
+        std::vector<PrimRef> sorted[3];
         std::vector<float> rightCost(count);
         for (int axis = 0; axis < 3; ++axis) {
-            sorted[axis].assign(order_.begin() + begin, order_.begin() + end);
-            std::sort(sorted[axis].begin(), sorted[axis].end(), [&](uint32_t a, uint32_t b) {
-                const float ca = centroids_[a][axis], cb = centroids_[b][axis];
-                return ca < cb || (ca == cb && a < b);
-            });
+            sorted[axis].assign(refs_.begin() + begin, refs_.begin() + end);
+            std::sort(sorted[axis].begin(), sorted[axis].end(),
+                      [&](const PrimRef& a, const PrimRef& b) {
+                          const float ca = a.Centroid(axis), cb = b.Centroid(axis);
+                          return ca < cb || (ca == cb && a.id < b.id);
+                      });
             Aabb acc;
             for (uint32_t i = count - 1; i > 0; --i) {
-                acc.Grow(bounds_[sorted[axis][i]]);
+                acc.Grow(sorted[axis][i].Box());
                 rightCost[i] = float(count - i) * acc.Area();
             }
             acc = Aabb();
             for (uint32_t i = 1; i < count; ++i) {
-                acc.Grow(bounds_[sorted[axis][i - 1]]);
+                acc.Grow(sorted[axis][i - 1].Box());
                 const float cost = float(i) * acc.Area() + rightCost[i];
                 if (cost < best.cost) {
                     best.axis = axis;
@@ -187,16 +189,16 @@ class Builder {
             }
         }
         if (best.axis >= 0)
-            std::copy(sorted[best.axis].begin(), sorted[best.axis].end(), order_.begin() + begin);
+            std::copy(sorted[best.axis].begin(), sorted[best.axis].end(), refs_.begin() + begin);
         return best;
     }
 
     uint32_t CentroidSplit(uint32_t begin, uint32_t end, const Aabb& centroidBounds) {
         const int axis = MaxDimension(centroidBounds.Extent());
         const float middle = centroidBounds.Centroid()[axis];
-        auto* mid = std::partition(order_.data() + begin, order_.data() + end,
-                                   [&](uint32_t p) { return centroids_[p][axis] < middle; });
-        uint32_t split = uint32_t(mid - order_.data());
+        PrimRef* mid = std::partition(refs_.data() + begin, refs_.data() + end,
+                                      [&](const PrimRef& r) { return r.Centroid(axis) < middle; });
+        uint32_t split = uint32_t(mid - refs_.data());
         if (split == begin || split == end) split = begin + (end - begin) / 2;
         return split;
     }
@@ -205,7 +207,10 @@ class Builder {
     // and puts each child pair at even indices.
     Bvh Relayout() {
         Bvh out;
-        out.primOrder = std::move(order_);
+        out.primOrder.resize(refs_.size());
+        ParallelRange(0, uint32_t(refs_.size()), [&](uint32_t begin, uint32_t end) {
+            for (uint32_t i = begin; i < end; ++i) out.primOrder[i] = refs_[i].id;
+        });
         out.nodes.resize(std::max<uint32_t>(nodeCount_.load(), 2));
         out.nodes[0] = nodes_[0];
         out.nodes[1] = BvhNode{vec3(0), 0, vec3(0), 0};
@@ -230,11 +235,11 @@ class Builder {
         return out;
     }
 
-    std::span<const Aabb> bounds_;
     BvhBuildOptions options_;
-    std::vector<vec3> centroids_;
-    std::vector<uint32_t> order_;
-    std::vector<BvhNode> nodes_;
+    uint32_t binCount_;
+    AlignedVector<PrimRef> refs_;
+    size_t nodeCapacity_;
+    std::unique_ptr<BvhNode[]> nodes_;
     std::atomic<uint32_t> nodeCount_{0};
 };
 
@@ -246,7 +251,11 @@ void AccumulateStats(std::span<const BvhNode> nodes, uint32_t index, uint32_t de
     const float relArea = rootArea > 0.0f ? node.Bounds().Area() / rootArea : 1.0f;
     if (node.IsLeaf()) {
         ++stats->leafCount;
+        stats->minLeafSize = std::min(stats->minLeafSize, node.primCount);
         stats->maxLeafSize = std::max(stats->maxLeafSize, node.primCount);
+        if (node.primCount >= stats->leafSizeHistogram.size())
+            stats->leafSizeHistogram.resize(node.primCount + 1, 0);
+        ++stats->leafSizeHistogram[node.primCount];
         *leafPrims += node.primCount;
         stats->sahCost += kSahIntersectionCost * float(node.primCount) * relArea;
         return;
@@ -297,6 +306,7 @@ BvhStats ComputeStats(std::span<const BvhNode> nodes) {
     BvhStats stats;
     if (nodes.empty() || (nodes[0].IsLeaf() && nodes[0].Bounds().IsEmpty())) return stats;
     uint64_t leafPrims = 0;
+    stats.minLeafSize = UINT32_MAX;
     AccumulateStats(nodes, 0, 0, nodes[0].Bounds().Area(), &stats, &leafPrims);
     stats.meanLeafSize = stats.leafCount ? double(leafPrims) / stats.leafCount : 0.0;
     stats.bytes = nodes.size_bytes();

@@ -50,8 +50,10 @@ struct BvhStats {
     uint32_t nodeCount = 0;  // reachable nodes
     uint32_t leafCount = 0;
     uint32_t maxDepth = 0;
+    uint32_t minLeafSize = 0;
     uint32_t maxLeafSize = 0;
     double meanLeafSize = 0.0;
+    std::vector<uint32_t> leafSizeHistogram;  // [n]: leaves holding n primitives
     float sahCost = 0.0f;
     size_t bytes = 0;  // node array size in memory
 };

@@ -99,3 +99,83 @@ file(SHA256 ${WORK_DIR}/a/f_19.ppm last)
 if(first STREQUAL last)
     message(FATAL_ERROR "play: the physics demo did not move in 20 frames")
 endif()
+
+# rtrt convert and rtrt info: bad input exits 2 with one "file: field: reason" line and writes
+# nothing; good input converts, describes and renders.
+set(HOSTILE ${SOURCE_DIR}/tests/data/hostile)
+file(WRITE ${WORK_DIR}/tetra.obj "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n")
+function(expect_bad_input name expected_text)
+    set(out ${WORK_DIR}/out.rtmodel)
+    execute_process(COMMAND ${RTRT} ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+    string(REGEX MATCHALL "\n" lines "${stderr}")
+    list(LENGTH lines line_count)
+    if(NOT status EQUAL 2 OR NOT line_count EQUAL 1)
+        message(FATAL_ERROR "${name}: exit status ${status} (expected 2), ${line_count} lines:\n${stderr}")
+    endif()
+    string(FIND "${stderr}" "rtrt: error: ${expected_text}" found)
+    if(found EQUAL -1)
+        message(FATAL_ERROR "${name}: message lacks \"${expected_text}\":\n${stderr}")
+    endif()
+    file(GLOB written ${WORK_DIR}/out.rtmodel* ${WORK_DIR}/no)
+    if(written)
+        message(FATAL_ERROR "${name}: wrote ${written} although it failed")
+    endif()
+    message(STATUS "${name}: ok (${stderr})")
+endfunction()
+
+set(OUT ${WORK_DIR}/out.rtmodel)
+expect_bad_input(convert_nan "${WORK_DIR}/nan_mesh.obj: line 3: vertex coordinate is NaN" convert ${WORK_DIR}/nan_mesh.obj -o ${OUT})
+expect_bad_input(convert_missing "${WORK_DIR}/none.obj: no such file" convert ${WORK_DIR}/none.obj -o ${OUT})
+expect_bad_input(convert_no_triangles "${WORK_DIR}/no_triangles.obj" convert ${WORK_DIR}/no_triangles.obj -o ${OUT})
+expect_bad_input(convert_not_rtmodel "--output: expected a file name ending in .rtmodel" convert ${WORK_DIR}/tetra.obj -o ${WORK_DIR}/out.png)
+expect_bad_input(convert_no_folder "--output: folder ${WORK_DIR}/no/such does not exist" convert ${WORK_DIR}/tetra.obj -o ${WORK_DIR}/no/such/out.rtmodel)
+expect_bad_input(convert_rtmodel "${HOSTILE}/valid.rtmodel: is already an .rtmodel" convert ${HOSTILE}/valid.rtmodel -o ${OUT})
+foreach(case "empty|header: truncated"
+             "truncated_payload|header.fileBytes: the counts give"
+             "wrong_magic|header.magic: not an .rtmodel file"
+             "wrong_version|header.version: version 99"
+             "huge_count|header.counts.triangles: 1152921504606846976 elements cannot fit"
+             "bad_payload_checksum|payloadChecksum: checksum mismatch"
+             "child_out_of_range|nodes[0].leftFirst: child index 1000000 out of range"
+             "nan_vertex|triangles[3]: vertex coordinate is NaN or infinite"
+             "prim_id_out_of_range|primIds[5]: primitive index 1000000 out of range")
+    string(REPLACE "|" ";" parts "${case}")
+    list(GET parts 0 name)
+    list(GET parts 1 text)
+    expect_bad_input(info_${name} "${HOSTILE}/${name}.rtmodel: ${text}" info ${HOSTILE}/${name}.rtmodel)
+endforeach()
+expect_bad_input(info_missing "${WORK_DIR}/none.rtmodel: no such file" info ${WORK_DIR}/none.rtmodel)
+file(WRITE ${WORK_DIR}/hostile_scene.json
+    "{ \"models\": { \"m\": { \"type\": \"mesh\", \"file\": \"${HOSTILE}/nan_vertex.rtmodel\" } }, \"instances\": [ { \"model\": \"m\" } ] }")
+expect_failure(render_hostile_rtmodel 2 "nan_vertex.rtmodel: triangles[3]" render ${WORK_DIR}/hostile_scene.json)
+
+foreach(command convert info)
+    execute_process(COMMAND ${RTRT} ${command} --help RESULT_VARIABLE status OUTPUT_VARIABLE stdout)
+    if(NOT status EQUAL 0 OR NOT stdout MATCHES "rtmodel")
+        message(FATAL_ERROR "${command} --help: status ${status}: ${stdout}")
+    endif()
+endforeach()
+
+execute_process(COMMAND ${RTRT} convert ${WORK_DIR}/tetra.obj -o ${WORK_DIR}/tetra.rtmodel --builder sweep
+    RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT stdout MATCHES "SAH cost [0-9.]+" OR NOT stdout MATCHES "parse [0-9.]+ ms, build"
+   OR NOT EXISTS ${WORK_DIR}/tetra.rtmodel)
+    message(FATAL_ERROR "convert: status ${status}: ${stdout}${stderr}")
+endif()
+execute_process(COMMAND ${RTRT} info ${WORK_DIR}/tetra.rtmodel RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT stdout MATCHES "triangles +4\n" OR NOT stdout MATCHES "vertices +4 "
+   OR NOT stdout MATCHES "sweep SAH" OR NOT stdout MATCHES "SAH cost")
+    message(FATAL_ERROR "info tetra.rtmodel: status ${status}: ${stdout}${stderr}")
+endif()
+file(WRITE ${WORK_DIR}/tetra_scene.json
+    "{ \"materials\": { \"red\": { \"diffuse\": [0.8, 0.1, 0.1] } }, \"lights\": [ { \"type\": \"point\", \"position\": [3, 4, 3] } ], \"models\": { \"t\": { \"type\": \"mesh\", \"file\": \"tetra.rtmodel\", \"fit\": 2 } }, \"instances\": [ { \"model\": \"t\", \"material\": \"red\" } ] }")
+execute_process(COMMAND ${RTRT} info ${WORK_DIR}/tetra_scene.json RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT stdout MATCHES "materials +1: red" OR NOT stdout MATCHES "point at"
+   OR NOT stdout MATCHES "- t: 4 triangles")
+    message(FATAL_ERROR "info tetra_scene.json: status ${status}: ${stdout}${stderr}")
+endif()
+execute_process(COMMAND ${RTRT} render ${WORK_DIR}/tetra_scene.json --size 32x18 -o ${WORK_DIR}/tetra.ppm
+    RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/tetra.ppm)
+    message(FATAL_ERROR "render tetra_scene.json: status ${status}: ${stderr}")
+endif()
