@@ -94,8 +94,8 @@ class App {
             model_.frameMs.push_back(float(model_.times.frame));
             if (model_.frameMs.size() > OverlayModel::kHistory) model_.frameMs.pop_front();
         }
-        std::printf("rtrt: %d frames, %zu instances at the end\n", frame_,
-                    world_->Scene().instances.size());
+        std::printf("rtrt: %d frames, %zu instances at the end, display: %s\n", frame_,
+                    world_->Scene().instances.size(), model_.display.c_str());
         return 0;
     }
 

@@ -1,6 +1,7 @@
 #pragma once
 // `rtrt play SCENE...` in a window: the scene plays on its timeline while the user flies around,
 // spawns, picks, drags and deletes objects, toggles effects and watches the overlay.
+#include <cstdint>
 #include <string>
 #include <vector>
 

@@ -1,6 +1,7 @@
 #pragma once
 // The Dear ImGui overlay: frame-time graph, FPS, per-stage times, counters, the feature toggles
 // and the help panel. The model holds what is shown; toggles edit it in place.
+#include <cstdint>
 #include <deque>
 #include <string>
 

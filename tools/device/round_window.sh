@@ -43,7 +43,7 @@ while [ $# -gt 0 ]; do
             cmake --build build/window -j 16 --target rtrt rtrt_window_tests >"$out/build.log" 2>&1 ||
                 { grep -m20 -A5 error "$out/build.log"; exit 1; }
             rm -f "$out/build.log"
-            ctest --test-dir build/window -L window --output-on-failure 2>&1 | tee "$out/window_tests.log"
+            ctest --test-dir build/window -L window -V 2>&1 | tee "$out/window_tests.log"
             tar -C build/window/tests/window -cf "$out/window_shots.tar" .
             ;;
         *)
