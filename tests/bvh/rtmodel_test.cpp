@@ -26,7 +26,9 @@ using namespace rtmodel;
 
 template <typename A, typename B>
 bool SameBytes(const A& a, const B& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+    // memcmp must not see the null data() of an empty vector, even for zero bytes.
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
 }
 
 void ExpectIdentical(const Blas& a, const Blas& b) {

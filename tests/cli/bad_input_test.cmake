@@ -11,8 +11,13 @@ file(WRITE ${WORK_DIR}/no_triangles.obj "v 0 0 0\n")
 file(WRITE ${WORK_DIR}/no_triangles.json
     "{ \"models\": { \"m\": { \"type\": \"mesh\", \"file\": \"no_triangles.obj\" } }, \"instances\": [ { \"model\": \"m\" } ] }")
 
+# Images are written as PNG, or as PPM by a build without OpenImageIO (the GPU machine's).
+if(NOT DEFINED EXT)
+    set(EXT .png)
+endif()
+
 function(expect_failure name expected_status expected_text)
-    set(out ${WORK_DIR}/${name}.png)
+    set(out ${WORK_DIR}/${name}${EXT})
     execute_process(COMMAND ${RTRT} ${ARGN} -o ${out}
         RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
     if(NOT status EQUAL ${expected_status})
@@ -38,7 +43,7 @@ expect_failure(mistyped_size 2 "expected WIDTHxHEIGHT" render default --size big
 expect_failure(bad_view 2 "--view" render default --view fancy)
 
 # A bad output path fails before any rendering, and --help succeeds.
-execute_process(COMMAND ${RTRT} render default -o ${WORK_DIR}/no/such/dir/out.png RESULT_VARIABLE status ERROR_VARIABLE stderr)
+execute_process(COMMAND ${RTRT} render default -o ${WORK_DIR}/no/such/dir/out${EXT} RESULT_VARIABLE status ERROR_VARIABLE stderr)
 if(NOT status EQUAL 2 OR NOT stderr MATCHES "does not exist")
     message(FATAL_ERROR "bad output folder: status ${status}: ${stderr}")
 endif()
@@ -48,11 +53,11 @@ if(NOT status EQUAL 0 OR NOT stdout MATCHES "--max-depth")
 endif()
 
 # rtrt play: bad invocations exit 2 and write nothing; a good one writes every frame.
-foreach(args "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;--frames;2;-o;${WORK_DIR}/f_%02d.png"
-             "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;--frames;2;-o;${WORK_DIR}/f.png"
-             "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;-o;${WORK_DIR}/f_%02d.png")
+foreach(args "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;--frames;2;-o;${WORK_DIR}/f_%02d${EXT}"
+             "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;--frames;2;-o;${WORK_DIR}/f${EXT}"
+             "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;-o;${WORK_DIR}/f_%02d${EXT}")
     execute_process(COMMAND ${RTRT} ${args} RESULT_VARIABLE status ERROR_VARIABLE stderr)
-    file(GLOB written ${WORK_DIR}/f*.png)
+    file(GLOB written ${WORK_DIR}/f*${EXT})
     if(NOT status EQUAL 2 OR written)
         message(FATAL_ERROR "${args}: status ${status}, files ${written}: ${stderr}")
     endif()
@@ -66,9 +71,9 @@ if(status EQUAL 0 OR NOT stderr MATCHES "--headless")
     message(FATAL_ERROR "play without a display: status ${status}: ${stderr}")
 endif()
 execute_process(COMMAND ${RTRT} play ${SOURCE_DIR}/assets/scenes/demo_glass.json --headless --frames 3
-    --size 64x36 -o ${WORK_DIR}/frame_%04d.png RESULT_VARIABLE status ERROR_VARIABLE stderr)
+    --size 64x36 -o ${WORK_DIR}/frame_%04d${EXT} RESULT_VARIABLE status ERROR_VARIABLE stderr)
 foreach(i 0000 0001 0002)
-    if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/frame_${i}.png)
+    if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/frame_${i}${EXT})
         message(FATAL_ERROR "play: status ${status}, frame ${i} missing: ${stderr}")
     endif()
 endforeach()
