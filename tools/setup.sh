@@ -24,7 +24,7 @@ esac
 
 packages=(g++ cmake ninja-build pkg-config git ca-certificates libglm-dev libtbb-dev libcli11-dev
     nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev libxxhash-dev
-    libglfw3-dev libgl-dev libimgui-dev xvfb xauth libgl1-mesa-dri)
+    libglfw3-dev libgl-dev libimgui-dev xvfb xauth libgl1-mesa-dri clang)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -66,6 +66,10 @@ case "$action" in
         ;;
     test)
         ctest --preset release -j "$(nproc)"
+        # The parsers of untrusted files under libFuzzer (clang, ASan + UBSan), 20 s each.
+        cmake --preset fuzz -DRTRT_FUZZ_SECONDS=20 >/dev/null
+        cmake --build --preset fuzz -j "$(nproc)"
+        ctest --test-dir build/fuzz -L fuzz --output-on-failure
         ;;
     build) ;;
 esac
