@@ -3,16 +3,32 @@
 // mask to the compile-time specialisation.
 #include <type_traits>
 
+#include "engine/render_rt/pixel_sample.h"
 #include "engine/render_rt/trace.h"
 
 namespace rtrt {
 
 // The raw value a view stores before the host finishes the image (FinishView): shaded colour,
 // the normal, the primary hit distance, or the heatmap's traversal counts (nodes, primitives).
-template <uint32_t kFeatures>
+// The shaded view averages samplesPerPixel stratified samples (pixel_sample.h); the others
+// read the pixel centre.
+template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
 RT_HD inline vec3 RawPixel(const RenderSceneView& scene, ViewMode view, uint32_t x, uint32_t y,
                            uint32_t* rays) {
-    const PixelResult r = TracePixel<kFeatures>(scene, x, y, view == ViewMode::kHeatmap);
+    if (view == ViewMode::kShaded && scene.samplesPerPixel > 1) {
+        const uint32_t n = StrataPerSide(scene.samplesPerPixel);
+        vec3 sum(0.0f);
+        for (uint32_t s = 0; s < n * n; ++s) {
+            const vec2 at = PixelSample(x, y, s, n);
+            const Ray ray = PrimaryRay(scene.camera, float(x) + at.x, float(y) + at.y, scene.width,
+                                       scene.height);
+            const PixelResult r = TraceRay<kFeatures, kAccuracy>(scene, ray);
+            *rays += r.rays;
+            sum += r.color;
+        }
+        return sum / float(n * n);
+    }
+    const PixelResult r = TracePixel<kFeatures, kAccuracy>(scene, x, y, view == ViewMode::kHeatmap);
     *rays += r.rays;
     switch (view) {
         case ViewMode::kNormals:
