@@ -45,6 +45,7 @@ struct Setting {
     uint32_t depth = 8;
     BvhBuilder builder = BvhBuilder::kBinnedSah;
     bool reference = false;  // double precision, CPU only
+    bool refitTlas = false;  // RefitTlasAfterShuffle
 };
 
 // Colour outliers: a channel off by more than this (acne, leaks, missing objects).
@@ -67,6 +68,8 @@ std::vector<Setting> Settings() {
     }
     s.push_back({"Moller-Trumbore", "triangle test", "dragon", kAccuracyMollerTrumbore});
     s.push_back({"fixed epsilon 1e-4", "ray offset", "dragon", kAccuracyFixedEpsilon});
+    s.push_back({"Moller-Trumbore + fixed epsilon", "ray offset", "dragon",
+                 kAccuracyMollerTrumbore | kAccuracyFixedEpsilon});
     s.push_back({"naive quadratic", "sphere test", "dragon", kAccuracyNaiveSphere});
     Setting sweep{"sweep SAH", "BLAS builder", "dragon"};
     sweep.builder = BvhBuilder::kSweepSah;
@@ -84,6 +87,9 @@ std::vector<Setting> Settings() {
     s.push_back({"base: float", "precision", "spheres"});
     s.push_back({"naive quadratic", "sphere test", "spheres", kAccuracyNaiveSphere});
     s.push_back({"fixed epsilon 1e-4", "ray offset", "spheres", kAccuracyFixedEpsilon});
+    Setting refit{"refit after shuffle", "TLAS update", "spheres"};
+    refit.refitTlas = true;
+    s.push_back(refit);
     return s;
 }
 
@@ -107,10 +113,16 @@ TriangleMesh LoadDragon() {
 // The scenes, built once per (scene, builder).
 class SceneSet {
   public:
-    const RenderScene& Get(const std::string& name, BvhBuilder builder) {
-        const std::string key = name + "/" + std::string(BuilderName(builder));
+    const RenderScene& Get(const std::string& name, BvhBuilder builder, bool refitTlas) {
+        const std::string key =
+            name + "/" + std::string(BuilderName(builder)) + (refitTlas ? "/refit" : "");
         auto it = scenes_.find(key);
         if (it != scenes_.end()) return it->second;
+        if (refitTlas) {
+            RenderScene scene = Get(name, builder, false);
+            RefitTlasAfterShuffle(scene);
+            return scenes_.emplace(key, std::move(scene)).first->second;
+        }
         if (name == "spheres") return scenes_.emplace(key, MakeFarSpheresScene()).first->second;
         if (dragonMesh_.indices.empty()) dragonMesh_ = LoadDragon();
         BvhBuildOptions options;
@@ -189,7 +201,7 @@ void RunAccuracyBench(const AccuracyOptions& o) {
     SceneSet scenes;
     std::map<std::string, Reference> references;
     for (const Setting& s : Settings()) {
-        const RenderScene& scene = scenes.Get(s.scene, s.builder);
+        const RenderScene& scene = scenes.Get(s.scene, s.builder, s.refitTlas);
         RenderSettings settings = size;
         settings.samplesPerPixel = s.spp;
         settings.maxDepth = s.depth;
@@ -199,6 +211,7 @@ void RunAccuracyBench(const AccuracyOptions& o) {
                               {"spp", s.spp},
                               {"max_depth", s.depth},
                               {"builder", BuilderName(s.builder)},
+                              {"tlas", s.refitTlas ? "refit after shuffle" : "built (SAH)"},
                               {"precision", s.reference ? "double" : "float"},
                               {"tests", AccuracyName(s.accuracy)}};
         if (s.reference) {

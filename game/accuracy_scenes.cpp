@@ -1,5 +1,7 @@
 #include "game/accuracy_scenes.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "game/paper_scene.h"
 
 namespace rtrt {
@@ -48,21 +50,39 @@ RenderScene MakeFarSpheresScene() {
     scene.camera = {vec3(0.0f), vec3(0, 0, -1), vec3(0, 1, 0), 0.3f};
     scene.background = vec3(0.2f, 0.3f, 0.5f);
     scene.maxDepth = 8;
-    std::vector<Sphere> spheres;
-    for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 7; ++col)
-            spheres.push_back(
-                {vec3(4.0f * (float(col) - 3.0f), 4.0f * (float(row) - 1.5f), -4000.0f), 1.5f});
-    Material m;
-    m.diffuse = vec3(0.2f, 0.6f, 0.3f);
-    m.ambient = 0.1f * m.diffuse;
-    m.specular = vec3(0.4f);
-    m.reflectivity = 0.2f;
-    scene.AddInstance(scene.AddBlas(std::make_shared<const Blas>(BuildSphereBlas(spheres))),
-                      scene.AddMaterial(m), glm::mat4(1.0f));
+    const Sphere unit{vec3(0.0f), 1.5f};
+    const uint32_t blas = scene.AddBlas(std::make_shared<const Blas>(BuildSphereBlas({&unit, 1})));
+    for (int row = 0; row < 4; ++row) {
+        for (int col = 0; col < 7; ++col) {
+            Material m;
+            m.diffuse = vec3(0.2f + 0.1f * float(col), 0.6f, 0.2f + 0.2f * float(row));
+            m.ambient = 0.1f * m.diffuse;
+            m.specular = vec3(0.4f);
+            m.reflectivity = 0.2f;
+            const vec3 at(4.0f * (float(col) - 3.0f), 4.0f * (float(row) - 1.5f), -4000.0f);
+            scene.AddInstance(blas, scene.AddMaterial(m), glm::translate(glm::mat4(1.0f), at));
+        }
+    }
     scene.lights.push_back({glm::normalize(vec3(1.0f)), LightType::kDirectional, vec3(1.0f), 0.0f});
     scene.BuildTlas();
     return scene;
+}
+
+void RefitTlasAfterShuffle(RenderScene& scene) {
+    std::vector<Aabb> blasBounds;
+    for (const auto& blas : scene.blases) blasBounds.push_back(blas->bounds);
+    std::vector<Instance> before = scene.instances;
+    const size_t n = before.size();
+    for (size_t i = 0; i < n; ++i) {
+        const Affine& from = scene.instances[(i * 11 + 5) % n].objectToWorld;
+        for (int r = 0; r < 3; ++r) before[i].objectToWorld.row[r].w = from.row[r].w;
+    }
+    Tlas tlas = BuildTlas(before, blasBounds);
+    const std::vector<Aabb> world = InstanceWorldBounds(scene.instances, blasBounds);
+    std::vector<Aabb> slotBounds(n);
+    for (size_t slot = 0; slot < n; ++slot) slotBounds[slot] = world[tlas.instanceOrder[slot]];
+    Refit(tlas.nodes, slotBounds);
+    scene.SetTlas(std::move(tlas));
 }
 
 }  // namespace rtrt
