@@ -36,25 +36,23 @@ inline dvec3 ApplyPoint(const Affine& m, dvec3 p) {
                double(m.row[i].w);
     return r;
 }
-inline dvec3 ApplyVector(const Affine& m, dvec3 v) {
-    dvec3 r;
-    for (int i = 0; i < 3; ++i)
-        r[i] = double(m.row[i].x) * v.x + double(m.row[i].y) * v.y + double(m.row[i].z) * v.z;
-    return r;
-}
-// The transpose of m times n: normals through the inverse transform.
-inline dvec3 NormalFromInverse(const Affine& m, dvec3 n) {
-    dvec3 r(0.0);
-    for (int i = 0; i < 3; ++i) r += dvec3(m.row[i].x, m.row[i].y, m.row[i].z) * n[i];
-    return r;
+// The inverse of an instance's linear part, in double. The instance is defined by its float
+// objectToWorld; its float worldToObject is the inverse only to float precision, and a hit
+// point taken to world space and a ray taken back would move by that much (~10^-7), far beyond
+// the double error bounds, and the reference would show acne.
+inline glm::dmat3 InverseLinearD(const Affine& m) {
+    glm::dmat3 linear;
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) linear[col][row] = m.row[row][col];
+    return glm::inverse(linear);
 }
 
 // World to object space as ToObjectSpace does it: subtract the instance's position first.
 inline RayD ToObjectSpaceD(const RayD& ray, const Instance& inst) {
     const dvec3 position(inst.objectToWorld.row[0].w, inst.objectToWorld.row[1].w,
                          inst.objectToWorld.row[2].w);
-    return {ApplyVector(inst.worldToObject, ray.origin - position),
-            ApplyVector(inst.worldToObject, ray.dir), ray.tMax};
+    const glm::dmat3 inverse = InverseLinearD(inst.objectToWorld);
+    return {inverse * (ray.origin - position), inverse * ray.dir, ray.tMax};
 }
 
 // Slab test on a float box, still conservative: the box is first widened by 8 float ulps of its

@@ -78,8 +78,9 @@ inline SurfaceD MakeSurfaceD(const TlasView& tlas, const RayD& ray, const HitD& 
         surface.pointError[i] = GammaD(3) * roundOff + (1.0 + GammaD(3)) * carried;
     }
     surface.point = ApplyPoint(inst.objectToWorld, p);
-    surface.geomNormal = glm::normalize(NormalFromInverse(inst.worldToObject, ng));
-    surface.shadingNormal = glm::normalize(NormalFromInverse(inst.worldToObject, ns));
+    const glm::dmat3 normalMatrix = glm::transpose(InverseLinearD(inst.objectToWorld));
+    surface.geomNormal = glm::normalize(normalMatrix * ng);
+    surface.shadingNormal = glm::normalize(normalMatrix * ns);
     surface.frontFace = glm::dot(surface.geomNormal, ray.dir) < 0.0;
     if (!surface.frontFace) surface.geomNormal = -surface.geomNormal;
     if (glm::dot(surface.shadingNormal, surface.geomNormal) < 0.0)
