@@ -28,7 +28,7 @@ namespace {
 struct AccuracyOptions {
     std::string size;
     std::string backend = "cpu";
-    int cpuFrames = 3;
+    int cpuFrames = 5;
     int gpuWarmup = 5;
     int gpuFrames = 20;
     std::string output;

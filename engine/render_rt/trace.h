@@ -144,12 +144,4 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
     return result;
 }
 
-// The ray through the centre of pixel (x, y).
-template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
-RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, uint32_t y,
-                                    bool countTraversal = false) {
-    return TraceRay<kFeatures, kAccuracy>(
-        scene, PrimaryRay(scene.camera, x, y, scene.width, scene.height), countTraversal);
-}
-
 }  // namespace rtrt

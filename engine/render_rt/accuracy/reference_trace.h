@@ -145,7 +145,7 @@ inline dvec3 ShadeLocalD(const RenderSceneView& scene, const SurfaceD& s, const 
     return color;
 }
 
-// TracePixel's ray stack with every effect on; maxDepth as in RenderSceneView.
+// TraceRay's ray stack (trace.h) with every effect on; maxDepth as in RenderSceneView.
 inline dvec3 TraceRayD(const RenderSceneView& scene, const RayD& primary) {
     struct PendingRay {
         RayD ray;
