@@ -44,8 +44,8 @@ struct Setting {
     uint32_t spp = 16;
     uint32_t depth = 8;
     BvhBuilder builder = BvhBuilder::kBinnedSah;
-    bool reference = false;  // double precision, CPU only
-    bool refitTlas = false;  // RefitTlasAfterShuffle
+    bool reference = false;    // double precision, CPU only
+    uint32_t refitFrames = 0;  // RefitTlasAfterMotion; 0: the TLAS is built for the scene
 };
 
 // Colour outliers: a channel off by more than this (acne, leaks, missing objects).
@@ -87,9 +87,12 @@ std::vector<Setting> Settings() {
     s.push_back({"base: float", "precision", "spheres"});
     s.push_back({"naive quadratic", "sphere test", "spheres", kAccuracyNaiveSphere});
     s.push_back({"fixed epsilon 1e-4", "ray offset", "spheres", kAccuracyFixedEpsilon});
-    Setting refit{"refit after shuffle", "TLAS update", "spheres"};
-    refit.refitTlas = true;
-    s.push_back(refit);
+    for (uint32_t frames : {10u, 100u, 1000u}) {
+        Setting refit{"refit " + std::to_string(frames) + " frames after build", "TLAS update",
+                      "spheres"};
+        refit.refitFrames = frames;
+        s.push_back(refit);
+    }
     return s;
 }
 
@@ -113,14 +116,14 @@ TriangleMesh LoadDragon() {
 // The scenes, built once per (scene, builder).
 class SceneSet {
   public:
-    const RenderScene& Get(const std::string& name, BvhBuilder builder, bool refitTlas) {
+    const RenderScene& Get(const std::string& name, BvhBuilder builder, uint32_t refitFrames) {
         const std::string key =
-            name + "/" + std::string(BuilderName(builder)) + (refitTlas ? "/refit" : "");
+            name + "/" + std::string(BuilderName(builder)) + "/" + std::to_string(refitFrames);
         auto it = scenes_.find(key);
         if (it != scenes_.end()) return it->second;
-        if (refitTlas) {
-            RenderScene scene = Get(name, builder, false);
-            RefitTlasAfterShuffle(scene);
+        if (refitFrames > 0) {
+            RenderScene scene = Get(name, builder, 0);
+            RefitTlasAfterMotion(scene, refitFrames);
             return scenes_.emplace(key, std::move(scene)).first->second;
         }
         if (name == "spheres") return scenes_.emplace(key, MakeFarSpheresScene()).first->second;
@@ -213,7 +216,7 @@ void RunAccuracyBench(const AccuracyOptions& o) {
     SceneSet scenes;
     std::map<std::string, Reference> references;
     for (const Setting& s : Settings()) {
-        const RenderScene& scene = scenes.Get(s.scene, s.builder, s.refitTlas);
+        const RenderScene& scene = scenes.Get(s.scene, s.builder, s.refitFrames);
         RenderSettings settings = size;
         settings.samplesPerPixel = s.spp;
         settings.maxDepth = s.depth;
@@ -223,7 +226,7 @@ void RunAccuracyBench(const AccuracyOptions& o) {
                               {"spp", s.spp},
                               {"max_depth", s.depth},
                               {"builder", BuilderName(s.builder)},
-                              {"tlas", s.refitTlas ? "refit after shuffle" : "built (SAH)"},
+                              {"tlas_refit_frames", s.refitFrames},
                               {"precision", s.reference ? "double" : "float"},
                               {"tests", AccuracyName(s.accuracy)}};
         if (s.reference) {

@@ -1,5 +1,6 @@
 #include "game/accuracy_scenes.h"
 
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "game/paper_scene.h"
@@ -68,14 +69,15 @@ RenderScene MakeFarSpheresScene() {
     return scene;
 }
 
-void RefitTlasAfterShuffle(RenderScene& scene) {
+void RefitTlasAfterMotion(RenderScene& scene, uint32_t frames) {
     std::vector<Aabb> blasBounds;
     for (const auto& blas : scene.blases) blasBounds.push_back(blas->bounds);
     std::vector<Instance> before = scene.instances;
     const size_t n = before.size();
     for (size_t i = 0; i < n; ++i) {
-        const Affine& from = scene.instances[(i * 11 + 5) % n].objectToWorld;
-        for (int r = 0; r < 3; ++r) before[i].objectToWorld.row[r].w = from.row[r].w;
+        const float angle = 2.39996f * float(i);  // the golden angle: directions spread evenly
+        const vec3 step = kInstanceSpeed * vec3(std::cos(angle), std::sin(angle), 0.0f);
+        for (int r = 0; r < 3; ++r) before[i].objectToWorld.row[r].w -= float(frames) * step[r];
     }
     Tlas tlas = BuildTlas(before, blasBounds);
     const std::vector<Aabb> world = InstanceWorldBounds(scene.instances, blasBounds);
