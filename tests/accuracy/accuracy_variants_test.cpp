@@ -5,7 +5,6 @@
 // renderer on an easy scene.
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
 
