@@ -299,8 +299,8 @@ plots from the benchmark's JSON results (see "Regenerating" below); do not edit 
   TLAS refit 10, 100 or 1000 frames after it was built instead of built for where the
   instances are (spheres scene: each sphere moved 0.2 per frame since the build, sphere i in the
   direction (cos 2.39996 i, sin 2.39996 i, 0); a runtime that rebuilds every N frames traces
-  such a tree just before each rebuild); float instead of double (the base row). The "textbook" row turns on all three less robust tests with 1 sample
-  and depth 4.
+  such a tree just before each rebuild); float instead of double (the base row). The
+  "textbook" row turns on all three less robust tests with 1 sample and depth 4.
 
 The test variants are compile-time bits (`engine/bvh/accuracy_variant.h`,
 `engine/render_rt/spawn_variant.h`) instantiated only in the benchmark's own translation units
