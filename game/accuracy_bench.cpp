@@ -1,6 +1,7 @@
 // `rtrt bench accuracy`: the knobs that trade accuracy for time, one at a time away from a base
 // setting, each timed on the CPU and/or the GPU and compared with the double-precision reference
 // (docs/accuracy.md defines the scenes, settings and measures).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -44,8 +45,8 @@ struct Setting {
     uint32_t spp = 16;
     uint32_t depth = 8;
     BvhBuilder builder = BvhBuilder::kBinnedSah;
-    bool reference = false;    // double precision, CPU only
-    uint32_t refitFrames = 0;  // RefitTlasAfterMotion; 0: the TLAS is built for the scene
+    bool reference = false;  // double precision, CPU only
+    int lbvhFrames = -1;     // UseRuntimeTlas(frames); -1: the SAH TLAS built for the scene
 };
 
 // Colour outliers: a channel off by more than this (acne, leaks, missing objects).
@@ -87,11 +88,12 @@ std::vector<Setting> Settings() {
     s.push_back({"base: float", "precision", "spheres"});
     s.push_back({"naive quadratic", "sphere test", "spheres", kAccuracyNaiveSphere});
     s.push_back({"fixed epsilon 1e-4", "ray offset", "spheres", kAccuracyFixedEpsilon});
-    for (uint32_t frames : {10u, 100u, 1000u}) {
-        Setting refit{"refit " + std::to_string(frames) + " frames after build", "TLAS update",
-                      "spheres"};
-        refit.refitFrames = frames;
-        s.push_back(refit);
+    for (int frames : {0, 10, 100, 1000}) {
+        Setting lbvh{frames == 0 ? "LBVH rebuilt"
+                                 : "LBVH refit " + std::to_string(frames) + " frames after build",
+                     "TLAS update", "spheres"};
+        lbvh.lbvhFrames = frames;
+        s.push_back(lbvh);
     }
     return s;
 }
@@ -116,14 +118,14 @@ TriangleMesh LoadDragon() {
 // The scenes, built once per (scene, builder).
 class SceneSet {
   public:
-    const RenderScene& Get(const std::string& name, BvhBuilder builder, uint32_t refitFrames) {
+    const RenderScene& Get(const std::string& name, BvhBuilder builder, int lbvhFrames) {
         const std::string key =
-            name + "/" + std::string(BuilderName(builder)) + "/" + std::to_string(refitFrames);
+            name + "/" + std::string(BuilderName(builder)) + "/" + std::to_string(lbvhFrames);
         auto it = scenes_.find(key);
         if (it != scenes_.end()) return it->second;
-        if (refitFrames > 0) {
-            RenderScene scene = Get(name, builder, 0);
-            RefitTlasAfterMotion(scene, refitFrames);
+        if (lbvhFrames >= 0) {
+            RenderScene scene = Get(name, builder, -1);
+            UseRuntimeTlas(scene, uint32_t(lbvhFrames));
             return scenes_.emplace(key, std::move(scene)).first->second;
         }
         if (name == "spheres") return scenes_.emplace(key, MakeFarSpheresScene()).first->second;
@@ -216,7 +218,7 @@ void RunAccuracyBench(const AccuracyOptions& o) {
     SceneSet scenes;
     std::map<std::string, Reference> references;
     for (const Setting& s : Settings()) {
-        const RenderScene& scene = scenes.Get(s.scene, s.builder, s.refitFrames);
+        const RenderScene& scene = scenes.Get(s.scene, s.builder, s.lbvhFrames);
         RenderSettings settings = size;
         settings.samplesPerPixel = s.spp;
         settings.maxDepth = s.depth;
@@ -226,7 +228,8 @@ void RunAccuracyBench(const AccuracyOptions& o) {
                               {"spp", s.spp},
                               {"max_depth", s.depth},
                               {"builder", BuilderName(s.builder)},
-                              {"tlas_refit_frames", s.refitFrames},
+                              {"tlas", s.lbvhFrames < 0 ? "SAH" : "LBVH"},
+                              {"tlas_frames_since_build", std::max(s.lbvhFrames, 0)},
                               {"precision", s.reference ? "double" : "float"},
                               {"tests", AccuracyName(s.accuracy)}};
         if (s.reference) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/bvh/dynamic_tlas.h"
 #include "game/paper_scene.h"
 
 namespace rtrt {
@@ -69,7 +70,7 @@ RenderScene MakeFarSpheresScene() {
     return scene;
 }
 
-void RefitTlasAfterMotion(RenderScene& scene, uint32_t frames) {
+void UseRuntimeTlas(RenderScene& scene, uint32_t frames) {
     std::vector<Aabb> blasBounds;
     for (const auto& blas : scene.blases) blasBounds.push_back(blas->bounds);
     std::vector<Instance> before = scene.instances;
@@ -79,12 +80,11 @@ void RefitTlasAfterMotion(RenderScene& scene, uint32_t frames) {
         const vec3 step = kInstanceSpeed * vec3(std::cos(angle), std::sin(angle), 0.0f);
         for (int r = 0; r < 3; ++r) before[i].objectToWorld.row[r].w -= float(frames) * step[r];
     }
-    Tlas tlas = BuildTlas(before, blasBounds);
-    const std::vector<Aabb> world = InstanceWorldBounds(scene.instances, blasBounds);
-    std::vector<Aabb> slotBounds(n);
-    for (size_t slot = 0; slot < n; ++slot) slotBounds[slot] = world[tlas.instanceOrder[slot]];
-    Refit(tlas.nodes, slotBounds);
-    scene.SetTlas(std::move(tlas));
+    // Never rebuilt by the SAH-growth rule: the interval alone decides.
+    DynamicTlas tlas(TlasPolicy{false, 1e30f});
+    tlas.Update(before, blasBounds, true);
+    if (frames > 0) tlas.Update(scene.instances, blasBounds, false);
+    scene.SetTlas({tlas.Tree().nodes, tlas.Tree().primOrder});
 }
 
 }  // namespace rtrt

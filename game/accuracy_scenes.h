@@ -20,13 +20,14 @@ inline constexpr float kGroundHalfSize = 1e5f;
 RenderScene MakeAccuracyDragonScene(std::shared_ptr<const Blas> dragon);
 RenderScene MakeFarSpheresScene();
 
-// The TLAS as a runtime that rebuilds it every N frames and refits in between has it N frames
-// after a rebuild: built where the instances stood `frames` frames ago, each having moved since
-// at kInstanceSpeed per frame in its own direction in the xy plane (instance i at the angle
-// 2.39996 i), then refit to where they stand now. Refit boxes are conservative, so the image is
-// the same; traversal slows as the boxes grow and overlap.
+// Replaces the scene's SAH TLAS with the runtime's (DynamicTlas: an LBVH, refit between
+// rebuilds) as a runtime that rebuilds it every N frames has it N frames after a rebuild: built
+// where the instances stood `frames` frames ago, each having moved since at kInstanceSpeed per
+// frame in its own direction in the xy plane (instance i at the angle 2.39996 i), then refit to
+// where they stand now; frames 0: rebuilt this frame. Refit boxes are conservative, so the image
+// is the same; only traversal time can change.
 inline constexpr float kInstanceSpeed = 0.2f;
-void RefitTlasAfterMotion(RenderScene& scene, uint32_t frames);
+void UseRuntimeTlas(RenderScene& scene, uint32_t frames);
 
 // The ground's height at (x, z): it rises 0.1 per unit away from the camera (-z) and 0.05
 // toward +x, through (0, groundY0, 0). The tilt gives the rounding error of its hit points
