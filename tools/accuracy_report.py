@@ -341,8 +341,8 @@ the same scene and size.
 - **time**: CPU, the wall clock of the whole frame, one warm-up frame, median of 5; GPU, CUDA
   events around the trace kernel, 5 warm-up launches, median of 20. The reference's CPU time is
   that of one double-precision frame. The development VM's 2 cores are shared: there, CPU times
-  of the same setting varied by up to 2x between runs (base float: 1657, 2534 and 2688 ms in
-  three runs on 2026-11-29, with the same trace code), while every error measure came out
+  of the same setting varied by up to 2x between runs (base float: 1363 to 2688 ms in five
+  runs on 2026-11-29 with the same trace code, the slow ones beside another engineer's builds), while every error measure came out
   identical (the renders are deterministic). Compare CPU times within one run, and with care.
 """
 
