@@ -351,6 +351,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         *exitCode = kExitOk;
     });
     AddFrameBench(*bench, exitCode);
+    AddAccuracyBench(*bench, exitCode);
     CLI::App* gpu = bench->add_subcommand(
         "gpu", "Trace time on the GPU (CUDA events) of the paper scene, median of --frames");
     gpu->add_option("--frames", options->gpuFrames,

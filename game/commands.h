@@ -15,6 +15,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode);
 void AddPlayCommand(CLI::App& app, int* exitCode);
 // `rtrt bench frame`, registered by AddBenchCommand.
 void AddFrameBench(CLI::App& bench, int* exitCode);
+// `rtrt bench accuracy`, registered by AddBenchCommand.
+void AddAccuracyBench(CLI::App& bench, int* exitCode);
 void AddConvertCommand(CLI::App& app, int* exitCode);
 void AddInfoCommand(CLI::App& app, int* exitCode);
 // `rtrt bench convert`, registered by AddBenchCommand; machineInfo describes the machine for the

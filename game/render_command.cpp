@@ -19,6 +19,7 @@ struct RenderOptions {
     std::string backend = "cpu";
     std::string view = "shaded";
     int maxDepth = 0;  // 0: the scene's own
+    uint32_t spp = 1;
 };
 
 }  // namespace
@@ -67,6 +68,7 @@ void RunRender(const RenderOptions& o) {
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
     settings.maxDepth = o.maxDepth > 0 ? uint32_t(o.maxDepth) : loaded.scene.maxDepth;
     settings.view = ParseView(o.view);
+    settings.samplesPerPixel = o.spp;
     const Backend backend = o.backend == "cuda" ? Backend::kCuda : Backend::kCpu;
     std::string why;
     if (backend == Backend::kCuda && !CudaBackendAvailable(&why))
@@ -109,6 +111,10 @@ void AddRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--max-depth", options->maxDepth,
                     "Rays per path: 1 = primary only (default: the scene's)")
         ->check(CLI::Range(1, 16));
+    cmd->add_option("--spp", options->spp,
+                    "Samples per pixel of the shaded view, n x n stratified (1, 4, 9, 16...)")
+        ->check(CLI::IsMember({1u, 4u, 9u, 16u, 25u, 36u, 49u, 64u}))
+        ->capture_default_str();
     cmd->add_option("--view", options->view, "shaded, normals, depth or heatmap")
         ->check(CLI::IsMember({"shaded", "normals", "depth", "heatmap"}))
         ->capture_default_str();

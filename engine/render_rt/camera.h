@@ -31,17 +31,23 @@ inline CameraFrame MakeCameraFrame(const Camera& camera, uint32_t width, uint32_
     return f;
 }
 
-// The primary ray through the centre of pixel (x, y); y = 0 is the top row.
-RT_HD inline Ray PrimaryRay(const CameraFrame& f, uint32_t x, uint32_t y, uint32_t width,
+// The primary ray through image position (px, py) in pixels; (0, 0) is the top left corner.
+RT_HD inline Ray PrimaryRay(const CameraFrame& f, float px, float py, uint32_t width,
                             uint32_t height) {
-    const float sx = (2.0f * (float(x) + 0.5f) / float(width) - 1.0f) * f.tanHalfFovY * f.aspect;
-    const float sy = (1.0f - 2.0f * (float(y) + 0.5f) / float(height)) * f.tanHalfFovY;
+    const float sx = (2.0f * px / float(width) - 1.0f) * f.tanHalfFovY * f.aspect;
+    const float sy = (1.0f - 2.0f * py / float(height)) * f.tanHalfFovY;
     Ray ray;
     ray.origin = f.origin;
     ray.dir = glm::normalize(f.forward + sx * f.right + sy * f.up);
     ray.tMax = kInfinity;
     ray.pad = 0.0f;
     return ray;
+}
+
+// The primary ray through the centre of pixel (x, y); y = 0 is the top row.
+RT_HD inline Ray PrimaryRay(const CameraFrame& f, uint32_t x, uint32_t y, uint32_t width,
+                            uint32_t height) {
+    return PrimaryRay(f, float(x) + 0.5f, float(y) + 0.5f, width, height);
 }
 
 }  // namespace rtrt

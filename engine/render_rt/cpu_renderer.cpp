@@ -12,7 +12,8 @@ void RenderInto(const RenderScene& scene, const RenderSettings& settings, Image&
                 RenderStats* stats) {
     if (image.width != settings.width || image.height != settings.height)
         image = Image(settings.width, settings.height);
-    const RenderSceneView view = scene.HostView(settings.width, settings.height, settings.maxDepth);
+    RenderSceneView view = scene.HostView(settings.width, settings.height, settings.maxDepth);
+    view.samplesPerPixel = settings.samplesPerPixel;
     const uint32_t features =
         // The traversal form matters on the GPU only: one CPU specialisation per effect set.
         EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view) &

@@ -45,6 +45,7 @@ struct DeviceScene {
 
     RenderSceneView View(const RenderScene& scene, const RenderSettings& s) const {
         RenderSceneView view = scene.HostView(s.width, s.height, s.maxDepth);
+        view.samplesPerPixel = s.samplesPerPixel;
         view.tlas = {tlasNodes.Data(), instanceOrder.Data(), instances.Data(), blasViews.Data()};
         view.materials = materials.Data();
         view.lights = lights.Data();

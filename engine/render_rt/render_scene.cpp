@@ -73,6 +73,7 @@ RenderSceneView RenderScene::HostView(uint32_t width, uint32_t height, uint32_t 
     view.background = background;
     view.width = width;
     view.height = height;
+    view.samplesPerPixel = 1;
     return view;
 }
 

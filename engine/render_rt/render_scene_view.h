@@ -16,6 +16,7 @@ struct RenderSceneView {
     CameraFrame camera;
     vec3 background;
     uint32_t width, height;
+    uint32_t samplesPerPixel;  // shaded view: n x n stratified samples (pixel_sample.h)
 };
 
 // The largest maxDepth the per-pixel ray stack holds (each bounce adds at most one entry).

@@ -15,6 +15,7 @@ struct RenderSettings {
     uint32_t maxDepth = 4;
     ViewMode view = ViewMode::kShaded;
     uint32_t enabledFeatures = kAllFeatures;  // a feature runs only if the scene has it too
+    uint32_t samplesPerPixel = 1;  // shaded view; a square (1, 4, 9...), see pixel_sample.h
 };
 
 struct RenderStats {

@@ -4,7 +4,7 @@
 // a ray's secondary rays are pushed with the weight they contribute, and the pixel is the sum of
 // weight * local shading over every ray popped.
 #include "engine/render_rt/optics.h"
-#include "engine/render_rt/surface.h"
+#include "engine/render_rt/spawn_variant.h"
 
 namespace rtrt {
 
@@ -17,32 +17,33 @@ struct PixelResult {
 };
 
 // The scene traversal a specialisation uses: on the GPU, scenes of many instances take the single
-// loop over both levels; otherwise (and always on the CPU) the nested form.
-template <uint32_t kFeatures>
+// loop over both levels; otherwise (and always on the CPU) the nested form. kAccuracy
+// (accuracy_variant.h) selects the benchmark's less robust variants, in the nested form only.
+template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
 RT_HD inline bool TraceClosest(const TlasView& tlas, const Ray& ray, SceneHit* hit,
                                TraversalStats* stats) {
 #if defined(RT_ON_GPU)
-    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
+    if constexpr ((kFeatures & kFeatureManyInstances) != 0 && kAccuracy == kAccuracyDefault) {
         float tMax = ray.tMax;
         return TraverseTwoLevel<false>(tlas, ray, tMax, hit, stats);
     }
 #endif
-    return IntersectScene(tlas, ray, hit, stats);
+    return IntersectScene<kAccuracy>(tlas, ray, hit, stats);
 }
 
-template <uint32_t kFeatures>
+template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
 RT_HD inline bool TraceOccluded(const TlasView& tlas, const Ray& ray) {
 #if defined(RT_ON_GPU)
-    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
+    if constexpr ((kFeatures & kFeatureManyInstances) != 0 && kAccuracy == kAccuracyDefault) {
         float tMax = ray.tMax;
         return TraverseTwoLevel<true>(tlas, ray, tMax, nullptr, nullptr);
     }
 #endif
-    return OccludedScene(tlas, ray);
+    return OccludedScene<kAccuracy>(tlas, ray);
 }
 
 // Blinn-Phong for one surface point with hard shadows.
-template <uint32_t kFeatures>
+template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
 RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, const Material& m,
                              vec3 toViewer, uint32_t* rays) {
     vec3 color = m.ambient;
@@ -62,7 +63,9 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
         if (nDotL <= 0.0f || glm::dot(s.geomNormal, l) <= 0.0f) continue;
         if constexpr ((kFeatures & kFeatureShadows) != 0) {
             ++*rays;
-            if (TraceOccluded<kFeatures>(scene.tlas, SpawnRay(s, toLight, shadowTMax))) continue;
+            if (TraceOccluded<kFeatures, kAccuracy>(scene.tlas,
+                                                    SpawnRayAs<kAccuracy>(s, toLight, shadowTMax)))
+                continue;
         }
         const vec3 h = glm::normalize(l + toViewer);
         const float nDotH = fmaxf(0.0f, glm::dot(s.shadingNormal, h));
@@ -71,9 +74,10 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
     return color;
 }
 
-template <uint32_t kFeatures>
-RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, uint32_t y,
-                                    bool countTraversal = false) {
+// Everything one primary ray brings back.
+template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
+RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& primaryRay,
+                                  bool countTraversal = false) {
     struct PendingRay {
         Ray ray;
         vec3 weight;
@@ -81,7 +85,7 @@ RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, ui
     };
     PendingRay stack[kMaxRayDepth + 1];
     uint32_t stackSize = 0;
-    stack[stackSize++] = {PrimaryRay(scene.camera, x, y, scene.width, scene.height), vec3(1.0f), 1};
+    stack[stackSize++] = {primaryRay, vec3(1.0f), 1};
 
     PixelResult result{vec3(0.0f), vec3(0.0f), kInfinity, {}, 0};
     bool primary = true;
@@ -89,7 +93,7 @@ RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, ui
         const PendingRay pending = stack[--stackSize];
         SceneHit hit;
         ++result.rays;
-        const bool found = TraceClosest<kFeatures>(
+        const bool found = TraceClosest<kFeatures, kAccuracy>(
             scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
         if (!found) {
             result.color += pending.weight * scene.background;
@@ -124,17 +128,17 @@ RT_HD inline PixelResult TracePixel(const RenderSceneView& scene, uint32_t x, ui
         const float localWeight = fmaxf(0.0f, 1.0f - m.reflectivity - m.transmissivity);
         if (localWeight > 0.0f)
             result.color += pending.weight * localWeight *
-                            ShadeLocal<kFeatures>(scene, s, m, toViewer, &result.rays);
+                            ShadeLocal<kFeatures, kAccuracy>(scene, s, m, toViewer, &result.rays);
         if (pending.depth >= scene.maxDepth) continue;
         if (reflectWeight > 0.0f) {
             const vec3 dir = Reflect(toViewer, s.shadingNormal);
             if (glm::dot(dir, s.geomNormal) > 0.0f)
-                stack[stackSize++] = {SpawnRay(s, dir), pending.weight * reflectWeight,
+                stack[stackSize++] = {SpawnRayAs<kAccuracy>(s, dir), pending.weight * reflectWeight,
                                       pending.depth + 1};
         }
         if (refractWeight > 0.0f) {
-            stack[stackSize++] = {SpawnRay(s, refracted), pending.weight * refractWeight,
-                                  pending.depth + 1};
+            stack[stackSize++] = {SpawnRayAs<kAccuracy>(s, refracted),
+                                  pending.weight * refractWeight, pending.depth + 1};
         }
     }
     return result;

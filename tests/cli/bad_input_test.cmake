@@ -41,6 +41,9 @@ expect_failure(no_triangles 2 "no_triangles.obj" render ${WORK_DIR}/no_triangles
 expect_failure(bad_size 2 "--size: width and height must be between 1 and 16384" render default --size 0x100)
 expect_failure(mistyped_size 2 "expected WIDTHxHEIGHT" render default --size big)
 expect_failure(bad_view 2 "--view" render default --view fancy)
+expect_failure(bad_spp 2 "--spp" render default --spp 3)
+expect_failure(accuracy_bad_backend 2 "--backend" bench accuracy --backend gpu)
+expect_failure(accuracy_bad_size 2 "--size: width and height must be between 1 and 16384" bench accuracy --size 0x100)
 
 # A bad output path fails before any rendering, and --help succeeds.
 execute_process(COMMAND ${RTRT} render default -o ${WORK_DIR}/no/such/dir/out${EXT} RESULT_VARIABLE status ERROR_VARIABLE stderr)

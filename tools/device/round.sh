@@ -39,6 +39,8 @@ results=$(mktemp -d)
         assets/scenes/demo_glass.json -o "$results/frame-bench.json"
     "$rtrt" bench frame assets/scenes/demo_1000_instances.json assets/scenes/demo_physics.json \
         assets/scenes/demo_glass.json --size 1920x1080 -o "$results/frame-bench-1080p.json"
+    # ~10 s of GPU time; the double reference renders on the host's CPU (docs/accuracy.md).
+    "$rtrt" bench accuracy --backend cuda -o "$results/accuracy-gpu.json"
 } 2>&1 | tee "$out/bench.log"
 tar -C "$results" -cf "$out/results.tar" .
 # RTRT_SANITIZE=1: the whole GPU suite under compute-sanitizer's memcheck and racecheck.
