@@ -83,11 +83,134 @@ std::string DecodeUri(const std::string& uri) {
     return out;
 }
 
-// External buffers and images must exist: checked before tinygltf loads them, so that the
-// message names the array element ("buffers[0].uri") that tinygltf's would not.
-void CheckExternalFiles(const std::string& file, const std::string& json, const std::string& dir) {
+// The JSON types of the fields rtrt reads, per top-level array (glTF 2.0 schema). tinygltf
+// treats a field of the wrong type as absent; rtrt rejects it, naming it.
+enum class Kind {
+    kInt,
+    kString,
+    kBool,
+    kObject,
+    kInts,
+    kNumbers3,
+    kNumbers4,
+    kNumbers16,
+    kObjects
+};
+struct FieldKind {
+    const char* array;
+    const char* field;
+    Kind kind;
+};
+constexpr FieldKind kFieldKinds[] = {
+    {"nodes", "children", Kind::kInts},
+    {"nodes", "mesh", Kind::kInt},
+    {"nodes", "camera", Kind::kInt},
+    {"nodes", "skin", Kind::kInt},
+    {"nodes", "translation", Kind::kNumbers3},
+    {"nodes", "scale", Kind::kNumbers3},
+    {"nodes", "rotation", Kind::kNumbers4},
+    {"nodes", "matrix", Kind::kNumbers16},
+    {"nodes", "extensions", Kind::kObject},
+    {"scenes", "nodes", Kind::kInts},
+    {"meshes", "primitives", Kind::kObjects},
+    {"accessors", "bufferView", Kind::kInt},
+    {"accessors", "byteOffset", Kind::kInt},
+    {"accessors", "componentType", Kind::kInt},
+    {"accessors", "count", Kind::kInt},
+    {"accessors", "type", Kind::kString},
+    {"accessors", "normalized", Kind::kBool},
+    {"bufferViews", "buffer", Kind::kInt},
+    {"bufferViews", "byteOffset", Kind::kInt},
+    {"bufferViews", "byteLength", Kind::kInt},
+    {"bufferViews", "byteStride", Kind::kInt},
+    {"buffers", "uri", Kind::kString},
+    {"buffers", "byteLength", Kind::kInt},
+    {"images", "uri", Kind::kString},
+    {"textures", "source", Kind::kInt},
+    {"textures", "sampler", Kind::kInt},
+    {"materials", "pbrMetallicRoughness", Kind::kObject},
+    {"materials", "extensions", Kind::kObject},
+    {"animations", "channels", Kind::kObjects},
+    {"animations", "samplers", Kind::kObjects},
+    {"cameras", "type", Kind::kString},
+};
+
+bool IsKind(const nlohmann::json& v, Kind kind) {
+    auto numbers = [&](size_t n) {
+        if (!v.is_array() || v.size() != n) return false;
+        for (const nlohmann::json& x : v)
+            if (!x.is_number()) return false;
+        return true;
+    };
+    switch (kind) {
+        case Kind::kInt:
+            return v.is_number_integer();
+        case Kind::kString:
+            return v.is_string();
+        case Kind::kBool:
+            return v.is_boolean();
+        case Kind::kObject:
+            return v.is_object();
+        case Kind::kNumbers3:
+            return numbers(3);
+        case Kind::kNumbers4:
+            return numbers(4);
+        case Kind::kNumbers16:
+            return numbers(16);
+        case Kind::kInts:
+        case Kind::kObjects:
+            if (!v.is_array()) return false;
+            for (const nlohmann::json& x : v)
+                if (kind == Kind::kInts ? !x.is_number_integer() : !x.is_object()) return false;
+            return true;
+    }
+    return false;
+}
+
+const char* KindName(Kind kind) {
+    switch (kind) {
+        case Kind::kInt:
+            return "an integer";
+        case Kind::kString:
+            return "a string";
+        case Kind::kBool:
+            return "true or false";
+        case Kind::kObject:
+            return "an object";
+        case Kind::kInts:
+            return "an array of integers";
+        case Kind::kNumbers3:
+            return "an array of 3 numbers";
+        case Kind::kNumbers4:
+            return "an array of 4 numbers";
+        case Kind::kNumbers16:
+            return "an array of 16 numbers";
+        case Kind::kObjects:
+            return "an array of objects";
+    }
+    return "";
+}
+
+// Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
+// that external buffers and images exist, so that the message names the field
+// ("buffers[0].uri") where tinygltf's would not.
+void CheckJson(const std::string& file, const std::string& json, const std::string& dir) {
     const nlohmann::json root = nlohmann::json::parse(json, nullptr, false);
     if (!root.is_object()) return;  // tinygltf reports what is wrong with it
+    for (const char* array : {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers",
+                              "images", "textures", "materials", "animations", "cameras"}) {
+        if (!root.contains(array)) continue;
+        const nlohmann::json& list = root[array];
+        if (!IsKind(list, Kind::kObjects))
+            throw InputError(file, array, "expected an array of objects");
+        for (size_t i = 0; i < list.size(); ++i)
+            for (const FieldKind& f : kFieldKinds)
+                if (std::strcmp(f.array, array) == 0 && list[i].contains(f.field) &&
+                    !IsKind(list[i][f.field], f.kind))
+                    throw InputError(file, Indexed(array, i) + "." + f.field,
+                                     std::string("expected ") + KindName(f.kind) + ", got " +
+                                         list[i][f.field].type_name());
+    }
     for (const char* array : {"buffers", "images"}) {
         if (!root.contains(array) || !root[array].is_array()) continue;
         const nlohmann::json& list = root[array];
@@ -220,7 +343,7 @@ class Importer {
         const bool binary = lower == ".glb" || bytes.compare(0, 4, "glTF") == 0;
         if (binary) CheckGlbHeader(file_, bytes);
         const std::string dir = fs::path(file_).parent_path().string();
-        CheckExternalFiles(file_, binary ? GlbJson(bytes) : bytes, dir);
+        CheckJson(file_, binary ? GlbJson(bytes) : bytes, dir);
         tinygltf::TinyGLTF loader;
         std::string err, warn;
         const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -317,7 +440,8 @@ class Importer {
             if (!values.empty() && values.size() != size)
                 Fail(at + "." + field, "expected " + std::to_string(size) + " numbers");
             for (double v : values)
-                if (!Finite(v)) Fail(at + "." + field, "a value is NaN or infinite");
+                if (!Finite(v))
+                    Fail(at + "." + field, "a value is NaN or infinite (or beyond float range)");
         };
         finite(node.translation, "translation", 3);
         finite(node.rotation, "rotation", 4);
