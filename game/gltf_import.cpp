@@ -452,10 +452,11 @@ class Importer {
         if (!node.translation.empty())
             t.translation = vec3(node.translation[0], node.translation[1], node.translation[2]);
         if (!node.rotation.empty()) {
-            const glm::quat q(float(node.rotation[3]), float(node.rotation[0]),
-                              float(node.rotation[1]), float(node.rotation[2]));
-            if (!(glm::length(q) > 0.0f)) Fail(at + ".rotation", "the quaternion is zero");
-            t.rotation = glm::normalize(q);
+            // Normalised in double: components near float's range would overflow the length.
+            const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1],
+                               node.rotation[2]);
+            if (!(glm::length(q) > 0.0)) Fail(at + ".rotation", "the quaternion is zero");
+            t.rotation = glm::quat(glm::normalize(q));
         }
         if (!node.scale.empty()) t.scale = vec3(node.scale[0], node.scale[1], node.scale[2]);
         return t;
@@ -520,12 +521,13 @@ class Importer {
             } else {
                 Fail(at + ".type", "unknown light type \"" + l.type + "\"");
             }
-            vec3 color(1.0f);
-            if (l.color.size() == 3) color = vec3(l.color[0], l.color[1], l.color[2]);
             if (!l.color.empty() && l.color.size() != 3) Fail(at + ".color", "expected 3 numbers");
-            if (!Finite(l.intensity) || l.intensity < 0.0 || !Finite(color.x) || !Finite(color.y) ||
-                !Finite(color.z) || glm::any(glm::lessThan(color, vec3(0.0f))))
-                Fail(at, "colour or intensity is negative, NaN or infinite");
+            for (double c : l.color)
+                if (!Finite(c) || c < 0.0 || c > 1e6) Fail(at + ".color", "must be 0 to 1e6");
+            if (!Finite(l.intensity) || l.intensity < 0.0 || l.intensity > 1e6)
+                Fail(at + ".intensity", "must be 0 to 1e6");
+            const vec3 color =
+                l.color.size() == 3 ? vec3(l.color[0], l.color[1], l.color[2]) : vec3(1.0f);
             // rtrt lights do not fall off with distance: colour x intensity as it is.
             light.color = color * float(l.intensity);
             asset_.lights.push_back(light);
@@ -543,6 +545,7 @@ class Importer {
             const tinygltf::Node& node = model_.nodes[size_t(index)];
             GltfNode out;
             out.parent = parent;
+            out.source = uint32_t(index);
             out.local = NodeTransform(size_t(index));
             const std::string at = Indexed("nodes", size_t(index));
             if (node.mesh >= 0) {
@@ -992,10 +995,10 @@ class Importer {
                     });
                     clip.rotation.times = times;
                     for (const glm::vec4& q : v) {
-                        const glm::quat r(q.w, q.x, q.y, q.z);
-                        if (!(glm::length(r) > 0.0f))
+                        const glm::dquat r(q.w, q.x, q.y, q.z);
+                        if (!(glm::length(r) > 0.0))
                             Fail(samplerAt + ".output", "a rotation quaternion is zero");
-                        clip.rotation.values.push_back(glm::normalize(r));
+                        clip.rotation.values.push_back(glm::quat(glm::normalize(r)));
                     }
                     clip.rotation.interpolation = mode == physics::Interpolation::kStep
                                                       ? mode
@@ -1099,6 +1102,8 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
         EntityDesc e;
         e.renderable = false;
         e.parent = up;
+        e.sourceArray = "nodes";
+        e.sourceIndex = node.source;
         e.local = node.local;
         if (node.clip) {
             physics::Animator animator;
@@ -1113,6 +1118,8 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
             p.blasId = blas;
             p.materialId = material;
             p.parent = entity[i];
+            p.sourceArray = "nodes";
+            p.sourceIndex = node.source;
             out.entities.push_back(p);
         }
         const vec3 origin = vec3(world[i] * glm::vec4(0, 0, 0, 1));
@@ -1168,7 +1175,7 @@ LoadedScene LoadGltfScene(const std::string& path) {
         light.vector = glm::normalize(vec3(1.0f, 1.0f, 1.0f));
         out.scene.lights.push_back(light);
     }
-    FinishLoadedScene(out);
+    FinishLoadedScene(out, path);
     return out;
 }
 

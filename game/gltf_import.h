@@ -16,6 +16,7 @@ namespace rtrt {
 // One node of a glTF scene, in an order where parents come before their children.
 struct GltfNode {
     int32_t parent = -1;  // index into GltfAsset::nodes, or -1 for a root of the scene
+    uint32_t source = 0;  // its index in the file's nodes
     physics::LocalTransform local;
     std::shared_ptr<const physics::KeyframeClip> clip;      // its channels of the played animation
     std::vector<std::pair<uint32_t, uint32_t>> primitives;  // (BLAS id, material id)

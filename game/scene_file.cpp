@@ -151,7 +151,7 @@ class SceneParser {
         Json root;
         try {
             root = Json::parse(text);
-        } catch (const Json::parse_error& e) {
+        } catch (const Json::exception& e) {  // parse_error, or out_of_range for 1e999
             throw InputError(file_, "", std::string("malformed JSON: ") + e.what());
         }
         Fields top(root, "", file_);
@@ -175,7 +175,7 @@ class SceneParser {
         if (top.Has("spawners")) ParseSpawners(top.Get("spawners"), out);
         if (top.Has("camera_path")) ParseCameraPath(top.Get("camera_path"), out);
         top.Finish();
-        FinishLoadedScene(out);
+        FinishLoadedScene(out, file_);
         return out;
     }
 
@@ -344,6 +344,7 @@ class SceneParser {
         for (size_t i = 0; i < j.size(); ++i) {
             Fields f(j[i], "instances[" + std::to_string(i) + "]", file_);
             out.entities.push_back(ParseEntity(f, out.scene));
+            out.entities.back().sourceIndex = uint32_t(i);
             f.Finish();
             if (!gltf_) continue;
             // The instance is the root the glTF scene's nodes hang from.
@@ -551,6 +552,8 @@ class SceneParser {
             if (grid == rain) f.Fail("", "give exactly one of grid or rain");
             const std::vector<vec3> places =
                 grid ? GridPlaces(f, proto) : RainPlaces(f, out, proto);
+            proto.sourceArray = "spawners";
+            proto.sourceIndex = uint32_t(i);
             for (const vec3& p : places) {
                 EntityDesc e = proto;
                 e.local.translation = p;
@@ -694,7 +697,7 @@ std::vector<glm::mat4> InitialWorlds(const LoadedScene& out) {
     return worlds;
 }
 
-void FinishLoadedScene(LoadedScene& out) {
+void FinishLoadedScene(LoadedScene& out, const std::string& file) {
     // Entities with parents are all of time 0 and come before every spawner's, so the stable
     // sort moves none of them nor their parents.
     std::stable_sort(
@@ -703,6 +706,20 @@ void FinishLoadedScene(LoadedScene& out) {
     const std::vector<glm::mat4> worlds = InitialWorlds(out);
     for (size_t i = 0; i < out.entities.size(); ++i) {
         const EntityDesc& e = out.entities[i];
+        if (e.renderable) {
+            const Aabb b = out.scene.blases[e.blasId]->bounds;
+            for (int corner = 0; corner < 8; ++corner) {
+                const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                             (corner & 4) ? b.max.z : b.min.z);
+                const glm::vec4 w = worlds[i] * glm::vec4(p, 1.0f);
+                if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
+                    throw InputError(
+                        file,
+                        std::string(e.sourceArray) + "[" + std::to_string(e.sourceIndex) + "]",
+                        "its world bounds are not finite (position, scale or model "
+                        "size too large)");
+            }
+        }
         out.dynamic |= e.animator.has_value() || e.body.has_value() || e.spawnTime > 0.0f;
         if (e.spawnTime == 0.0f && e.renderable)
             out.scene.AddInstance(e.blasId, e.materialId, worlds[i]);

@@ -21,6 +21,9 @@ struct EntityDesc {
     // The entity whose transform this one's local pose is relative to: an index into
     // LoadedScene::entities, always smaller than this entity's (parents come first), or -1.
     int32_t parent = -1;
+    // Where the entity came from, for messages: sourceArray[sourceIndex] ("instances", 3).
+    const char* sourceArray = "instances";
+    uint32_t sourceIndex = 0;
     physics::LocalTransform local;
     std::optional<physics::Animator> animator;
     std::optional<physics::RigidBody> body;  // with collider, derived from the model's shape
@@ -66,7 +69,9 @@ LoadedScene LoadSceneFile(const std::string& path);
 
 // The last step of loading: entities ordered by spawn time (parents stay ahead of their
 // children), an instance for every renderable entity of time 0 at its world pose, the TLAS.
-void FinishLoadedScene(LoadedScene& out);
+// Throws InputError(file, e.g. "instances[3]", ...) when an entity's world bounds are not finite
+// (positions and scales each in range can still multiply beyond float range).
+void FinishLoadedScene(LoadedScene& out, const std::string& file);
 
 // The world matrix of every entity in its initial pose (parent chains followed).
 std::vector<glm::mat4> InitialWorlds(const LoadedScene& out);

@@ -1,6 +1,7 @@
 #pragma once
 // Small glTF 2.0 files written by the tests themselves, with known answers: a JSON document and
 // one binary buffer, saved as .gltf (the buffer as a base64 data URI) or .glb.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -157,5 +158,51 @@ class GltfBuilder {
         }
     }
 };
+
+using Json = nlohmann::json;
+
+// A quad filling [-1, 1]^2 in z = 0, texture coordinate (0, 0) at its top-left corner.
+inline int QuadMesh(GltfBuilder& b, int material) {
+    const int pos = b.Floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
+    const int uv = b.Floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 2);
+    const int idx = b.Accessor(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, 5123, "SCALAR", 1);
+    return b.Mesh(pos, idx, uv, material);
+}
+
+// The quad seen by a 90-degree camera from z = 1: it fills the square image exactly. The
+// material shows the texture unlit (ambient 0.1 + emissive 0.9 = 1, and the only light shines
+// on the quad's back), so every pixel is its texel.
+inline std::string TexturedQuadGltf(int texWidth, int texHeight, const std::vector<uint8_t>& rgb,
+                                    int filter, int wrap) {
+    GltfBuilder b;
+    b.doc["images"] = Json::array(
+        {{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>([&] {
+                      const std::string bmp = GltfBuilder::Bmp(texWidth, texHeight, rgb);
+                      return std::vector<uint8_t>(bmp.begin(), bmp.end());
+                  }()))}}});
+    b.doc["samplers"] = Json::array(
+        {{{"magFilter", filter}, {"minFilter", filter}, {"wrapS", wrap}, {"wrapT", wrap}}});
+    b.doc["textures"] = Json::array({{{"source", 0}, {"sampler", 0}}});
+    b.doc["materials"] = Json::array({{{"pbrMetallicRoughness",
+                                        {{"baseColorTexture", {{"index", 0}}},
+                                         {"metallicFactor", 0.0},
+                                         {"roughnessFactor", 1.0}}},
+                                       {"emissiveFactor", {0.9, 0.9, 0.9}}}});
+    b.doc["cameras"] = Json::array(
+        {{{"type", "perspective"},
+          {"perspective", {{"yfov", M_PI / 2}, {"aspectRatio", 1.0}, {"znear", 0.01}}}}});
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+        Json::array({{{"type", "directional"}, {"color", {1, 1, 1}}}});
+    b.doc["extensionsUsed"] = Json::array({"KHR_lights_punctual"});
+    const int mesh = QuadMesh(b, 0);
+    const int quad = b.Node({{"mesh", mesh}});
+    const int camera = b.Node({{"camera", 0}, {"translation", {0, 0, 1}}});
+    // Turned half way about y, the light shines along +z, onto the quad's back.
+    const int light = b.Node(
+        {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"rotation", {0, 1, 0, 0}}});
+    b.doc["scenes"] = Json::array({{{"nodes", {quad, camera, light}}}});
+    b.doc["scene"] = 0;
+    return b.GltfText();
+}
 
 }  // namespace rtrt::test

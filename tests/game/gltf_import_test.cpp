@@ -45,50 +45,6 @@ class GltfTest : public ::testing::Test {
     fs::path dir_;
 };
 
-// A quad filling [-1, 1]^2 in z = 0, texture coordinate (0, 0) at its top-left corner.
-int QuadMesh(GltfBuilder& b, int material) {
-    const int pos = b.Floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
-    const int uv = b.Floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 2);
-    const int idx = b.Accessor(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, kUShort, "SCALAR", 1);
-    return b.Mesh(pos, idx, uv, material);
-}
-
-// The quad seen by a 90-degree camera from z = 1: it fills the square image exactly. The
-// material shows the texture unlit (ambient 0.1 + emissive 0.9 = 1, and the only light shines
-// on the quad's back), so every pixel is its texel.
-std::string TexturedQuad(int texWidth, int texHeight, const std::vector<uint8_t>& rgb, int filter,
-                         int wrap) {
-    GltfBuilder b;
-    b.doc["images"] = Json::array(
-        {{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>([&] {
-                      const std::string bmp = GltfBuilder::Bmp(texWidth, texHeight, rgb);
-                      return std::vector<uint8_t>(bmp.begin(), bmp.end());
-                  }()))}}});
-    b.doc["samplers"] = Json::array(
-        {{{"magFilter", filter}, {"minFilter", filter}, {"wrapS", wrap}, {"wrapT", wrap}}});
-    b.doc["textures"] = Json::array({{{"source", 0}, {"sampler", 0}}});
-    b.doc["materials"] = Json::array({{{"pbrMetallicRoughness",
-                                        {{"baseColorTexture", {{"index", 0}}},
-                                         {"metallicFactor", 0.0},
-                                         {"roughnessFactor", 1.0}}},
-                                       {"emissiveFactor", {0.9, 0.9, 0.9}}}});
-    b.doc["cameras"] = Json::array(
-        {{{"type", "perspective"},
-          {"perspective", {{"yfov", M_PI / 2}, {"aspectRatio", 1.0}, {"znear", 0.01}}}}});
-    b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
-        Json::array({{{"type", "directional"}, {"color", {1, 1, 1}}}});
-    b.doc["extensionsUsed"] = Json::array({"KHR_lights_punctual"});
-    const int mesh = QuadMesh(b, 0);
-    const int quad = b.Node({{"mesh", mesh}});
-    const int camera = b.Node({{"camera", 0}, {"translation", {0, 0, 1}}});
-    // Turned half way about y, the light shines along +z, onto the quad's back.
-    const int light = b.Node(
-        {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"rotation", {0, 1, 0, 0}}});
-    b.doc["scenes"] = Json::array({{{"nodes", {quad, camera, light}}}});
-    b.doc["scene"] = 0;
-    return b.GltfText();
-}
-
 Image RenderScene8(const LoadedScene& loaded, uint32_t size) {
     RenderSettings settings;
     settings.width = settings.height = size;
@@ -100,7 +56,7 @@ TEST_F(GltfTest, NearestTexturedQuadShowsItsTexels) {
     std::vector<uint8_t> rgb;
     for (int i = 0; i < 16; ++i)
         rgb.insert(rgb.end(), {uint8_t(16 * i), uint8_t(255 - 9 * i), uint8_t(7 * i + 3)});
-    const std::string path = Save("quad.gltf", TexturedQuad(4, 4, rgb, 9728, 33071));
+    const std::string path = Save("quad.gltf", test::TexturedQuadGltf(4, 4, rgb, 9728, 33071));
     const LoadedScene loaded = LoadSceneFile(path);
     EXPECT_NE(loaded.scene.Features() & kFeatureTextures, 0u);
     ASSERT_EQ(loaded.scene.textures.size(), 1u);
@@ -120,7 +76,7 @@ TEST_F(GltfTest, BilinearTexturedQuadBlendsNeighbours) {
     // Two texels, black and white, clamped: along x the colour ramps from the first texel
     // centre (u = 1/4) to the second (u = 3/4) and is flat outside.
     const std::vector<uint8_t> rgb = {0, 0, 0, 255, 255, 255};
-    const std::string path = Save("ramp.gltf", TexturedQuad(2, 1, rgb, 9729, 33071));
+    const std::string path = Save("ramp.gltf", test::TexturedQuadGltf(2, 1, rgb, 9729, 33071));
     const Image image = RenderScene8(LoadSceneFile(path), 8);
     for (uint32_t x = 0; x < 8; ++x) {
         const float u = (float(x) + 0.5f) / 8.0f;
@@ -453,7 +409,9 @@ TEST_F(GltfTest, EveryHostileFileGivesOneError) {
             ADD_FAILURE() << c.name << ": loaded without an error";
         } catch (const InputError& e) {
             EXPECT_EQ(e.File(), path) << c.name;
-            if (!c.field.empty()) EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
+            if (!c.field.empty()) {
+                EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
+            }
             EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
             EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << c.name;
         }

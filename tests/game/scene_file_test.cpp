@@ -167,6 +167,8 @@ TEST(SceneFile, HostileSceneFiles) {
         {"keys_out_of_order.json", "keys_out_of_order.json", "instances[0].animate.keyframes",
          "increase"},
         {"degenerate_camera.json", "degenerate_camera.json", "camera.forward", "zero length"},
+        {"infinite_bounds.json", "infinite_bounds.json", "instances[1]", "not finite"},
+        {"number_overflow.json", "number_overflow.json", "", "malformed JSON"},
         {"not_an_object.json", "not_an_object.json", "", "expected an object"},
     };
     EXPECT_NO_THROW(LoadSceneFile(dir + "/valid.json"));
