@@ -242,3 +242,22 @@ if(NOT status EQUAL 0 OR NOT stdout MATCHES "glTF 2.0 scene" OR NOT stdout MATCH
    OR NOT stdout MATCHES "1 triangles, 3 vertices" OR NOT stdout MATCHES "SAH cost")
     message(FATAL_ERROR "info valid.gltf: status ${status}: ${stdout}${stderr}")
 endif()
+
+# The committed textured glTF plays headless (its animation moves the quads) and info lists it.
+set(QUADS ${SOURCE_DIR}/assets/models/textured_quads.gltf)
+execute_process(COMMAND ${RTRT} play ${QUADS} --headless --frames 2 --fps 1 --size 48x32
+    -o ${WORK_DIR}/quads_%02d.ppm RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/quads_00.ppm OR NOT EXISTS ${WORK_DIR}/quads_01.ppm)
+    message(FATAL_ERROR "play textured_quads.gltf: status ${status}: ${stderr}")
+endif()
+file(SHA256 ${WORK_DIR}/quads_00.ppm first)
+file(SHA256 ${WORK_DIR}/quads_01.ppm second)
+if(first STREQUAL second)
+    message(FATAL_ERROR "play textured_quads.gltf: the glTF animation did not move anything")
+endif()
+execute_process(COMMAND ${RTRT} info ${QUADS} RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT stdout MATCHES "materials   4, textures 3"
+   OR NOT stdout MATCHES "animations  1 \\(the first plays: 2 nodes, 2 s, looping\\)"
+   OR NOT stdout MATCHES "cameras     1 placed, lights 2 placed")
+    message(FATAL_ERROR "info textured_quads.gltf: status ${status}: ${stdout}${stderr}")
+endif()
