@@ -195,8 +195,13 @@ const char* KindName(Kind kind) {
 // that external buffers and images exist, so that the message names the field
 // ("buffers[0].uri") where tinygltf's would not.
 void CheckJson(const std::string& file, const std::string& json, const std::string& dir) {
-    const nlohmann::json root = nlohmann::json::parse(json, nullptr, false);
-    if (!root.is_object()) return;  // tinygltf reports what is wrong with it
+    nlohmann::json root;
+    try {
+        root = nlohmann::json::parse(json);
+    } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e999
+        throw InputError(file, "", std::string("malformed JSON: ") + e.what());
+    }
+    if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
     for (const char* array : {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers",
                               "images", "textures", "materials", "animations", "cameras"}) {
         if (!root.contains(array)) continue;

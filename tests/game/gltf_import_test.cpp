@@ -388,7 +388,7 @@ std::vector<HostileGltf> MakeHostileGltfCorpus() {
          "images[0].uri", "no such file"},
         {"wrong_type.gltf", edit([](GltfBuilder& b) { b.doc["nodes"][1]["mesh"] = 7; }),
          "nodes[1].mesh", "out of range"},
-        {"not_json.gltf", "{ \"asset\": ", "", ""},
+        {"not_json.gltf", "{ \"asset\": ", "", "malformed JSON"},
         {"wrong_json_type.gltf",
          edit([](GltfBuilder& b) { b.doc["nodes"][1]["translation"] = "up"; }),
          "nodes[1].translation", "expected an array of 3 numbers, got string"},
