@@ -4,6 +4,8 @@ find_package(TBB REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json REQUIRED)
 find_package(ZLIB REQUIRED)
+# tinygltf is Debian's shared library (its implementation and stb's are inside it): glTF import.
+find_package(TinyGLTF REQUIRED)
 # xxHash (libxxhash-dev) is used header-only (XXH_INLINE_ALL): no library to link.
 find_path(XXHASH_INCLUDE_DIR xxhash.h REQUIRED)
 find_package(PkgConfig REQUIRED)

@@ -1,5 +1,5 @@
-// `rtrt info FILE`: what a mesh, an .rtmodel or a scene file holds — counts, bounds, materials,
-// lights, animation, and the statistics of every BVH.
+// `rtrt info FILE`: what a mesh, an .rtmodel, a scene file or a glTF file holds — counts, bounds,
+// materials, lights, animation, and the statistics of every BVH.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -7,6 +7,7 @@
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
 #include "game/commands.h"
+#include "game/gltf_import.h"
 #include "game/model_cache.h"
 #include "game/scene_file.h"
 
@@ -93,7 +94,21 @@ void PrintModel(const std::string& path) {
 void PrintScene(const std::string& path) {
     const LoadedScene loaded = LoadSceneFile(path);
     const RenderScene& scene = loaded.scene;
-    std::printf("%s: scene file\n", path.c_str());
+    std::printf("%s: %s\n", path.c_str(), IsGltfPath(path) ? "glTF 2.0 scene" : "scene file");
+    for (const GltfSummary& g : loaded.gltfFiles) {
+        std::printf("  glTF          %s\n", g.file.c_str());
+        std::printf("    nodes       %u in the scene shown; %u meshes, %u triangle primitives\n",
+                    g.nodes, g.meshes, g.primitives);
+        std::printf("    geometry    %s triangles, %s vertices\n", Grouped(g.triangles).c_str(),
+                    Grouped(g.vertices).c_str());
+        std::printf("    materials   %u, textures %u\n", g.materials, g.textures);
+        std::printf("    cameras     %u placed, lights %u placed\n", g.cameras, g.lights);
+        std::printf("    animations  %u", g.animations);
+        if (g.animations > 0)
+            std::printf(" (the first plays: %u nodes, %.3g s, looping)", g.animatedNodes,
+                        g.animationSeconds);
+        std::printf("\n");
+    }
     std::printf("  camera        at %s looking along %s, vertical field of view %g degrees%s\n",
                 Vec(scene.camera.position).c_str(), Vec(scene.camera.forward).c_str(),
                 scene.camera.fovYDegrees,
@@ -138,7 +153,7 @@ void RunInfo(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "no such file");
     const std::string ext = std::filesystem::path(path).extension().string();
-    if (ext == ".json" || ext == ".JSON")
+    if (ext == ".json" || ext == ".JSON" || IsGltfPath(path))
         PrintScene(path);
     else
         PrintModel(path);
@@ -150,9 +165,11 @@ void AddInfoCommand(CLI::App& app, int* exitCode) {
     auto path = std::make_shared<std::string>();
     CLI::App* cmd = app.add_subcommand(
         "info",
-        "Describe a mesh, an .rtmodel or a scene file: counts, bounds, materials, lights, "
-        "animation, BVH statistics");
-    cmd->add_option("file", *path, "Mesh (.obj, .ply, .ply.gz), .rtmodel or scene file (.json)")
+        "Describe a mesh, an .rtmodel, a scene file or a glTF file: counts, bounds, materials, "
+        "lights, cameras, animation, nodes, BVH statistics");
+    cmd->add_option(
+           "file", *path,
+           "Mesh (.obj, .ply, .ply.gz), .rtmodel, scene file (.json) or glTF (.gltf, .glb)")
         ->required();
     cmd->callback([path, exitCode] {
         RunInfo(*path);

@@ -37,7 +37,9 @@ bool ReadCacheEntry(const std::string& path, const RtModelKey& key, MeshModel* m
         model->readMs = timer.Milliseconds();
         return true;
     } catch (const InputError& e) {
-        std::fprintf(stderr, "rtrt: warning: rebuilding a bad cache entry: %s\n", e.what());
+        // An entry of another format version was written by another rtrt: stale, not bad.
+        if (e.Field() != "header.version")
+            std::fprintf(stderr, "rtrt: warning: rebuilding a bad cache entry: %s\n", e.what());
         return false;
     }
 }

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "game/gltf_import.h"
 #include "game/mesh_io.h"
 #include "game/model_cache.h"
 #include "game/model_dir.h"
@@ -150,14 +151,15 @@ class SceneParser {
         Json root;
         try {
             root = Json::parse(text);
-        } catch (const Json::parse_error& e) {
+        } catch (const Json::exception& e) {  // parse_error, or out_of_range for 1e999
             throw InputError(file_, "", std::string("malformed JSON: ") + e.what());
         }
         Fields top(root, "", file_);
         LoadedScene out;
         out_ = &out;
         RenderScene& scene = out.scene;
-        if (top.Has("camera")) scene.camera = ParseCamera(top.Get("camera"));
+        hasCamera_ = top.Has("camera");
+        if (hasCamera_) scene.camera = ParseCamera(top.Get("camera"));
         scene.background = top.Colour("background", scene.background);
         scene.maxDepth = top.Count("max_depth", 1, 16, scene.maxDepth);
         if (top.Has("image")) {
@@ -173,17 +175,7 @@ class SceneParser {
         if (top.Has("spawners")) ParseSpawners(top.Get("spawners"), out);
         if (top.Has("camera_path")) ParseCameraPath(top.Get("camera_path"), out);
         top.Finish();
-        std::stable_sort(
-            out.entities.begin(), out.entities.end(),
-            [](const EntityDesc& a, const EntityDesc& b) { return a.spawnTime < b.spawnTime; });
-        for (const EntityDesc& e : out.entities) {
-            out.dynamic |= e.animator.has_value() || e.body.has_value() || e.spawnTime > 0.0f;
-            if (e.spawnTime == 0.0f)
-                scene.AddInstance(e.blasId, e.materialId, physics::ToMatrix(e.local));
-        }
-        out.dynamic |= !out.cameraPath.empty();
-        if (!out.cameraPath.empty()) scene.camera = CameraAt(out, 0.0f);
-        scene.BuildTlas();
+        FinishLoadedScene(out, file_);
         return out;
     }
 
@@ -262,6 +254,16 @@ class SceneParser {
                              std::string("expected an object of named models, got ") + TypeName(j));
         for (const auto& [name, value] : j.items()) {
             Fields f(value, "models." + name, file_);
+            if (value.contains("type") && value["type"] == "gltf") {
+                // A glTF scene: its meshes, materials and textures are added once here; every
+                // instance places its node hierarchy again.
+                f.String("type");
+                const std::string path = ResolveModelPath(f.String("file"), baseDir_);
+                f.Finish();
+                gltfAssets_[name] = std::make_shared<GltfAsset>(LoadGltfAsset(path, *out_));
+                out_->gltfFiles.push_back(gltfAssets_[name]->summary);
+                continue;
+            }
             shape_ = {};
             modelIds_[name] = scene.AddBlas(std::make_shared<const Blas>(ParseModel(f)));
             modelShapes_[modelIds_[name]] = shape_;
@@ -310,7 +312,7 @@ class SceneParser {
             return std::move(model.blas);
         } else {
             f.Fail("type", "unknown model type \"" + type +
-                               "\" (expected sphere, spheres, box, plane, teapot or mesh)");
+                               "\" (expected sphere, spheres, box, plane, teapot, mesh or gltf)");
         }
         if (f.Has("fit")) FitMesh(mesh, f.Positive("fit"));
         return BuildTriangleBlas(mesh, options);
@@ -342,7 +344,17 @@ class SceneParser {
         for (size_t i = 0; i < j.size(); ++i) {
             Fields f(j[i], "instances[" + std::to_string(i) + "]", file_);
             out.entities.push_back(ParseEntity(f, out.scene));
+            out.entities.back().sourceIndex = uint32_t(i);
             f.Finish();
+            if (!gltf_) continue;
+            // The instance is the root the glTF scene's nodes hang from.
+            const std::optional<Camera> camera =
+                InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
+                                physics::ToMatrix(out.entities.back().local));
+            if (camera && !hasCamera_) {
+                out.scene.camera = *camera;
+                hasCamera_ = true;
+            }
         }
     }
 
@@ -350,6 +362,17 @@ class SceneParser {
     EntityDesc ParseEntity(Fields& f, RenderScene& scene) {
         EntityDesc e;
         const std::string model = f.String("model");
+        auto gltf = gltfAssets_.find(model);
+        gltf_ = gltf == gltfAssets_.end() ? nullptr : gltf->second.get();
+        if (gltf_) {
+            if (f.Has("material")) f.Fail("material", "a glTF model brings its own materials");
+            if (f.Has("rigid_body")) f.Fail("rigid_body", "a glTF model cannot be a rigid body");
+            e.renderable = false;
+            e.local = ParseTransform(f);
+            if (f.Has("animate"))
+                e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local);
+            return e;
+        }
         auto modelIt = modelIds_.find(model);
         if (modelIt == modelIds_.end())
             f.Fail("model", "no model named \"" + model + "\" in models");
@@ -522,11 +545,15 @@ class SceneParser {
         for (size_t i = 0; i < j.size(); ++i) {
             Fields f(j[i], "spawners[" + std::to_string(i) + "]", file_);
             EntityDesc proto = ParseEntity(f, out.scene);
+            if (gltf_)
+                f.Fail("model", "spawners place single models, and this one is a glTF scene");
             proto.spawnTime = f.InRange("time", 0.0f, 1e6f, 0.0f);
             const bool grid = f.Has("grid"), rain = f.Has("rain");
             if (grid == rain) f.Fail("", "give exactly one of grid or rain");
             const std::vector<vec3> places =
                 grid ? GridPlaces(f, proto) : RainPlaces(f, out, proto);
+            proto.sourceArray = "spawners";
+            proto.sourceIndex = uint32_t(i);
             for (const vec3& p : places) {
                 EntityDesc e = proto;
                 e.local.translation = p;
@@ -650,12 +677,57 @@ class SceneParser {
     std::map<std::string, uint32_t> materialIds_, modelIds_;
     std::map<uint32_t, ModelShape> modelShapes_;
     std::map<uint32_t, std::string> modelNames_;
-    ModelShape shape_;            // of the model being parsed
-    LoadedScene* out_ = nullptr;  // the scene being parsed
+    std::map<std::string, std::shared_ptr<const GltfAsset>> gltfAssets_;
+    const GltfAsset* gltf_ = nullptr;  // the glTF model of the entity just parsed, if it is one
+    bool hasCamera_ = false;           // the file or an included glTF has set the camera
+    ModelShape shape_;                 // of the model being parsed
+    LoadedScene* out_ = nullptr;       // the scene being parsed
     uint32_t defaultMaterial_ = UINT32_MAX;
 };
 
 }  // namespace
+
+std::vector<glm::mat4> InitialWorlds(const LoadedScene& out) {
+    std::vector<glm::mat4> worlds(out.entities.size());
+    for (size_t i = 0; i < out.entities.size(); ++i) {
+        const EntityDesc& e = out.entities[i];
+        const glm::mat4 local = physics::ToMatrix(e.local);
+        worlds[i] = e.parent >= 0 ? worlds[size_t(e.parent)] * local : local;
+    }
+    return worlds;
+}
+
+void FinishLoadedScene(LoadedScene& out, const std::string& file) {
+    // Entities with parents are all of time 0 and come before every spawner's, so the stable
+    // sort moves none of them nor their parents.
+    std::stable_sort(
+        out.entities.begin(), out.entities.end(),
+        [](const EntityDesc& a, const EntityDesc& b) { return a.spawnTime < b.spawnTime; });
+    const std::vector<glm::mat4> worlds = InitialWorlds(out);
+    for (size_t i = 0; i < out.entities.size(); ++i) {
+        const EntityDesc& e = out.entities[i];
+        if (e.renderable) {
+            const Aabb b = out.scene.blases[e.blasId]->bounds;
+            for (int corner = 0; corner < 8; ++corner) {
+                const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                             (corner & 4) ? b.max.z : b.min.z);
+                const glm::vec4 w = worlds[i] * glm::vec4(p, 1.0f);
+                if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
+                    throw InputError(
+                        file,
+                        std::string(e.sourceArray) + "[" + std::to_string(e.sourceIndex) + "]",
+                        "its world bounds are not finite (position, scale or model "
+                        "size too large)");
+            }
+        }
+        out.dynamic |= e.animator.has_value() || e.body.has_value() || e.spawnTime > 0.0f;
+        if (e.spawnTime == 0.0f && e.renderable)
+            out.scene.AddInstance(e.blasId, e.materialId, worlds[i]);
+    }
+    out.dynamic |= !out.cameraPath.empty();
+    if (!out.cameraPath.empty()) out.scene.camera = CameraAt(out, 0.0f);
+    out.scene.BuildTlas();
+}
 
 Camera CameraAt(const LoadedScene& loaded, float t) {
     Camera camera = loaded.scene.camera;
@@ -678,6 +750,7 @@ LoadedScene ParseScene(const std::string& text, const std::string& name,
 }
 
 LoadedScene LoadSceneFile(const std::string& path) {
+    if (IsGltfPath(path)) return LoadGltfScene(path);
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "no such file");
     if (std::filesystem::is_directory(path, ec))

@@ -4,6 +4,7 @@
 
 #include "engine/core/timer.h"
 #include "engine/physics_anim/physics_anim_systems.h"
+#include "engine/physics_anim/transform_system.h"
 
 namespace rtrt {
 
@@ -12,6 +13,8 @@ World::World(const LoadedScene& scene, TlasPolicy policy, bool hostTlas)
     scene_.blases = scene.scene.blases;
     scene_.materials = scene.scene.materials;
     scene_.lights = scene.scene.lights;
+    scene_.textures = scene.scene.textures;
+    scene_.texels = scene.scene.texels;
     scene_.camera = scene.scene.camera;
     scene_.background = scene.scene.background;
     scene_.maxDepth = scene.scene.maxDepth;
@@ -36,14 +39,18 @@ bool World::UpdateTlas() {
 
 void World::SpawnDue() {
     const std::vector<EntityDesc>& entities = source_.entities;
-    for (; nextSpawn_ < entities.size() && entities[nextSpawn_].spawnTime <= time_; ++nextSpawn_)
-        Create(entities[nextSpawn_]);
+    for (; nextSpawn_ < entities.size() && entities[nextSpawn_].spawnTime <= time_; ++nextSpawn_) {
+        const EntityDesc& d = entities[nextSpawn_];
+        created_.push_back(Create(d));
+        // Parents come first (FinishLoadedScene keeps them so): the link never closes a cycle.
+        if (d.parent >= 0) physics::SetParent(registry_, created_.back(), created_[d.parent]);
+    }
 }
 
 ecs::Entity World::Create(const EntityDesc& d) {
     const ecs::Entity e = registry_.Create();
     registry_.Add(e, d.local);
-    registry_.Add(e, Renderable{d.blasId, d.materialId});
+    if (d.renderable) registry_.Add(e, Renderable{d.blasId, d.materialId});
     if (d.animator) registry_.Add(e, *d.animator);
     if (d.body) {
         registry_.Add(e, *d.body);

@@ -90,6 +90,7 @@ class World {
     std::vector<uint32_t> changed_;
     std::optional<Camera> cameraOverride_;
     std::vector<ecs::Entity> instanceOwner_;  // instance record -> entity
+    std::vector<ecs::Entity> created_;        // LoadedScene::entities index -> entity
     bool hostTlas_ = true;
     size_t nextSpawn_ = 0;
     bool topologyChanged_ = true;

@@ -13,13 +13,14 @@ BlasView Blas::View() const {
     view.spheres = spheres.data();
     view.kind = kind;
     view.primCount = PrimCount();
+    view.uvs = uvs.empty() ? nullptr : uvs.data();
     return view;
 }
 
 size_t Blas::Bytes() const {
     return nodes.size() * sizeof(BvhNode) + nodes4.size() * sizeof(Bvh4Node) +
            triangles.size() * sizeof(Triangle) + normals.size() * sizeof(TriangleNormals) +
-           spheres.size() * sizeof(Sphere);
+           spheres.size() * sizeof(Sphere) + uvs.size() * sizeof(TriangleUvs);
 }
 
 size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4Node); }
@@ -42,12 +43,18 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
     blas.triangles.resize(count);
     const bool smooth = !mesh.normals.empty();
     if (smooth) blas.normals.resize(count);
+    const bool textured = !mesh.uvs.empty();
+    if (textured) blas.uvs.resize(count);
     ParallelFor(0, count, 4096, [&](size_t slot) {
         const uint32_t prim = blas.primIds[slot];
         blas.triangles[slot] = triangle(prim);
         if (smooth) {
             const glm::uvec3 idx = mesh.indices[prim];
             blas.normals[slot] = {mesh.normals[idx.x], mesh.normals[idx.y], mesh.normals[idx.z]};
+        }
+        if (textured) {
+            const glm::uvec3 idx = mesh.indices[prim];
+            blas.uvs[slot] = {mesh.uvs[idx.x], mesh.uvs[idx.y], mesh.uvs[idx.z]};
         }
     });
     blas.nodes4 = CollapseToBvh4(blas.nodes);

@@ -21,6 +21,7 @@ struct BlasView {
     const Sphere* spheres;           // kSpheres: leaf order
     GeometryKind kind;
     uint32_t primCount;
+    const TriangleUvs* uvs;  // kTriangles: leaf order, or null without texture coordinates
 };
 
 struct Blas {
@@ -31,12 +32,13 @@ struct Blas {
     std::vector<TriangleNormals> normals;
     std::vector<Sphere> spheres;
     std::vector<uint32_t> primIds;  // leaf slot -> index in the source mesh or sphere list
+    std::vector<TriangleUvs> uvs;   // kTriangles: leaf order, or none
     Aabb bounds;
 
     uint32_t PrimCount() const { return uint32_t(primIds.size()); }
     BlasView View() const;
     size_t Bytes() const;        // what the CPU tracer keeps of it (both node layouts too)
-    size_t DeviceBytes() const;  // what the GPU holds: binary nodes, primitives, normals
+    size_t DeviceBytes() const;  // what the GPU holds: binary nodes, primitives, normals, uvs
 };
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options = {});

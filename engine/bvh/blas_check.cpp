@@ -17,6 +17,8 @@ std::string Indexed(const char* array, size_t i) {
 
 bool Finite(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+bool Finite2(vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
 bool ProperBox(vec3 lo, vec3 hi) {
     return Finite(lo) && Finite(hi) && lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z;
 }
@@ -66,13 +68,17 @@ class Checker {
             if (!blas_.normals.empty() && blas_.normals.size() != prims)
                 Fail("normals", "expected 0 or " + std::to_string(prims) + " normal triples, got " +
                                     std::to_string(blas_.normals.size()));
+            if (!blas_.uvs.empty() && blas_.uvs.size() != prims)
+                Fail("uvs", "expected 0 or " + std::to_string(prims) + " uv triples, got " +
+                                std::to_string(blas_.uvs.size()));
             if (!blas_.spheres.empty()) Fail("spheres", "a triangle model holds no spheres");
         } else if (blas_.kind == GeometryKind::kSpheres) {
             if (blas_.spheres.size() != prims)
                 Fail("spheres", std::to_string(blas_.spheres.size()) + " spheres but " +
                                     std::to_string(prims) + " primIds");
-            if (!blas_.triangles.empty() || !blas_.normals.empty() || !blas_.nodes4.empty())
-                Fail("kind", "a sphere model holds no triangles, normals or 4-wide nodes");
+            if (!blas_.triangles.empty() || !blas_.normals.empty() || !blas_.nodes4.empty() ||
+                !blas_.uvs.empty())
+                Fail("kind", "a sphere model holds no triangles, normals, uvs or 4-wide nodes");
         } else {
             Fail("kind", "unknown geometry kind " + std::to_string(uint32_t(blas_.kind)));
         }
@@ -192,6 +198,11 @@ class Checker {
             const TriangleNormals& n = blas_.normals[i];
             if (!Finite(n.n0) || !Finite(n.n1) || !Finite(n.n2))
                 Fail(Indexed("normals", i), "normal is NaN or infinite");
+        }
+        for (size_t i = 0; i < blas_.uvs.size(); ++i) {
+            const TriangleUvs& t = blas_.uvs[i];
+            if (!Finite2(t.uv0) || !Finite2(t.uv1) || !Finite2(t.uv2))
+                Fail(Indexed("uvs", i), "texture coordinate is NaN or infinite");
         }
         for (size_t i = 0; i < blas_.spheres.size(); ++i) {
             const Sphere& s = blas_.spheres[i];

@@ -31,6 +31,13 @@ struct TriangleNormals {
 };
 static_assert(sizeof(TriangleNormals) == 36);
 
+// Texture coordinates of one triangle's vertices, in the same order as Triangle (glTF's
+// TEXCOORD_0: u right, v down the image).
+struct TriangleUvs {
+    vec2 uv0, uv1, uv2;
+};
+static_assert(sizeof(TriangleUvs) == 24);
+
 enum class GeometryKind : uint32_t { kTriangles = 0, kSpheres = 1 };
 
 }  // namespace rtrt

@@ -36,7 +36,8 @@ std::array<Bytes, kSectionCount> SectionsOf(const Blas& b) {
              {b.triangles.data(), b.triangles.size()},
              {b.normals.data(), b.normals.size()},
              {b.spheres.data(), b.spheres.size()},
-             {b.primIds.data(), b.primIds.size()}}};
+             {b.primIds.data(), b.primIds.size()},
+             {b.uvs.data(), b.uvs.size()}}};
 }
 
 class File {
@@ -142,7 +143,8 @@ class Reader {
                              [&] { hashes[kTriangles] = ReadSection(kTriangles, blas.triangles); },
                              [&] { hashes[kNormals] = ReadSection(kNormals, blas.normals); },
                              [&] { hashes[kSpheres] = ReadSection(kSpheres, blas.spheres); },
-                             [&] { hashes[kPrimIds] = ReadSection(kPrimIds, blas.primIds); });
+                             [&] { hashes[kPrimIds] = ReadSection(kPrimIds, blas.primIds); },
+                             [&] { hashes[kUvs] = ReadSection(kUvs, blas.uvs); });
         if (PayloadChecksum(hashes) != h_.payloadChecksum)
             Fail("payloadChecksum", "checksum mismatch: the file is corrupt");
         CheckBlas(blas, path_);

@@ -2,7 +2,7 @@
 // .rtmodel files: a BLAS stored in the layout the tracer uses, so that loading is one read per
 // array plus validation, and no BVH build. Little-endian, every array on a 64-byte boundary:
 //
-//   RtModelHeader (256 bytes) | nodes | nodes4 | triangles | normals | spheres | primIds
+//   RtModelHeader (256 bytes) | nodes | nodes4 | triangles | normals | spheres | primIds | uvs
 //
 // The header carries the format version, the array counts, the file size, XXH3-64 checksums of
 // itself and of everything after it, the SAH cost, and the key of the source (content hash,
@@ -14,7 +14,8 @@
 
 namespace rtrt {
 
-inline constexpr uint32_t kRtModelVersion = 1;
+// Version 2 added the uvs section (per-triangle texture coordinates).
+inline constexpr uint32_t kRtModelVersion = 2;
 // Bump when a builder or a mesh loader changes its output for the same input: cached files made
 // before then no longer match their key and are rebuilt.
 inline constexpr uint32_t kRtModelRevision = 1;

@@ -10,6 +10,7 @@ namespace rtrt {
 struct TriangleMesh {
     std::vector<vec3> positions;
     std::vector<vec3> normals;  // per vertex; empty means flat shading
+    std::vector<vec2> uvs;      // per vertex; empty means untextured
     std::vector<glm::uvec3> indices;
 
     Aabb Bounds() const {

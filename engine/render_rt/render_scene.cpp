@@ -15,6 +15,13 @@ uint32_t RenderScene::AddMaterial(const Material& material) {
     return uint32_t(materials.size() - 1);
 }
 
+uint32_t RenderScene::AddTexture(Texture texture, const uint32_t* rgba) {
+    texture.texelOffset = texels.size();
+    texels.insert(texels.end(), rgba, rgba + size_t(texture.width) * texture.height);
+    textures.push_back(texture);
+    return uint32_t(textures.size() - 1);
+}
+
 uint32_t RenderScene::AddInstance(uint32_t blasId, uint32_t materialId,
                                   const glm::mat4& objectToWorld) {
     Instance inst{};
@@ -48,6 +55,7 @@ uint32_t RenderScene::Features() const {
     for (const Material& m : materials) {
         if (m.reflectivity > 0.0f) features |= kFeatureReflection;
         if (m.transmissivity > 0.0f) features |= kFeatureRefraction | kFeatureReflection;
+        if (m.baseColorTexture != kNoTexture) features |= kFeatureTextures;
     }
     return features;
 }
@@ -67,6 +75,8 @@ RenderSceneView RenderScene::HostView(uint32_t width, uint32_t height, uint32_t 
                  blasViews_.data()};
     view.materials = materials.data();
     view.lights = lights.data();
+    view.textures = textures.data();
+    view.texels = texels.data();
     view.lightCount = uint32_t(lights.size());
     view.maxDepth = std::clamp(depth, 1u, kMaxRayDepth);
     view.camera = MakeCameraFrame(camera, width, height);

@@ -15,12 +15,16 @@ struct RenderScene {
     std::vector<Instance> instances;
     std::vector<Material> materials;
     std::vector<Light> lights;
+    std::vector<Texture> textures;
+    std::vector<uint32_t> texels;  // RGBA8 of every texture, one after another
     Camera camera;
     vec3 background{0.2f, 0.3f, 0.5f};
     uint32_t maxDepth = 4;
 
     uint32_t AddBlas(std::shared_ptr<const Blas> blas);
     uint32_t AddMaterial(const Material& material);
+    // Appends width x height RGBA8 texels (row 0 the top) as a texture; texelOffset is set here.
+    uint32_t AddTexture(Texture texture, const uint32_t* rgba);
     uint32_t AddInstance(uint32_t blasId, uint32_t materialId, const glm::mat4& objectToWorld);
 
     // Rebuilds the TLAS over the current instances; call after adding or moving instances.

@@ -4,6 +4,7 @@
 #include "engine/render_rt/camera.h"
 #include "engine/render_rt/material.h"
 #include "engine/render_rt/scene_features.h"
+#include "engine/render_rt/texture.h"
 
 namespace rtrt {
 
@@ -11,6 +12,8 @@ struct RenderSceneView {
     TlasView tlas;
     const Material* materials;
     const Light* lights;
+    const Texture* textures;  // indexed by Material::baseColorTexture
+    const uint32_t* texels;   // RGBA8, the Texture records' texelOffset counts in these
     uint32_t lightCount;
     uint32_t maxDepth;  // rays per path: 1 = primary only, 2 = primary plus one bounce
     CameraFrame camera;

@@ -17,8 +17,11 @@ enum SceneFeature : uint32_t {
     // instance) the single loop is 1.2-1.5x slower than the nested form
     // (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt).
     kFeatureManyInstances = 1u << 3,
+    // Materials with a base-colour texture: only these kernels interpolate uvs and sample.
+    kFeatureTextures = 1u << 4,
 };
-inline constexpr uint32_t kAllFeatures = kFeatureShadows | kFeatureReflection | kFeatureRefraction;
+inline constexpr uint32_t kAllFeatures =
+    kFeatureShadows | kFeatureReflection | kFeatureRefraction | kFeatureTextures;
 inline constexpr uint32_t kAllFeatureBits = kAllFeatures | kFeatureManyInstances;
 inline constexpr uint32_t kManyInstances = 64;
 

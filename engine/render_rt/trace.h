@@ -42,6 +42,27 @@ RT_HD inline bool TraceOccluded(const TlasView& tlas, const Ray& ray) {
     return OccludedScene<kAccuracy>(tlas, ray);
 }
 
+// The material at a hit, its base-colour texture applied (only in kernels with kFeatureTextures):
+// the sample multiplies diffuse and ambient. scratch holds the textured copy.
+template <uint32_t kFeatures>
+RT_HD inline const Material& MaterialAt(const RenderSceneView& scene, const SceneHit& hit,
+                                        uint32_t materialId, Material* scratch) {
+    const Material& m = scene.materials[materialId];
+    if constexpr ((kFeatures & kFeatureTextures) != 0) {
+        if (m.baseColorTexture == kNoTexture) return m;
+        const Instance& inst = scene.tlas.instances[hit.instance];
+        const BlasView& blas = scene.tlas.blases[inst.blasId];
+        if (blas.kind != GeometryKind::kTriangles || !blas.uvs) return m;
+        const vec2 uv = InterpolateUv(blas.uvs[hit.prim], hit.b1, hit.b2);
+        const vec3 sample = SampleTexture(scene.textures[m.baseColorTexture], scene.texels, uv);
+        *scratch = m;
+        scratch->diffuse *= sample;
+        scratch->ambient *= sample;
+        return *scratch;
+    }
+    return m;
+}
+
 // Blinn-Phong for one surface point with hard shadows.
 template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
 RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, const Material& m,
@@ -106,7 +127,8 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
             result.normal = s.shadingNormal;
             primary = false;
         }
-        const Material& m = scene.materials[s.materialId];
+        Material textured;
+        const Material& m = MaterialAt<kFeatures>(scene, hit, s.materialId, &textured);
         const vec3 toViewer = -glm::normalize(pending.ray.dir);
         float reflectWeight = (kFeatures & kFeatureReflection) ? m.reflectivity : 0.0f;
         float refractWeight = 0.0f;

@@ -309,9 +309,10 @@ class App {
         s.height = uint32_t(std::max(fb.y, 1));
         s.maxDepth = uint32_t(model_.maxDepth);
         s.view = ViewMode(model_.view);
+        // Textures are content, not an effect the overlay turns off.
         s.enabledFeatures = (model_.shadows ? kFeatureShadows : 0u) |
                             (model_.reflection ? kFeatureReflection : 0u) |
-                            (model_.refraction ? kFeatureRefraction : 0u);
+                            (model_.refraction ? kFeatureRefraction : 0u) | kFeatureTextures;
         return s;
     }
 

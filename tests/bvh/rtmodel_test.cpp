@@ -39,6 +39,7 @@ void ExpectIdentical(const Blas& a, const Blas& b) {
     EXPECT_TRUE(SameBytes(a.normals, b.normals));
     EXPECT_TRUE(SameBytes(a.spheres, b.spheres));
     EXPECT_TRUE(SameBytes(a.primIds, b.primIds));
+    EXPECT_TRUE(SameBytes(a.uvs, b.uvs));
     EXPECT_EQ(std::memcmp(&a.bounds, &b.bounds, sizeof(Aabb)), 0);
 }
 
@@ -67,10 +68,12 @@ class RtModelTest : public ::testing::Test {
     fs::path dir_;
 };
 
-// The model every hostile case starts from: 40 random triangles with smooth normals.
+// The model every hostile case starts from: 40 random triangles with smooth normals and texture
+// coordinates.
 Blas CorpusBlas() {
     TriangleMesh mesh = test::RandomTriangles(40, 7);
     ComputeSmoothNormals(mesh);
+    for (const vec3& p : mesh.positions) mesh.uvs.push_back(vec2(p.x, p.z));
     return BuildTriangleBlas(mesh);
 }
 
@@ -233,6 +236,16 @@ std::vector<HostileCase> MakeHostileCorpus(const std::string& valid, const Blas&
          EditPayload<TriangleNormals>(valid, kNormals, 9,
                                       [&](TriangleNormals& n) { n.n2.z = nan; }),
          "normals[9]", "NaN or infinite"},
+        {"nan_uv", EditPayload<TriangleUvs>(valid, kUvs, 7, [&](TriangleUvs& t) { t.uv1.x = nan; }),
+         "uvs[7]", "NaN or infinite"},
+        {"uv_count_mismatch",
+         EditHeader(valid,
+                    [](RtModelHeader& h) {
+                        // One uv triple fewer: the padding to 64 bytes keeps the file size
+                        // and the payload checksum, so the count check catches it.
+                        h.counts[kUvs] -= 1;
+                    }),
+         "uvs", "expected 0 or 40 uv triples, got 39"},
         {"prim_id_out_of_range",
          EditPayload<uint32_t>(valid, kPrimIds, 5, [](uint32_t& id) { id = 1000000; }),
          "primIds[5]", "primitive index 1000000 out of range"},

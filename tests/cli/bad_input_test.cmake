@@ -187,3 +187,80 @@ execute_process(COMMAND ${RTRT} render ${WORK_DIR}/tetra_scene.json --size 32x18
 if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/tetra.ppm)
     message(FATAL_ERROR "render tetra_scene.json: status ${status}: ${stderr}")
 endif()
+
+# glTF and scene files from the hostile corpora: render and info exit 2 with exactly one
+# "file: field: reason" line (no warning before it) and write nothing.
+set(HOSTILE_GLTF ${SOURCE_DIR}/tests/data/hostile_gltf)
+set(HOSTILE_SCENE ${SOURCE_DIR}/tests/data/hostile_scene)
+function(expect_one_line_failure name expected_text)
+    set(out ${WORK_DIR}/${name}${EXT})
+    execute_process(COMMAND ${RTRT} ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+    string(REGEX MATCHALL "\n" lines "${stderr}")
+    list(LENGTH lines line_count)
+    if(NOT status EQUAL 2 OR NOT line_count EQUAL 1)
+        message(FATAL_ERROR "${name}: exit status ${status} (expected 2), ${line_count} lines:\n${stderr}")
+    endif()
+    string(FIND "${stderr}" "rtrt: error: ${expected_text}" found)
+    if(found EQUAL -1)
+        message(FATAL_ERROR "${name}: message lacks \"${expected_text}\":\n${stderr}")
+    endif()
+    if(EXISTS ${out})
+        message(FATAL_ERROR "${name}: wrote ${out} although it failed")
+    endif()
+    message(STATUS "${name}: ok (${stderr})")
+endfunction()
+foreach(case "truncated.glb|header.length: the header says"
+             "wrong_magic.glb|header.magic: not a GLB file"
+             "wrong_version.glb|header.version: GLB version 1"
+             "huge_count.gltf|accessors[0].count: 1000000000 elements"
+             "nan_position.glb|meshes[0].primitives[0].attributes.POSITION: accessor 0, element 1: NaN"
+             "inf_translation.gltf|nodes[1].translation: a value is NaN or infinite"
+             "index_out_of_range.gltf|meshes[0].primitives[0].indices: index 2 is 7"
+             "cycle_without_root.gltf|nodes[2].children: node 2 is its own ancestor"
+             "missing_buffer.gltf|buffers[0].uri: no such file"
+             "missing_image.gltf|images[0].uri: no such file"
+             "wrong_json_type.gltf|nodes[1].translation: expected an array of 3 numbers")
+    string(REPLACE "|" ";" parts "${case}")
+    list(GET parts 0 name)
+    list(GET parts 1 text)
+    string(REPLACE "." "_" id ${name})
+    expect_one_line_failure(render_${id} "${HOSTILE_GLTF}/${name}: ${text}"
+        render ${HOSTILE_GLTF}/${name} -o ${WORK_DIR}/render_${id}${EXT})
+    expect_one_line_failure(info_${id} "${HOSTILE_GLTF}/${name}: ${text}" info ${HOSTILE_GLTF}/${name})
+endforeach()
+expect_one_line_failure(render_hostile_gltf_model
+    "${HOSTILE_SCENE}/../hostile_gltf/cyclic_nodes.gltf: nodes[2].children[0]: node 1 has two parents"
+    render ${HOSTILE_SCENE}/hostile_gltf_model.json -o ${WORK_DIR}/render_hostile_gltf_model${EXT})
+expect_one_line_failure(render_gltf_spawner "${HOSTILE_SCENE}/gltf_spawner.json: spawners[0].model"
+    render ${HOSTILE_SCENE}/gltf_spawner.json -o ${WORK_DIR}/render_gltf_spawner${EXT})
+
+# A valid glTF renders directly, and info describes it.
+execute_process(COMMAND ${RTRT} render ${HOSTILE_GLTF}/valid.glb --size 32x18 -o ${WORK_DIR}/valid_glb.ppm
+    RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/valid_glb.ppm)
+    message(FATAL_ERROR "render valid.glb: status ${status}: ${stderr}")
+endif()
+execute_process(COMMAND ${RTRT} info ${HOSTILE_GLTF}/valid.gltf RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT stdout MATCHES "glTF 2.0 scene" OR NOT stdout MATCHES "nodes +2 in the scene"
+   OR NOT stdout MATCHES "1 triangles, 3 vertices" OR NOT stdout MATCHES "SAH cost")
+    message(FATAL_ERROR "info valid.gltf: status ${status}: ${stdout}${stderr}")
+endif()
+
+# The committed textured glTF plays headless (its animation moves the quads) and info lists it.
+set(QUADS ${SOURCE_DIR}/assets/models/textured_quads.gltf)
+execute_process(COMMAND ${RTRT} play ${QUADS} --headless --frames 2 --fps 1 --size 48x32
+    -o ${WORK_DIR}/quads_%02d.ppm RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/quads_00.ppm OR NOT EXISTS ${WORK_DIR}/quads_01.ppm)
+    message(FATAL_ERROR "play textured_quads.gltf: status ${status}: ${stderr}")
+endif()
+file(SHA256 ${WORK_DIR}/quads_00.ppm first)
+file(SHA256 ${WORK_DIR}/quads_01.ppm second)
+if(first STREQUAL second)
+    message(FATAL_ERROR "play textured_quads.gltf: the glTF animation did not move anything")
+endif()
+execute_process(COMMAND ${RTRT} info ${QUADS} RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT stdout MATCHES "materials   4, textures 3"
+   OR NOT stdout MATCHES "animations  1 \\(the first plays: 2 nodes, 2 s, looping\\)"
+   OR NOT stdout MATCHES "cameras     1 placed, lights 2 placed")
+    message(FATAL_ERROR "info textured_quads.gltf: status ${status}: ${stdout}${stderr}")
+endif()

@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "engine/bvh/rtmodel.h"
+#include "engine/bvh/rtmodel_format.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
 #include "engine/render_rt/renderer.h"
@@ -120,6 +121,27 @@ TEST_F(ModelCacheTest, ACorruptEntryIsRebuiltNotTrusted) {
     EXPECT_EQ(again.origin, MeshModel::Origin::kBuilt);
     ExpectIdentical(first.blas, again.blas);
     EXPECT_NO_THROW(ReadRtModel(first.cachePath));  // rewritten
+}
+
+// An entry written by an rtrt of another format version (version 1, before uvs) is stale: rebuilt
+// silently, like an entry of another key.
+TEST_F(ModelCacheTest, AnOlderFormatVersionIsRebuiltSilently) {
+    const std::string obj = Write("quad.obj", kQuadObj);
+    const MeshModel first = LoadMeshModel(obj, {});
+    {
+        std::fstream f(first.cachePath, std::ios::in | std::ios::out | std::ios::binary);
+        rtmodel::RtModelHeader h;
+        f.read(reinterpret_cast<char*>(&h), sizeof(h));
+        h.version = 1;
+        rtmodel::SealHeader(h);
+        f.seekp(0);
+        f.write(reinterpret_cast<const char*>(&h), sizeof(h));
+    }
+    ::testing::internal::CaptureStderr();
+    const MeshModel again = LoadMeshModel(obj, {});
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+    EXPECT_EQ(again.origin, MeshModel::Origin::kBuilt);
+    EXPECT_EQ(ReadRtModelInfo(first.cachePath).version, kRtModelVersion);  // rewritten
 }
 
 TEST_F(ModelCacheTest, TheCacheCanBeTurnedOff) {

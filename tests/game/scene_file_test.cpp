@@ -141,5 +141,48 @@ TEST(SceneFile, EveryShippedSceneParses) {
     }
 }
 
+// The committed hostile scene files (tests/data/hostile_scene/, seeds of the scene-file fuzz
+// target): each gives one InputError naming its file and field.
+TEST(SceneFile, HostileSceneFiles) {
+    const std::string dir = test::SourcePath("tests/data/hostile_scene");
+    const struct {
+        const char* name;
+        const char* file;  // the file the error names, relative to dir
+        const char* field;
+        const char* reason;
+    } cases[] = {
+        {"truncated.json", "truncated.json", "", "malformed JSON"},
+        {"wrong_type.json", "wrong_type.json", "models.b.radius", "expected a number, got string"},
+        {"huge_number.json", "huge_number.json", "instances[0].position[1]", "out of range"},
+        {"zero_scale.json", "zero_scale.json", "instances[0].scale", "greater than 0"},
+        {"unknown_model.json", "unknown_model.json", "instances[0].model", "no model named"},
+        {"unknown_field.json", "unknown_field.json", "instances[0].colour", "unknown field"},
+        {"missing_mesh.json", "no_such_mesh.obj", "", "cannot open file"},
+        {"hostile_gltf_model.json", "../hostile_gltf/cyclic_nodes.gltf", "nodes[2].children[0]",
+         "two parents"},
+        {"gltf_with_material.json", "gltf_with_material.json", "instances[0].material",
+         "brings its own materials"},
+        {"gltf_spawner.json", "gltf_spawner.json", "spawners[0].model", "glTF scene"},
+        {"huge_grid.json", "huge_grid.json", "spawners[0].grid.count", "at most 2,000,000"},
+        {"keys_out_of_order.json", "keys_out_of_order.json", "instances[0].animate.keyframes",
+         "increase"},
+        {"degenerate_camera.json", "degenerate_camera.json", "camera.forward", "zero length"},
+        {"infinite_bounds.json", "infinite_bounds.json", "instances[1]", "not finite"},
+        {"number_overflow.json", "number_overflow.json", "", "malformed JSON"},
+        {"not_an_object.json", "not_an_object.json", "", "expected an object"},
+    };
+    EXPECT_NO_THROW(LoadSceneFile(dir + "/valid.json"));
+    for (const auto& c : cases) {
+        try {
+            LoadSceneFile(dir + "/" + c.name);
+            ADD_FAILURE() << c.name << ": loaded without an error";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.File(), dir + "/" + c.file) << c.name << ": " << e.what();
+            EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
+            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
+        }
+    }
+}
+
 }  // namespace
 }  // namespace rtrt

@@ -24,9 +24,10 @@ fi
 rm -rf "$dest"
 mkdir -p "$dest/debs" "$dest/prefix" "$dest/models"
 cd "$dest/debs"
-# Header-only or static libraries, plus TBB's runtime (its glibc 2.36 build runs on 2.39 there).
+# Header-only or static libraries, plus the runtimes of TBB and tinygltf (with its stb image
+# decoder); their glibc 2.36 builds run on 2.39 there.
 apt-get download -q libglm-dev libtbb-dev libtbb12 libtbbmalloc2 libtbbbind-2-5 libhwloc15 libcli11-dev nlohmann-json3-dev \
-    libgtest-dev zlib1g-dev libxxhash-dev 2>&1 | grep -v "unsandboxed" || true
+    libgtest-dev zlib1g-dev libxxhash-dev libtinygltf-dev libtinygltf2d libstb0 2>&1 | grep -v "unsandboxed" || true
 for deb in *.deb; do dpkg -x "$deb" "$dest/prefix"; done
 rm -rf "$dest/debs" "$dest/prefix/usr/share/doc"
 "$root/tools/fetch_models.sh" >/dev/null

@@ -1,0 +1,76 @@
+#pragma once
+// Base-colour textures: RGBA8 texels in one array per scene, a table of Texture records, and
+// nearest or bilinear sampling with glTF's wrap modes. Plain RT_HD code, no CUDA texture
+// objects, so the CPU back end is the reference for the GPU's samples bit for bit.
+#include <cstdint>
+
+#include "engine/bvh/primitives.h"
+#include "engine/render_rt/material.h"
+
+namespace rtrt {
+
+enum class TextureWrap : uint32_t { kRepeat = 0, kClampToEdge = 1, kMirroredRepeat = 2 };
+enum class TextureFilter : uint32_t { kLinear = 0, kNearest = 1 };
+
+// One image of the scene's texel array, 32 bytes. Texel (x, y) is texels[texelOffset + y * width
+// + x], row 0 the top of the image; texture coordinate (0, 0) is its top-left corner (glTF).
+struct Texture {
+    uint64_t texelOffset = 0;
+    uint32_t width = 0, height = 0;
+    TextureWrap wrapS = TextureWrap::kRepeat, wrapT = TextureWrap::kRepeat;
+    TextureFilter filter = TextureFilter::kLinear;
+    uint32_t pad = 0;
+};
+static_assert(sizeof(Texture) == 32);
+
+// Reduces a coordinate to one period of its wrap mode before it is scaled to texels, so that a
+// huge coordinate never overflows the integer texel index.
+RT_HD inline float ReduceCoordinate(float u, TextureWrap wrap) {
+    if (!(u == u) || fabsf(u) > 1e30f) return 0.0f;  // NaN or beyond any period: the first texel
+    if (wrap == TextureWrap::kClampToEdge) return fminf(fmaxf(u, 0.0f), 1.0f);
+    const float period = wrap == TextureWrap::kMirroredRepeat ? 2.0f : 1.0f;
+    return u - period * floorf(u / period);
+}
+
+// A texel index (at most one period plus one off the range) mapped into [0, n).
+RT_HD inline uint32_t WrapTexel(int i, int n, TextureWrap wrap) {
+    if (wrap == TextureWrap::kClampToEdge) return uint32_t(i < 0 ? 0 : (i >= n ? n - 1 : i));
+    if (wrap == TextureWrap::kRepeat) return uint32_t(((i % n) + n) % n);
+    const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
+    return uint32_t(m < n ? m : 2 * n - 1 - m);
+}
+
+RT_HD inline vec3 TexelColor(const Texture& t, const uint32_t* texels, uint32_t x, uint32_t y) {
+    const uint32_t rgba = texels[t.texelOffset + uint64_t(y) * t.width + x];
+    return vec3(float(rgba & 0xffu), float((rgba >> 8) & 0xffu), float((rgba >> 16) & 0xffu)) *
+           (1.0f / 255.0f);
+}
+
+// The colour at texture coordinate uv: the texel under it (nearest), or the bilinear blend of the
+// four texels around it, texel centres at ((i + 0.5) / width, (j + 0.5) / height).
+RT_HD inline vec3 SampleTexture(const Texture& t, const uint32_t* texels, vec2 uv) {
+    const int w = int(t.width), h = int(t.height);
+    const float x = ReduceCoordinate(uv.x, t.wrapS) * float(w);
+    const float y = ReduceCoordinate(uv.y, t.wrapT) * float(h);
+    if (t.filter == TextureFilter::kNearest)
+        return TexelColor(t, texels, WrapTexel(int(floorf(x)), w, t.wrapS),
+                          WrapTexel(int(floorf(y)), h, t.wrapT));
+    const float fx = x - 0.5f, fy = y - 0.5f;
+    const float x0f = floorf(fx), y0f = floorf(fy);
+    const float ax = fx - x0f, ay = fy - y0f;
+    const int x0 = int(x0f), y0 = int(y0f);
+    const uint32_t xa = WrapTexel(x0, w, t.wrapS), xb = WrapTexel(x0 + 1, w, t.wrapS);
+    const uint32_t ya = WrapTexel(y0, h, t.wrapT), yb = WrapTexel(y0 + 1, h, t.wrapT);
+    const vec3 top =
+        (1.0f - ax) * TexelColor(t, texels, xa, ya) + ax * TexelColor(t, texels, xb, ya);
+    const vec3 bottom =
+        (1.0f - ax) * TexelColor(t, texels, xa, yb) + ax * TexelColor(t, texels, xb, yb);
+    return (1.0f - ay) * top + ay * bottom;
+}
+
+// The texture coordinate of a hit on a triangle with per-vertex uvs.
+RT_HD inline vec2 InterpolateUv(const TriangleUvs& t, float b1, float b2) {
+    return (1.0f - b1 - b2) * t.uv0 + b1 * t.uv1 + b2 * t.uv2;
+}
+
+}  // namespace rtrt
