@@ -25,12 +25,14 @@ constexpr int TraceMinBlocks(uint32_t features) {
 
 template <uint32_t kFeatures>
 __global__ void __launch_bounds__(64, TraceMinBlocks(kFeatures))
-    TraceKernel(RenderSceneView scene, ViewMode view, vec3* out, unsigned long long* rayCount) {
+    TraceKernel(RenderSceneView scene, ViewMode view, uint32_t sample, uint32_t perSide, vec3* out,
+                unsigned long long* rayCount) {
     const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
     const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
     if (x >= scene.width || y >= scene.height) return;
     uint32_t rays = 0;
-    out[size_t(y) * scene.width + x] = RawPixel<kFeatures>(scene, view, x, y, &rays);
+    const vec3 value = RawSample<kFeatures>(scene, view, x, y, sample, perSide, &rays);
+    AccumulateSample(out[size_t(y) * scene.width + x], value, sample, perSide * perSide);
     if (rayCount) atomicAdd(rayCount, (unsigned long long)rays);
 }
 
@@ -42,8 +44,13 @@ void LaunchTrace(const RenderSceneView& view, ViewMode mode, uint32_t features, 
     const dim3 grid((view.width + block.x - 1) / block.x, (view.height + block.y - 1) / block.y);
     DispatchFeatures(features, [&](auto featureTag) {
         constexpr uint32_t kFeatures = decltype(featureTag)::value;
-        TraceKernel<kFeatures><<<grid, block, 0, stream>>>(view, mode, frame, rayCount);
-        RT_CUDA_CHECK_LAUNCH();
+        // One launch per sample (AccumulateSample says why).
+        const uint32_t perSide = SamplesPerSide(view, mode);
+        for (uint32_t s = 0; s < perSide * perSide; ++s) {
+            TraceKernel<kFeatures>
+                <<<grid, block, 0, stream>>>(view, mode, s, perSide, frame, rayCount);
+            RT_CUDA_CHECK_LAUNCH();
+        }
     });
 }
 

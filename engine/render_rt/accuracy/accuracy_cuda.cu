@@ -11,13 +11,15 @@ namespace {
 
 template <uint32_t kAccuracy>
 __global__ void __launch_bounds__(64)
-    AccuracyTraceKernel(RenderSceneView scene, vec3* out, unsigned long long* rayCount) {
+    AccuracyTraceKernel(RenderSceneView scene, uint32_t sample, uint32_t perSide, vec3* out,
+                        unsigned long long* rayCount) {
     const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
     const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
     if (x >= scene.width || y >= scene.height) return;
     uint32_t rays = 0;
-    out[size_t(y) * scene.width + x] =
-        RawPixel<kAccuracyFeatures, kAccuracy>(scene, ViewMode::kShaded, x, y, &rays);
+    const vec3 value = RawSample<kAccuracyFeatures, kAccuracy>(scene, ViewMode::kShaded, x, y,
+                                                               sample, perSide, &rays);
+    AccumulateSample(out[size_t(y) * scene.width + x], value, sample, perSide * perSide);
     if (rayCount) atomicAdd(rayCount, (unsigned long long)rays);
 }
 
@@ -60,9 +62,13 @@ CudaAccuracyRun RunAccuracyCuda(const RenderScene& scene, const RenderSettings& 
             const bool count = i == 0;  // the atomic ray count runs once, outside the timed frames
             RT_CUDA_CHECK(cudaMemset(rayCount.Data(), 0, sizeof(unsigned long long)));
             RT_CUDA_CHECK(cudaEventRecord(start));
-            AccuracyTraceKernel<kAccuracy>
-                <<<grid, block>>>(view, frame.Data(), count ? rayCount.Data() : nullptr);
-            RT_CUDA_CHECK_LAUNCH();
+            // One launch per sample, as the renderer's kernel (pixel_kernel.h).
+            const uint32_t perSide = SamplesPerSide(view, ViewMode::kShaded);
+            for (uint32_t s = 0; s < perSide * perSide; ++s) {
+                AccuracyTraceKernel<kAccuracy><<<grid, block>>>(view, s, perSide, frame.Data(),
+                                                                count ? rayCount.Data() : nullptr);
+                RT_CUDA_CHECK_LAUNCH();
+            }
             RT_CUDA_CHECK(cudaEventRecord(stop));
             RT_CUDA_CHECK(cudaEventSynchronize(stop));
             float ms = 0.0f;
