@@ -907,7 +907,7 @@ class Importer {
         for (size_t p = 0; p < rgba.size(); ++p) {
             uint32_t c[4] = {0, 0, 0, 255};
             for (int k = 0; k < channels; ++k) {
-                // 16-bit images keep their high byte, little-endian as stb returns them.
+                // 16-bit images keep their high byte, little-endian as stb and OIIO return them.
                 c[k] = image.image[(p * size_t(channels) + size_t(k)) * size_t(bytes) +
                                    size_t(bytes - 1)];
             }
