@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "game/gltf_image_loader.h"
 
 namespace rtrt {
 namespace {
@@ -350,6 +351,8 @@ class Importer {
         const std::string dir = fs::path(file_).parent_path().string();
         CheckJson(file_, binary ? GlbJson(bytes) : bytes, dir);
         tinygltf::TinyGLTF loader;
+        GltfImageFailure imageFailure;
+        InstallGltfImageLoader(loader, &imageFailure);
         std::string err, warn;
         const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
         const bool ok =
@@ -357,6 +360,8 @@ class Importer {
                                                  dir.empty() ? "." : dir)
                    : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
                                                 unsigned(bytes.size()), dir.empty() ? "." : dir);
+        if (imageFailure.index >= 0)
+            Fail(Indexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
         if (!ok || !err.empty()) Fail("", OneLine(err));
     }
 
@@ -902,7 +907,7 @@ class Importer {
         for (size_t p = 0; p < rgba.size(); ++p) {
             uint32_t c[4] = {0, 0, 0, 255};
             for (int k = 0; k < channels; ++k) {
-                // 16-bit images keep their high byte, little-endian as stb returns them.
+                // 16-bit images keep their high byte, little-endian as stb and OIIO return them.
                 c[k] = image.image[(p * size_t(channels) + size_t(k)) * size_t(bytes) +
                                    size_t(bytes - 1)];
             }

@@ -171,15 +171,9 @@ inline int QuadMesh(GltfBuilder& b, int material) {
 
 // The quad seen by a 90-degree camera from z = 1: it fills the square image exactly. The
 // material shows the texture unlit (ambient 0.1 + emissive 0.9 = 1, and the only light shines
-// on the quad's back), so every pixel is its texel.
-inline std::string TexturedQuadGltf(int texWidth, int texHeight, const std::vector<uint8_t>& rgb,
-                                    int filter, int wrap) {
+// on the quad's back), so every pixel is its texel. The caller sets doc["images"][0].
+inline GltfBuilder TexturedQuadScene(int filter, int wrap) {
     GltfBuilder b;
-    b.doc["images"] = Json::array(
-        {{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>([&] {
-                      const std::string bmp = GltfBuilder::Bmp(texWidth, texHeight, rgb);
-                      return std::vector<uint8_t>(bmp.begin(), bmp.end());
-                  }()))}}});
     b.doc["samplers"] = Json::array(
         {{{"magFilter", filter}, {"minFilter", filter}, {"wrapS", wrap}, {"wrapT", wrap}}});
     b.doc["textures"] = Json::array({{{"source", 0}, {"sampler", 0}}});
@@ -202,6 +196,17 @@ inline std::string TexturedQuadGltf(int texWidth, int texHeight, const std::vect
         {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"rotation", {0, 1, 0, 0}}});
     b.doc["scenes"] = Json::array({{{"nodes", {quad, camera, light}}}});
     b.doc["scene"] = 0;
+    return b;
+}
+
+// TexturedQuadScene with the texture as a BMP data URI.
+inline std::string TexturedQuadGltf(int texWidth, int texHeight, const std::vector<uint8_t>& rgb,
+                                    int filter, int wrap) {
+    GltfBuilder b = TexturedQuadScene(filter, wrap);
+    const std::string bmp = GltfBuilder::Bmp(texWidth, texHeight, rgb);
+    b.doc["images"] =
+        Json::array({{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>(
+                                                             bmp.begin(), bmp.end()))}}});
     return b.GltfText();
 }
 

@@ -85,6 +85,21 @@ TEST_F(GltfTest, BilinearTexturedQuadBlendsNeighbours) {
     }
 }
 
+// Either build's decoder (OpenImageIO, or stb without it) names the image it could not decode.
+TEST_F(GltfTest, UndecodableImageIsNamed) {
+    GltfBuilder b = test::TexturedQuadScene(9728, 33071);
+    b.doc["images"] = Json::array(
+        {{{"uri", "data:image/png;base64," + GltfBuilder::Base64({'n', 'o', 'p', 'e'})}}});
+    const std::string path = Save("undecodable.gltf", b.GltfText());
+    try {
+        LoadSceneFile(path);
+        ADD_FAILURE() << "loaded without an error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.Field(), "images[0]") << e.what();
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+}
+
 TEST(TextureSampling, WrapModes) {
     // A 4x1 texture of grey levels 0, 1, 2, 3 (x 10), sampled at texel centres beyond [0, 1).
     const uint32_t texels[4] = {0, 10, 20, 30};

@@ -1,0 +1,24 @@
+#pragma once
+// The decoder tinygltf hands glTF images to (a .glb buffer view, a data: URI or an external file
+// alike): OpenImageIO in builds with it (gltf_image_oiio.cpp), tinygltf's own stb otherwise
+// (gltf_image_stb.cpp). Either way the image comes back as 8- or 16-bit RGBA.
+#include <string>
+
+namespace tinygltf {
+class TinyGLTF;
+}
+
+namespace rtrt {
+
+// The image a decode failed on, so that the importer's error names it ("images[2]"); tinygltf's
+// own message does not say which field it was.
+struct GltfImageFailure {
+    int index = -1;  // -1 while every image decoded
+    std::string reason;
+};
+
+// Installs this build's decoder on `loader`; a failed decode is recorded in `*failure`, which
+// must outlive the load.
+void InstallGltfImageLoader(tinygltf::TinyGLTF& loader, GltfImageFailure* failure);
+
+}  // namespace rtrt
