@@ -3,6 +3,7 @@
 #include "game/app/input_script.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -13,11 +14,14 @@
 namespace rtrt {
 namespace {
 
+// ctest runs each test in its own process, several at once: the process id keeps their files
+// apart (a shared counter alone gave every process rtrt_script_0.txt, and tests read each
+// other's scripts).
 std::string Write(const std::string& text) {
     static int count = 0;
-    const std::string path = (std::filesystem::temp_directory_path() /
-                              ("rtrt_script_" + std::to_string(count++) + ".txt"))
-                                 .string();
+    const std::string name =
+        "rtrt_script_" + std::to_string(getpid()) + "_" + std::to_string(count++) + ".txt";
+    const std::string path = (std::filesystem::temp_directory_path() / name).string();
     std::ofstream(path) << text;
     return path;
 }
