@@ -4,22 +4,21 @@ wrap modes (repeat + nearest, mirrored repeat + linear, clamp + linear), texture
 from -0.5 to 1.5 so that every wrap shows, an untextured floor, a point and a directional light
 (KHR_lights_punctual), a camera, and an animation that turns the middle quad (LINEAR rotation)
 and moves the right one (STEP translation). The GPU-vs-CPU tests and assets/scenes/gltf_demo.json
-use it. Self-contained: the buffer and the BMP image are base64 data URIs."""
-import base64, json, math, struct, sys
+use it. Self-contained: the buffer and the PNG image are base64 data URIs."""
+import base64, json, math, struct, sys, zlib
 
-def bmp(width, height, rgb):  # rows top to bottom, 24-bit, stored bottom-up
-    row_bytes = (3 * width + 3) // 4 * 4
-    body = b""
-    for y in reversed(range(height)):
-        row = b"".join(bytes((rgb[y][x][2], rgb[y][x][1], rgb[y][x][0])) for x in range(width))
-        body += row + b"\0" * (row_bytes - len(row))
-    header = b"BM" + struct.pack("<IHHI", 54 + len(body), 0, 0, 54)
-    info = struct.pack("<IiiHHIIiiII", 40, width, height, 1, 24, 0, len(body), 2835, 2835, 0, 0)
-    return header + info + body
+def png(width, height, rgb):  # 8-bit RGB, rows top to bottom, no filtering (PNG spec, ISO 15948)
+    def chunk(kind, data):
+        return (struct.pack(">I", len(data)) + kind + data +
+                struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff))
+    raw = b"".join(b"\0" + b"".join(bytes(rgb[y][x]) for x in range(width)) for y in range(height))
+    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) +
+            chunk(b"IEND", b""))
 
 texels = [[((x * 37 + y * 11) % 256, (255 - x * 32) % 256, (y * 32 + 16) % 256) if (x + y) % 2 == 0
            else (240, 240 - 20 * y, 30 + 25 * x) for x in range(8)] for y in range(8)]
-image = bmp(8, 8, texels)
+image = png(8, 8, texels)
 
 buf = bytearray()
 views, accessors = [], []
@@ -55,7 +54,7 @@ doc = {
     "buffers": [{"byteLength": len(buf),
                  "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buf)).decode()}],
     "bufferViews": views, "accessors": accessors,
-    "images": [{"uri": "data:image/bmp;base64," + base64.b64encode(image).decode()}],
+    "images": [{"uri": "data:image/png;base64," + base64.b64encode(image).decode()}],
     "samplers": [{"magFilter": 9728, "minFilter": 9728, "wrapS": 10497, "wrapT": 10497},
                  {"magFilter": 9729, "minFilter": 9729, "wrapS": 33648, "wrapT": 33648},
                  {"magFilter": 9729, "minFilter": 9729, "wrapS": 33071, "wrapT": 33071}],

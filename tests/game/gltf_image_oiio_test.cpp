@@ -113,7 +113,7 @@ std::string QuadWithImage(const Bytes& image, const std::string& mimeType, Conta
     return "";
 }
 
-// tools/make_textured_gltf.py's 8x8 texture, a BMP data URI, shared by the asset's three
+// tools/make_textured_gltf.py's 8x8 texture, a PNG data URI, shared by the asset's three
 // textures.
 TEST_F(GltfOiioTest, TexturedQuadsAssetDecodesToItsTexels) {
     const LoadedScene loaded = LoadSceneFile(test::SourcePath("assets/models/textured_quads.gltf"));
