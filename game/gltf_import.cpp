@@ -8,243 +8,19 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "engine/core/error.h"
 #include "game/gltf_image_loader.h"
+#include "game/gltf_precheck.h"
 
 namespace rtrt {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string Indexed(const std::string& array, size_t i) {
-    return array + "[" + std::to_string(i) + "]";
-}
-
 bool Finite(double v) { return std::isfinite(v) && std::fabs(v) <= 3.0e38; }
-
-// glTF's GLB container (spec section 4.4): a 12-byte header, then a JSON chunk and an optional
-// BIN chunk. Checked here so that a truncated or foreign file gets a precise message before
-// tinygltf sees it.
-void CheckGlbHeader(const std::string& file, const std::string& bytes) {
-    auto u32 = [&](size_t at) {
-        uint32_t v;
-        std::memcpy(&v, bytes.data() + at, 4);
-        return v;
-    };
-    if (bytes.size() < 12) throw InputError(file, "header", "truncated: a GLB header is 12 bytes");
-    if (bytes.compare(0, 4, "glTF") != 0)
-        throw InputError(file, "header.magic", "not a GLB file (it does not start with \"glTF\")");
-    if (u32(4) != 2)
-        throw InputError(file, "header.version",
-                         "GLB version " + std::to_string(u32(4)) + ", rtrt reads version 2");
-    if (u32(8) != bytes.size())
-        throw InputError(file, "header.length",
-                         "the header says " + std::to_string(u32(8)) + " bytes, the file has " +
-                             std::to_string(bytes.size()) +
-                             (u32(8) > bytes.size() ? " (truncated)" : ""));
-    size_t at = 12;
-    for (int chunk = 0; at < bytes.size(); ++chunk) {
-        const std::string field = Indexed("chunks", size_t(chunk));
-        if (bytes.size() - at < 8) throw InputError(file, field, "truncated chunk header");
-        const uint64_t length = u32(at);
-        if (length > bytes.size() - at - 8)
-            throw InputError(file, field + ".length",
-                             std::to_string(length) + " bytes do not fit in the file (truncated)");
-        if (chunk == 0 && u32(at + 4) != 0x4E4F534Au)
-            throw InputError(file, field + ".type", "the first chunk must be JSON");
-        at += 8 + length;
-    }
-}
-
-// The JSON text of a GLB whose header CheckGlbHeader accepted.
-std::string GlbJson(const std::string& bytes) {
-    uint32_t length;
-    std::memcpy(&length, bytes.data() + 12, 4);
-    return bytes.substr(20, length);
-}
-
-// glTF URIs are percent-encoded (RFC 3986): "a%20b.bin" names "a b.bin".
-std::string DecodeUri(const std::string& uri) {
-    std::string out;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
-            std::isxdigit(uint8_t(uri[i + 2]))) {
-            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
-}
-
-// The JSON types of the fields rtrt reads, per top-level array (glTF 2.0 schema). tinygltf
-// treats a field of the wrong type as absent; rtrt rejects it, naming it.
-enum class Kind {
-    kInt,
-    kString,
-    kBool,
-    kObject,
-    kInts,
-    kNumbers3,
-    kNumbers4,
-    kNumbers16,
-    kObjects
-};
-struct FieldKind {
-    const char* array;
-    const char* field;
-    Kind kind;
-};
-constexpr FieldKind kFieldKinds[] = {
-    {"nodes", "children", Kind::kInts},
-    {"nodes", "mesh", Kind::kInt},
-    {"nodes", "camera", Kind::kInt},
-    {"nodes", "skin", Kind::kInt},
-    {"nodes", "translation", Kind::kNumbers3},
-    {"nodes", "scale", Kind::kNumbers3},
-    {"nodes", "rotation", Kind::kNumbers4},
-    {"nodes", "matrix", Kind::kNumbers16},
-    {"nodes", "extensions", Kind::kObject},
-    {"scenes", "nodes", Kind::kInts},
-    {"meshes", "primitives", Kind::kObjects},
-    {"accessors", "bufferView", Kind::kInt},
-    {"accessors", "byteOffset", Kind::kInt},
-    {"accessors", "componentType", Kind::kInt},
-    {"accessors", "count", Kind::kInt},
-    {"accessors", "type", Kind::kString},
-    {"accessors", "normalized", Kind::kBool},
-    {"bufferViews", "buffer", Kind::kInt},
-    {"bufferViews", "byteOffset", Kind::kInt},
-    {"bufferViews", "byteLength", Kind::kInt},
-    {"bufferViews", "byteStride", Kind::kInt},
-    {"buffers", "uri", Kind::kString},
-    {"buffers", "byteLength", Kind::kInt},
-    {"images", "uri", Kind::kString},
-    {"textures", "source", Kind::kInt},
-    {"textures", "sampler", Kind::kInt},
-    {"materials", "pbrMetallicRoughness", Kind::kObject},
-    {"materials", "extensions", Kind::kObject},
-    {"animations", "channels", Kind::kObjects},
-    {"animations", "samplers", Kind::kObjects},
-    {"cameras", "type", Kind::kString},
-};
-
-bool IsKind(const nlohmann::json& v, Kind kind) {
-    auto numbers = [&](size_t n) {
-        if (!v.is_array() || v.size() != n) return false;
-        for (const nlohmann::json& x : v)
-            if (!x.is_number()) return false;
-        return true;
-    };
-    switch (kind) {
-        case Kind::kInt:
-            return v.is_number_integer();
-        case Kind::kString:
-            return v.is_string();
-        case Kind::kBool:
-            return v.is_boolean();
-        case Kind::kObject:
-            return v.is_object();
-        case Kind::kNumbers3:
-            return numbers(3);
-        case Kind::kNumbers4:
-            return numbers(4);
-        case Kind::kNumbers16:
-            return numbers(16);
-        case Kind::kInts:
-        case Kind::kObjects:
-            if (!v.is_array()) return false;
-            for (const nlohmann::json& x : v)
-                if (kind == Kind::kInts ? !x.is_number_integer() : !x.is_object()) return false;
-            return true;
-    }
-    return false;
-}
-
-const char* KindName(Kind kind) {
-    switch (kind) {
-        case Kind::kInt:
-            return "an integer";
-        case Kind::kString:
-            return "a string";
-        case Kind::kBool:
-            return "true or false";
-        case Kind::kObject:
-            return "an object";
-        case Kind::kInts:
-            return "an array of integers";
-        case Kind::kNumbers3:
-            return "an array of 3 numbers";
-        case Kind::kNumbers4:
-            return "an array of 4 numbers";
-        case Kind::kNumbers16:
-            return "an array of 16 numbers";
-        case Kind::kObjects:
-            return "an array of objects";
-    }
-    return "";
-}
-
-// Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
-// that external buffers and images exist, so that the message names the field
-// ("buffers[0].uri") where tinygltf's would not.
-void CheckJson(const std::string& file, const std::string& json, const std::string& dir) {
-    nlohmann::json root;
-    try {
-        root = nlohmann::json::parse(json);
-    } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e999
-        throw InputError(file, "", std::string("malformed JSON: ") + e.what());
-    }
-    if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
-    for (const char* array : {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers",
-                              "images", "textures", "materials", "animations", "cameras"}) {
-        if (!root.contains(array)) continue;
-        const nlohmann::json& list = root[array];
-        if (!IsKind(list, Kind::kObjects))
-            throw InputError(file, array, "expected an array of objects");
-        for (size_t i = 0; i < list.size(); ++i)
-            for (const FieldKind& f : kFieldKinds)
-                if (std::strcmp(f.array, array) == 0 && list[i].contains(f.field) &&
-                    !IsKind(list[i][f.field], f.kind))
-                    throw InputError(file, Indexed(array, i) + "." + f.field,
-                                     std::string("expected ") + KindName(f.kind) + ", got " +
-                                         list[i][f.field].type_name());
-    }
-    for (const char* array : {"buffers", "images"}) {
-        if (!root.contains(array) || !root[array].is_array()) continue;
-        const nlohmann::json& list = root[array];
-        for (size_t i = 0; i < list.size(); ++i) {
-            if (!list[i].is_object() || !list[i].contains("uri") || !list[i]["uri"].is_string())
-                continue;
-            const std::string uri = list[i]["uri"].get<std::string>();
-            if (uri.rfind("data:", 0) == 0) continue;
-            std::error_code ec;
-            const fs::path path = fs::path(dir.empty() ? "." : dir) / DecodeUri(uri);
-            if (!fs::is_regular_file(path, ec))
-                throw InputError(file, Indexed(array, i) + ".uri",
-                                 "no such file \"" + path.string() + "\"");
-        }
-    }
-}
-
-std::string ReadWholeFile(const std::string& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(path, "", "no such file");
-    if (fs::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a glTF file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot be opened for reading");
-    std::stringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw InputError(path, "", "read failed");
-    return text.str();
-}
 
 // tinygltf's messages can span lines and start with "Error: "; the CLI prints one line.
 std::string OneLine(std::string text) {
@@ -343,13 +119,10 @@ class Importer {
     }
 
     void Load() {
-        const std::string bytes = ReadWholeFile(file_);
-        std::string lower = fs::path(file_).extension().string();
-        for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
-        const bool binary = lower == ".glb" || bytes.compare(0, 4, "glTF") == 0;
-        if (binary) CheckGlbHeader(file_, bytes);
+        const GltfFileBytes checked = ReadCheckedGltf(file_);
+        const std::string& bytes = checked.bytes;
+        const bool binary = checked.binary;
         const std::string dir = fs::path(file_).parent_path().string();
-        CheckJson(file_, binary ? GlbJson(bytes) : bytes, dir);
         tinygltf::TinyGLTF loader;
         GltfImageFailure imageFailure;
         InstallGltfImageLoader(loader, &imageFailure);
@@ -361,7 +134,7 @@ class Importer {
                    : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
                                                 unsigned(bytes.size()), dir.empty() ? "." : dir);
         if (imageFailure.index >= 0)
-            Fail(Indexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
+            Fail(GltfIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
         if (!ok || !err.empty()) Fail("", OneLine(err));
     }
 
@@ -389,7 +162,7 @@ class Importer {
             const std::vector<int>& children = model_.nodes[i].children;
             for (size_t c = 0; c < children.size(); ++c) {
                 const int child = children[c];
-                const std::string field = Indexed(Indexed("nodes", i) + ".children", c);
+                const std::string field = GltfIndexed(GltfIndexed("nodes", i) + ".children", c);
                 if (child < 0 || size_t(child) >= n)
                     Fail(field, "node " + std::to_string(child) + " out of range (" +
                                     std::to_string(n) + " nodes)");
@@ -406,7 +179,7 @@ class Importer {
             int at = int(i);
             for (size_t steps = 0; at >= 0; ++steps) {
                 if (steps > n)
-                    Fail(Indexed("nodes", i) + ".children",
+                    Fail(GltfIndexed("nodes", i) + ".children",
                          "node " + std::to_string(i) + " is its own ancestor (a cycle)");
                 at = parentOf_[at];
             }
@@ -424,7 +197,7 @@ class Importer {
             const std::vector<int>& nodes = model_.scenes[size_t(sceneIndex)].nodes;
             for (size_t i = 0; i < nodes.size(); ++i) {
                 const std::string field =
-                    Indexed(Indexed("scenes", size_t(sceneIndex)) + ".nodes", i);
+                    GltfIndexed(GltfIndexed("scenes", size_t(sceneIndex)) + ".nodes", i);
                 if (nodes[i] < 0 || size_t(nodes[i]) >= model_.nodes.size())
                     Fail(field, "node " + std::to_string(nodes[i]) + " out of range");
                 if (parentOf_[nodes[i]] >= 0)
@@ -445,7 +218,7 @@ class Importer {
 
     physics::LocalTransform NodeTransform(size_t index) {
         const tinygltf::Node& node = model_.nodes[index];
-        const std::string at = Indexed("nodes", index);
+        const std::string at = GltfIndexed("nodes", index);
         auto finite = [&](const std::vector<double>& values, const char* field, size_t size) {
             if (!values.empty() && values.size() != size)
                 Fail(at + "." + field, "expected " + std::to_string(size) + " numbers");
@@ -504,15 +277,15 @@ class Importer {
             if (c.type == "perspective") {
                 const double fov = c.perspective.yfov * 180.0 / 3.14159265358979323846;
                 if (!(fov >= 1.0 && fov <= 179.0))
-                    Fail(Indexed("cameras", i) + ".perspective.yfov",
+                    Fail(GltfIndexed("cameras", i) + ".perspective.yfov",
                          "must be between 1 and 179 degrees (in radians), got " +
                              std::to_string(c.perspective.yfov));
                 camera.fovYDegrees = float(fov);
                 if (Finite(c.perspective.aspectRatio) && c.perspective.aspectRatio > 0.0)
                     camera.aspect = float(c.perspective.aspectRatio);
             } else {
-                Warn("orthographic",
-                     Indexed("cameras", i) + ": " + c.type + " cameras are not supported; skipped");
+                Warn("orthographic", GltfIndexed("cameras", i) + ": " + c.type +
+                                         " cameras are not supported; skipped");
                 camera.fovYDegrees = 0.0f;  // marks it skipped
             }
             asset_.cameras.push_back(camera);
@@ -557,7 +330,7 @@ class Importer {
             out.parent = parent;
             out.source = uint32_t(index);
             out.local = NodeTransform(size_t(index));
-            const std::string at = Indexed("nodes", size_t(index));
+            const std::string at = GltfIndexed("nodes", size_t(index));
             if (node.mesh >= 0) {
                 if (size_t(node.mesh) >= model_.meshes.size())
                     Fail(at + ".mesh", "mesh " + std::to_string(node.mesh) + " out of range");
@@ -610,7 +383,7 @@ class Importer {
         const tinygltf::Mesh& m = model_.meshes[mesh];
         for (size_t p = 0; p < m.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = m.primitives[p];
-            const std::string at = Indexed(Indexed("meshes", mesh) + ".primitives", p);
+            const std::string at = GltfIndexed(GltfIndexed("meshes", mesh) + ".primitives", p);
             if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
                 Warn("mode", at + ".mode: mode " + std::to_string(prim.mode) +
                                  " (points, lines, strips or fans) is not supported; such "
@@ -646,7 +419,7 @@ class Importer {
             Fail(field, "accessor " + std::to_string(index) + " out of range (" +
                             std::to_string(model_.accessors.size()) + " accessors)");
         const tinygltf::Accessor& a = model_.accessors[size_t(index)];
-        const std::string at = Indexed("accessors", size_t(index));
+        const std::string at = GltfIndexed("accessors", size_t(index));
         if (a.sparse.isSparse) throw Unsupported{"sparse accessors are not supported"};
         if (std::find(types.begin(), types.end(), a.type) == types.end())
             Fail(at + ".type", "wrong element type for " + field);
@@ -660,7 +433,7 @@ class Importer {
             Fail(at + ".bufferView",
                  "buffer view " + std::to_string(a.bufferView) + " out of range");
         const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
-        const std::string viewAt = Indexed("bufferViews", size_t(a.bufferView));
+        const std::string viewAt = GltfIndexed("bufferViews", size_t(a.bufferView));
         if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
             Fail(viewAt + ".buffer", "buffer " + std::to_string(view.buffer) + " out of range");
         const std::vector<unsigned char>& buffer = model_.buffers[size_t(view.buffer)].data;
@@ -739,7 +512,7 @@ class Importer {
             if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
                 a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
                 a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-                Fail(Indexed("accessors", size_t(prim.indices)) + ".componentType",
+                Fail(GltfIndexed("accessors", size_t(prim.indices)) + ".componentType",
                      "indices must be unsigned bytes, shorts or ints");
             indices.resize(a.count);
             for (size_t i = 0; i < a.count; ++i) {
@@ -775,7 +548,7 @@ class Importer {
         auto found = materialIds_.find(index);
         if (found != materialIds_.end()) return found->second;
         const tinygltf::Material& g = model_.materials[size_t(index)];
-        const std::string at = Indexed("materials", size_t(index));
+        const std::string at = GltfIndexed("materials", size_t(index));
         const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
         auto number = [&](double v, const std::string& name, double lo, double hi) {
             if (!(v >= lo && v <= hi))
@@ -886,7 +659,7 @@ class Importer {
         auto found = textureIds_.find(info.index);
         if (found != textureIds_.end()) return found->second;
         const tinygltf::Texture& t = model_.textures[size_t(info.index)];
-        const std::string textureAt = Indexed("textures", size_t(info.index));
+        const std::string textureAt = GltfIndexed("textures", size_t(info.index));
         if (t.source < 0) {
             Warn("texture-source", textureAt +
                                        ": no image rtrt can read (an extension's "
@@ -896,7 +669,7 @@ class Importer {
         if (size_t(t.source) >= model_.images.size())
             Fail(textureAt + ".source", "image " + std::to_string(t.source) + " out of range");
         const tinygltf::Image& image = model_.images[size_t(t.source)];
-        const std::string imageAt = Indexed("images", size_t(t.source));
+        const std::string imageAt = GltfIndexed("images", size_t(t.source));
         const int channels = image.component, bytes = image.bits / 8;
         if (image.width <= 0 || image.height <= 0 || channels < 1 || channels > 4 ||
             (bytes != 1 && bytes != 2) ||
@@ -949,7 +722,7 @@ class Importer {
         float duration = 0.0f;
         for (size_t c = 0; c < anim.channels.size(); ++c) {
             const tinygltf::AnimationChannel& ch = anim.channels[c];
-            const std::string at = Indexed("animations[0].channels", c);
+            const std::string at = GltfIndexed("animations[0].channels", c);
             if (ch.target_path == "weights") {
                 Warn("morph", at + ".target.path: weights (morph targets) are not "
                                    "supported; meshes keep their base shape");
@@ -966,7 +739,7 @@ class Importer {
             const int32_t slot = nodeSlot_[size_t(ch.target_node)];
             if (slot < 0) continue;  // a node outside the scene shown
             const tinygltf::AnimationSampler& s = anim.samplers[size_t(ch.sampler)];
-            const std::string samplerAt = Indexed("animations[0].samplers", size_t(ch.sampler));
+            const std::string samplerAt = GltfIndexed("animations[0].samplers", size_t(ch.sampler));
             physics::Interpolation mode = physics::Interpolation::kLinear;
             const bool cubic = s.interpolation == "CUBICSPLINE";
             if (s.interpolation == "STEP")

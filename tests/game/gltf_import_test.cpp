@@ -349,6 +349,8 @@ std::vector<HostileGltf> MakeHostileGltfCorpus() {
     return {
         {"truncated.glb", glb.substr(0, glb.size() - 10), "header.length", "(truncated)"},
         {"truncated_header.glb", glb.substr(0, 7), "header", "truncated"},
+        {"no_chunks.glb", std::string("glTF\x02\0\0\0\x0c\0\0\0", 12), "chunks",
+         "needs a JSON chunk"},
         {"wrong_magic.glb", "gLTF" + glb.substr(4), "header.magic", "not a GLB file"},
         {"wrong_version.glb", badVersion, "header.version", "GLB version 1"},
         {"chunk_too_long.glb", shortChunk, "chunks[0].length", "do not fit"},

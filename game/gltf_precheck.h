@@ -1,0 +1,20 @@
+#pragma once
+// What rtrt checks of a glTF file before tinygltf reads it: the GLB container, the JSON types of
+// the fields rtrt reads (tinygltf drops a mistyped field silently) and that referenced buffer
+// and image files exist, so that each defect gets a message naming its field.
+#include <string>
+
+namespace rtrt {
+
+// "array[i]", the way error messages name an element of a glTF array.
+std::string GltfIndexed(const std::string& array, size_t i);
+
+struct GltfFileBytes {
+    std::string bytes;  // the whole file
+    bool binary;        // GLB (by extension or magic) rather than JSON text
+};
+
+// Reads FILE and checks it as above; throws InputError naming the file and field.
+GltfFileBytes ReadCheckedGltf(const std::string& file);
+
+}  // namespace rtrt
