@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "engine/bvh/triangle_mesh.h"
+#include "engine/geometry/triangle_mesh.h"
 
 namespace rtrt::test {
 

@@ -286,7 +286,7 @@ plots from the benchmark's JSON results (see "Regenerating" below); do not edit 
   strata, one jittered sample each, the same positions on every run and back end), max depth 8,
   binned-SAH BLAS, SAH TLAS built over the instances.
 - **Reference**: the base setting computed in double precision on the CPU
-  (`engine/render_rt/accuracy/reference_*.h`): camera rays, instance transforms (the inverse
+  (`bench/accuracy/reference_*.h`): camera rays, instance transforms (the inverse
   taken in double from the float object-to-world transform), triangle and sphere tests,
   hit points, error bounds, offsets and shading are doubles; the scene data stays as the float
   renderer sees it (float vertices, spheres, transforms, BVH boxes), over the sweep-SAH BLAS.
@@ -302,9 +302,9 @@ plots from the benchmark's JSON results (see "Regenerating" below); do not edit 
   0); a runtime that rebuilds every N frames traces such a tree just before each rebuild); float instead of double (the base row). The
   "textbook" row turns on all three less robust tests with 1 sample and depth 4.
 
-The test variants are compile-time bits (`engine/bvh/accuracy_variant.h`,
-`engine/render_rt/spawn_variant.h`) instantiated only in the benchmark's own translation units
-(`engine/render_rt/accuracy/accuracy_cpu.cpp`, `accuracy_cuda.cu`) for the one feature set of
+The test variants are compile-time bits (`bench/accuracy/accuracy_variant.h`,
+`bench/accuracy/spawn_variant.h`) instantiated only in the benchmark's own translation units
+(`bench/accuracy/accuracy_cpu.cpp`, `accuracy_cuda.cu`) for the one feature set of
 its scenes; the default kernels are unchanged.
 
 ## Scenes

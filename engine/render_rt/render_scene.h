@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/bvh/tlas.h"
+#include "engine/bvh/tlas/tlas.h"
 #include "engine/render_rt/render_scene_view.h"
 
 namespace rtrt {

@@ -1,6 +1,6 @@
 #pragma once
 // Everything a trace kernel reads, as plain pointers into host or device memory.
-#include "engine/bvh/scene_traversal.h"
+#include "engine/bvh/traversal/scene_traversal.h"
 #include "engine/render_rt/camera.h"
 #include "engine/render_rt/material.h"
 #include "engine/render_rt/scene_features.h"

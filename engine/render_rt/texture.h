@@ -4,7 +4,7 @@
 // objects, so the CPU back end is the reference for the GPU's samples bit for bit.
 #include <cstdint>
 
-#include "engine/bvh/primitives.h"
+#include "engine/geometry/primitives.h"
 #include "engine/render_rt/material.h"
 
 namespace rtrt {

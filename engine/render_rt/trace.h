@@ -3,8 +3,8 @@
 // follow an explicit ray stack instead of recursion (the original paper's iterative ray queue):
 // a ray's secondary rays are pushed with the weight they contribute, and the pixel is the sum of
 // weight * local shading over every ray popped.
+#include "bench/accuracy/spawn_variant.h"
 #include "engine/render_rt/optics.h"
-#include "engine/render_rt/spawn_variant.h"
 
 namespace rtrt {
 

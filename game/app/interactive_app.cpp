@@ -5,9 +5,9 @@
 #include <memory>
 #include <optional>
 
-#include "engine/bvh/tlas.h"
+#include "engine/bvh/tlas/tlas.h"
 #include "engine/core/timer.h"
-#include "engine/render_rt/cuda_frame_renderer.h"
+#include "engine/render_rt/cuda/cuda_frame_renderer.h"
 #include "game/app/camera_controller.h"
 #include "game/app/controls.h"
 #include "game/app/cuda_gl_frame.h"
@@ -16,7 +16,7 @@
 #include "game/app/overlay.h"
 #include "game/app/spawn_palette.h"
 #include "game/app/window.h"
-#include "game/image_io.h"
+#include "game/assets/image_io.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

@@ -2,10 +2,10 @@
 
 #include <filesystem>
 
-#include "game/mesh_io.h"
-#include "game/model_dir.h"
-#include "game/procedural_shapes.h"
-#include "game/teapot.h"
+#include "game/assets/mesh_io.h"
+#include "game/assets/model_dir.h"
+#include "game/assets/procedural_shapes.h"
+#include "game/assets/teapot.h"
 
 namespace rtrt {
 namespace {

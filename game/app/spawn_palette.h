@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "game/world.h"
+#include "game/runtime/world.h"
 
 namespace rtrt {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
-#include "engine/bvh/blas.h"
-#include "game/mesh_io.h"
+#include "engine/bvh/blas/blas.h"
+#include "game/assets/mesh_io.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

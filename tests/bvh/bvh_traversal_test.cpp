@@ -4,13 +4,13 @@
 
 #include <random>
 
-#include "engine/bvh/blas.h"
-#include "engine/bvh/bvh4_traversal.h"
-#include "engine/bvh/sphere_intersect.h"
-#include "engine/bvh/traversal.h"
-#include "engine/bvh/triangle_intersect.h"
-#include "game/mesh_io.h"
-#include "game/teapot.h"
+#include "engine/bvh/blas/blas.h"
+#include "engine/bvh/traversal/bvh4_traversal.h"
+#include "engine/bvh/traversal/traversal.h"
+#include "engine/geometry/sphere_intersect.h"
+#include "engine/geometry/triangle_intersect.h"
+#include "game/assets/mesh_io.h"
+#include "game/assets/teapot.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

@@ -1,6 +1,6 @@
 // The TLAS policy: rebuild on topology changes, refit while quality holds, rebuild once the SAH
 // cost has drifted past the threshold; the tree stays valid over many frames of motion.
-#include "engine/bvh/dynamic_tlas.h"
+#include "engine/bvh/tlas/dynamic_tlas.h"
 
 #include <gtest/gtest.h>
 

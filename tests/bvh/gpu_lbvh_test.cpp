@@ -1,7 +1,7 @@
 // The GPU LBVH equals the CPU LBVH for the same input: the same nodes (bit for bit: bounds come
 // from min/max only), leaf order and parents; for 0, 1, 2, 1000 and 1,000,000 instances, all at
 // one point, and one far outlier. Refit on the GPU equals refit on the CPU. Label gpu.
-#include "engine/bvh/gpu_lbvh.h"
+#include "engine/bvh/build/gpu_lbvh.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // The LBVH (Karras 2012) over instance bounds: every primitive reachable exactly once, every node
 // bounds its children, equal Morton codes and zero-extent inputs handled, refit keeps it valid.
-#include "engine/bvh/lbvh.h"
+#include "engine/bvh/build/lbvh.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "engine/bvh/morton.h"
+#include "engine/bvh/build/morton.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

@@ -1,7 +1,7 @@
 // .rtmodel files: a written BLAS reads back bit for bit, and every malformed file in the hostile
 // corpus (tests/data/hostile/, made by MakeHostileCorpus below) gives an InputError naming the
 // field at fault.
-#include "engine/bvh/rtmodel.h"
+#include "engine/bvh/blas/rtmodel.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,9 +13,9 @@
 #include <limits>
 #include <sstream>
 
-#include "engine/bvh/rtmodel_format.h"
+#include "engine/bvh/blas/rtmodel_format.h"
 #include "engine/core/error.h"
-#include "game/mesh_io.h"
+#include "game/assets/mesh_io.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

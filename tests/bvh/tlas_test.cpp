@@ -1,5 +1,5 @@
 // Two-level traversal: a TLAS over instances finds what testing every instance finds.
-#include "engine/bvh/tlas.h"
+#include "engine/bvh/tlas/tlas.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
 
-#include "engine/bvh/scene_traversal.h"
+#include "engine/bvh/traversal/scene_traversal.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

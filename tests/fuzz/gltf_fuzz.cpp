@@ -11,7 +11,7 @@
 #include <string>
 
 #include "engine/core/error.h"
-#include "game/gltf_import.h"
+#include "game/gltf/gltf_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // The importer takes a path: an in-memory file stands in for one. Relative URIs resolve

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/bvh/rtmodel.h"
-#include "engine/bvh/rtmodel_format.h"
+#include "engine/bvh/blas/rtmodel.h"
+#include "engine/bvh/blas/rtmodel_format.h"
 #include "engine/core/error.h"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "engine/core/error.h"
-#include "game/scene_file.h"
+#include "game/scene/scene_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

@@ -6,12 +6,12 @@
 // edge. Label gpu: CI has no GPU and skips these.
 #include <gtest/gtest.h>
 
-#include "engine/render_rt/cuda_frame_renderer.h"
+#include "engine/render_rt/cuda/cuda_frame_renderer.h"
 #include "engine/render_rt/renderer.h"
-#include "game/default_scene.h"
-#include "game/scene_file.h"
-#include "game/world.h"
-#include "tests/game/gltf_builder.h"
+#include "game/runtime/world.h"
+#include "game/scene/default_scene.h"
+#include "game/scene/scene_file.h"
+#include "tests/gltf/gltf_builder.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

@@ -9,9 +9,9 @@
 #include <cstring>
 
 #include "engine/render_rt/renderer.h"
-#include "game/default_scene.h"
-#include "game/image_io.h"
-#include "game/scene_file.h"
+#include "game/assets/image_io.h"
+#include "game/scene/default_scene.h"
+#include "game/scene/scene_file.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

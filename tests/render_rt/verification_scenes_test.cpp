@@ -4,9 +4,9 @@
 
 #include <optional>
 
-#include "engine/bvh/triangle_intersect.h"
+#include "engine/geometry/triangle_intersect.h"
 #include "engine/render_rt/renderer.h"
-#include "game/scene_file.h"
+#include "game/scene/scene_file.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

@@ -3,7 +3,7 @@
 // runner (cpu_runner.h) calls the evaluators in a loop compiled with -ffp-contract=off, the GPU
 // runner (gpu_runner.cu) calls the very same functions in a kernel compiled by nvcc with its
 // default contraction (--fmad=true), so both back ends are held to the same expected values.
-#include "engine/bvh/scene_traversal.h"
+#include "engine/bvh/traversal/scene_traversal.h"
 #include "engine/render_rt/optics.h"
 #include "engine/render_rt/surface.h"
 

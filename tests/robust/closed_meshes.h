@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/bvh/triangle_mesh.h"
+#include "engine/geometry/triangle_mesh.h"
 
 namespace rtrt::robust {
 

@@ -3,7 +3,7 @@
 // multiply-add the code does not keep apart itself (triangle_intersect.h keeps the edge
 // functions apart with __fmul_rn/__fsub_rn).
 #include "engine/core/device_buffer.h"
-#include "engine/render_rt/device_scene.h"
+#include "engine/render_rt/cuda/device_scene.h"
 #include "tests/robust/gpu_runner.h"
 
 namespace rtrt::robust {

@@ -1,5 +1,5 @@
 #pragma once
-// The slab test's hard cases (engine/bvh/slab_test.h), each with its expected answer: zero and
+// The slab test's hard cases (engine/geometry/slab_test.h), each with its expected answer: zero and
 // negative-zero direction components, rays lying in a box face, flat and point-like boxes, NaN
 // lanes, tMax exactly at the entry. The expected value follows from the definition of an inclusive
 // test: a ray hits the closed box [min, max] if some t in [0, tMax] puts o + t d in it.

@@ -1,7 +1,7 @@
 #pragma once
-// Ray/sphere hard cases (engine/bvh/sphere_intersect.h, Ray Tracing Gems ch. 7): small spheres far
-// away, a huge ground sphere, origins inside. The expected t is the root of |o + t d - c|^2 = r^2
-// computed in double from the same float inputs (nearest root > 0), so it is exact to double
+// Ray/sphere hard cases (engine/geometry/sphere_intersect.h, Ray Tracing Gems ch. 7): small spheres
+// far away, a huge ground sphere, origins inside. The expected t is the root of |o + t d - c|^2 =
+// r^2 computed in double from the same float inputs (nearest root > 0), so it is exact to double
 // precision. The float result must lie within a stated bound of it:
 // - the stable form's error is a few ulps of the largest quantity it combines, max(|o - c|, r):
 //   the hit point o + t d (in double) must lie within 16 ulps of that (16 * 2^-23 *

@@ -1,5 +1,5 @@
 // TLAS hard cases on the CPU (tlas_checks.h), and refit quality over many frames.
-#include "engine/bvh/dynamic_tlas.h"
+#include "engine/bvh/tlas/dynamic_tlas.h"
 #include "tests/robust/cpu_runner.h"
 #include "tests/robust/tlas_checks.h"
 

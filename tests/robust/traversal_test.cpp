@@ -1,6 +1,6 @@
 // Traversal against brute force and bad rays on the CPU (traversal_checks.h). 2,000,000 rays: the
 // CPU back end's 4-wide BLAS traversal and the binary one are both compared.
-#include "engine/bvh/traversal.h"
+#include "engine/bvh/traversal/traversal.h"
 
 #include "tests/robust/cpu_runner.h"
 #include "tests/robust/traversal_checks.h"

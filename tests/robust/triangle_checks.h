@@ -1,5 +1,5 @@
 #pragma once
-// Ray/triangle cases at the primitive level (engine/bvh/triangle_intersect.h):
+// Ray/triangle cases at the primitive level (engine/geometry/triangle_intersect.h):
 // - direction-length invariance: object-space directions are not unit length (instance scale
 //   divides them), so the same geometric ray with its direction scaled by 1e-30 .. 1e30 must hit
 //   the same triangle at t scaled by the inverse; expected t |d| equal to the unit ray's to 1e-6;

@@ -1,6 +1,6 @@
 // Watertightness on the real models (CPU; skipped when the models are not fetched): the Newell
-// teapot tessellated from its 32 patches (game/teapot.h) and dragon res4. Neither is closed (the
-// teapot's spout and the scan's holes are open), so the expectation is local: a ray aimed at a
+// teapot tessellated from its 32 patches (game/assets/teapot.h) and dragon res4. Neither is closed
+// (the teapot's spout and the scan's holes are open), so the expectation is local: a ray aimed at a
 // point p of the surface away from open boundaries (a point of an edge used by exactly two
 // triangles, wound consistently; shared by position, so patch seams count when their vertices
 // agree bit for bit; or a vertex on such edges only), crossing the surface there (its direction
@@ -15,8 +15,8 @@
 #include <optional>
 #include <random>
 
-#include "game/mesh_io.h"
-#include "game/teapot.h"
+#include "game/assets/mesh_io.h"
+#include "game/assets/teapot.h"
 #include "tests/robust/cpu_runner.h"
 #include "tests/robust/scene_builder.h"
 #include "tests/robust/traversal_checks.h"

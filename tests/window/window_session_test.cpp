@@ -6,8 +6,8 @@
 #include <cstdlib>
 
 #include "engine/render_rt/renderer.h"
-#include "game/image_io.h"
-#include "game/scene_file.h"
+#include "game/assets/image_io.h"
+#include "game/scene/scene_file.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

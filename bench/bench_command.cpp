@@ -1,0 +1,383 @@
+// `rtrt bench cpu`: BLAS build time and SAH cost per builder, and CPU frame time and rays per
+// second on the paper scene (paper_scene.h), for the cube, the teapot and the dragons.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/bench_commands.h"
+#include "bench/bench_report.h"
+#include "bench/ecs_benchmark.h"
+#include "bench/instance_grid_bench.h"
+#include "engine/core/error.h"
+#include "engine/core/timer.h"
+#include "engine/render_rt/renderer.h"
+#include "game/assets/mesh_io.h"
+#include "game/assets/model_dir.h"
+#include "game/assets/procedural_shapes.h"
+#include "game/assets/teapot.h"
+#include "game/runtime/world.h"
+#include "game/scene/paper_scene.h"
+#include "game/scene/scene_file.h"
+
+namespace rtrt {
+namespace {
+
+struct BenchOptions {
+    int frames = 7;
+    int gpuFrames = 200;
+    std::string output;
+    std::vector<std::string> models{"cube",        "teapot",      "dragon_res4",
+                                    "dragon_res3", "dragon_res2", "dragon"};
+    std::vector<std::string> builders{"binned", "sweep", "centroid"};
+};
+
+std::string CommandOutput(const char* command) {
+    std::string out;
+    if (FILE* pipe = popen(command, "r")) {
+        char buffer[256];
+        while (fgets(buffer, sizeof(buffer), pipe)) out += buffer;
+        pclose(pipe);
+    }
+    while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+    return out;
+}
+
+nlohmann::json MachineInfo() {
+    nlohmann::json m;
+    m["cpu"] = CommandOutput("grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //'");
+    m["threads"] = std::thread::hardware_concurrency();
+    m["host"] = CommandOutput("hostname");
+    // RTRT_COMMIT names the commit where the tree has no .git (the GPU machine's copy).
+    const char* commit = std::getenv("RTRT_COMMIT");
+    m["commit"] = commit && *commit ? std::string(commit)
+                                    : CommandOutput("git rev-parse --short HEAD 2>/dev/null");
+    std::time_t now = std::time(nullptr);
+    char date[32];
+    std::strftime(date, sizeof(date), "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+    m["date"] = date;
+    return m;
+}
+
+// Loads a benchmark model, fitted to extent 5; false (with a note) when its file is missing.
+bool LoadBenchModel(const std::string& name, TriangleMesh* mesh) {
+    const std::string dir = ModelDir();
+    std::string path;
+    if (name == "cube") {
+        *mesh = MakeBoxMesh(vec3(1.0f));
+    } else if (name == "teapot") {
+        path = dir + "/teapot.inc";
+        if (!std::filesystem::exists(path)) return false;
+        *mesh = TessellateTeapot(path, 6);
+    } else {
+        const std::string suffix = name == "dragon" ? "" : name.substr(6);  // "_res4"
+        path = dir + "/dragon_vrip" + suffix + ".ply.gz";
+        if (!std::filesystem::exists(path)) return false;
+        *mesh = LoadMesh(path);
+    }
+    FitMesh(*mesh, 5.0f);
+    return true;
+}
+
+void RunBench(const BenchOptions& o) {
+    nlohmann::json report;
+    report["machine"] = MachineInfo();
+    report["scene"] = "paper scene, 1920x1080, max depth 2, one ray per pixel centre";
+    std::printf("rtrt bench cpu: %s, %u threads\n",
+                report["machine"]["cpu"].get<std::string>().c_str(),
+                std::thread::hardware_concurrency());
+    std::printf("%-12s %10s %-9s %10s %9s %8s | %10s %8s %9s\n", "model", "triangles", "builder",
+                "build ms", "SAH cost", "nodes", "frame ms", "M rays", "M rays/s");
+    for (const std::string& name : o.models) {
+        TriangleMesh mesh;
+        Stopwatch loadTimer;
+        if (!LoadBenchModel(name, &mesh)) {
+            std::printf("%-12s skipped: model file missing in %s (run tools/fetch_models.sh)\n",
+                        name.c_str(), ModelDir().c_str());
+            continue;
+        }
+        nlohmann::json row;
+        row["model"] = name;
+        row["triangles"] = mesh.indices.size();
+        row["load_ms"] = loadTimer.Milliseconds();
+        std::shared_ptr<const Blas> binned;
+        for (const std::string& builderName : o.builders) {
+            BvhBuildOptions options;
+            ParseBuilder(builderName, &options.builder);
+            std::vector<double> times;
+            Blas blas;
+            Stopwatch total;
+            do {
+                Stopwatch t;
+                blas = BuildTriangleBlas(mesh, options);
+                times.push_back(t.Milliseconds());
+            } while (times.size() < 5 && total.Milliseconds() < 1500.0);
+            const BvhStats stats = ComputeStats(blas.nodes);
+            row["builders"][builderName] = {
+                {"build_ms", Median(times)}, {"sah_cost", stats.sahCost},
+                {"nodes", stats.nodeCount},  {"max_depth", stats.maxDepth},
+                {"bytes", blas.Bytes()},     {"runs", times.size()}};
+            std::printf("%-12s %10zu %-9s %10.1f %9.2f %8u |", name.c_str(), mesh.indices.size(),
+                        builderName.c_str(), Median(times), stats.sahCost, stats.nodeCount);
+            std::fflush(stdout);
+            // Each builder's tree traces the paper scene, so SAH cost can be read against time.
+            const RenderScene scene = MakePaperScene(std::make_shared<const Blas>(std::move(blas)));
+            RenderSettings settings{kPaperWidth, kPaperHeight, kPaperMaxDepth};
+            RenderStats renderStats;
+            Image frame;
+            RenderInto(scene, settings, frame, &renderStats);  // warm-up
+            std::vector<double> frameTimes;
+            for (int i = 0; i < o.frames; ++i) {
+                Stopwatch t;
+                RenderInto(scene, settings, frame, &renderStats);
+                frameTimes.push_back(t.Milliseconds());
+            }
+            const double frameMs = Median(frameTimes);
+            const double mrays = double(renderStats.rays) * 1e-6;
+            row["builders"][builderName]["frame_ms"] = frameMs;
+            row["builders"][builderName]["rays"] = renderStats.rays;
+            row["builders"][builderName]["mrays_per_s"] = mrays / (frameMs * 1e-3);
+            std::printf(" %10.1f %8.2f %9.1f\n", frameMs, mrays, mrays / (frameMs * 1e-3));
+        }
+        report["models"].push_back(row);
+    }
+    if (!o.output.empty()) {
+        std::ofstream(o.output) << report.dump(2) << "\n";
+        std::printf("rtrt: wrote %s\n", o.output.c_str());
+    }
+}
+
+// The paper scene on the GPU: the trace kernel timed with CUDA events, median of many frames.
+void RunGpuBench(const BenchOptions& o) {
+    nlohmann::json report;
+    report["machine"] = MachineInfo();
+    report["machine"]["gpu"] = CommandOutput(
+        "nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null");
+    report["scene"] = "paper scene, 1920x1080, max depth 2, one ray per pixel centre";
+    report["timing"] = "CUDA events around the trace kernel, 20 warm-up frames, median of the rest";
+    std::printf("rtrt bench gpu: %s\n", report["machine"]["gpu"].get<std::string>().c_str());
+    std::printf("%-12s %10s %10s %10s %8s %9s %10s\n", "model", "triangles", "median ms", "min ms",
+                "M rays", "G rays/s", "B/tri");
+    for (const std::string& name : o.models) {
+        TriangleMesh mesh;
+        if (!LoadBenchModel(name, &mesh)) {
+            std::printf("%-12s skipped: model file missing (run tools/fetch_models.sh)\n",
+                        name.c_str());
+            continue;
+        }
+        auto blas = std::make_shared<const Blas>(BuildTriangleBlas(mesh));
+        const size_t blasBytes = blas->DeviceBytes();
+        const RenderScene scene = MakePaperScene(blas);
+        RenderSettings settings{kPaperWidth, kPaperHeight, kPaperMaxDepth};
+        RenderStats stats;
+        const std::vector<double> times = TimeCudaTrace(scene, settings, 20, o.gpuFrames, &stats);
+        const double median = Median(times);
+        const double best = *std::min_element(times.begin(), times.end());
+        const double grays = double(stats.rays) / (median * 1e-3) * 1e-9;
+        const double bytesPerTri = double(blasBytes) / double(mesh.indices.size());
+        std::printf("%-12s %10zu %10.3f %10.3f %8.2f %9.2f %10.1f\n", name.c_str(),
+                    mesh.indices.size(), median, best, double(stats.rays) * 1e-6, grays,
+                    bytesPerTri);
+        report["models"].push_back({{"model", name},
+                                    {"triangles", mesh.indices.size()},
+                                    {"trace_ms_median", median},
+                                    {"trace_ms_min", best},
+                                    {"frames", times.size()},
+                                    {"rays", stats.rays},
+                                    {"grays_per_s", grays},
+                                    {"blas_bytes", blasBytes},
+                                    {"bytes_per_triangle", bytesPerTri}});
+    }
+    if (!o.output.empty()) {
+        std::ofstream(o.output) << report.dump(2) << "\n";
+        std::printf("rtrt: wrote %s\n", o.output.c_str());
+    }
+}
+
+}  // namespace
+
+void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::string& output) {
+    TriangleMesh mesh;
+    if (!LoadBenchModel("dragon_res4", &mesh))
+        throw InputError(ModelDir() + "/dragon_vrip_res4.ply.gz", "",
+                         "missing; run tools/fetch_models.sh");
+    FitMesh(mesh, 1.0f);  // the grid's instances have largest extent 1
+    auto blas = std::make_shared<const Blas>(BuildTriangleBlas(mesh));
+    nlohmann::json report;
+    report["machine"] = MachineInfo();
+    report["machine"]["gpu"] = CommandOutput(
+        "nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null");
+    report["scene"] =
+        "instance grid of dragon res4, 1920x1080, max depth 2, TLAS rebuilt every frame";
+    report["timing"] = "CUDA events per stage, 20 warm-up frames, median of the rest";
+    std::printf("rtrt bench grid: %s\n", report["machine"]["gpu"].get<std::string>().c_str());
+    std::printf("%10s %10s %10s %10s %10s %10s %8s %8s\n", "instances", "update ms", "TLAS ms",
+                "refit ms", "trace ms", "total ms", "M rays", "B/inst");
+    for (const InstanceGridRow& r : RunInstanceGridBench(blas, counts, frames)) {
+        std::printf("%10u %10.3f %10.3f %10.3f %10.3f %10.3f %8.2f %8.0f\n", r.instances,
+                    r.updateMs, r.tlasMs, r.refitMs, r.traceMs, r.totalMs, double(r.rays) * 1e-6,
+                    r.bytesPerInstance);
+        report["rows"].push_back({{"instances", r.instances},
+                                  {"update_ms", r.updateMs},
+                                  {"tlas_build_ms", r.tlasMs},
+                                  {"tlas_refit_ms", r.refitMs},
+                                  {"trace_ms", r.traceMs},
+                                  {"total_ms", r.totalMs},
+                                  {"rays", r.rays},
+                                  {"bytes_per_instance", r.bytesPerInstance},
+                                  {"frames", frames}});
+    }
+    if (!output.empty()) {
+        std::ofstream(output) << report.dump(2) << "\n";
+        std::printf("rtrt: wrote %s\n", output.c_str());
+    }
+}
+
+// Runtime cost per stage on a played scene: what a scene does not use must cost ~nothing.
+void RunRuntimeBench(const std::vector<std::string>& scenes, int frames) {
+    std::printf("rtrt bench runtime: medians over %d frames at 60 fps (CPU, ms)\n", frames);
+    std::printf("%-28s %9s %9s %9s %11s %9s %9s %9s\n", "scene", "instances", "moving", "physics",
+                "animators", "transform", "extract", "TLAS");
+    for (const std::string& path : scenes) {
+        const LoadedScene loaded = LoadSceneFile(path);
+        World world(loaded);
+        std::vector<double> physics, animators, transforms, extract, tlas, moving;
+        for (int i = 0; i < frames; ++i) {
+            const FrameStats stats = world.Advance(1.0f / 60.0f);
+            for (const ecs::SystemTiming& t : world.Scheduler().SystemTimings()) {
+                if (t.name == "physics") physics.push_back(t.milliseconds);
+                if (t.name == "animators") animators.push_back(t.milliseconds);
+                if (t.name == "transforms") transforms.push_back(t.milliseconds);
+            }
+            extract.push_back(stats.extractMs);
+            tlas.push_back(stats.tlasMs);
+            moving.push_back(stats.extracted);
+        }
+        std::printf("%-28s %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f\n",
+                    std::filesystem::path(path).filename().string().c_str(),
+                    world.Scene().instances.size(), Median(moving), Median(physics),
+                    Median(animators), Median(transforms), Median(extract), Median(tlas));
+    }
+}
+
+void RunEcsBench(uint32_t count) {
+    const ecs::EcsBenchResult r = ecs::RunEcsBenchmark(count);
+    std::printf("rtrt bench ecs: %u entities (Position + Velocity, every 4th a third component)\n",
+                count);
+    std::printf("  create  %8.2f ms  (%.1f ns per entity)\n", r.createMs, r.createMs * 1e6 / count);
+    std::printf("  iterate %8.2f ms  (2-component view, %.2f ns per entity)\n", r.iterateMs,
+                r.iterateMs * 1e6 / count);
+    std::printf("  destroy %8.2f ms  (%.1f ns per entity)\n", r.destroyMs,
+                r.destroyMs * 1e6 / count);
+    std::printf("  checksum %llu (medians of 3 runs)\n", (unsigned long long)r.checksum);
+}
+
+void AddBenchCommand(CLI::App& app, int* exitCode) {
+    CLI::App* bench = app.add_subcommand("bench", "Benchmarks (see README: Benchmarks)");
+    bench->require_subcommand(1);
+    AddConvertBench(*bench, exitCode, &MachineInfo);
+    auto options = std::make_shared<BenchOptions>();
+    CLI::App* cpu = bench->add_subcommand(
+        "cpu", "BLAS build time and SAH cost per builder, CPU frame time on the paper scene");
+    cpu->add_option("--frames", options->frames, "Timed frames per model (median reported)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    cpu->add_option("--models", options->models,
+                    "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
+        ->check(CLI::IsMember(
+            {"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
+        ->delimiter(',');
+    cpu->add_option("--builders", options->builders, "binned, sweep, centroid")
+        ->check(CLI::IsMember({"binned", "sweep", "centroid"}))
+        ->delimiter(',');
+    cpu->add_option("-o,--output", options->output, "Write the results as JSON here");
+    cpu->callback([options, exitCode] {
+        RunBench(*options);
+        *exitCode = kExitOk;
+    });
+    auto ecsCount = std::make_shared<uint32_t>(1000000);
+    CLI::App* ecsBench = bench->add_subcommand(
+        "ecs", "Create, iterate and destroy entities in the entity-component system");
+    ecsBench->add_option("--count", *ecsCount, "Entities")
+        ->check(CLI::Range(1, 50000000))
+        ->capture_default_str();
+    ecsBench->callback([ecsCount, exitCode] {
+        RunEcsBench(*ecsCount);
+        *exitCode = kExitOk;
+    });
+    struct GridOptions {
+        std::vector<uint32_t> counts{1000, 10000, 100000, 1000000};
+        int frames = 200;
+        std::string output;
+    };
+    auto grid = std::make_shared<GridOptions>();
+    CLI::App* gridBench = bench->add_subcommand(
+        "grid", "GPU: N moving dragon instances, TLAS rebuilt every frame (update, TLAS, trace)");
+    gridBench->add_option("--counts", grid->counts, "Instance counts")
+        ->delimiter(',')
+        ->check(CLI::Range(1u, 10000000u));
+    gridBench->add_option("--frames", grid->frames, "Timed frames per count")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    gridBench->add_option("-o,--output", grid->output, "Write the results as JSON here");
+    gridBench->callback([grid, exitCode] {
+        std::string why;
+        if (!CudaBackendAvailable(&why)) throw InputError("bench grid", "", why);
+        RunGridBench(grid->counts, grid->frames, grid->output);
+        *exitCode = kExitOk;
+    });
+    struct RuntimeOptions {
+        std::vector<std::string> scenes;
+        int frames = 300;
+    };
+    auto runtime = std::make_shared<RuntimeOptions>();
+    CLI::App* runtimeBench = bench->add_subcommand(
+        "runtime", "CPU time per runtime stage (physics, animation, transforms, extraction, TLAS)");
+    runtimeBench->add_option("scenes", runtime->scenes, "Scene files to play")
+        ->required()
+        ->check(CLI::ExistingFile);
+    runtimeBench->add_option("--frames", runtime->frames, "Frames to play")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    runtimeBench->callback([runtime, exitCode] {
+        RunRuntimeBench(runtime->scenes, runtime->frames);
+        *exitCode = kExitOk;
+    });
+    AddFrameBench(*bench, exitCode);
+    AddAccuracyBench(*bench, exitCode);
+    CLI::App* gpu = bench->add_subcommand(
+        "gpu", "Trace time on the GPU (CUDA events) of the paper scene, median of --frames");
+    gpu->add_option("--frames", options->gpuFrames,
+                    "Timed frames per model after 20 warm-up frames")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    gpu->add_option("--models", options->models,
+                    "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
+        ->check(CLI::IsMember(
+            {"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
+        ->delimiter(',');
+    gpu->add_option("-o,--output", options->output, "Write the results as JSON here");
+    gpu->callback([options, exitCode] {
+        std::string why;
+        if (!CudaBackendAvailable(&why)) throw InputError("bench gpu", "", why);
+        RunGpuBench(*options);
+        *exitCode = kExitOk;
+    });
+}
+
+nlohmann::json BenchMachine(bool gpu) {
+    nlohmann::json m = MachineInfo();
+    if (gpu)
+        m["gpu"] = CommandOutput(
+            "nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null");
+    return m;
+}
+
+}  // namespace rtrt

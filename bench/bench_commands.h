@@ -1,0 +1,19 @@
+#pragma once
+// `rtrt bench` and its subcommands. Each registers itself and sets *exitCode when it runs.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "game/cli/cli_options.h"
+
+namespace rtrt {
+
+void AddBenchCommand(CLI::App& app, int* exitCode);
+// `rtrt bench frame`, registered by AddBenchCommand.
+void AddFrameBench(CLI::App& bench, int* exitCode);
+// `rtrt bench accuracy`, registered by AddBenchCommand.
+void AddAccuracyBench(CLI::App& bench, int* exitCode);
+// `rtrt bench convert`, registered by AddBenchCommand; machineInfo describes the machine for the
+// JSON report.
+void AddConvertBench(CLI::App& bench, int* exitCode, nlohmann::json (*machineInfo)());
+
+}  // namespace rtrt

@@ -1,0 +1,134 @@
+// `rtrt bench convert`: the offline pipeline of `rtrt convert` per model — hash, parse, BLAS
+// build, write — and the load of the written .rtmodel, medians of several runs, with SAH cost.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "bench/bench_commands.h"
+#include "engine/core/content_hash.h"
+#include "engine/core/error.h"
+#include "engine/core/timer.h"
+#include "game/assets/model_cache.h"
+#include "game/assets/model_dir.h"
+#include "game/cli/heap_tuning.h"
+
+namespace rtrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ConvertBenchOptions {
+    std::vector<std::string> models{"dragon_res4", "dragon_res3", "dragon_res2", "dragon"};
+    std::string builder = "binned";
+    int runs = 5;
+    std::string output;
+};
+
+std::string ModelPath(const std::string& name) {
+    const std::string suffix = name == "dragon" ? "" : name.substr(6);  // "_res4"
+    return ModelDir() + "/dragon_vrip" + suffix + ".ply.gz";
+}
+
+struct Run {
+    double hashMs, parseMs, buildMs, writeMs, loadMs, totalMs;
+};
+
+void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine) {
+    KeepLargeAllocationsInHeap();  // as rtrt convert does
+    BvhBuildOptions options;
+    ParseBuilder(o.builder, &options.builder);
+    const fs::path dir =
+        fs::temp_directory_path() / ("rtrt_bench_convert_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    nlohmann::json report;
+    report["machine"] = machine;
+    report["builder"] = o.builder;
+    report["timing"] =
+        "wall clock per stage, median of the runs; total = hash + parse + build "
+        "+ write, what rtrt convert does";
+    std::printf("rtrt bench convert: %s builder, median of %d runs (ms)\n", o.builder.c_str(),
+                o.runs);
+    std::printf("%-12s %10s %7s %8s %8s %7s %8s | %8s %9s %8s\n", "model", "triangles", "hash",
+                "parse", "build", "write", "total", "load", "SAH cost", "MB");
+    for (const std::string& name : o.models) {
+        const std::string path = ModelPath(name);
+        if (!fs::exists(path)) {
+            std::printf("%-12s skipped: %s missing (run tools/fetch_models.sh)\n", name.c_str(),
+                        path.c_str());
+            continue;
+        }
+        const std::string out = (dir / (name + ".rtmodel")).string();
+        std::vector<double> hash, parse, build, write, load, total;
+        MeshModel model;
+        for (int r = 0; r < o.runs; ++r) {
+            fs::remove(out);
+            Stopwatch timer, all;
+            const uint64_t sourceHash = HashFile(path);
+            hash.push_back(timer.Milliseconds());
+            model = BuildMeshModel(path, options, sourceHash);
+            parse.push_back(model.parseMs);
+            build.push_back(model.buildMs);
+            timer.Restart();
+            WriteRtModel(out, model.blas, model.info);
+            write.push_back(timer.Milliseconds());
+            total.push_back(all.Milliseconds());
+            timer.Restart();
+            const Blas loaded = ReadRtModel(out);
+            load.push_back(timer.Milliseconds());
+        }
+        const double mb = double(fs::file_size(out)) / 1e6;
+        std::printf("%-12s %10u %7.1f %8.1f %8.1f %7.1f %8.1f | %8.1f %9.2f %8.1f\n", name.c_str(),
+                    model.blas.PrimCount(), Median(hash), Median(parse), Median(build),
+                    Median(write), Median(total), Median(load), model.info.sahCost, mb);
+        report["models"].push_back(
+            {{"model", name},
+             {"triangles", model.blas.PrimCount()},
+             {"hash_ms", Median(hash)},
+             {"parse_ms", Median(parse)},
+             {"build_ms", Median(build)},
+             {"write_ms", Median(write)},
+             {"convert_ms", Median(total)},
+             {"convert_ms_min", *std::min_element(total.begin(), total.end())},
+             {"load_ms", Median(load)},
+             {"sah_cost", model.info.sahCost},
+             {"file_bytes", fs::file_size(out)},
+             {"runs", o.runs}});
+    }
+    fs::remove_all(dir);
+    if (!o.output.empty()) {
+        std::ofstream(o.output) << report.dump(2) << "\n";
+        std::printf("rtrt: wrote %s\n", o.output.c_str());
+    }
+}
+
+}  // namespace
+
+void AddConvertBench(CLI::App& bench, int* exitCode, nlohmann::json (*machineInfo)()) {
+    auto options = std::make_shared<ConvertBenchOptions>();
+    CLI::App* cmd = bench.add_subcommand(
+        "convert",
+        "rtrt convert's pipeline per model (hash, parse, build, write) and the load "
+        "of the .rtmodel it writes");
+    cmd->add_option("--models", options->models, "dragon_res4, dragon_res3, dragon_res2, dragon")
+        ->check(CLI::IsMember({"dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
+        ->delimiter(',');
+    cmd->add_option("--builder", options->builder, "binned, sweep or centroid")
+        ->check(CLI::IsMember({"binned", "sweep", "centroid"}))
+        ->capture_default_str();
+    cmd->add_option("--runs", options->runs, "Runs per model (medians reported)")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    cmd->add_option("-o,--output", options->output, "Write the results as JSON here");
+    cmd->callback([options, exitCode, machineInfo] {
+        RunConvertBench(*options, machineInfo());
+        *exitCode = kExitOk;
+    });
+}
+
+}  // namespace rtrt

@@ -1,0 +1,149 @@
+// `rtrt bench frame`: whole frames of played scenes, every stage timed: simulation (physics,
+// animation, transforms), extraction, and then on the GPU the upload of changed instance
+// records, the TLAS and the trace (CUDA events), or on the CPU the TLAS and the trace. The frame
+// time is the wall clock from the start of the simulation to the finished image on the device.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/bench_commands.h"
+#include "bench/bench_report.h"
+#include "engine/core/error.h"
+#include "engine/core/timer.h"
+#include "engine/render_rt/cuda/cuda_frame_renderer.h"
+#include "game/runtime/world.h"
+#include "game/scene/scene_file.h"
+
+namespace rtrt {
+namespace {
+
+struct FrameBenchOptions {
+    std::vector<std::string> scenes;
+    std::string backend = "cuda";
+    std::string size;
+    int frames = 300;
+    int warmup = 30;
+    std::string output;
+};
+
+struct StageSamples {
+    std::vector<double> simulate, extract, upload, tlas, trace, frame, instances, uploaded;
+};
+
+nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
+    const LoadedScene loaded = LoadSceneFile(path);
+    RenderSettings settings;
+    settings.width = loaded.width.value_or(1280);
+    settings.height = loaded.height.value_or(720);
+    if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
+    settings.maxDepth = loaded.scene.maxDepth;
+    const bool gpu = o.backend == "cuda";
+    World world(loaded, {false, 0.25f}, !gpu);
+    std::unique_ptr<CudaFrameRenderer> renderer;
+    if (gpu) renderer = std::make_unique<CudaFrameRenderer>(world.Scene());
+    Image image;
+    StageSamples s;
+    RenderStats stats;
+    for (int f = 0; f < o.warmup + o.frames; ++f) {
+        Stopwatch frameTimer;
+        const FrameStats fs = world.Advance(1.0f / 60.0f);
+        double upload = 0.0, tlas = fs.tlasMs, trace = 0.0;
+        if (gpu) {
+            renderer->Update(world.Scene(), world.ChangedInstances());
+            renderer->Trace(world.Scene(), settings, nullptr, f == 0 ? &stats : nullptr);
+            const GpuFrameTimes& t = renderer->Times();
+            upload = t.uploadMs;
+            tlas = t.tlasMs;
+            trace = t.traceMs;
+        } else {
+            Stopwatch traceTimer;
+            RenderInto(world.Scene(), settings, image, f == 0 ? &stats : nullptr);
+            trace = traceTimer.Milliseconds();
+        }
+        const double frameMs = frameTimer.Milliseconds();
+        if (f < o.warmup) continue;
+        s.simulate.push_back(fs.simulateMs);
+        s.extract.push_back(fs.extractMs);
+        s.upload.push_back(upload);
+        s.tlas.push_back(tlas);
+        s.trace.push_back(trace);
+        s.frame.push_back(frameMs);
+        s.instances.push_back(double(world.Scene().instances.size()));
+        s.uploaded.push_back(double(fs.extracted));
+    }
+    nlohmann::json row = {{"scene", std::filesystem::path(path).filename().string()},
+                          {"width", settings.width},
+                          {"height", settings.height},
+                          {"instances", world.Scene().instances.size()},
+                          {"changed_per_frame", Median(s.uploaded)},
+                          {"rays_first_frame", stats.rays},
+                          {"simulate_ms", Median(s.simulate)},
+                          {"extract_ms", Median(s.extract)},
+                          {"upload_ms", Median(s.upload)},
+                          {"tlas_ms", Median(s.tlas)},
+                          {"trace_ms", Median(s.trace)},
+                          {"frame_ms", Median(s.frame)},
+                          {"frame_ms_max", *std::max_element(s.frame.begin(), s.frame.end())}};
+    std::printf("%-26s %9s %9zu %8.0f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f\n",
+                row["scene"].get<std::string>().c_str(),
+                (std::to_string(settings.width) + "x" + std::to_string(settings.height)).c_str(),
+                world.Scene().instances.size(), Median(s.uploaded), Median(s.simulate),
+                Median(s.extract), Median(s.upload), Median(s.tlas), Median(s.trace),
+                Median(s.frame));
+    return row;
+}
+
+void RunFrameBench(const FrameBenchOptions& o) {
+    const bool gpu = o.backend == "cuda";
+    nlohmann::json report;
+    report["machine"] = BenchMachine(gpu);
+    report["backend"] = o.backend;
+    report["timing"] =
+        "medians over --frames frames at 60 fps after --warmup frames; GPU stages by CUDA events, "
+        "simulation and extraction and the whole frame by the CPU clock (the frame ends when the "
+        "image is finished in device memory)";
+    std::printf("rtrt bench frame (%s back end), medians over %d frames, ms\n", o.backend.c_str(),
+                o.frames);
+    std::printf("%-26s %9s %9s %8s %9s %9s %9s %9s %9s %9s\n", "scene", "size", "instances",
+                "changed", "simulate", "extract", "upload", "TLAS", "trace", "frame");
+    for (const std::string& path : o.scenes) report["rows"].push_back(RunScene(path, o));
+    if (!o.output.empty()) {
+        std::ofstream(o.output) << report.dump(2) << "\n";
+        std::printf("rtrt: wrote %s\n", o.output.c_str());
+    }
+}
+
+}  // namespace
+
+void AddFrameBench(CLI::App& bench, int* exitCode) {
+    auto o = std::make_shared<FrameBenchOptions>();
+    CLI::App* cmd = bench.add_subcommand(
+        "frame", "Whole frames of played scenes: simulation, extraction, upload, TLAS, trace");
+    cmd->add_option("scenes", o->scenes, "Scene files to play")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--backend", o->backend, "cuda or cpu")
+        ->check(CLI::IsMember({"cuda", "cpu"}))
+        ->capture_default_str();
+    cmd->add_option("--size", o->size, "WIDTHxHEIGHT (default: the scene's image size)");
+    cmd->add_option("--frames", o->frames, "Timed frames per scene")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    cmd->add_option("--warmup", o->warmup, "Untimed frames first")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
+    cmd->callback([o, exitCode] {
+        std::string why;
+        if (o->backend == "cuda" && !CudaBackendAvailable(&why))
+            throw InputError("--backend", "cuda", why + "; use --backend cpu");
+        RunFrameBench(*o);
+        *exitCode = kExitOk;
+    });
+}
+
+}  // namespace rtrt

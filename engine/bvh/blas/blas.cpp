@@ -1,0 +1,98 @@
+#include "engine/bvh/blas/blas.h"
+
+#include "engine/core/parallel_for.h"
+
+namespace rtrt {
+
+BlasView Blas::View() const {
+    BlasView view;
+    view.nodes = nodes.data();
+    view.nodes4 = nodes4.empty() ? nullptr : nodes4.data();
+    view.triangles = triangles.data();
+    view.normals = normals.empty() ? nullptr : normals.data();
+    view.spheres = spheres.data();
+    view.kind = kind;
+    view.primCount = PrimCount();
+    view.uvs = uvs.empty() ? nullptr : uvs.data();
+    return view;
+}
+
+size_t Blas::Bytes() const {
+    return nodes.size() * sizeof(BvhNode) + nodes4.size() * sizeof(Bvh4Node) +
+           triangles.size() * sizeof(Triangle) + normals.size() * sizeof(TriangleNormals) +
+           spheres.size() * sizeof(Sphere) + uvs.size() * sizeof(TriangleUvs);
+}
+
+size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4Node); }
+
+Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options) {
+    const size_t count = mesh.indices.size();
+    auto triangle = [&](size_t i) {
+        const glm::uvec3 idx = mesh.indices[i];
+        return Triangle{mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
+    };
+    std::vector<Aabb> bounds(count);
+    ParallelFor(0, count, 4096, [&](size_t i) { bounds[i] = triangle(i).Bounds(); });
+    Bvh bvh = BuildBvh(bounds, options);
+
+    // Triangles go straight from the mesh into leaf order: no intermediate copy.
+    Blas blas;
+    blas.kind = GeometryKind::kTriangles;
+    blas.nodes = std::move(bvh.nodes);
+    blas.primIds = std::move(bvh.primOrder);
+    blas.triangles.resize(count);
+    const bool smooth = !mesh.normals.empty();
+    if (smooth) blas.normals.resize(count);
+    const bool textured = !mesh.uvs.empty();
+    if (textured) blas.uvs.resize(count);
+    ParallelFor(0, count, 4096, [&](size_t slot) {
+        const uint32_t prim = blas.primIds[slot];
+        blas.triangles[slot] = triangle(prim);
+        if (smooth) {
+            const glm::uvec3 idx = mesh.indices[prim];
+            blas.normals[slot] = {mesh.normals[idx.x], mesh.normals[idx.y], mesh.normals[idx.z]};
+        }
+        if (textured) {
+            const glm::uvec3 idx = mesh.indices[prim];
+            blas.uvs[slot] = {mesh.uvs[idx.x], mesh.uvs[idx.y], mesh.uvs[idx.z]};
+        }
+    });
+    blas.nodes4 = CollapseToBvh4(blas.nodes);
+    blas.bounds = blas.nodes[0].Bounds();
+    return blas;
+}
+
+Blas BuildSphereBlas(std::span<const Sphere> spheres, const BvhBuildOptions& options) {
+    std::vector<Aabb> bounds(spheres.size());
+    for (size_t i = 0; i < spheres.size(); ++i) bounds[i] = spheres[i].Bounds();
+    Bvh bvh = BuildBvh(bounds, options);
+    Blas blas;
+    blas.kind = GeometryKind::kSpheres;
+    blas.nodes = std::move(bvh.nodes);
+    blas.primIds = std::move(bvh.primOrder);
+    blas.spheres.resize(spheres.size());
+    for (size_t slot = 0; slot < spheres.size(); ++slot)
+        blas.spheres[slot] = spheres[blas.primIds[slot]];
+    blas.bounds = blas.nodes[0].Bounds();
+    return blas;
+}
+
+void ScaleAndMoveBlas(Blas& blas, vec3 centre, float scale) {
+    auto move = [&](vec3 p) { return (p - centre) * scale; };
+    ParallelFor(0, blas.triangles.size(), 4096, [&](size_t i) {
+        Triangle& t = blas.triangles[i];
+        t = {move(t.v0), move(t.v1), move(t.v2)};
+    });
+    for (BvhNode& node : blas.nodes) node.SetBounds({move(node.boundsMin), move(node.boundsMax)});
+    for (Bvh4Node& node : blas.nodes4) {
+        for (int i = 0; i < 4; ++i) {
+            const vec3 lo = move({node.minX[i], node.minY[i], node.minZ[i]});
+            const vec3 hi = move({node.maxX[i], node.maxY[i], node.maxZ[i]});
+            node.minX[i] = lo.x, node.minY[i] = lo.y, node.minZ[i] = lo.z;
+            node.maxX[i] = hi.x, node.maxY[i] = hi.y, node.maxZ[i] = hi.z;
+        }
+    }
+    blas.bounds = blas.nodes[0].Bounds();
+}
+
+}  // namespace rtrt

@@ -1,0 +1,21 @@
+#pragma once
+// Validation of a BLAS that comes from outside (an .rtmodel file): everything the tracer relies
+// on without checking, so that a hostile file gives an error instead of undefined behaviour.
+#include <string>
+
+#include "engine/bvh/blas/blas.h"
+
+namespace rtrt {
+
+// Deepest tree the traversal stacks hold (the builders stop at the same depth).
+inline constexpr uint32_t kMaxBvhDepth = kBvhStackSize - 4;
+
+// Throws InputError(file, field, reason) unless: array sizes agree with the kind (primIds and
+// the primitives, normals and uvs absent or one per triangle, nodes4 only for triangles); there is
+// at least one primitive; every binary and 4-wide node is reached exactly once from the root
+// through forward child links, no deeper than kMaxBvhDepth, with finite non-inverted boxes (or, for
+// unused 4-wide slots, the empty box); leaf ranges lie inside the primitives; primIds is a
+// permutation; vertices, normals, uvs and spheres are finite (radii >= 0).
+void CheckBlas(const Blas& blas, const std::string& file);
+
+}  // namespace rtrt

@@ -1,0 +1,37 @@
+#pragma once
+// The LBVH built on the GPU every frame (CUDA): the same steps and the same tree as BuildLbvh on
+// the CPU (lbvh.h) — centroid bounds, 30-bit Morton codes, a stable CUB radix sort (equal codes
+// keep input order, as the CPU's (code, index) sort), Karras 2012 nodes in parallel, bounds
+// bottom-up with atomic arrival counters. All arrays stay on the device.
+#include <cuda_runtime.h>
+
+#include "engine/bvh/build/lbvh.h"
+#include "engine/core/device_buffer.h"
+
+namespace rtrt {
+
+class GpuLbvh {
+  public:
+    // Builds over n primitive boxes in device memory; the arrays are reused across frames.
+    void Build(const Aabb* deviceBounds, uint32_t n, cudaStream_t stream = 0);
+    // Refit after the boxes moved (same n, same order of primitives).
+    void Refit(const Aabb* deviceBounds, cudaStream_t stream = 0);
+
+    const BvhNode* Nodes() const { return nodes_.Data(); }
+    const uint32_t* PrimOrder() const { return primOrder_.Data(); }
+    uint32_t Count() const { return count_; }
+    // Copies the tree to the host, for tests and for comparison with the CPU build.
+    Lbvh Download() const;
+
+  private:
+    void BoundsBottomUp(cudaStream_t stream);
+
+    uint32_t count_ = 0;
+    DeviceBuffer<BvhNode> nodes_;
+    DeviceBuffer<uint32_t> primOrder_, parents_, positionOf_, arrivals_;
+    DeviceBuffer<uint32_t> codes_, sortedCodes_, indices_;
+    DeviceBuffer<Aabb> centroids_, centroidBounds_;
+    DeviceBuffer<unsigned char> scratch_;  // CUB's temporary storage
+};
+
+}  // namespace rtrt

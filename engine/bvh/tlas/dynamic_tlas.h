@@ -1,0 +1,42 @@
+#pragma once
+// The per-frame TLAS of the runtime: an LBVH over instance world bounds, rebuilt when instances
+// were added or removed (or on request) and otherwise refit, until refitting has let the SAH cost
+// drift more than a threshold above the cost of the last rebuild.
+#include <span>
+
+#include "engine/bvh/build/lbvh.h"
+#include "engine/bvh/tlas/instance.h"
+
+namespace rtrt {
+
+struct TlasPolicy {
+    bool alwaysRebuild = true;   // the benchmark's mode: a fresh LBVH every frame
+    float maxSahGrowth = 0.25f;  // with refits: rebuild once cost > (1 + this) x rebuilt cost
+};
+
+struct TlasUpdateStats {
+    bool rebuilt = false;
+    float sahCost = 0.0f;         // after this update
+    float rebuiltSahCost = 0.0f;  // at the last rebuild
+};
+
+class DynamicTlas {
+  public:
+    explicit DynamicTlas(TlasPolicy policy = {}) : policy_(policy) {}
+
+    // Brings the tree up to date with the instances' current transforms. topologyChanged: an
+    // instance was added or removed since the last update (refitting cannot follow that).
+    TlasUpdateStats Update(std::span<const Instance> instances, std::span<const Aabb> blasBounds,
+                           bool topologyChanged);
+
+    const Lbvh& Tree() const { return tree_; }
+    const TlasPolicy& Policy() const { return policy_; }
+
+  private:
+    TlasPolicy policy_;
+    Lbvh tree_;
+    float rebuiltSahCost_ = 0.0f;
+    bool built_ = false;
+};
+
+}  // namespace rtrt

@@ -1,0 +1,38 @@
+#pragma once
+// Top-level acceleration structure over instances: a binned SAH build (best trees, for static
+// scenes) or the LBVH (fast, rebuilt every frame in the runtime).
+#include <span>
+#include <vector>
+
+#include "engine/bvh/blas/blas.h"
+#include "engine/bvh/tlas/instance.h"
+
+namespace rtrt {
+
+struct Tlas {
+    AlignedVector<BvhNode> nodes;
+    std::vector<uint32_t> instanceOrder;
+};
+
+// World bounds of a box under an affine transform (the 8 transformed corners' bounds).
+RT_HD inline Aabb TransformBounds(const Affine& m, const Aabb& b) {
+    Aabb out;
+    if (b.IsEmpty()) return out;
+    for (int corner = 0; corner < 8; ++corner) {
+        const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                     (corner & 4) ? b.max.z : b.min.z);
+        out.Grow(m.Point(p));
+    }
+    return out;
+}
+
+enum class TlasBuilder { kSah, kLbvh };
+
+// World bounds of every instance (its BLAS bounds under its transform).
+std::vector<Aabb> InstanceWorldBounds(std::span<const Instance> instances,
+                                      std::span<const Aabb> blasBounds);
+
+Tlas BuildTlas(std::span<const Instance> instances, std::span<const Aabb> blasBounds,
+               TlasBuilder builder = TlasBuilder::kSah);
+
+}  // namespace rtrt

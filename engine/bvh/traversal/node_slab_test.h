@@ -1,0 +1,34 @@
+#pragma once
+// The slab test of engine/geometry on a node of a BVH in global memory.
+#include "engine/bvh/layout/bvh_node.h"
+#include "engine/geometry/slab_test.h"
+
+namespace rtrt {
+
+// The test on a node of a BVH in global memory.
+RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax, float* tEntry) {
+#if defined(__CUDA_ARCH__)
+    // Two 16-byte read-only loads, then selects: six dynamically indexed loads would cost six
+    // load instructions per box on the GPU, and deriving the planes from the sign of 1/d rather
+    // than the setup's plane offsets leaves those dead, which saves registers in the loops.
+    // Nodes are read-only while a kernel traces.
+    const float4 lo = __ldg(reinterpret_cast<const float4*>(&node));
+    const float4 hi = __ldg(reinterpret_cast<const float4*>(&node) + 1);
+    return SlabTest(vec3(lo.x, lo.y, lo.z), vec3(hi.x, hi.y, hi.z), r, tMax, tEntry);
+#else
+    // Reads the near and far planes straight from the node (no copy of its bounds).
+    const float* b = &node.boundsMin.x;
+    const float tx0 = (b[r.nearOffset[0]] - r.origin.x) * r.invDir.x;
+    const float tx1 = (b[r.farOffset[0]] - r.origin.x) * r.invDir.x;
+    const float ty0 = (b[r.nearOffset[1]] - r.origin.y) * r.invDir.y;
+    const float ty1 = (b[r.farOffset[1]] - r.origin.y) * r.invDir.y;
+    const float tz0 = (b[r.nearOffset[2]] - r.origin.z) * r.invDir.z;
+    const float tz1 = (b[r.farOffset[2]] - r.origin.z) * r.invDir.z;
+    const float t0 = MaxOrKeep(tz0, MaxOrKeep(ty0, MaxOrKeep(tx0, 0.0f)));
+    const float t1 = MinOrKeep(tz1, MinOrKeep(ty1, MinOrKeep(tx1, tMax)));
+    *tEntry = t0;
+    return t0 <= t1 * (1.0f + 2.0f * Gamma(3));
+#endif
+}
+
+}  // namespace rtrt

@@ -1,0 +1,38 @@
+// Built when nvcc is absent: the CUDA back end reports why it cannot run.
+#include <stdexcept>
+
+#include "engine/render_rt/cuda/cuda_frame_renderer.h"
+#include "engine/render_rt/renderer.h"
+
+namespace rtrt {
+
+bool CudaBackendAvailable(std::string* why) {
+    if (why) *why = "this rtrt was built without CUDA (nvcc was not found at configure time)";
+    return false;
+}
+
+Image RenderRawCuda(const RenderScene&, const RenderSettings&, RenderStats*) {
+    throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
+}
+
+std::vector<double> TimeCudaTrace(const RenderScene&, const RenderSettings&, int, int,
+                                  RenderStats*) {
+    throw std::runtime_error("the CUDA back end is not built into this rtrt");
+}
+
+struct CudaFrameRenderer::Impl {
+    GpuFrameTimes times;
+};
+
+CudaFrameRenderer::CudaFrameRenderer(const RenderScene&, TlasPolicy) {
+    throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
+}
+CudaFrameRenderer::~CudaFrameRenderer() = default;
+void CudaFrameRenderer::Update(const RenderScene&, std::span<const uint32_t>) {}
+void CudaFrameRenderer::Trace(const RenderScene&, const RenderSettings&, Image*, RenderStats*) {}
+bool CudaFrameRenderer::Pick(const Ray&, SceneHit*) { return false; }
+const vec3* CudaFrameRenderer::DeviceFrame() const { return nullptr; }
+const GpuFrameTimes& CudaFrameRenderer::Times() const { return impl_->times; }
+Lbvh CudaFrameRenderer::DownloadTlas() const { return {}; }
+
+}  // namespace rtrt

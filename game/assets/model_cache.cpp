@@ -1,0 +1,117 @@
+#include "game/assets/model_cache.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "engine/core/content_hash.h"
+#include "engine/core/error.h"
+#include "engine/core/timer.h"
+#include "game/assets/mesh_io.h"
+
+namespace rtrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// One entry per source file and builder: "dragon_vrip.ply.gz-<hash of its absolute path>-binned".
+// A changed source then overwrites its entry instead of leaving the old one behind.
+std::string CachePath(const std::string& dir, const std::string& source, BvhBuilder builder) {
+    std::error_code ec;
+    fs::path absolute = fs::weakly_canonical(fs::absolute(source), ec);
+    if (ec) absolute = fs::absolute(source);
+    const std::string where = absolute.string();
+    return dir + "/" + absolute.filename().string() + "-" +
+           HexDigest(HashBytes(where.data(), where.size())) + "-" +
+           std::string(BuilderName(builder)) + ".rtmodel";
+}
+
+// The entry's BLAS if its header carries KEY and the whole file validates; false otherwise.
+bool ReadCacheEntry(const std::string& path, const RtModelKey& key, MeshModel* model) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) return false;
+    try {
+        if (!(ReadRtModelInfo(path).key == key)) return false;  // stale: rebuilt and replaced
+        Stopwatch timer;
+        model->blas = ReadRtModel(path, &model->info);
+        model->readMs = timer.Milliseconds();
+        return true;
+    } catch (const InputError& e) {
+        // An entry of another format version was written by another rtrt: stale, not bad.
+        if (e.Field() != "header.version")
+            std::fprintf(stderr, "rtrt: warning: rebuilding a bad cache entry: %s\n", e.what());
+        return false;
+    }
+}
+
+void WriteCacheEntry(const std::string& dir, const MeshModel& model) {
+    try {
+        fs::create_directories(dir);
+        WriteRtModel(model.cachePath, model.blas, model.info);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rtrt: warning: BLAS cache not written (%s)\n", e.what());
+    }
+}
+
+}  // namespace
+
+std::string BlasCacheDir() {
+    if (const char* dir = std::getenv("RTRT_CACHE_DIR"); dir && *dir)
+        return std::string(dir) == "off" ? std::string() : std::string(dir);
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+        return std::string(xdg) + "/rtrt/blas";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return std::string(home) + "/.cache/rtrt/blas";
+    return "";
+}
+
+MeshModel BuildMeshModel(const std::string& path, const BvhBuildOptions& options,
+                         uint64_t sourceHash, void (*progress)(const char* stage)) {
+    MeshModel model;
+    if (progress) progress("parse");
+    Stopwatch timer;
+    const TriangleMesh mesh = LoadMesh(path);
+    model.parseMs = timer.Milliseconds();
+    if (progress) progress("build");
+    timer.Restart();
+    model.blas = BuildTriangleBlas(mesh, options);
+    model.buildMs = timer.Milliseconds();
+    model.info.key = MakeRtModelKey(sourceHash, options);
+    model.info.sourceVertexCount = uint32_t(mesh.positions.size());
+    model.info.sourceBounds = mesh.Bounds();
+    model.info.sahCost = SahCost(model.blas.nodes);
+    return model;
+}
+
+MeshModel LoadMeshModel(const std::string& path, const BvhBuildOptions& options) {
+    if (IsRtModelPath(path)) {
+        MeshModel model;
+        Stopwatch timer;
+        model.blas = ReadRtModel(path, &model.info);
+        model.readMs = timer.Milliseconds();
+        model.origin = MeshModel::Origin::kRtModelFile;
+        return model;
+    }
+    const std::string dir = BlasCacheDir();
+    std::error_code ec;
+    if (dir.empty() || !fs::is_regular_file(path, ec)) return BuildMeshModel(path, options, 0);
+
+    Stopwatch timer;
+    const uint64_t sourceHash = HashFile(path);
+    const double hashMs = timer.Milliseconds();
+    const RtModelKey key = MakeRtModelKey(sourceHash, options);
+    const std::string cachePath = CachePath(dir, path, options.builder);
+    MeshModel model;
+    if (ReadCacheEntry(cachePath, key, &model)) {
+        model.origin = MeshModel::Origin::kCache;
+    } else {
+        model = BuildMeshModel(path, options, sourceHash);
+        model.cachePath = cachePath;
+        WriteCacheEntry(dir, model);
+    }
+    model.cachePath = cachePath;
+    model.hashMs = hashMs;
+    return model;
+}
+
+}  // namespace rtrt

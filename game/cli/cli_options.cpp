@@ -1,0 +1,29 @@
+#include "game/cli/cli_options.h"
+
+#include <stdexcept>
+
+#include "engine/core/error.h"
+
+namespace rtrt {
+
+void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
+    unsigned long w = 0, h = 0;
+    size_t x = text.find('x');
+    try {
+        size_t used = 0;
+        if (x == std::string::npos) throw std::invalid_argument("");
+        w = std::stoul(text.substr(0, x), &used);
+        if (used != x) throw std::invalid_argument("");
+        h = std::stoul(text.substr(x + 1), &used);
+        if (used != text.size() - x - 1) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+        throw InputError("--size", "",
+                         "expected WIDTHxHEIGHT such as 1920x1080, got \"" + text + "\"");
+    }
+    if (w < 1 || h < 1 || w > 16384 || h > 16384)
+        throw InputError("--size", "", "width and height must be between 1 and 16384, got " + text);
+    *width = uint32_t(w);
+    *height = uint32_t(h);
+}
+
+}  // namespace rtrt

@@ -1,0 +1,16 @@
+#pragma once
+// What every rtrt command shares, the benchmarks included: exit statuses and option parsers.
+#include <cstdint>
+#include <string>
+
+namespace rtrt {
+
+// Exit statuses scripts can rely on.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;   // the work itself failed (GPU error, I/O error)
+inline constexpr int kExitBadInput = 2;  // bad command line, scene, model or output path
+
+// Parses WIDTHxHEIGHT (1..16384 each); InputError naming --size otherwise.
+void ParseSize(const std::string& text, uint32_t* width, uint32_t* height);
+
+}  // namespace rtrt

@@ -1,0 +1,177 @@
+// `rtrt play SCENE --headless --frames N [--fps F] -o DIR/frame_%04d.png`: plays a scene on a
+// fixed time step and writes every frame. The window (without --headless) comes with the
+// interactive runtime.
+#include <cstdio>
+#include <memory>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "engine/core/timer.h"
+#include "engine/render_rt/cuda/cuda_frame_renderer.h"
+#include "engine/render_rt/renderer.h"
+#include "game/assets/image_io.h"
+#include "game/cli/commands.h"
+#include "game/runtime/world.h"
+#include "game/scene/scene_file.h"
+#if defined(RTRT_HAVE_WINDOW)
+#include "game/app/interactive_app.h"
+#endif
+
+namespace rtrt {
+namespace {
+
+struct PlayOptions {
+    std::vector<std::string> scenes;
+    std::string output;
+    std::string size;
+    std::string backend = "auto";
+    std::string record, script;
+    bool headless = false;
+    bool noVsync = false;
+    int frames = 0;
+    double fps = 60.0;
+};
+
+// The output pattern must hold exactly one printf integer field (%d, %04d, ...).
+std::string FramePath(const std::string& pattern, int frame) {
+    char buffer[4096];
+    std::snprintf(buffer, sizeof(buffer), pattern.c_str(), frame);
+    return buffer;
+}
+
+void CheckPattern(const std::string& pattern) {
+    static const std::regex kField("%0?[0-9]*d");
+    const auto fields = std::distance(std::sregex_iterator(pattern.begin(), pattern.end(), kField),
+                                      std::sregex_iterator());
+    const auto percents = std::count(pattern.begin(), pattern.end(), '%');
+    if (fields != 1 || percents != 1 || pattern.size() > 2000)
+        throw InputError("--output", "",
+                         "expected a pattern with one frame number field, such as "
+                         "out/frame_%04d.png, got \"" +
+                             pattern + "\"");
+}
+
+void PrintProgress(int done, int total, double ms) {
+    constexpr int kWidth = 30;
+    const int filled = total ? done * kWidth / total : kWidth;
+    std::fprintf(stderr, "\rrtrt play: [%.*s%*s] %d/%d frames, %.1f ms/frame", filled,
+                 "==============================", kWidth - filled, "", done, total, ms);
+    if (done == total) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+}
+
+void RunWindowed(const PlayOptions& o) {
+#if defined(RTRT_HAVE_WINDOW)
+    WindowOptions w;
+    w.scenes = o.scenes;
+    w.backend = o.backend;
+    if (!o.size.empty()) {
+        ParseSize(o.size, &w.width, &w.height);
+    } else {
+        // The first scene's image size, checked here so that a bad file fails before a window.
+        const LoadedScene first = LoadSceneFile(o.scenes[0]);
+        w.width = first.width.value_or(1280);
+        w.height = first.height.value_or(720);
+    }
+    for (const std::string& scene : o.scenes) LoadSceneFile(scene);
+    w.vsync = !o.noVsync;
+    w.record = o.record;
+    w.script = o.script;
+    w.frames = o.frames;
+    w.fps = float(o.fps);
+    RunWindow(w);
+#else
+    (void)o;
+    throw InputError("play", "",
+                     "this rtrt was built without the window (libglfw3-dev, libgl-dev and "
+                     "libimgui-dev were missing at configure time); add --headless --frames N -o "
+                     "DIR/frame_%04d.png");
+#endif
+}
+
+void RunPlay(const PlayOptions& o) {
+    if (!o.headless) return RunWindowed(o);
+    if (o.scenes.size() != 1)
+        throw InputError("play", "", "--headless plays one scene; give exactly one");
+    if (o.frames < 1) throw InputError("--frames", "", "give the number of frames to write (>= 1)");
+    if (o.output.empty())
+        throw InputError("--output", "", "give where frames go, e.g. out/frame_%04d.png");
+    CheckPattern(o.output);
+    CheckImagePath(FramePath(o.output, 0));
+    const LoadedScene loaded = LoadSceneFile(o.scenes[0]);
+    RenderSettings settings;
+    settings.width = loaded.width.value_or(1280);
+    settings.height = loaded.height.value_or(720);
+    if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
+    settings.maxDepth = loaded.scene.maxDepth;
+    std::string why;
+    const bool cuda = CudaBackendAvailable(&why);
+    const Backend backend =
+        o.backend == "cuda" || (o.backend == "auto" && cuda) ? Backend::kCuda : Backend::kCpu;
+    if (backend == Backend::kCuda && !cuda)
+        throw InputError("--backend", "cuda", why + "; use --backend cpu");
+
+    // On the GPU the TLAS lives there: the World keeps none on the host, and each frame sends
+    // only the changed instance records.
+    World world(loaded, {false, 0.25f}, backend == Backend::kCpu);
+    std::unique_ptr<CudaFrameRenderer> gpu;
+    if (backend == Backend::kCuda) gpu = std::make_unique<CudaFrameRenderer>(world.Scene());
+    const float dt = float(1.0 / o.fps);
+    Image frame;
+    double total = 0.0;
+    for (int i = 0; i < o.frames; ++i) {
+        Stopwatch timer;
+        if (i > 0) world.Advance(dt);
+        if (gpu) {
+            if (i > 0) gpu->Update(world.Scene(), world.ChangedInstances());
+            gpu->Trace(world.Scene(), settings, &frame);
+        } else {
+            RenderInto(world.Scene(), settings, frame);
+        }
+        WriteImage(FramePath(o.output, i), frame);
+        total += timer.Milliseconds();
+        PrintProgress(i + 1, o.frames, total / (i + 1));
+    }
+    std::printf(
+        "rtrt: wrote %d frames to %s (%ux%u, %.0f fps time step, %zu instances at the end)\n",
+        o.frames, o.output.c_str(), settings.width, settings.height, o.fps,
+        world.Scene().instances.size());
+}
+
+}  // namespace
+
+void AddPlayCommand(CLI::App& app, int* exitCode) {
+    auto options = std::make_shared<PlayOptions>();
+    CLI::App* cmd =
+        app.add_subcommand("play", "Play a scene: animation, physics, spawners, camera path");
+    cmd->add_option("scenes", options->scenes,
+                    "Scene files (.json); in the window PageDown/PageUp switch between them")
+        ->required();
+    cmd->add_flag("--headless", options->headless, "Render to files instead of a window");
+    cmd->add_option("--frames", options->frames,
+                    "Frames to write (headless), or to show before closing the window")
+        ->check(CLI::Range(1, 1000000));
+    cmd->add_option("--record", options->record,
+                    "Window: write every frame shown to DIR/frame_NNNNN.png (fixed time step)");
+    cmd->add_option("--script", options->script,
+                    "Window: scripted input, for tests (see game/app/input_script.h)")
+        ->check(CLI::ExistingFile);
+    cmd->add_flag("--no-vsync", options->noVsync, "Window: start with vsync off (V toggles it)");
+    cmd->add_option("--fps", options->fps,
+                    "Frames per second of scene time (the fixed step is 1/fps)")
+        ->check(CLI::Range(1.0, 1000.0))
+        ->capture_default_str();
+    cmd->add_option("-o,--output", options->output, "Frame file pattern, e.g. out/frame_%04d.png");
+    cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the scene's)");
+    cmd->add_option("--backend", options->backend, "auto (CUDA when usable), cpu or cuda")
+        ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
+        ->capture_default_str();
+    cmd->callback([options, exitCode] {
+        RunPlay(*options);
+        *exitCode = kExitOk;
+    });
+}
+
+}  // namespace rtrt

@@ -1,0 +1,141 @@
+// glTF images decoded by OpenImageIO 2.4, from memory: tinygltf has already read the bytes from
+// the .glb buffer view, the data: URI or the external file.
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <vector>
+
+#include "game/gltf/gltf_image_loader.h"
+
+namespace rtrt {
+namespace {
+
+// A corrupt header could otherwise ask for any allocation; 2^28 texels is 16384 x 16384.
+constexpr uint64_t kMaxTexels = uint64_t(1) << 28;
+
+// The bytes choose the reader, as they do for stb, so that both builds accept the same files
+// whatever the mimeType says. glTF allows PNG and JPEG; BMP and GIF are what stb reads too
+// (assets/models/textured_quads.gltf embeds a BMP). OIIO's other readers are never tried, so a
+// hostile file cannot reach them.
+const char* SniffFormat(const unsigned char* bytes, size_t size) {
+    auto startsWith = [&](const char* magic, size_t n) {
+        return size >= n && std::memcmp(bytes, magic, n) == 0;
+    };
+    if (startsWith("\x89PNG\r\n\x1a\n", 8)) return "png";
+    if (startsWith("\xff\xd8\xff", 3)) return "jpeg";
+    if (startsWith("BM", 2)) return "bmp";
+    if (startsWith("GIF87a", 6) || startsWith("GIF89a", 6)) return "gif";
+    return nullptr;
+}
+
+// OIIO's messages can span lines; the importer's error is one line.
+std::string OneLine(std::string text, const char* otherwise) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text.empty() ? otherwise : text;
+}
+
+// Expands 1 to 4 channels of `wide` (16-bit) or 8-bit samples to RGBA in place of `image`'s,
+// as stb does for tinygltf: grey fills R, G and B, a missing alpha is opaque.
+void ExpandToRgba(tinygltf::Image& image, const std::vector<unsigned char>& samples, int channels,
+                  bool wide) {
+    const size_t bytes = wide ? 2 : 1, texels = size_t(image.width) * size_t(image.height);
+    const uint16_t opaque = wide ? 0xffff : 0xff;
+    image.image.resize(texels * 4 * bytes);
+    for (size_t p = 0; p < texels; ++p) {
+        auto sample = [&](int c) -> uint16_t {
+            const unsigned char* s = &samples[(p * size_t(channels) + size_t(c)) * bytes];
+            if (!wide) return s[0];
+            uint16_t v;
+            std::memcpy(&v, s, 2);
+            return v;
+        };
+        const bool grey = channels <= 2, alpha = channels == 2 || channels == 4;
+        const uint16_t rgba[4] = {sample(0), sample(grey ? 0 : 1), sample(grey ? 0 : 2),
+                                  alpha ? sample(channels - 1) : opaque};
+        for (int c = 0; c < 4; ++c) {
+            unsigned char* d = &image.image[(p * 4 + size_t(c)) * bytes];
+            if (wide)
+                std::memcpy(d, &rgba[c], 2);
+            else
+                d[0] = uint8_t(rgba[c]);
+        }
+    }
+    image.component = 4;
+    image.bits = wide ? 16 : 8;
+    image.pixel_type =
+        wide ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+}
+
+// Fills `image` from the encoded bytes; returns why not, or "" on success.
+std::string Decode(tinygltf::Image& image, int reqWidth, int reqHeight, const unsigned char* bytes,
+                   int size) {
+    if (bytes == nullptr || size <= 0) return "the image has no bytes";
+    const char* format = SniffFormat(bytes, size_t(size));
+    if (!format)
+        return "not a PNG, JPEG, BMP or GIF image" +
+               (image.mimeType.empty() ? "" : " (mimeType \"" + image.mimeType + "\")");
+    // Declared before the reader, which closes through it when destroyed.
+    OIIO::Filesystem::IOMemReader memory(bytes, size_t(size));
+    auto input = OIIO::ImageInput::create(format);
+    if (!input)
+        return OneLine(OIIO::geterror(), "OpenImageIO has no reader for this format") + " (" +
+               format + ")";
+    // The proxy must be set before open(), which would otherwise look for a file by that name.
+    input->set_ioproxy(&memory);
+    // glTF's alpha is straight, as stb returns it; OIIO's PNG reader would premultiply it.
+    OIIO::ImageSpec config, spec;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    if (!input->open(std::string("image.") + format, spec, config))
+        return OneLine(input->geterror(), "OpenImageIO could not open it") + " (" + format + ")";
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1 || spec.nchannels > 4)
+        return std::to_string(spec.width) + " x " + std::to_string(spec.height) + " texels of " +
+               std::to_string(spec.nchannels) + " channels; rtrt reads 1 to 4 channels";
+    if (uint64_t(spec.width) * uint64_t(spec.height) > kMaxTexels)
+        return std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+               " texels is more than rtrt reads (2^28)";
+    if ((reqWidth > 0 && reqWidth != spec.width) || (reqHeight > 0 && reqHeight != spec.height))
+        return "the image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+               ", its width and height say " + std::to_string(reqWidth) + " x " +
+               std::to_string(reqHeight);
+    // 16-bit PNGs stay 16-bit, as stb keeps them; everything else is read as 8-bit.
+    const bool wide = spec.format == OIIO::TypeDesc::UINT16;
+    std::vector<unsigned char> samples(size_t(spec.width) * size_t(spec.height) *
+                                       size_t(spec.nchannels) * (wide ? 2 : 1));
+    if (!input->read_image(0, 0, 0, spec.nchannels,
+                           wide ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8, samples.data()))
+        return OneLine(input->geterror(), "OpenImageIO could not read it") + " (" + format + ")";
+    image.width = spec.width;
+    image.height = spec.height;
+    ExpandToRgba(image, samples, spec.nchannels, wide);
+    return "";
+}
+
+// tinygltf::LoadImageDataFunction.
+bool LoadWithOiio(tinygltf::Image* image, const int index, std::string* err, std::string*,
+                  int reqWidth, int reqHeight, const unsigned char* bytes, int size, void* user) {
+    std::string reason;
+    try {
+        reason = Decode(*image, reqWidth, reqHeight, bytes, size);
+    } catch (const std::exception& e) {  // std::bad_alloc, or anything OIIO lets through
+        reason = std::string("decoding failed: ") + e.what();
+    }
+    if (reason.empty()) return true;
+    auto* failure = static_cast<GltfImageFailure*>(user);
+    failure->index = index;
+    failure->reason = reason;
+    if (err) *err += "image[" + std::to_string(index) + "]: " + reason + "\n";
+    return false;
+}
+
+}  // namespace
+
+void InstallGltfImageLoader(tinygltf::TinyGLTF& loader, GltfImageFailure* failure) {
+    loader.SetImageLoader(&LoadWithOiio, failure);
+}
+
+}  // namespace rtrt

@@ -1,0 +1,255 @@
+#include "game/gltf/gltf_precheck.h"
+
+#include <cctype>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "engine/core/error.h"
+
+namespace rtrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// glTF's GLB container (spec section 4.4): a 12-byte header, then a JSON chunk and an optional
+// BIN chunk. Checked here so that a truncated or foreign file gets a precise message before
+// tinygltf sees it.
+void CheckGlbHeader(const std::string& file, const std::string& bytes) {
+    auto u32 = [&](size_t at) {
+        uint32_t v;
+        std::memcpy(&v, bytes.data() + at, 4);
+        return v;
+    };
+    if (bytes.size() < 12) throw InputError(file, "header", "truncated: a GLB header is 12 bytes");
+    if (bytes.compare(0, 4, "glTF") != 0)
+        throw InputError(file, "header.magic", "not a GLB file (it does not start with \"glTF\")");
+    if (u32(4) != 2)
+        throw InputError(file, "header.version",
+                         "GLB version " + std::to_string(u32(4)) + ", rtrt reads version 2");
+    if (u32(8) != bytes.size())
+        throw InputError(file, "header.length",
+                         "the header says " + std::to_string(u32(8)) + " bytes, the file has " +
+                             std::to_string(bytes.size()) +
+                             (u32(8) > bytes.size() ? " (truncated)" : ""));
+    // The fuzzer's first find: a bare 12-byte header, whose JSON chunk GlbJson then read past.
+    if (bytes.size() == 12) throw InputError(file, "chunks", "none: a GLB needs a JSON chunk");
+    size_t at = 12;
+    for (int chunk = 0; at < bytes.size(); ++chunk) {
+        const std::string field = GltfIndexed("chunks", size_t(chunk));
+        if (bytes.size() - at < 8) throw InputError(file, field, "truncated chunk header");
+        const uint64_t length = u32(at);
+        if (length > bytes.size() - at - 8)
+            throw InputError(file, field + ".length",
+                             std::to_string(length) + " bytes do not fit in the file (truncated)");
+        if (chunk == 0 && u32(at + 4) != 0x4E4F534Au)
+            throw InputError(file, field + ".type", "the first chunk must be JSON");
+        at += 8 + length;
+    }
+}
+
+// The JSON text of a GLB whose header CheckGlbHeader accepted.
+std::string GlbJson(const std::string& bytes) {
+    uint32_t length;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return bytes.substr(20, length);
+}
+
+// glTF URIs are percent-encoded (RFC 3986): "a%20b.bin" names "a b.bin".
+std::string DecodeUri(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
+            std::isxdigit(uint8_t(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// The JSON types of the fields rtrt reads, per top-level array (glTF 2.0 schema). tinygltf
+// treats a field of the wrong type as absent; rtrt rejects it, naming it.
+enum class Kind {
+    kInt,
+    kString,
+    kBool,
+    kObject,
+    kInts,
+    kNumbers3,
+    kNumbers4,
+    kNumbers16,
+    kObjects
+};
+struct FieldKind {
+    const char* array;
+    const char* field;
+    Kind kind;
+};
+constexpr FieldKind kFieldKinds[] = {
+    {"nodes", "children", Kind::kInts},
+    {"nodes", "mesh", Kind::kInt},
+    {"nodes", "camera", Kind::kInt},
+    {"nodes", "skin", Kind::kInt},
+    {"nodes", "translation", Kind::kNumbers3},
+    {"nodes", "scale", Kind::kNumbers3},
+    {"nodes", "rotation", Kind::kNumbers4},
+    {"nodes", "matrix", Kind::kNumbers16},
+    {"nodes", "extensions", Kind::kObject},
+    {"scenes", "nodes", Kind::kInts},
+    {"meshes", "primitives", Kind::kObjects},
+    {"accessors", "bufferView", Kind::kInt},
+    {"accessors", "byteOffset", Kind::kInt},
+    {"accessors", "componentType", Kind::kInt},
+    {"accessors", "count", Kind::kInt},
+    {"accessors", "type", Kind::kString},
+    {"accessors", "normalized", Kind::kBool},
+    {"bufferViews", "buffer", Kind::kInt},
+    {"bufferViews", "byteOffset", Kind::kInt},
+    {"bufferViews", "byteLength", Kind::kInt},
+    {"bufferViews", "byteStride", Kind::kInt},
+    {"buffers", "uri", Kind::kString},
+    {"buffers", "byteLength", Kind::kInt},
+    {"images", "uri", Kind::kString},
+    {"textures", "source", Kind::kInt},
+    {"textures", "sampler", Kind::kInt},
+    {"materials", "pbrMetallicRoughness", Kind::kObject},
+    {"materials", "extensions", Kind::kObject},
+    {"animations", "channels", Kind::kObjects},
+    {"animations", "samplers", Kind::kObjects},
+    {"cameras", "type", Kind::kString},
+};
+
+bool IsKind(const nlohmann::json& v, Kind kind) {
+    auto numbers = [&](size_t n) {
+        if (!v.is_array() || v.size() != n) return false;
+        for (const nlohmann::json& x : v)
+            if (!x.is_number()) return false;
+        return true;
+    };
+    switch (kind) {
+        case Kind::kInt:
+            return v.is_number_integer();
+        case Kind::kString:
+            return v.is_string();
+        case Kind::kBool:
+            return v.is_boolean();
+        case Kind::kObject:
+            return v.is_object();
+        case Kind::kNumbers3:
+            return numbers(3);
+        case Kind::kNumbers4:
+            return numbers(4);
+        case Kind::kNumbers16:
+            return numbers(16);
+        case Kind::kInts:
+        case Kind::kObjects:
+            if (!v.is_array()) return false;
+            for (const nlohmann::json& x : v)
+                if (kind == Kind::kInts ? !x.is_number_integer() : !x.is_object()) return false;
+            return true;
+    }
+    return false;
+}
+
+const char* KindName(Kind kind) {
+    switch (kind) {
+        case Kind::kInt:
+            return "an integer";
+        case Kind::kString:
+            return "a string";
+        case Kind::kBool:
+            return "true or false";
+        case Kind::kObject:
+            return "an object";
+        case Kind::kInts:
+            return "an array of integers";
+        case Kind::kNumbers3:
+            return "an array of 3 numbers";
+        case Kind::kNumbers4:
+            return "an array of 4 numbers";
+        case Kind::kNumbers16:
+            return "an array of 16 numbers";
+        case Kind::kObjects:
+            return "an array of objects";
+    }
+    return "";
+}
+
+// Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
+// that external buffers and images exist, so that the message names the field
+// ("buffers[0].uri") where tinygltf's would not.
+void CheckJson(const std::string& file, const std::string& json, const std::string& dir) {
+    nlohmann::json root;
+    try {
+        root = nlohmann::json::parse(json);
+    } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e999
+        throw InputError(file, "", std::string("malformed JSON: ") + e.what());
+    }
+    if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
+    for (const char* array : {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers",
+                              "images", "textures", "materials", "animations", "cameras"}) {
+        if (!root.contains(array)) continue;
+        const nlohmann::json& list = root[array];
+        if (!IsKind(list, Kind::kObjects))
+            throw InputError(file, array, "expected an array of objects");
+        for (size_t i = 0; i < list.size(); ++i)
+            for (const FieldKind& f : kFieldKinds)
+                if (std::strcmp(f.array, array) == 0 && list[i].contains(f.field) &&
+                    !IsKind(list[i][f.field], f.kind))
+                    throw InputError(file, GltfIndexed(array, i) + "." + f.field,
+                                     std::string("expected ") + KindName(f.kind) + ", got " +
+                                         list[i][f.field].type_name());
+    }
+    for (const char* array : {"buffers", "images"}) {
+        if (!root.contains(array) || !root[array].is_array()) continue;
+        const nlohmann::json& list = root[array];
+        for (size_t i = 0; i < list.size(); ++i) {
+            if (!list[i].is_object() || !list[i].contains("uri") || !list[i]["uri"].is_string())
+                continue;
+            const std::string uri = list[i]["uri"].get<std::string>();
+            if (uri.rfind("data:", 0) == 0) continue;
+            std::error_code ec;
+            const fs::path path = fs::path(dir.empty() ? "." : dir) / DecodeUri(uri);
+            if (!fs::is_regular_file(path, ec))
+                throw InputError(file, GltfIndexed(array, i) + ".uri",
+                                 "no such file \"" + path.string() + "\"");
+        }
+    }
+}
+
+std::string ReadWholeFile(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError(path, "", "no such file");
+    if (fs::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a glTF file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot be opened for reading");
+    std::stringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw InputError(path, "", "read failed");
+    return text.str();
+}
+
+}  // namespace
+
+std::string GltfIndexed(const std::string& array, size_t i) {
+    return array + "[" + std::to_string(i) + "]";
+}
+
+GltfFileBytes ReadCheckedGltf(const std::string& file) {
+    GltfFileBytes out;
+    out.bytes = ReadWholeFile(file);
+    std::string lower = fs::path(file).extension().string();
+    for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+    out.binary = lower == ".glb" || out.bytes.compare(0, 4, "glTF") == 0;
+    if (out.binary) CheckGlbHeader(file, out.bytes);
+    CheckJson(file, out.binary ? GlbJson(out.bytes) : out.bytes,
+              fs::path(file).parent_path().string());
+    return out;
+}
+
+}  // namespace rtrt

@@ -1,0 +1,170 @@
+#include "game/runtime/world.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "engine/core/timer.h"
+#include "engine/physics_anim/physics_anim_systems.h"
+#include "engine/physics_anim/transform_system.h"
+
+namespace rtrt {
+
+World::World(const LoadedScene& scene, TlasPolicy policy, bool hostTlas)
+    : source_(scene), tlas_(policy), hostTlas_(hostTlas) {
+    scene_.blases = scene.scene.blases;
+    scene_.materials = scene.scene.materials;
+    scene_.lights = scene.scene.lights;
+    scene_.textures = scene.scene.textures;
+    scene_.texels = scene.scene.texels;
+    scene_.camera = scene.scene.camera;
+    scene_.background = scene.scene.background;
+    scene_.maxDepth = scene.scene.maxDepth;
+    for (const auto& blas : scene_.blases) blasBounds_.push_back(blas->bounds);
+    physics::AddPhysicsAnimSystems(scheduler_, physics_, transforms_);
+    SpawnDue();
+    transforms_.Update(registry_);
+    Extract();
+    UpdateTlas();
+}
+
+bool World::UpdateTlas() {
+    if (!hostTlas_) {
+        topologyChanged_ = false;
+        return false;
+    }
+    const bool rebuilt = tlas_.Update(scene_.instances, blasBounds_, topologyChanged_).rebuilt;
+    scene_.SetTlas({tlas_.Tree().nodes, tlas_.Tree().primOrder});
+    topologyChanged_ = false;
+    return rebuilt;
+}
+
+void World::SpawnDue() {
+    const std::vector<EntityDesc>& entities = source_.entities;
+    for (; nextSpawn_ < entities.size() && entities[nextSpawn_].spawnTime <= time_; ++nextSpawn_) {
+        const EntityDesc& d = entities[nextSpawn_];
+        created_.push_back(Create(d));
+        // Parents come first (FinishLoadedScene keeps them so): the link never closes a cycle.
+        if (d.parent >= 0) physics::SetParent(registry_, created_.back(), created_[d.parent]);
+    }
+}
+
+ecs::Entity World::Create(const EntityDesc& d) {
+    const ecs::Entity e = registry_.Create();
+    registry_.Add(e, d.local);
+    if (d.renderable) registry_.Add(e, Renderable{d.blasId, d.materialId});
+    if (d.animator) registry_.Add(e, *d.animator);
+    if (d.body) {
+        registry_.Add(e, *d.body);
+        registry_.Add(e, d.collider);
+    }
+    topologyChanged_ = true;
+    return e;
+}
+
+uint32_t World::AddBlas(std::shared_ptr<const Blas> blas) {
+    blasBounds_.push_back(blas->bounds);
+    return scene_.AddBlas(std::move(blas));
+}
+
+uint32_t World::AddMaterial(const Material& material) { return scene_.AddMaterial(material); }
+
+ecs::Entity World::Spawn(const EntityDesc& desc) { return Create(desc); }
+
+bool World::SetPose(ecs::Entity e, vec3 position, glm::quat rotation) {
+    physics::LocalTransform* local = registry_.Get<physics::LocalTransform>(e);
+    if (!local) return false;
+    local->translation = position;
+    local->rotation = rotation;
+    registry_.MarkChanged<physics::LocalTransform>(e);
+    if (physics::RigidBody* body = registry_.Get<physics::RigidBody>(e)) {
+        physics::Teleport(*body, position, rotation);
+        body->velocity = body->angularVelocity = vec3(0.0f);
+    }
+    return true;
+}
+
+bool World::Remove(ecs::Entity e) {
+    const Renderable* r = registry_.Get<Renderable>(e);
+    if (!r) return false;
+    const uint32_t slot = r->instance;
+    if (slot != UINT32_MAX) {
+        const uint32_t last = uint32_t(scene_.instances.size() - 1);
+        if (slot != last) {
+            scene_.instances[slot] = scene_.instances[last];
+            instanceOwner_[slot] = instanceOwner_[last];
+            registry_.Get<Renderable>(instanceOwner_[slot])->instance = slot;
+        }
+        scene_.instances.pop_back();
+        instanceOwner_.pop_back();
+    }
+    registry_.Destroy(e);
+    topologyChanged_ = true;
+    return true;
+}
+
+void World::OverrideCamera(const Camera& camera) {
+    cameraOverride_ = camera;
+    scene_.camera = camera;
+}
+
+void World::SetHostTlas(bool on) {
+    if (on == hostTlas_) return;
+    hostTlas_ = on;
+    if (on) {
+        topologyChanged_ = true;
+        UpdateTlas();
+    }
+}
+
+bool World::HasPhysics() const {
+    for (const EntityDesc& d : source_.entities)
+        if (d.body) return true;
+    return false;
+}
+
+ecs::Entity World::EntityOfInstance(uint32_t instance) const {
+    return instance < instanceOwner_.size() ? instanceOwner_[instance] : ecs::Entity{};
+}
+
+// Rewrites the instance records of the entities whose world transform changed.
+uint32_t World::Extract() {
+    uint32_t extracted = 0;
+    registry_.EachChanged<physics::WorldTransform>([&](ecs::Entity e, physics::WorldTransform& w) {
+        Renderable* r = registry_.Get<Renderable>(e);
+        if (!r) return;
+        if (r->instance == UINT32_MAX) {
+            r->instance = scene_.AddInstance(r->blasId, r->materialId, w.objectToWorld);
+            instanceOwner_.push_back(e);
+            changed_.push_back(r->instance);
+        } else {
+            Instance& inst = scene_.instances[r->instance];
+            inst.objectToWorld = AffineFromMat4(w.objectToWorld);
+            inst.worldToObject = AffineFromMat4(glm::affineInverse(w.objectToWorld));
+            changed_.push_back(r->instance);
+        }
+        ++extracted;
+    });
+    registry_.ClearChanged<physics::WorldTransform>();
+    return extracted;
+}
+
+FrameStats World::Advance(float dt) {
+    FrameStats stats;
+    changed_.clear();
+    time_ += dt;
+    const size_t before = nextSpawn_;
+    SpawnDue();
+    stats.spawned = uint32_t(nextSpawn_ - before);
+    Stopwatch timer;
+    scheduler_.RunFrame(registry_, dt);
+    stats.simulateMs = timer.Milliseconds();
+    timer.Restart();
+    stats.extracted = Extract();
+    stats.extractMs = timer.Milliseconds();
+    timer.Restart();
+    if (stats.extracted > 0 || topologyChanged_) stats.tlasRebuilt = UpdateTlas();
+    stats.tlasMs = timer.Milliseconds();
+    scene_.camera = cameraOverride_ ? *cameraOverride_ : CameraAt(source_, float(time_));
+    return stats;
+}
+
+}  // namespace rtrt

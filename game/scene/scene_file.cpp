@@ -1,0 +1,767 @@
+#include "game/scene/scene_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include "engine/core/error.h"
+#include "game/assets/mesh_io.h"
+#include "game/assets/model_cache.h"
+#include "game/assets/model_dir.h"
+#include "game/assets/procedural_shapes.h"
+#include "game/assets/teapot.h"
+#include "game/gltf/gltf_import.h"
+
+namespace rtrt {
+namespace {
+
+using Json = nlohmann::json;
+
+const char* TypeName(const Json& j) { return j.type_name(); }
+
+// Rotation by degrees about x, then y, then z (the scene files' convention).
+glm::quat EulerDegrees(vec3 degrees) {
+    return glm::angleAxis(glm::radians(degrees.z), vec3(0, 0, 1)) *
+           glm::angleAxis(glm::radians(degrees.y), vec3(0, 1, 0)) *
+           glm::angleAxis(glm::radians(degrees.x), vec3(1, 0, 0));
+}
+
+// One JSON object of the scene file at a known path. Reading a key marks it as known; Finish()
+// rejects any key nobody read, so a typo never passes silently.
+class Fields {
+  public:
+    Fields(const Json& j, std::string path, const std::string& file)
+        : j_(j), path_(std::move(path)), file_(file) {
+        if (!j.is_object()) Fail("", std::string("expected an object, got ") + TypeName(j));
+    }
+
+    bool Has(const std::string& key) {
+        allowed_.insert(key);
+        return j_.contains(key);
+    }
+    const Json& Get(const std::string& key) {
+        if (!Has(key)) Fail(key, "missing required field");
+        return j_.at(key);
+    }
+
+    float Number(const std::string& key, std::optional<float> fallback = std::nullopt) {
+        if (!Has(key)) return fallback ? *fallback : Missing<float>(key);
+        return ToNumber(j_.at(key), key);
+    }
+    float Positive(const std::string& key, std::optional<float> fallback = std::nullopt) {
+        const float v = Number(key, fallback);
+        if (!(v > 0.0f)) Fail(key, "must be greater than 0, got " + Format(v));
+        return v;
+    }
+    float InRange(const std::string& key, float lo, float hi, float fallback) {
+        const float v = Number(key, fallback);
+        if (!(v >= lo && v <= hi))
+            Fail(key,
+                 "must be between " + Format(lo) + " and " + Format(hi) + ", got " + Format(v));
+        return v;
+    }
+    uint32_t Count(const std::string& key, uint32_t lo, uint32_t hi, uint32_t fallback) {
+        if (!Has(key)) return fallback;
+        const Json& v = j_.at(key);
+        if (!v.is_number_integer() && !v.is_number_unsigned())
+            Fail(key, std::string("expected an integer, got ") + TypeName(v));
+        const int64_t n = v.get<int64_t>();
+        if (n < lo || n > hi)
+            Fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
+                          ", got " + std::to_string(n));
+        return uint32_t(n);
+    }
+    vec3 Vec3(const std::string& key, std::optional<vec3> fallback = std::nullopt) {
+        if (!Has(key)) return fallback ? *fallback : Missing<vec3>(key);
+        const Json& v = j_.at(key);
+        if (!v.is_array() || v.size() != 3)
+            Fail(key, std::string("expected an array of 3 numbers, got ") +
+                          (v.is_array() ? std::to_string(v.size()) + " elements" : TypeName(v)));
+        return vec3(ToNumber(v[0], key + "[0]"), ToNumber(v[1], key + "[1]"),
+                    ToNumber(v[2], key + "[2]"));
+    }
+    // A colour: 3 numbers, or one number for grey.
+    vec3 Colour(const std::string& key, vec3 fallback) {
+        if (Has(key) && j_.at(key).is_number()) return vec3(Number(key));
+        const vec3 c = Vec3(key, fallback);
+        if (c.x < 0 || c.y < 0 || c.z < 0) Fail(key, "colour components must not be negative");
+        return c;
+    }
+    std::string String(const std::string& key, std::optional<std::string> fallback = std::nullopt) {
+        if (!Has(key)) return fallback ? *fallback : Missing<std::string>(key);
+        const Json& v = j_.at(key);
+        if (!v.is_string()) Fail(key, std::string("expected a string, got ") + TypeName(v));
+        return v.get<std::string>();
+    }
+
+    void Finish() {
+        for (const auto& [key, value] : j_.items()) {
+            if (allowed_.count(key)) continue;
+            std::string known;
+            for (const std::string& k : allowed_) known += (known.empty() ? "" : ", ") + k;
+            Fail(key, "unknown field (known fields here: " + known + ")");
+        }
+    }
+
+    std::string Path(const std::string& key) const {
+        if (key.empty()) return path_;
+        return path_.empty() ? key : path_ + "." + key;
+    }
+    [[noreturn]] void Fail(const std::string& key, const std::string& reason) const {
+        throw InputError(file_, Path(key), reason);
+    }
+
+  private:
+    template <typename T>
+    [[noreturn]] T Missing(const std::string& key) const {
+        Fail(key, "missing required field");
+    }
+    float ToNumber(const Json& v, const std::string& key) const {
+        if (!v.is_number()) Fail(key, std::string("expected a number, got ") + TypeName(v));
+        const double d = v.get<double>();
+        if (!std::isfinite(d) || std::fabs(d) > 3.0e38) Fail(key, "number out of range");
+        return float(d);
+    }
+    static std::string Format(float v) {
+        std::ostringstream s;
+        s << v;
+        return s.str();
+    }
+
+    const Json& j_;
+    std::string path_;
+    const std::string& file_;
+    std::set<std::string> allowed_;
+};
+
+class SceneParser {
+  public:
+    SceneParser(std::string name, std::string baseDir)
+        : file_(std::move(name)), baseDir_(std::move(baseDir)) {}
+
+    LoadedScene Parse(const std::string& text) {
+        Json root;
+        try {
+            root = Json::parse(text);
+        } catch (const Json::exception& e) {  // parse_error, or out_of_range for 1e999
+            throw InputError(file_, "", std::string("malformed JSON: ") + e.what());
+        }
+        Fields top(root, "", file_);
+        LoadedScene out;
+        out_ = &out;
+        RenderScene& scene = out.scene;
+        hasCamera_ = top.Has("camera");
+        if (hasCamera_) scene.camera = ParseCamera(top.Get("camera"));
+        scene.background = top.Colour("background", scene.background);
+        scene.maxDepth = top.Count("max_depth", 1, 16, scene.maxDepth);
+        if (top.Has("image")) {
+            Fields image(top.Get("image"), "image", file_);
+            out.width = image.Count("width", 1, 16384, 1280);
+            out.height = image.Count("height", 1, 16384, 720);
+            image.Finish();
+        }
+        if (top.Has("materials")) ParseMaterials(top.Get("materials"), scene);
+        if (top.Has("lights")) ParseLights(top.Get("lights"), scene);
+        if (top.Has("models")) ParseModels(top.Get("models"), scene);
+        ParseInstances(top.Get("instances"), out);
+        if (top.Has("spawners")) ParseSpawners(top.Get("spawners"), out);
+        if (top.Has("camera_path")) ParseCameraPath(top.Get("camera_path"), out);
+        top.Finish();
+        FinishLoadedScene(out, file_);
+        return out;
+    }
+
+  private:
+    Camera ParseCamera(const Json& j) {
+        Fields f(j, "camera", file_);
+        Camera c;
+        c.position = f.Vec3("position", c.position);
+        if (f.Has("look_at") && f.Has("forward"))
+            f.Fail("look_at", "give either look_at or forward, not both");
+        if (f.Has("look_at"))
+            c.forward = f.Vec3("look_at") - c.position;
+        else
+            c.forward = f.Vec3("forward", c.forward);
+        c.up = f.Vec3("up", c.up);
+        c.fovYDegrees = f.InRange("fov_y", 1.0f, 179.0f, c.fovYDegrees);
+        if (glm::length(c.forward) == 0.0f) f.Fail("forward", "the view direction has zero length");
+        if (glm::length(glm::cross(c.forward, c.up)) <
+            1e-6f * glm::length(c.forward) * glm::length(c.up))
+            f.Fail("up", "up must not be parallel to the view direction (or zero)");
+        f.Finish();
+        return c;
+    }
+
+    void ParseMaterials(const Json& j, RenderScene& scene) {
+        if (!j.is_object())
+            throw InputError(
+                file_, "materials",
+                std::string("expected an object of named materials, got ") + TypeName(j));
+        for (const auto& [name, value] : j.items()) {
+            Fields f(value, "materials." + name, file_);
+            Material m;
+            m.diffuse = f.Colour("diffuse", m.diffuse);
+            m.ambient = f.Colour("ambient", 0.1f * m.diffuse);
+            m.specular = f.Colour("specular", m.specular);
+            m.shininess = f.InRange("shininess", 0.0f, 1e6f, m.shininess);
+            m.reflectivity = f.InRange("reflectivity", 0.0f, 1.0f, m.reflectivity);
+            m.transmissivity = f.InRange("transmissivity", 0.0f, 1.0f, m.transmissivity);
+            m.ior = f.InRange("ior", 1.0f, 10.0f, m.ior);
+            if (m.reflectivity + m.transmissivity > 1.0f)
+                f.Fail("transmissivity", "reflectivity + transmissivity must not exceed 1");
+            f.Finish();
+            materialIds_[name] = scene.AddMaterial(m);
+            out_->materialNames.push_back(name);
+        }
+    }
+
+    void ParseLights(const Json& j, RenderScene& scene) {
+        if (!j.is_array())
+            throw InputError(file_, "lights", std::string("expected an array, got ") + TypeName(j));
+        for (size_t i = 0; i < j.size(); ++i) {
+            Fields f(j[i], "lights[" + std::to_string(i) + "]", file_);
+            Light light;
+            const std::string type = f.String("type");
+            if (type == "directional") {
+                light.type = LightType::kDirectional;
+                const vec3 d = f.Vec3("direction");
+                if (glm::length(d) == 0.0f) f.Fail("direction", "direction has zero length");
+                light.vector = glm::normalize(d);
+            } else if (type == "point") {
+                light.type = LightType::kPoint;
+                light.vector = f.Vec3("position");
+            } else {
+                f.Fail("type",
+                       "unknown light type \"" + type + "\" (expected directional or point)");
+            }
+            light.color = f.Colour("color", vec3(1.0f));
+            f.Finish();
+            scene.lights.push_back(light);
+        }
+    }
+
+    void ParseModels(const Json& j, RenderScene& scene) {
+        if (!j.is_object())
+            throw InputError(file_, "models",
+                             std::string("expected an object of named models, got ") + TypeName(j));
+        for (const auto& [name, value] : j.items()) {
+            Fields f(value, "models." + name, file_);
+            if (value.contains("type") && value["type"] == "gltf") {
+                // A glTF scene: its meshes, materials and textures are added once here; every
+                // instance places its node hierarchy again.
+                f.String("type");
+                const std::string path = ResolveModelPath(f.String("file"), baseDir_);
+                f.Finish();
+                gltfAssets_[name] = std::make_shared<GltfAsset>(LoadGltfAsset(path, *out_));
+                out_->gltfFiles.push_back(gltfAssets_[name]->summary);
+                continue;
+            }
+            shape_ = {};
+            modelIds_[name] = scene.AddBlas(std::make_shared<const Blas>(ParseModel(f)));
+            modelShapes_[modelIds_[name]] = shape_;
+            modelNames_[modelIds_[name]] = name;
+            out_->modelNames.push_back(name);
+            f.Finish();
+        }
+    }
+
+    Blas ParseModel(Fields& f) {
+        BvhBuildOptions options;
+        const std::string builder = f.String("builder", "binned");
+        if (!ParseBuilder(builder, &options.builder))
+            f.Fail("builder",
+                   "unknown builder \"" + builder + "\" (expected binned, sweep or centroid)");
+        const std::string type = f.String("type");
+        if (type == "sphere") {
+            const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
+            shape_ = {ModelShape::kSphere, s.radius, vec3(0.0f)};
+            return BuildSphereBlas(std::span<const Sphere>(&s, 1), options);
+        }
+        if (type == "spheres") return BuildSphereBlas(ParseSphereList(f), options);
+        TriangleMesh mesh;
+        if (type == "box") {
+            mesh = MakeBoxMesh(f.Vec3("size", vec3(1.0f)));
+            shape_ = {ModelShape::kBox, 0.0f, 0.5f * mesh.Bounds().Extent()};
+            const vec3 size = mesh.Bounds().Extent();
+            if (!(size.x > 0 && size.y > 0 && size.z > 0))
+                f.Fail("size", "box sides must be greater than 0");
+        } else if (type == "plane") {
+            const vec3 size = f.Vec3("size", vec3(10.0f, 0.0f, 10.0f));
+            if (!(size.x > 0 && size.z > 0))
+                f.Fail("size", "plane size x and z must be greater than 0");
+            mesh = MakePlaneMesh(size.x, size.z);
+            shape_ = {ModelShape::kPlane, 0.0f, vec3(0.0f)};
+        } else if (type == "teapot") {
+            const uint32_t resolution = f.Count("resolution", 1, 64, 6);
+            mesh =
+                TessellateTeapot(ResolveModelPath(f.String("file", "@models/teapot.inc"), baseDir_),
+                                 int(resolution));
+        } else if (type == "mesh") {
+            // Meshes come through the BLAS cache; fitting moves the built BLAS exactly as
+            // FitMesh would have moved the mesh's vertices.
+            MeshModel model = LoadMeshModel(ResolveModelPath(f.String("file"), baseDir_), options);
+            if (f.Has("fit")) FitBlas(model.blas, model.info.sourceBounds, f.Positive("fit"));
+            return std::move(model.blas);
+        } else {
+            f.Fail("type", "unknown model type \"" + type +
+                               "\" (expected sphere, spheres, box, plane, teapot, mesh or gltf)");
+        }
+        if (f.Has("fit")) FitMesh(mesh, f.Positive("fit"));
+        return BuildTriangleBlas(mesh, options);
+    }
+
+    std::vector<Sphere> ParseSphereList(Fields& f) {
+        const Json& list = f.Get("spheres");
+        if (!list.is_array() || list.empty())
+            f.Fail("spheres", "expected a non-empty array of [x, y, z, radius]");
+        std::vector<Sphere> spheres;
+        for (size_t i = 0; i < list.size(); ++i) {
+            const Json& s = list[i];
+            const std::string key = "spheres[" + std::to_string(i) + "]";
+            if (!s.is_array() || s.size() != 4) f.Fail(key, "expected [x, y, z, radius]");
+            for (const Json& v : s)
+                if (!v.is_number() || !std::isfinite(v.get<double>()))
+                    f.Fail(key, "expected finite numbers");
+            if (!(s[3].get<float>() > 0.0f)) f.Fail(key, "radius must be greater than 0");
+            spheres.push_back(
+                {vec3(s[0].get<float>(), s[1].get<float>(), s[2].get<float>()), s[3].get<float>()});
+        }
+        return spheres;
+    }
+
+    void ParseInstances(const Json& j, LoadedScene& out) {
+        if (!j.is_array())
+            throw InputError(file_, "instances",
+                             std::string("expected an array, got ") + TypeName(j));
+        for (size_t i = 0; i < j.size(); ++i) {
+            Fields f(j[i], "instances[" + std::to_string(i) + "]", file_);
+            out.entities.push_back(ParseEntity(f, out.scene));
+            out.entities.back().sourceIndex = uint32_t(i);
+            f.Finish();
+            if (!gltf_) continue;
+            // The instance is the root the glTF scene's nodes hang from.
+            const std::optional<Camera> camera =
+                InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
+                                physics::ToMatrix(out.entities.back().local));
+            if (camera && !hasCamera_) {
+                out.scene.camera = *camera;
+                hasCamera_ = true;
+            }
+        }
+    }
+
+    // The fields an instance and a spawner share: model, material, pose, animation, rigid body.
+    EntityDesc ParseEntity(Fields& f, RenderScene& scene) {
+        EntityDesc e;
+        const std::string model = f.String("model");
+        auto gltf = gltfAssets_.find(model);
+        gltf_ = gltf == gltfAssets_.end() ? nullptr : gltf->second.get();
+        if (gltf_) {
+            if (f.Has("material")) f.Fail("material", "a glTF model brings its own materials");
+            if (f.Has("rigid_body")) f.Fail("rigid_body", "a glTF model cannot be a rigid body");
+            e.renderable = false;
+            e.local = ParseTransform(f);
+            if (f.Has("animate"))
+                e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local);
+            return e;
+        }
+        auto modelIt = modelIds_.find(model);
+        if (modelIt == modelIds_.end())
+            f.Fail("model", "no model named \"" + model + "\" in models");
+        e.blasId = modelIt->second;
+        if (f.Has("material")) {
+            const std::string name = f.String("material");
+            auto it = materialIds_.find(name);
+            if (it == materialIds_.end())
+                f.Fail("material", "no material named \"" + name + "\" in materials");
+            e.materialId = it->second;
+        } else {
+            if (defaultMaterial_ == UINT32_MAX) defaultMaterial_ = scene.AddMaterial(Material{});
+            e.materialId = defaultMaterial_;
+        }
+        e.local = ParseTransform(f);
+        if (f.Has("animate"))
+            e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local);
+        if (f.Has("rigid_body")) {
+            if (e.animator)
+                f.Fail("rigid_body", "an entity is either animated or simulated, not both");
+            ParseRigidBody(f.Get("rigid_body"), f.Path("rigid_body"), e);
+        }
+        return e;
+    }
+
+    // Motions apply in a fixed order: orbit, then spin, then bob.
+    physics::Animator ParseAnimator(const Json& j, const std::string& path,
+                                    const physics::LocalTransform& base) {
+        Fields f(j, path, file_);
+        physics::Animator a;
+        a.base = base;
+        if (f.Has("orbit")) {
+            Fields o(f.Get("orbit"), f.Path("orbit"), file_);
+            physics::Orbit orbit;
+            orbit.centre = o.Vec3("centre", base.translation);
+            orbit.radius = o.Positive("radius", 1.0f);
+            orbit.axis = NonZero(o, "axis", vec3(0, 1, 0));
+            orbit.period = o.Positive("period", 4.0f);
+            o.Finish();
+            a.motions.push_back(orbit);
+        }
+        if (f.Has("spin")) {
+            Fields sp(f.Get("spin"), f.Path("spin"), file_);
+            physics::Spin spin;
+            spin.axis = NonZero(sp, "axis", vec3(0, 1, 0));
+            spin.angularSpeed = sp.Number("speed", 1.0f);
+            sp.Finish();
+            a.motions.push_back(spin);
+        }
+        if (f.Has("bob")) {
+            Fields b(f.Get("bob"), f.Path("bob"), file_);
+            physics::Bob bob;
+            bob.amplitude = b.Number("amplitude", 0.25f);
+            bob.frequency = b.Positive("frequency", 0.5f);
+            bob.axis = NonZero(b, "axis", vec3(0, 1, 0));
+            b.Finish();
+            a.motions.push_back(bob);
+        }
+        if (f.Has("keyframes")) a.clip = ParseClip(f.Get("keyframes"), f.Path("keyframes"));
+        f.Finish();
+        if (a.motions.empty() && !a.clip)
+            f.Fail("", "give at least one of keyframes, orbit, spin, bob");
+        return a;
+    }
+
+    // keyframes: {"translation": [[t, x, y, z], ...], "rotation": [[t, degrees x, y, z], ...],
+    // "scale": [[t, x, y, z], ...], "interpolation": "step" | "linear" | "slerp", "loop": bool}.
+    // The clip sets the channels it has keys for; the motions apply after it.
+    std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std::string& path) {
+        Fields f(j, path, file_);
+        auto clip = std::make_shared<physics::KeyframeClip>();
+        physics::Interpolation mode = physics::Interpolation::kLinear;
+        const std::string interpolation = f.String("interpolation", "linear");
+        if (interpolation == "step")
+            mode = physics::Interpolation::kStep;
+        else if (interpolation == "slerp")
+            mode = physics::Interpolation::kSlerp;
+        else if (interpolation != "linear")
+            f.Fail("interpolation",
+                   "expected step, linear or slerp, got \"" + interpolation + "\"");
+        if (f.Has("loop")) {
+            if (!f.Get("loop").is_boolean()) f.Fail("loop", "expected true or false");
+            clip->wrap =
+                f.Get("loop").get<bool>() ? physics::WrapMode::kLoop : physics::WrapMode::kClamp;
+        }
+        auto keys = [&](const std::string& channel, auto&& add) {
+            if (!f.Has(channel)) return;
+            const Json& list = f.Get(channel);
+            if (!list.is_array() || list.empty())
+                f.Fail(channel, "expected a non-empty array of [time, x, y, z]");
+            for (size_t k = 0; k < list.size(); ++k) {
+                const Json& key = list[k];
+                const std::string at = channel + "[" + std::to_string(k) + "]";
+                if (!key.is_array() || key.size() != 4) f.Fail(at, "expected [time, x, y, z]");
+                for (const Json& v : key)
+                    if (!v.is_number() || !std::isfinite(v.get<double>()))
+                        f.Fail(at, "expected finite numbers");
+                add(key[0].get<float>(),
+                    vec3(key[1].get<float>(), key[2].get<float>(), key[3].get<float>()));
+            }
+        };
+        keys("translation", [&](float t, vec3 v) {
+            clip->translation.times.push_back(t);
+            clip->translation.values.push_back(v);
+        });
+        keys("rotation", [&](float t, vec3 degrees) {
+            clip->rotation.times.push_back(t);
+            clip->rotation.values.push_back(EulerDegrees(degrees));
+        });
+        keys("scale", [&](float t, vec3 v) {
+            clip->scale.times.push_back(t);
+            clip->scale.values.push_back(v);
+        });
+        clip->translation.interpolation = clip->scale.interpolation = mode;
+        clip->rotation.interpolation =
+            mode == physics::Interpolation::kLinear ? physics::Interpolation::kSlerp : mode;
+        f.Finish();
+        if (clip->translation.Empty() && clip->rotation.Empty() && clip->scale.Empty())
+            f.Fail("", "give keys for at least one of translation, rotation, scale");
+        if (const std::string problem = physics::ValidateClip(*clip); !problem.empty())
+            f.Fail("", problem);
+        return clip;
+    }
+
+    vec3 NonZero(Fields& f, const std::string& key, vec3 fallback) {
+        const vec3 v = f.Vec3(key, fallback);
+        if (glm::length(v) == 0.0f) f.Fail(key, "must not be the zero vector");
+        return glm::normalize(v);
+    }
+
+    // The collider follows the model: a sphere (radius x largest scale), a box (half size x
+    // scale) or a plane (its normal turned by the rotation).
+    void ParseRigidBody(const Json& j, const std::string& path, EntityDesc& e) {
+        Fields f(j, path, file_);
+        physics::RigidBody body;
+        body.mass = f.InRange("mass", 0.0f, 1e9f, body.mass);
+        if (f.Has("static") && f.Get("static").is_boolean() && f.Get("static").get<bool>())
+            body.mass = 0.0f;
+        body.restitution = f.InRange("restitution", 0.0f, 1.0f, body.restitution);
+        body.friction = f.InRange("friction", 0.0f, 10.0f, body.friction);
+        body.velocity = f.Vec3("velocity", vec3(0.0f));
+        f.Finish();
+        const ModelShape& shape = modelShapes_[e.blasId];
+        const vec3 scale = e.local.scale;
+        switch (shape.kind) {
+            case ModelShape::kSphere:
+                e.collider = physics::Collider::Sphere(shape.radius * MaxComponent(scale));
+                break;
+            case ModelShape::kBox:
+                e.collider = physics::Collider::Box(shape.halfExtents * scale);
+                break;
+            case ModelShape::kPlane:
+                e.collider = physics::Collider::Plane(e.local.rotation * vec3(0, 1, 0));
+                body.mass = 0.0f;  // planes do not move
+                break;
+            default:
+                throw InputError(file_, path,
+                                 "a rigid body needs a sphere, box or plane model; \"" +
+                                     modelNames_[e.blasId] + "\" is a mesh");
+        }
+        e.body = body;
+    }
+
+    // Spawners place many copies of one entity: on a grid, or as a rain at random (seeded)
+    // places in a region, at a given time.
+    void ParseSpawners(const Json& j, LoadedScene& out) {
+        if (!j.is_array())
+            throw InputError(file_, "spawners",
+                             std::string("expected an array, got ") + TypeName(j));
+        for (size_t i = 0; i < j.size(); ++i) {
+            Fields f(j[i], "spawners[" + std::to_string(i) + "]", file_);
+            EntityDesc proto = ParseEntity(f, out.scene);
+            if (gltf_)
+                f.Fail("model", "spawners place single models, and this one is a glTF scene");
+            proto.spawnTime = f.InRange("time", 0.0f, 1e6f, 0.0f);
+            const bool grid = f.Has("grid"), rain = f.Has("rain");
+            if (grid == rain) f.Fail("", "give exactly one of grid or rain");
+            const std::vector<vec3> places =
+                grid ? GridPlaces(f, proto) : RainPlaces(f, out, proto);
+            proto.sourceArray = "spawners";
+            proto.sourceIndex = uint32_t(i);
+            for (const vec3& p : places) {
+                EntityDesc e = proto;
+                e.local.translation = p;
+                if (e.animator) {
+                    e.animator->base.translation = p;
+                    for (physics::ProceduralMotion& m : e.animator->motions)
+                        if (auto* orbit = std::get_if<physics::Orbit>(&m))
+                            orbit->centre += p - proto.local.translation;
+                }
+                out.entities.push_back(e);
+            }
+            f.Finish();
+        }
+    }
+
+    std::vector<vec3> GridPlaces(Fields& f, const EntityDesc& proto) {
+        Fields g(f.Get("grid"), f.Path("grid"), file_);
+        const vec3 count = g.Vec3("count");
+        const float spacing = g.Positive("spacing", 1.5f);
+        g.Finish();
+        if (count.x < 1 || count.y < 1 || count.z < 1 || count.x * count.y * count.z > 2e6f ||
+            count != glm::floor(count))
+            f.Fail("grid.count", "expected 3 whole numbers >= 1 (at most 2,000,000 places)");
+        std::vector<vec3> places;
+        const vec3 half = 0.5f * (count - vec3(1.0f));
+        for (int z = 0; z < int(count.z); ++z)
+            for (int y = 0; y < int(count.y); ++y)
+                for (int x = 0; x < int(count.x); ++x)
+                    places.push_back(proto.local.translation + spacing * (vec3(x, y, z) - half));
+        return places;
+    }
+
+    // Jittered cells of a grid that fills [min, max], chosen in a seeded order: places never
+    // overlap, so a rain of bodies starts without interpenetration.
+    std::vector<vec3> RainPlaces(Fields& f, const LoadedScene& out, const EntityDesc& proto) {
+        Fields r(f.Get("rain"), f.Path("rain"), file_);
+        const uint32_t count = r.Count("count", 1, 1000000, 100);
+        const vec3 lo = r.Vec3("min"), hi = r.Vec3("max");
+        const uint32_t seed = r.Count("seed", 0, UINT32_MAX - 1, 1);
+        r.Finish();
+        const Aabb bounds = out.scene.blases[proto.blasId]->bounds;
+        const ModelShape& shape = modelShapes_[proto.blasId];
+        const float radius = shape.kind == ModelShape::kSphere
+                                 ? shape.radius * MaxComponent(proto.local.scale)
+                                 : 0.5f * glm::length(bounds.Extent() * proto.local.scale);
+        const float cell = 2.2f * radius;
+        const glm::ivec3 cells = glm::ivec3(glm::max(hi - lo, vec3(0.0f)) / cell);
+        const int64_t total = int64_t(cells.x) * cells.y * cells.z;
+        if (total < int64_t(count))
+            f.Fail("rain", "the region holds only " + std::to_string(std::max<int64_t>(total, 0)) +
+                               " bodies of this size, not " + std::to_string(count));
+        if (total > 50000000)
+            f.Fail("rain", "the region is too large for bodies of this size (over 50M cells)");
+        std::vector<uint32_t> order(static_cast<size_t>(total));
+        for (size_t i = 0; i < order.size(); ++i) order[i] = uint32_t(i);
+        std::mt19937 rng(seed);
+        std::shuffle(order.begin(), order.end(), rng);
+        std::uniform_real_distribution<float> jitter(-1.0f, 1.0f);
+        const float slack = 0.5f * (cell - 2.0f * radius);
+        std::vector<vec3> places;
+        for (uint32_t i = 0; i < count; ++i) {
+            const uint32_t c = order[i];
+            const vec3 index(float(c % cells.x), float((c / cells.x) % cells.y),
+                             float(c / (cells.x * cells.y)));
+            places.push_back(lo + cell * (index + vec3(0.5f)) +
+                             slack * vec3(jitter(rng), jitter(rng), jitter(rng)));
+        }
+        return places;
+    }
+
+    // camera_path: keys {time, position, look_at}, in increasing time.
+    void ParseCameraPath(const Json& j, LoadedScene& out) {
+        if (!j.is_array() || j.empty())
+            throw InputError(file_, "camera_path", "expected a non-empty array of camera keys");
+        for (size_t i = 0; i < j.size(); ++i) {
+            Fields f(j[i], "camera_path[" + std::to_string(i) + "]", file_);
+            CameraKey key;
+            key.time = f.InRange("time", 0.0f, 1e6f, 0.0f);
+            key.position = f.Vec3("position");
+            key.lookAt = f.Vec3("look_at");
+            f.Finish();
+            if (!out.cameraPath.empty() && key.time <= out.cameraPath.back().time)
+                f.Fail("time", "camera keys must come in increasing time");
+            if (key.position == key.lookAt) f.Fail("look_at", "must differ from position");
+            out.cameraPath.push_back(key);
+        }
+    }
+
+    // position * rotation (degrees about x, then y, then z) * scale.
+    physics::LocalTransform ParseTransform(Fields& f) {
+        const vec3 position = f.Vec3("position", vec3(0.0f));
+        const vec3 rotation = f.Vec3("rotation", vec3(0.0f));
+        vec3 scale(1.0f);
+        if (f.Has("scale")) {
+            const Json& value = f.Get("scale");
+            if (value.is_number()) {
+                scale = vec3(f.Positive("scale"));
+            } else if (value.is_array()) {
+                scale = f.Vec3("scale");
+            } else {
+                f.Fail("scale", std::string("expected a number or an array of 3 numbers, got ") +
+                                    TypeName(value));
+            }
+            if (!(scale.x > 0 && scale.y > 0 && scale.z > 0))
+                f.Fail("scale", "scale factors must be greater than 0");
+        }
+        physics::LocalTransform t;
+        t.translation = position;
+        t.rotation = EulerDegrees(rotation);
+        t.scale = scale;
+        return t;
+    }
+
+    struct ModelShape {
+        enum Kind { kOther, kSphere, kBox, kPlane } kind = kOther;
+        float radius = 0.0f;
+        vec3 halfExtents{0.0f};
+    };
+
+    std::string file_, baseDir_;
+    std::map<std::string, uint32_t> materialIds_, modelIds_;
+    std::map<uint32_t, ModelShape> modelShapes_;
+    std::map<uint32_t, std::string> modelNames_;
+    std::map<std::string, std::shared_ptr<const GltfAsset>> gltfAssets_;
+    const GltfAsset* gltf_ = nullptr;  // the glTF model of the entity just parsed, if it is one
+    bool hasCamera_ = false;           // the file or an included glTF has set the camera
+    ModelShape shape_;                 // of the model being parsed
+    LoadedScene* out_ = nullptr;       // the scene being parsed
+    uint32_t defaultMaterial_ = UINT32_MAX;
+};
+
+}  // namespace
+
+std::vector<glm::mat4> InitialWorlds(const LoadedScene& out) {
+    std::vector<glm::mat4> worlds(out.entities.size());
+    for (size_t i = 0; i < out.entities.size(); ++i) {
+        const EntityDesc& e = out.entities[i];
+        const glm::mat4 local = physics::ToMatrix(e.local);
+        worlds[i] = e.parent >= 0 ? worlds[size_t(e.parent)] * local : local;
+    }
+    return worlds;
+}
+
+void FinishLoadedScene(LoadedScene& out, const std::string& file) {
+    // Entities with parents are all of time 0 and come before every spawner's, so the stable
+    // sort moves none of them nor their parents.
+    std::stable_sort(
+        out.entities.begin(), out.entities.end(),
+        [](const EntityDesc& a, const EntityDesc& b) { return a.spawnTime < b.spawnTime; });
+    const std::vector<glm::mat4> worlds = InitialWorlds(out);
+    for (size_t i = 0; i < out.entities.size(); ++i) {
+        const EntityDesc& e = out.entities[i];
+        if (e.renderable) {
+            const Aabb b = out.scene.blases[e.blasId]->bounds;
+            for (int corner = 0; corner < 8; ++corner) {
+                const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                             (corner & 4) ? b.max.z : b.min.z);
+                const glm::vec4 w = worlds[i] * glm::vec4(p, 1.0f);
+                if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
+                    throw InputError(
+                        file,
+                        std::string(e.sourceArray) + "[" + std::to_string(e.sourceIndex) + "]",
+                        "its world bounds are not finite (position, scale or model "
+                        "size too large)");
+            }
+        }
+        out.dynamic |= e.animator.has_value() || e.body.has_value() || e.spawnTime > 0.0f;
+        if (e.spawnTime == 0.0f && e.renderable)
+            out.scene.AddInstance(e.blasId, e.materialId, worlds[i]);
+    }
+    out.dynamic |= !out.cameraPath.empty();
+    if (!out.cameraPath.empty()) out.scene.camera = CameraAt(out, 0.0f);
+    out.scene.BuildTlas();
+}
+
+Camera CameraAt(const LoadedScene& loaded, float t) {
+    Camera camera = loaded.scene.camera;
+    const std::vector<CameraKey>& path = loaded.cameraPath;
+    if (path.empty()) return camera;
+    size_t next = 0;
+    while (next < path.size() && path[next].time <= t) ++next;
+    const CameraKey& a = path[next == 0 ? 0 : next - 1];
+    const CameraKey& b = path[next == path.size() ? path.size() - 1 : next];
+    const float span = b.time - a.time;
+    const float w = span > 0.0f ? std::clamp((t - a.time) / span, 0.0f, 1.0f) : 0.0f;
+    camera.position = glm::mix(a.position, b.position, w);
+    camera.forward = glm::mix(a.lookAt, b.lookAt, w) - camera.position;
+    return camera;
+}
+
+LoadedScene ParseScene(const std::string& text, const std::string& name,
+                       const std::string& baseDir) {
+    return SceneParser(name, baseDir).Parse(text);
+}
+
+LoadedScene LoadSceneFile(const std::string& path) {
+    if (IsGltfPath(path)) return LoadGltfScene(path);
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "no such file");
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(path, "", "is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot be opened for reading");
+    std::stringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw InputError(path, "", "read failed");
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    return ParseScene(text.str(), path, dir);
+}
+
+}  // namespace rtrt

@@ -1,0 +1,64 @@
+// The window's spawns: every kind lands ahead of the camera, and in a scene with physics it is a
+// rigid body thrown along the view.
+#include "game/app/spawn_palette.h"
+
+#include <gtest/gtest.h>
+
+#include "game/scene/scene_file.h"
+#include "tests/test_util.h"
+
+namespace rtrt {
+namespace {
+
+constexpr const char* kStatic = R"({
+  "camera": { "position": [0, 1, 10], "look_at": [0, 1, 0] },
+  "models": { "floor": { "type": "plane", "size": [20, 0, 20] } },
+  "instances": [ { "model": "floor" } ]
+})";
+
+constexpr const char* kPhysics = R"({
+  "camera": { "position": [0, 1, 10], "look_at": [0, 1, 0] },
+  "models": { "floor": { "type": "plane", "size": [20, 0, 20] } },
+  "instances": [ { "model": "floor", "rigid_body": { "static": true } } ]
+})";
+
+TEST(SpawnPalette, KindsLandAheadOfTheCamera) {
+    const LoadedScene loaded = ParseScene(kStatic, "static.json", "");
+    World world(loaded);
+    SpawnPalette palette(world, nullptr);
+    ASSERT_NE(palette.Find("sphere"), nullptr);
+    ASSERT_NE(palette.Find("glass sphere"), nullptr);
+    ASSERT_NE(palette.Find("mirror box"), nullptr);
+    EXPECT_GT(world.Scene().materials[palette.Find("glass sphere")->materialId].transmissivity,
+              0.0f);
+    EXPECT_GT(world.Scene().materials[palette.Find("mirror box")->materialId].reflectivity, 0.8f);
+    const Camera& camera = world.Scene().camera;
+    for (const SpawnKind& kind : palette.Kinds()) {
+        const ecs::Entity e = palette.SpawnInFront(world, kind, camera, 4.0f);
+        EXPECT_EQ(world.Registry().Get<physics::RigidBody>(e), nullptr) << kind.name;
+        const auto* local = world.Registry().Get<physics::LocalTransform>(e);
+        ASSERT_NE(local, nullptr);
+        EXPECT_NEAR(local->translation.z, 6.0f, 1e-5f) << kind.name;  // 4 ahead of z = 10
+    }
+    world.Advance(0.0f);
+    EXPECT_EQ(world.Scene().instances.size(), 1 + palette.Kinds().size());
+}
+
+TEST(SpawnPalette, WithPhysicsSpawnsAreThrown) {
+    const LoadedScene loaded = ParseScene(kPhysics, "physics.json", "");
+    World world(loaded);
+    ASSERT_TRUE(world.HasPhysics());
+    SpawnPalette palette(world, nullptr);
+    const ecs::Entity e =
+        palette.SpawnInFront(world, *palette.Find("sphere"), world.Scene().camera, 4.0f);
+    const auto* body = world.Registry().Get<physics::RigidBody>(e);
+    ASSERT_NE(body, nullptr);
+    EXPECT_NEAR(body->velocity.z, -SpawnPalette::kThrowSpeed, 1e-5f);
+    ASSERT_NE(world.Registry().Get<physics::Collider>(e), nullptr);
+    // It flies forward (and falls): after half a second it is further along -z.
+    for (int i = 0; i < 30; ++i) world.Advance(1.0f / 60.0f);
+    EXPECT_LT(world.Registry().Get<physics::LocalTransform>(e)->translation.z, 4.0f);
+}
+
+}  // namespace
+}  // namespace rtrt

@@ -1,0 +1,509 @@
+// glTF import, checked against small files the tests write with known answers: texels reach the
+// image exactly, every index type gives the same mesh, node hierarchies and animations give the
+// expected world transforms, lights and cameras land where their nodes are; and Debian's
+// assimp-testmodels load (skipped when the package is missing).
+#include "game/gltf/gltf_import.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <iterator>
+
+#include "engine/core/error.h"
+#include "engine/render_rt/renderer.h"
+#include "game/runtime/world.h"
+#include "tests/gltf/gltf_builder.h"
+#include "tests/test_util.h"
+
+namespace rtrt {
+namespace {
+
+namespace fs = std::filesystem;
+using test::GltfBuilder;
+using Json = nlohmann::json;
+
+constexpr int kFloat = 5126, kUByte = 5121, kUShort = 5123, kUInt = 5125;
+
+class GltfTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("rtrt_gltf_" + std::to_string(getpid()) + "_" + info->name());
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string Save(const std::string& name, const std::string& bytes) const {
+        const std::string path = (dir_ / name).string();
+        GltfBuilder::Save(path, bytes);
+        return path;
+    }
+    fs::path dir_;
+};
+
+Image RenderScene8(const LoadedScene& loaded, uint32_t size) {
+    RenderSettings settings;
+    settings.width = settings.height = size;
+    settings.maxDepth = 1;
+    return RenderRaw(loaded.scene, settings);
+}
+
+TEST_F(GltfTest, NearestTexturedQuadShowsItsTexels) {
+    std::vector<uint8_t> rgb;
+    for (int i = 0; i < 16; ++i)
+        rgb.insert(rgb.end(), {uint8_t(16 * i), uint8_t(255 - 9 * i), uint8_t(7 * i + 3)});
+    const std::string path = Save("quad.gltf", test::TexturedQuadGltf(4, 4, rgb, 9728, 33071));
+    const LoadedScene loaded = LoadSceneFile(path);
+    EXPECT_NE(loaded.scene.Features() & kFeatureTextures, 0u);
+    ASSERT_EQ(loaded.scene.textures.size(), 1u);
+    EXPECT_EQ(loaded.width, 1280u);
+    EXPECT_EQ(loaded.height, 1280u);
+    const Image image = RenderScene8(loaded, 8);
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 8; ++x) {
+            const size_t texel = size_t((y / 2) * 4 + x / 2);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_FLOAT_EQ(image.At(x, y)[c], rgb[3 * texel + size_t(c)] / 255.0f)
+                    << x << "," << y << " channel " << c;
+        }
+}
+
+TEST_F(GltfTest, BilinearTexturedQuadBlendsNeighbours) {
+    // Two texels, black and white, clamped: along x the colour ramps from the first texel
+    // centre (u = 1/4) to the second (u = 3/4) and is flat outside.
+    const std::vector<uint8_t> rgb = {0, 0, 0, 255, 255, 255};
+    const std::string path = Save("ramp.gltf", test::TexturedQuadGltf(2, 1, rgb, 9729, 33071));
+    const Image image = RenderScene8(LoadSceneFile(path), 8);
+    for (uint32_t x = 0; x < 8; ++x) {
+        const float u = (float(x) + 0.5f) / 8.0f;
+        const float expected = std::clamp(2.0f * u - 0.5f, 0.0f, 1.0f);
+        EXPECT_NEAR(image.At(x, 3).x, expected, 2e-6f) << x;
+    }
+}
+
+// Either build's decoder (OpenImageIO, or stb without it) names the image it could not decode.
+TEST_F(GltfTest, UndecodableImageIsNamed) {
+    GltfBuilder b = test::TexturedQuadScene(9728, 33071);
+    b.doc["images"] = Json::array(
+        {{{"uri", "data:image/png;base64," + GltfBuilder::Base64({'n', 'o', 'p', 'e'})}}});
+    const std::string path = Save("undecodable.gltf", b.GltfText());
+    try {
+        LoadSceneFile(path);
+        ADD_FAILURE() << "loaded without an error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.Field(), "images[0]") << e.what();
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+}
+
+TEST(TextureSampling, WrapModes) {
+    // A 4x1 texture of grey levels 0, 1, 2, 3 (x 10), sampled at texel centres beyond [0, 1).
+    const uint32_t texels[4] = {0, 10, 20, 30};
+    Texture t;
+    t.width = 4;
+    t.height = 1;
+    t.filter = TextureFilter::kNearest;
+    auto at = [&](float u, TextureWrap wrap) {
+        t.wrapS = wrap;
+        return SampleTexture(t, texels, vec2(u, 0.5f)).x * 255.0f;
+    };
+    EXPECT_FLOAT_EQ(at(1.125f, TextureWrap::kRepeat), 0.0f);
+    EXPECT_FLOAT_EQ(at(-0.125f, TextureWrap::kRepeat), 30.0f);
+    EXPECT_FLOAT_EQ(at(1.125f, TextureWrap::kMirroredRepeat), 30.0f);
+    EXPECT_FLOAT_EQ(at(1.375f, TextureWrap::kMirroredRepeat), 20.0f);
+    EXPECT_FLOAT_EQ(at(-0.125f, TextureWrap::kMirroredRepeat), 0.0f);
+    EXPECT_FLOAT_EQ(at(7.0f, TextureWrap::kClampToEdge), 30.0f);
+    EXPECT_FLOAT_EQ(at(-3.0f, TextureWrap::kClampToEdge), 0.0f);
+    EXPECT_FLOAT_EQ(at(1e38f, TextureWrap::kRepeat), at(0.0f, TextureWrap::kRepeat));
+    t.filter = TextureFilter::kLinear;
+    // Half way between the centres of texels 1 and 2; and across the repeat seam.
+    EXPECT_NEAR(at(0.5f, TextureWrap::kRepeat), 15.0f, 1e-4f);
+    EXPECT_NEAR(at(0.0f, TextureWrap::kRepeat), 15.0f, 1e-4f);  // texels 3 and 0
+    EXPECT_NEAR(at(0.0f, TextureWrap::kClampToEdge), 0.0f, 1e-4f);
+}
+
+// The same quad with each index type, and without indices.
+TEST_F(GltfTest, EveryIndexTypeGivesTheSameMesh) {
+    const std::vector<float> corners = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+    const std::vector<uint32_t> order = {0, 1, 2, 0, 2, 3};
+    std::vector<float> unrolled;
+    for (uint32_t i : order) unrolled.insert(unrolled.end(), &corners[3 * i], &corners[3 * i + 3]);
+    std::vector<std::vector<Triangle>> meshes;
+    for (int type : {kUByte, kUShort, kUInt, 0}) {
+        GltfBuilder b;
+        int mesh;
+        if (type == 0) {
+            mesh = b.Mesh(b.Floats(unrolled, "VEC3", 3));
+        } else {
+            const int pos = b.Floats(corners, "VEC3", 3);
+            int idx;
+            if (type == kUByte)
+                idx = b.Accessor(std::vector<uint8_t>(order.begin(), order.end()), kUByte, "SCALAR",
+                                 1);
+            else if (type == kUShort)
+                idx = b.Accessor(std::vector<uint16_t>(order.begin(), order.end()), kUShort,
+                                 "SCALAR", 1);
+            else
+                idx = b.Accessor(order, kUInt, "SCALAR", 1);
+            mesh = b.Mesh(pos, idx);
+        }
+        b.Node({{"mesh", mesh}});
+        const LoadedScene loaded =
+            LoadSceneFile(Save("q" + std::to_string(type) + ".glb", b.Glb()));
+        ASSERT_EQ(loaded.scene.blases.size(), 1u);
+        const Blas& blas = *loaded.scene.blases[0];
+        std::vector<Triangle> tris(2);
+        for (uint32_t slot = 0; slot < blas.PrimCount(); ++slot)
+            tris[blas.primIds[slot]] = blas.triangles[slot];
+        meshes.push_back(tris);
+    }
+    for (size_t m = 1; m < meshes.size(); ++m)
+        for (size_t t = 0; t < 2; ++t) {
+            EXPECT_EQ(meshes[m][t].v0, meshes[0][t].v0) << m;
+            EXPECT_EQ(meshes[m][t].v1, meshes[0][t].v1) << m;
+            EXPECT_EQ(meshes[m][t].v2, meshes[0][t].v2) << m;
+        }
+    EXPECT_EQ(meshes[0][1].v2, vec3(-1, 1, 0));
+}
+
+// Parent: translate (1, 0, 0), rotate 90 degrees about y; child: translate (0, 0, 2), scale 2.
+// The child's mesh point (1, 0, 0) goes to (1, 0, 0) * 2 + (0, 0, 2) = (2, 0, 2) in the parent,
+// rotated to (2, 0, -2), moved to (3, 0, -2) in the world.
+GltfBuilder TwoLevels() {
+    GltfBuilder b;
+    const int mesh = b.Mesh(b.Floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3));
+    const float s = std::sqrt(0.5f);
+    b.Node({{"translation", {1, 0, 0}}, {"rotation", {0, s, 0, s}}, {"children", {1}}});
+    b.Node({{"translation", {0, 0, 2}}, {"scale", {2, 2, 2}}, {"mesh", mesh}});
+    b.doc["scenes"] = Json::array({{{"nodes", {0}}}});
+    return b;
+}
+
+TEST_F(GltfTest, NodeHierarchyGivesWorldTransforms) {
+    const LoadedScene loaded = LoadSceneFile(Save("tree.gltf", TwoLevels().GltfText()));
+    ASSERT_EQ(loaded.scene.instances.size(), 1u);
+    ASSERT_EQ(loaded.entities.size(), 3u);  // two nodes and the child's primitive
+    EXPECT_EQ(loaded.entities[1].parent, 0);
+    EXPECT_EQ(loaded.entities[2].parent, 1);
+    const vec3 p = loaded.scene.instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    EXPECT_NEAR(p.x, 3.0f, 1e-5f);
+    EXPECT_NEAR(p.y, 0.0f, 1e-5f);
+    EXPECT_NEAR(p.z, -2.0f, 1e-5f);
+    // The runtime links the same entities and derives the same world transform.
+    World world(loaded);
+    const vec3 q = world.Scene().instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    EXPECT_NEAR(glm::length(q - vec3(3, 0, -2)), 0.0f, 1e-5f);
+    world.Advance(0.5f);
+    const vec3 r = world.Scene().instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    EXPECT_NEAR(glm::length(r - vec3(3, 0, -2)), 0.0f, 1e-5f);
+}
+
+TEST_F(GltfTest, MatrixNodesAreDecomposed) {
+    GltfBuilder b = TwoLevels();
+    // The parent as a matrix: columns of a 90-degree turn about y, translation (1, 0, 0).
+    b.doc["nodes"][0].erase("translation");
+    b.doc["nodes"][0].erase("rotation");
+    b.doc["nodes"][0]["matrix"] = {0, 0, -1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
+    const LoadedScene loaded = LoadSceneFile(Save("matrix.gltf", b.GltfText()));
+    const vec3 p = loaded.scene.instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    EXPECT_NEAR(glm::length(p - vec3(3, 0, -2)), 0.0f, 1e-5f);
+}
+
+// The child's translation animated: LINEAR from (0, 0, 2) at t = 0 to (0, 4, 2) at t = 2; the
+// parent's scale STEP 1 until t = 1, then 3.
+TEST_F(GltfTest, AnimationIsSampledAtKnownTimes) {
+    GltfBuilder b = TwoLevels();
+    const int times = b.Floats({0, 2}, "SCALAR", 1);
+    const int moves = b.Floats({0, 0, 2, 0, 4, 2}, "VEC3", 3);
+    const int stepTimes = b.Floats({0, 1}, "SCALAR", 1);
+    const int scales = b.Floats({1, 1, 1, 3, 3, 3}, "VEC3", 3);
+    b.doc["animations"] =
+        Json::array({{{"samplers",
+                       {{{"input", times}, {"output", moves}, {"interpolation", "LINEAR"}},
+                        {{"input", stepTimes}, {"output", scales}, {"interpolation", "STEP"}}}},
+                      {"channels",
+                       {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}},
+                        {{"sampler", 1}, {"target", {{"node", 0}, {"path", "scale"}}}}}}}});
+    const LoadedScene loaded = LoadSceneFile(Save("anim.glb", b.Glb()));
+    EXPECT_TRUE(loaded.dynamic);
+    ASSERT_EQ(loaded.gltfFiles.size(), 1u);
+    EXPECT_EQ(loaded.gltfFiles[0].animatedNodes, 2u);
+    EXPECT_FLOAT_EQ(loaded.gltfFiles[0].animationSeconds, 2.0f);
+    World world(loaded);
+    auto pointAt = [&](float dt) {
+        world.Advance(dt);
+        return world.Scene().instances[0].objectToWorld.Point(vec3(0, 0, 0));
+    };
+    // t = 0.5: child at (0, 1, 2), parent scale 1: rotated to (2, 1, 0), moved to (3, 1, 0).
+    EXPECT_NEAR(glm::length(pointAt(0.5f) - vec3(3, 1, 0)), 0.0f, 1e-4f);
+    // t = 1.5: child at (0, 3, 2), parent scale 3: (0, 9, 6) rotated (6, 9, 0), moved (7, 9, 0).
+    EXPECT_NEAR(glm::length(pointAt(1.0f) - vec3(7, 9, 0)), 0.0f, 1e-4f);
+    // t = 2.5 loops to 0.5.
+    EXPECT_NEAR(glm::length(pointAt(1.0f) - vec3(3, 1, 0)), 0.0f, 1e-4f);
+}
+
+TEST_F(GltfTest, LightsAndCameraSitOnTheirNodes) {
+    GltfBuilder b = TwoLevels();
+    b.doc["cameras"] =
+        Json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}});
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+        Json::array({{{"type", "point"}, {"color", {1, 0.5, 0.25}}, {"intensity", 2}},
+                     {{"type", "directional"}}});
+    // A camera as a child of the rotated parent, 5 units along its +z: world (1 + 5, 0, 0),
+    // looking along the parent's -z turned, i.e. world -x.
+    b.doc["nodes"][0]["children"].push_back(b.Node({{"camera", 0}, {"translation", {0, 0, 5}}}));
+    b.doc["nodes"][0]["children"].push_back(b.Node(
+        {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"translation", {0, 3, 0}}}));
+    b.doc["nodes"][0]["children"].push_back(
+        b.Node({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}));
+    const LoadedScene loaded = LoadSceneFile(Save("lights.gltf", b.GltfText()));
+    const Camera& c = loaded.scene.camera;
+    EXPECT_NEAR(glm::length(c.position - vec3(6, 0, 0)), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(glm::normalize(c.forward) - vec3(-1, 0, 0)), 0.0f, 1e-5f);
+    EXPECT_NEAR(c.fovYDegrees, 0.5f * 180.0f / float(M_PI), 1e-4f);
+    ASSERT_EQ(loaded.scene.lights.size(), 2u);
+    EXPECT_EQ(loaded.scene.lights[0].type, LightType::kPoint);
+    EXPECT_NEAR(glm::length(loaded.scene.lights[0].vector - vec3(1, 3, 0)), 0.0f, 1e-5f);
+    EXPECT_EQ(loaded.scene.lights[0].color, vec3(2, 1, 0.5f));
+    // The directional light shines along the parent's -z (world -x): toward it is +x.
+    EXPECT_EQ(loaded.scene.lights[1].type, LightType::kDirectional);
+    EXPECT_NEAR(glm::length(loaded.scene.lights[1].vector - vec3(1, 0, 0)), 0.0f, 1e-5f);
+}
+
+TEST_F(GltfTest, MaterialMapping) {
+    GltfBuilder b = TwoLevels();
+    b.doc["materials"] =
+        Json::array({{{"pbrMetallicRoughness",
+                       {{"baseColorFactor", {0.5, 0.25, 1.0, 1.0}},
+                        {"metallicFactor", 0.0},
+                        {"roughnessFactor", 0.5}}},
+                      {"emissiveFactor", {0.1, 0.2, 0.3}},
+                      {"extensions",
+                       {{"KHR_materials_transmission", {{"transmissionFactor", 0.5}}},
+                        {"KHR_materials_ior", {{"ior", 1.33}}},
+                        {"KHR_materials_emissive_strength", {{"emissiveStrength", 2.0}}}}}}});
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    const LoadedScene loaded = LoadSceneFile(Save("material.gltf", b.GltfText()));
+    const Material& m = loaded.scene.materials[0];
+    EXPECT_NEAR(glm::length(m.diffuse - vec3(0.25f, 0.125f, 0.5f)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(m.ambient - (vec3(0.05f, 0.025f, 0.1f) + vec3(0.2f, 0.4f, 0.6f))), 0.0f,
+                1e-6f);
+    EXPECT_FLOAT_EQ(m.transmissivity, 0.5f);
+    EXPECT_FLOAT_EQ(m.ior, 1.33f);
+    const float f0 = (0.33f / 2.33f) * (0.33f / 2.33f);
+    EXPECT_NEAR(m.specular.x, f0, 1e-6f);
+    EXPECT_NEAR(m.reflectivity, f0 * 0.25f, 1e-6f);
+    // alpha = 0.25: n = 2 / 0.0625 - 2 = 30.
+    EXPECT_NEAR(m.shininess, 30.0f, 1e-3f);
+    EXPECT_EQ(m.baseColorTexture, kNoTexture);
+}
+
+TEST_F(GltfTest, SceneFilePlacesAGltfModelPerInstance) {
+    Save("tree.glb", TwoLevels().Glb());
+    const std::string scene = R"({
+        "models": { "tree": { "type": "gltf", "file": "tree.glb" } },
+        "instances": [ { "model": "tree" }, { "model": "tree", "position": [0, 10, 0] } ]
+    })";
+    const LoadedScene loaded = ParseScene(scene, "scene.json", dir_.string());
+    ASSERT_EQ(loaded.scene.blases.size(), 1u);  // loaded once, placed twice
+    ASSERT_EQ(loaded.scene.instances.size(), 2u);
+    const vec3 p = loaded.scene.instances[1].objectToWorld.Point(vec3(1, 0, 0));
+    EXPECT_NEAR(glm::length(p - vec3(3, 10, -2)), 0.0f, 1e-5f);
+    EXPECT_THROW(ParseScene(R"({"models": {"t": {"type": "gltf", "file": "tree.glb"}},
+                               "instances": [{"model": "t", "material": "x"}]})",
+                            "scene.json", dir_.string()),
+                 InputError);
+}
+
+// Each defect gives one InputError naming the field, and no warning before it.
+struct HostileGltf {
+    std::string name;
+    std::string bytes;
+    std::string field;
+    std::string reason;
+};
+
+std::vector<HostileGltf> MakeHostileGltfCorpus() {
+    const GltfBuilder base = TwoLevels();
+    const std::string glb = base.Glb();
+    auto edit = [&](auto change) {
+        GltfBuilder b = base;
+        change(b);
+        return b.GltfText();
+    };
+    auto binary = [&](auto change) {
+        GltfBuilder b = base;
+        change(b);
+        return b.Glb();
+    };
+    const float nan = std::nanf(""), inf = INFINITY;
+    std::string badVersion = glb;
+    badVersion[4] = 1;
+    std::string shortChunk = glb;
+    shortChunk[12] = char(0xff);  // JSON chunk length beyond the file
+    shortChunk[13] = char(0xff);
+    return {
+        {"truncated.glb", glb.substr(0, glb.size() - 10), "header.length", "(truncated)"},
+        {"truncated_header.glb", glb.substr(0, 7), "header", "truncated"},
+        {"no_chunks.glb", std::string("glTF\x02\0\0\0\x0c\0\0\0", 12), "chunks",
+         "needs a JSON chunk"},
+        {"wrong_magic.glb", "gLTF" + glb.substr(4), "header.magic", "not a GLB file"},
+        {"wrong_version.glb", badVersion, "header.version", "GLB version 1"},
+        {"chunk_too_long.glb", shortChunk, "chunks[0].length", "do not fit"},
+        {"huge_count.gltf",
+         edit([](GltfBuilder& b) { b.doc["accessors"][0]["count"] = 1000000000; }),
+         "accessors[0].count", "do not fit in buffer view"},
+        {"view_outside_buffer.gltf",
+         edit([](GltfBuilder& b) { b.doc["bufferViews"][0]["byteLength"] = 4000; }),
+         "bufferViews[0].byteLength", "outside buffer"},
+        {"nan_position.glb",
+         binary([&](GltfBuilder& b) { std::memcpy(b.bin.data() + 16, &nan, 4); }),
+         "meshes[0].primitives[0].attributes.POSITION", "NaN or infinite"},
+        {"inf_position.gltf", edit([&](GltfBuilder& b) { std::memcpy(b.bin.data(), &inf, 4); }),
+         "meshes[0].primitives[0].attributes.POSITION", "NaN or infinite"},
+        {"inf_translation.gltf", edit([](GltfBuilder& b) {
+             b.doc["nodes"][1]["translation"] = {0, 1e39, 0};
+         }),
+         "nodes[1].translation", "NaN or infinite"},
+        {"nan_matrix.gltf", edit([](GltfBuilder& b) {
+             b.doc["nodes"][0].erase("rotation");
+             b.doc["nodes"][0].erase("translation");
+             b.doc["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1e300, 0, 1};
+         }),
+         "nodes[0].matrix", "NaN or infinite"},
+        {"index_out_of_range.gltf", edit([](GltfBuilder& b) {
+             const int idx = b.Accessor(std::vector<uint16_t>{0, 1, 7}, kUShort, "SCALAR", 1);
+             b.doc["meshes"][0]["primitives"][0]["indices"] = idx;
+         }),
+         "meshes[0].primitives[0].indices", "out of range (3 vertices)"},
+        {"cyclic_nodes.gltf", edit([](GltfBuilder& b) {
+             b.doc["nodes"][1]["children"] = {2};
+             b.Node({{"children", {1}}});
+         }),
+         "nodes[2].children[0]", "has two parents"},
+        {"cycle_without_root.gltf", edit([](GltfBuilder& b) {
+             b.Node({{"children", {3}}});
+             b.Node({{"children", {2}}});
+         }),
+         "nodes[2].children", "its own ancestor"},
+        {"own_child.gltf", edit([](GltfBuilder& b) { b.doc["nodes"][1]["children"] = {1}; }),
+         "nodes[1].children[0]", "its own child"},
+        {"missing_buffer.gltf",
+         [&] {
+             Json d = Json::parse(base.GltfText());
+             d["buffers"][0]["uri"] = "no_such.bin";
+             return d.dump();
+         }(),
+         "buffers[0].uri", "no such file"},
+        {"missing_image.gltf", edit([](GltfBuilder& b) {
+             b.doc["images"] = Json::array({{{"uri", "no_such.png"}}});
+         }),
+         "images[0].uri", "no such file"},
+        {"wrong_type.gltf", edit([](GltfBuilder& b) { b.doc["nodes"][1]["mesh"] = 7; }),
+         "nodes[1].mesh", "out of range"},
+        {"not_json.gltf", "{ \"asset\": ", "", "malformed JSON"},
+        {"wrong_json_type.gltf",
+         edit([](GltfBuilder& b) { b.doc["nodes"][1]["translation"] = "up"; }),
+         "nodes[1].translation", "expected an array of 3 numbers, got string"},
+        {"nodes_not_array.gltf", edit([](GltfBuilder& b) { b.doc["nodes"] = 5; }), "nodes",
+         "expected an array of objects"},
+        {"bad_accessor_type.gltf",
+         edit([](GltfBuilder& b) { b.doc["accessors"][0]["type"] = "VEC2"; }), "accessors[0].type",
+         "wrong element type"},
+    };
+}
+
+TEST_F(GltfTest, EveryHostileFileGivesOneError) {
+    for (const HostileGltf& c : MakeHostileGltfCorpus()) {
+        const std::string path = Save(c.name, c.bytes);
+        ::testing::internal::CaptureStderr();
+        try {
+            LoadSceneFile(path);
+            ADD_FAILURE() << c.name << ": loaded without an error";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.File(), path) << c.name;
+            if (!c.field.empty()) {
+                EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
+            }
+            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
+            EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << c.name;
+        }
+        EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << c.name;
+    }
+}
+
+// The committed corpus (tests/data/hostile_gltf/, read by the CLI test and seeding the fuzzer)
+// is this generator's output. To write it again:
+// RTRT_WRITE_HOSTILE_CORPUS=1 rtrt_unit_tests --gtest_filter='*CommittedHostileGltf*'
+TEST_F(GltfTest, CommittedHostileGltfCorpusIsCurrent) {
+    const std::string corpus = test::SourcePath("tests/data/hostile_gltf");
+    const bool write = std::getenv("RTRT_WRITE_HOSTILE_CORPUS") != nullptr;
+    if (write) {
+        fs::create_directories(corpus);
+        GltfBuilder::Save(corpus + "/valid.glb", TwoLevels().Glb());
+        GltfBuilder::Save(corpus + "/valid.gltf", TwoLevels().GltfText());
+    }
+    EXPECT_NO_THROW(LoadSceneFile(corpus + "/valid.glb"));
+    for (const HostileGltf& c : MakeHostileGltfCorpus()) {
+        const std::string path = corpus + "/" + c.name;
+        if (write) GltfBuilder::Save(path, c.bytes);
+        std::ifstream in(path, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+        EXPECT_EQ(bytes, c.bytes) << path << " is stale; see this test's comment";
+        EXPECT_THROW(LoadSceneFile(path), InputError) << path;
+    }
+}
+
+// Debian's assimp-testmodels: third-party files, never committed.
+std::string AssimpModel(const std::string& name) {
+    const std::string path = "/usr/share/assimp/models/glTF2/" + name;
+    return fs::exists(path) ? path : "";
+}
+
+TEST(GltfAssimpModels, BoxTexturedIsTexturedOnEveryContainer) {
+    for (const char* name :
+         {"BoxTextured-glTF/BoxTextured.gltf", "BoxTextured-glTF-Binary/BoxTextured.glb",
+          "BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+        const std::string path = AssimpModel(name);
+        if (path.empty())
+            GTEST_SKIP()
+                << "assimp-testmodels is not installed (apt-get install assimp-testmodels)";
+        const LoadedScene loaded = LoadSceneFile(path);
+        EXPECT_EQ(loaded.scene.TriangleCount(), 12u) << name;
+        ASSERT_EQ(loaded.scene.textures.size(), 1u) << name;
+        EXPECT_EQ(loaded.scene.textures[0].width, 211u) << name;
+        EXPECT_NE(loaded.scene.Features() & kFeatureTextures, 0u) << name;
+        EXPECT_FALSE(loaded.scene.blases[0]->uvs.empty()) << name;
+    }
+}
+
+TEST(GltfAssimpModels, UnsupportedContentWarnsOnce) {
+    const std::string path =
+        AssimpModel("glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf");
+    if (path.empty()) GTEST_SKIP() << "assimp-testmodels is not installed";
+    ::testing::internal::CaptureStderr();
+    const LoadedScene loaded = LoadSceneFile(path);
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_GT(loaded.scene.TriangleCount(), 0u);
+    size_t lines = 0;
+    for (char c : warnings) lines += c == '\n';
+    EXPECT_EQ(lines, 1u) << warnings;
+    EXPECT_NE(warnings.find("morph targets are not supported"), std::string::npos) << warnings;
+}
+
+TEST(GltfAssimpModels, RejectedFilesGiveErrors) {
+    for (const char* name : {"RecursiveNodes/RecursiveNodes.gltf", "MissingBin/BoxTextured.gltf",
+                             "IndexOutOfRange/IndexOutOfRange.gltf",
+                             "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb"}) {
+        const std::string path = AssimpModel(name);
+        if (path.empty()) GTEST_SKIP() << "assimp-testmodels is not installed";
+        EXPECT_THROW(LoadSceneFile(path), InputError) << name;
+    }
+}
+
+}  // namespace
+}  // namespace rtrt

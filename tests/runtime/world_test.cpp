@@ -1,0 +1,199 @@
+// The runtime: scenes play deterministically, extraction touches only what moved, spawners and the
+// camera path act on time.
+#include "game/runtime/world.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "engine/core/error.h"
+#include "engine/render_rt/renderer.h"
+#include "tests/test_util.h"
+
+namespace rtrt {
+namespace {
+
+constexpr const char* kPhysics = R"({
+  "camera": { "position": [0, 4, 10], "look_at": [0, 1, 0] },
+  "lights": [ { "type": "directional", "direction": [1, 2, 1] } ],
+  "models": { "floor": { "type": "plane", "size": [20, 0, 20] },
+              "ball": { "type": "sphere", "radius": 0.3 },
+              "crate": { "type": "box", "size": [0.5, 0.5, 0.5] } },
+  "instances": [ { "model": "floor", "rigid_body": { "static": true } } ],
+  "spawners": [
+    { "model": "ball", "rain": { "count": 60, "min": [-2, 2, -2], "max": [2, 6, 2], "seed": 3 },
+      "rigid_body": { "restitution": 0.5 } },
+    { "model": "crate", "time": 0.25, "rain": { "count": 10, "min": [-2, 6, -2], "max": [2, 8, 2] },
+      "rigid_body": {} } ]
+})";
+
+constexpr const char* kAnimated = R"({
+  "models": { "ball": { "type": "sphere" }, "box": { "type": "box" } },
+  "instances": [ { "model": "box", "position": [5, 0, 0] } ],
+  "spawners": [ { "model": "ball", "grid": { "count": [4, 4, 4], "spacing": 3 },
+                  "animate": { "spin": { "speed": 2 } } } ],
+  "camera_path": [ { "time": 0, "position": [0, 0, 20], "look_at": [0, 0, 0] },
+                   { "time": 2, "position": [20, 0, 0], "look_at": [0, 0, 0] } ]
+})";
+
+std::vector<Image> Play(const LoadedScene& scene, int frames) {
+    World world(scene);
+    RenderSettings s;
+    s.width = 96;
+    s.height = 64;
+    s.maxDepth = 2;
+    std::vector<Image> images;
+    for (int i = 0; i < frames; ++i) {
+        if (i > 0) world.Advance(1.0f / 60.0f);
+        images.push_back(RenderRaw(world.Scene(), s));
+    }
+    return images;
+}
+
+TEST(World, SameSceneAndFrameCountGiveIdenticalImages) {
+    const LoadedScene scene = ParseScene(kPhysics, "physics.json", "");
+    const std::vector<Image> a = Play(scene, 40), b = Play(scene, 40);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i)
+        ASSERT_EQ(
+            std::memcmp(a[i].pixels.data(), b[i].pixels.data(), a[i].pixels.size() * sizeof(vec3)),
+            0)
+            << "frame " << i;
+    // And the scene really moved: the first and last frames differ.
+    EXPECT_NE(std::memcmp(a.front().pixels.data(), a.back().pixels.data(),
+                          a.front().pixels.size() * sizeof(vec3)),
+              0);
+}
+
+TEST(World, SpawnersActOnTimeAndBodiesFall) {
+    const LoadedScene scene = ParseScene(kPhysics, "physics.json", "");
+    World world(scene);
+    EXPECT_EQ(world.Scene().instances.size(), 61u);  // floor + 60 balls at time 0
+    FrameStats stats{};
+    for (int i = 0; i < 15; ++i) stats = world.Advance(1.0f / 60.0f);  // t = 0.25
+    EXPECT_EQ(world.Scene().instances.size(), 71u);                    // the crates arrived
+    for (int i = 0; i < 60; ++i) world.Advance(1.0f / 60.0f);
+    // Every ball is above the floor and below where the rain started.
+    for (size_t i = 1; i < 61; ++i) {
+        const float y = world.Scene().instances[i].objectToWorld.row[1].w;
+        EXPECT_GT(y, 0.29f);
+        EXPECT_LT(y, 6.0f);
+    }
+}
+
+TEST(World, ExtractionTouchesOnlyWhatMoved) {
+    const LoadedScene scene = ParseScene(kAnimated, "animated.json", "");
+    World world(scene);
+    const FrameStats stats = world.Advance(0.1f);
+    EXPECT_EQ(stats.extracted, 64u);  // the spinning balls, not the static box
+    EXPECT_EQ(world.Scene().instances.size(), 65u);
+    const Instance before = world.Scene().instances[0];  // the box, placed first
+    world.Advance(0.1f);
+    EXPECT_EQ(std::memcmp(&before, &world.Scene().instances[0], sizeof(Instance)), 0);
+}
+
+TEST(World, CameraFollowsItsPath) {
+    const LoadedScene scene = ParseScene(kAnimated, "animated.json", "");
+    World world(scene);
+    for (int i = 0; i < 10; ++i) world.Advance(0.1f);  // t = 1: halfway
+    EXPECT_NEAR(world.Scene().camera.position.x, 10.0f, 1e-4f);
+    EXPECT_NEAR(world.Scene().camera.position.z, 10.0f, 1e-4f);
+}
+
+TEST(World, KeyframesMoveAnEntity) {
+    const LoadedScene scene = ParseScene(R"({
+      "models": { "ball": { "type": "sphere" } },
+      "instances": [ { "model": "ball", "animate": { "keyframes": {
+          "translation": [[0, 0, 0, 0], [1, 0, 4, 0]], "loop": true } } } ] })",
+                                         "keys.json", "");
+    World world(scene);
+    for (int i = 0; i < 5; ++i) world.Advance(0.125f);  // t = 0.625: linear between the keys
+    EXPECT_NEAR(world.Scene().instances[0].objectToWorld.row[1].w, 2.5f, 1e-5f);
+    for (int i = 0; i < 4; ++i) world.Advance(0.125f);  // t = 1.125: looped to 0.125
+    EXPECT_NEAR(world.Scene().instances[0].objectToWorld.row[1].w, 0.5f, 1e-5f);
+}
+
+TEST(World, BadDynamicFieldsAreRejected) {
+    auto expectError = [](const std::string& json, const std::string& field) {
+        try {
+            ParseScene(json, "bad.json", "");
+            FAIL() << json;
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.Field(), field) << e.what();
+        }
+    };
+    expectError(R"({"models": {"m": {"type": "teapot", "file": "x"}}, "instances": []})", "");
+    expectError(
+        R"({"models": {"b": {"type": "sphere"}}, "instances": [{"model": "b", "animate": {"spin": {}}, "rigid_body": {}}]})",
+        "instances[0].rigid_body");
+    expectError(
+        R"({"models": {"b": {"type": "sphere"}}, "instances": [], "spawners": [{"model": "b"}]})",
+        "spawners[0]");
+    expectError(
+        R"({"models": {"b": {"type": "sphere"}}, "instances": [], "spawners": [{"model": "b", "rain": {"count": 1000, "min": [0, 0, 0], "max": [1, 1, 1]}}]})",
+        "spawners[0].rain");
+    expectError(
+        R"({"models": {"b": {"type": "sphere"}}, "instances": [{"model": "b", "animate": {"spin": {"axis": [0, 0, 0]}}}]})",
+        "instances[0].animate.spin.axis");
+    expectError(
+        R"({"instances": [], "camera_path": [{"time": 1, "position": [0, 0, 1], "look_at": [0, 0, 0]}, {"time": 0.5, "position": [0, 0, 1], "look_at": [0, 0, 0]}]})",
+        "camera_path[1].time");
+}
+
+// Every instance record holds its entity's world transform (the invariant edits must keep).
+void ExpectRecordsMatchEntities(World& world) {
+    const RenderScene& scene = world.Scene();
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const ecs::Entity e = world.EntityOfInstance(i);
+        ASSERT_FALSE(e.IsNull()) << "instance " << i;
+        const auto* w = world.Registry().Get<physics::WorldTransform>(e);
+        const auto* r = world.Registry().Get<Renderable>(e);
+        ASSERT_TRUE(w && r);
+        EXPECT_EQ(r->instance, i);
+        const Affine expected = AffineFromMat4(w->objectToWorld);
+        for (int row = 0; row < 3; ++row)
+            EXPECT_EQ(scene.instances[i].objectToWorld.row[row], expected.row[row]) << i;
+    }
+}
+
+TEST(WorldEdits, SpawnMoveAndRemoveKeepRecordsInStep) {
+    const LoadedScene loaded = ParseScene(kPhysics, "physics.json", "");
+    World world(loaded);
+    world.Advance(1.0f / 60.0f);
+    const size_t before = world.Scene().instances.size();
+    EntityDesc desc = loaded.entities[1];  // a ball with its rigid body
+    desc.local.translation = vec3(0.0f, 9.0f, 0.0f);
+    const ecs::Entity spawned = world.Spawn(desc);
+    world.Advance(0.0f);  // what a paused frame loop calls
+    ASSERT_EQ(world.Scene().instances.size(), before + 1);
+    const uint32_t slot = world.Registry().Get<Renderable>(spawned)->instance;
+    EXPECT_EQ(world.EntityOfInstance(slot), spawned);
+    // The new record travels to a GPU copy: it is among the changed ones.
+    const auto& changed = world.ChangedInstances();
+    EXPECT_NE(std::find(changed.begin(), changed.end(), slot), changed.end());
+    EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[1].w, 9.0f);
+
+    // A drag: the body is teleported and stops.
+    ASSERT_TRUE(world.SetPose(spawned, vec3(1.0f, 5.0f, -1.0f), glm::identity<glm::quat>()));
+    world.Advance(0.0f);
+    EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[0].w, 1.0f);
+    EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[1].w, 5.0f);
+    EXPECT_EQ(world.Registry().Get<physics::RigidBody>(spawned)->velocity, vec3(0.0f));
+    ExpectRecordsMatchEntities(world);
+
+    // Removing an entity from the middle moves the last record into its slot.
+    const ecs::Entity middle = world.EntityOfInstance(3);
+    const ecs::Entity last = world.EntityOfInstance(uint32_t(before));
+    ASSERT_TRUE(world.Remove(middle));
+    EXPECT_FALSE(world.Registry().Valid(middle));
+    EXPECT_EQ(world.Scene().instances.size(), before);
+    EXPECT_EQ(world.EntityOfInstance(3), last);
+    world.Advance(1.0f / 60.0f);
+    ExpectRecordsMatchEntities(world);
+    EXPECT_FALSE(world.Remove(middle));  // already gone
+    // The host TLAS was rebuilt over the new set: a ray at the moved record finds it.
+    EXPECT_EQ(world.Scene().GetTlas().instanceOrder.size(), world.Scene().instances.size());
+}
+
+}  // namespace
+}  // namespace rtrt

@@ -1,0 +1,188 @@
+// Scene files: what parses, and one clear message (file, field, reason) for what does not.
+#include "game/scene/scene_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "engine/core/error.h"
+#include "tests/test_util.h"
+
+namespace rtrt {
+namespace {
+
+constexpr const char* kMinimal = R"({
+  "models": { "ball": { "type": "sphere", "radius": 2 } },
+  "materials": { "m": { "diffuse": [1, 0, 0], "reflectivity": 0.5 } },
+  "instances": [ { "model": "ball", "material": "m", "position": [1, 2, 3] } ]
+})";
+
+// Expects InputError whose message names the file and field and contains the reason.
+void ExpectError(const std::string& json, const std::string& field, const std::string& reason) {
+    try {
+        ParseScene(json, "bad.json", "");
+        FAIL() << "no error for " << json;
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.File(), "bad.json");
+        EXPECT_EQ(e.Field(), field) << e.what();
+        EXPECT_NE(e.Reason().find(reason), std::string::npos) << e.what();
+    }
+}
+
+TEST(SceneFile, ParsesAMinimalScene) {
+    const LoadedScene s = ParseScene(kMinimal, "ok.json", "");
+    ASSERT_EQ(s.scene.instances.size(), 1u);
+    EXPECT_EQ(s.scene.instances[0].objectToWorld.row[1].w, 2.0f);
+    EXPECT_EQ(s.scene.blases[0]->spheres[0].radius, 2.0f);
+    EXPECT_EQ(s.scene.materials[0].reflectivity, 0.5f);
+    // Ambient defaults to 0.1 x diffuse.
+    EXPECT_FLOAT_EQ(s.scene.materials[0].ambient.x, 0.1f);
+    EXPECT_EQ(s.scene.Features(), kFeatureReflection);
+}
+
+TEST(SceneFile, MalformedJsonNamesTheFile) {
+    ExpectError("{ \"instances\": [ }", "", "malformed JSON");
+}
+
+TEST(SceneFile, UnknownFieldsAreRejected) {
+    ExpectError(R"({"instances": [], "camra": {}})", "camra", "unknown field");
+    ExpectError(R"({"instances": [], "camera": {"fov": 40}})", "camera.fov", "unknown field");
+}
+
+TEST(SceneFile, MistypedFieldsAreRejected) {
+    ExpectError(R"({"instances": [], "camera": {"fov_y": "wide"}})", "camera.fov_y",
+                "expected a number, got string");
+    ExpectError(R"({"instances": [], "camera": {"position": [0, 1]}})", "camera.position",
+                "expected an array of 3 numbers");
+    ExpectError(R"({"instances": {}})", "instances", "expected an array");
+    ExpectError(R"({"instances": [], "max_depth": 1.5})", "max_depth", "expected an integer");
+}
+
+TEST(SceneFile, ImpossibleValuesAreRejected) {
+    ExpectError(R"({"instances": [], "image": {"width": 0}})", "image.width",
+                "between 1 and 16384");
+    ExpectError(R"({"instances": [], "max_depth": 99})", "max_depth", "between 1 and 16");
+    ExpectError(R"({"instances": [], "camera": {"fov_y": 180}})", "camera.fov_y", "between");
+    ExpectError(R"({"instances": [], "camera": {"forward": [0, 1, 0]}})", "camera.up", "parallel");
+    ExpectError(
+        R"({"instances": [], "materials": {"m": {"reflectivity": 0.7, "transmissivity": 0.7}}})",
+        "materials.m.transmissivity", "must not exceed 1");
+    ExpectError(R"({"instances": [], "models": {"b": {"type": "sphere", "radius": -1}}})",
+                "models.b.radius", "greater than 0");
+}
+
+TEST(SceneFile, DanglingReferencesAreRejected) {
+    ExpectError(R"({"instances": [{"model": "nothing"}]})", "instances[0].model", "no model named");
+    ExpectError(
+        R"({"models": {"b": {"type": "sphere"}}, "instances": [{"model": "b", "material": "x"}]})",
+        "instances[0].material", "no material named");
+    ExpectError(R"({"models": {"b": {"type": "cone"}}, "instances": []})", "models.b.type",
+                "unknown model type");
+    ExpectError(R"({"instances": []}, "lights": [{"type": "spot"}])", "", "malformed JSON");
+    ExpectError(R"({"instances": [], "lights": [{"type": "spot"}]})", "lights[0].type",
+                "unknown light type");
+}
+
+TEST(SceneFile, MissingRequiredFieldsAreNamed) {
+    ExpectError(R"({})", "instances", "missing required field");
+    ExpectError(R"({"instances": [], "lights": [{"type": "point"}]})", "lights[0].position",
+                "missing required field");
+}
+
+TEST(SceneFile, MissingFilesAreReported) {
+    try {
+        LoadSceneFile("/nonexistent/scene.json");
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.File(), "/nonexistent/scene.json");
+        EXPECT_EQ(e.Reason(), "no such file");
+    }
+    try {
+        ParseScene(R"({"models": {"m": {"type": "mesh", "file": "missing.obj"}}, "instances": []})",
+                   "scene.json", "/nonexistent");
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.File(), "/nonexistent/missing.obj") << e.what();
+    }
+}
+
+TEST(SceneFile, MeshesWithBadDataAreRejected) {
+    const auto dir = std::filesystem::temp_directory_path() / "rtrt_scene_file_test";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "nan.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+    std::ofstream(dir / "empty.obj") << "v 0 0 0\nv 1 0 0\n";
+    for (const char* name : {"nan.obj", "empty.obj"}) {
+        const std::string json = std::string(R"({"models": {"m": {"type": "mesh", "file": ")") +
+                                 name + R"("}}, "instances": [{"model": "m"}]})";
+        try {
+            ParseScene(json, "scene.json", dir.string());
+            FAIL() << name;
+        } catch (const InputError& e) {
+            EXPECT_NE(e.File().find(name), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(SceneFile, EveryShippedSceneParses) {
+    for (const auto& entry :
+         std::filesystem::directory_iterator(test::SourcePath("assets/scenes"))) {
+        const std::string text = entry.path().filename().string();
+        bool needsModels = false;
+        std::ifstream in(entry.path());
+        std::string content((std::istreambuf_iterator<char>(in)), {});
+        needsModels = content.find("@models/") != std::string::npos ||
+                      content.find("teapot") != std::string::npos;
+        if (needsModels && test::FetchedModel("teapot.inc").empty()) continue;
+        if (content.find("dragon_vrip.ply.gz") != std::string::npos)
+            continue;  // slow; tested elsewhere
+        SCOPED_TRACE(text);
+        EXPECT_NO_THROW(LoadSceneFile(entry.path().string()));
+    }
+}
+
+// The committed hostile scene files (tests/data/hostile_scene/, seeds of the scene-file fuzz
+// target): each gives one InputError naming its file and field.
+TEST(SceneFile, HostileSceneFiles) {
+    const std::string dir = test::SourcePath("tests/data/hostile_scene");
+    const struct {
+        const char* name;
+        const char* file;  // the file the error names, relative to dir
+        const char* field;
+        const char* reason;
+    } cases[] = {
+        {"truncated.json", "truncated.json", "", "malformed JSON"},
+        {"wrong_type.json", "wrong_type.json", "models.b.radius", "expected a number, got string"},
+        {"huge_number.json", "huge_number.json", "instances[0].position[1]", "out of range"},
+        {"zero_scale.json", "zero_scale.json", "instances[0].scale", "greater than 0"},
+        {"unknown_model.json", "unknown_model.json", "instances[0].model", "no model named"},
+        {"unknown_field.json", "unknown_field.json", "instances[0].colour", "unknown field"},
+        {"missing_mesh.json", "no_such_mesh.obj", "", "cannot open file"},
+        {"hostile_gltf_model.json", "../hostile_gltf/cyclic_nodes.gltf", "nodes[2].children[0]",
+         "two parents"},
+        {"gltf_with_material.json", "gltf_with_material.json", "instances[0].material",
+         "brings its own materials"},
+        {"gltf_spawner.json", "gltf_spawner.json", "spawners[0].model", "glTF scene"},
+        {"huge_grid.json", "huge_grid.json", "spawners[0].grid.count", "at most 2,000,000"},
+        {"keys_out_of_order.json", "keys_out_of_order.json", "instances[0].animate.keyframes",
+         "increase"},
+        {"degenerate_camera.json", "degenerate_camera.json", "camera.forward", "zero length"},
+        {"infinite_bounds.json", "infinite_bounds.json", "instances[1]", "not finite"},
+        {"number_overflow.json", "number_overflow.json", "", "malformed JSON"},
+        {"not_an_object.json", "not_an_object.json", "", "expected an object"},
+    };
+    EXPECT_NO_THROW(LoadSceneFile(dir + "/valid.json"));
+    for (const auto& c : cases) {
+        try {
+            LoadSceneFile(dir + "/" + c.name);
+            ADD_FAILURE() << c.name << ": loaded without an error";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.File(), dir + "/" + c.file) << c.name << ": " << e.what();
+            EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
+            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
+        }
+    }
+}
+
+}  // namespace
+}  // namespace rtrt
