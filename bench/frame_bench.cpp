@@ -14,7 +14,7 @@
 #include "bench/bench_report.h"
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
-#include "engine/render_rt/cuda/cuda_frame_renderer.h"
+#include "engine/render_rt/frame_renderer.h"
 #include "game/runtime/world.h"
 #include "game/scene/scene_file.h"
 
@@ -42,35 +42,27 @@ nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
     settings.maxDepth = loaded.scene.maxDepth;
     const bool gpu = o.backend == "cuda";
-    World world(loaded, {false, 0.25f}, !gpu);
-    std::unique_ptr<CudaFrameRenderer> renderer;
-    if (gpu) renderer = std::make_unique<CudaFrameRenderer>(world.Scene());
-    Image image;
+    World world(loaded);
+    const std::unique_ptr<FrameRenderer> renderer =
+        MakeFrameRenderer(gpu ? Backend::kCuda : Backend::kCpu, world.Scene());
     StageSamples s;
     RenderStats stats;
     for (int f = 0; f < o.warmup + o.frames; ++f) {
         Stopwatch frameTimer;
         const FrameStats fs = world.Advance(1.0f / 60.0f);
-        double upload = 0.0, tlas = fs.tlasMs, trace = 0.0;
-        if (gpu) {
-            renderer->Update(world.Scene(), world.ChangedInstances());
-            renderer->Trace(world.Scene(), settings, nullptr, f == 0 ? &stats : nullptr);
-            const GpuFrameTimes& t = renderer->Times();
-            upload = t.uploadMs;
-            tlas = t.tlasMs;
-            trace = t.traceMs;
-        } else {
-            Stopwatch traceTimer;
-            RenderInto(world.Scene(), settings, image, f == 0 ? &stats : nullptr);
-            trace = traceTimer.Milliseconds();
-        }
+        renderer->Update(world.Scene(), world.Changes());
+        renderer->Trace(world.Scene(), settings, nullptr, f == 0 ? &stats : nullptr);
+        // The frame ends when its image is finished; then its stage times are known.
+        renderer->Finish();
+        const FrameTimes& t = renderer->Times();
+        if (f == 0) stats.rays = t.rays;
         const double frameMs = frameTimer.Milliseconds();
         if (f < o.warmup) continue;
         s.simulate.push_back(fs.simulateMs);
         s.extract.push_back(fs.extractMs);
-        s.upload.push_back(upload);
-        s.tlas.push_back(tlas);
-        s.trace.push_back(trace);
+        s.upload.push_back(t.uploadMs);
+        s.tlas.push_back(t.tlasMs);
+        s.trace.push_back(t.traceMs);
         s.frame.push_back(frameMs);
         s.instances.push_back(double(world.Scene().instances.size()));
         s.uploaded.push_back(double(fs.extracted));

@@ -40,7 +40,7 @@ CudaAccuracyRun RunAccuracyCuda(const RenderScene& scene, const RenderSettings& 
                                 uint32_t accuracy, int warmup, int frames) {
     std::string why;
     if (!CudaBackendAvailable(&why)) throw std::runtime_error(why);
-    DeviceScene device(scene);
+    DeviceStaticScene device(scene);
     const RenderSceneView view = device.View(scene, settings);
     const size_t pixels = size_t(settings.width) * settings.height;
     DeviceBuffer<vec3> frame;

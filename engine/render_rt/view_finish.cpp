@@ -1,8 +1,8 @@
+#include "engine/render_rt/view_finish.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
-
-#include "engine/render_rt/renderer.h"
 
 namespace rtrt {
 namespace {

@@ -7,7 +7,8 @@
 
 #include "engine/bvh/tlas/tlas.h"
 #include "engine/core/timer.h"
-#include "engine/render_rt/cuda/cuda_frame_renderer.h"
+#include "engine/render_rt/frame_renderer.h"
+#include "engine/render_rt/renderer.h"
 #include "game/app/camera_controller.h"
 #include "game/app/controls.h"
 #include "game/app/cuda_gl_frame.h"
@@ -65,7 +66,6 @@ class App {
             const FrameStats fs = world_->Advance(dt);
             model_.times.simulate = fs.simulateMs;
             model_.times.extract = fs.extractMs;
-            model_.times.tlas = fs.tlasMs;
             RenderFrame();
             Stopwatch displayTimer;
             const ivec2 fb = window_.FramebufferSize();
@@ -102,14 +102,15 @@ class App {
   private:
     void LoadScene(size_t index) {
         sceneIndex_ = index;
-        gpu_.reset();
+        renderer_.reset();
         world_.reset();
         loaded_ = std::make_unique<LoadedScene>(LoadSceneFile(o_.scenes[index]));
-        world_ = std::make_unique<World>(*loaded_, TlasPolicy{false, 0.25f}, !model_.useCuda);
+        world_ = std::make_unique<World>(*loaded_);
         std::vector<std::string> notes;
         palette_ = std::make_unique<SpawnPalette>(*world_, &notes);
         for (const std::string& n : notes) std::printf("rtrt: %s\n", n.c_str());
-        if (model_.useCuda) gpu_ = std::make_unique<CudaFrameRenderer>(world_->Scene());
+        renderer_ =
+            MakeFrameRenderer(model_.useCuda ? Backend::kCuda : Backend::kCpu, world_->Scene());
         model_.scene = std::filesystem::path(o_.scenes[index]).filename().string();
         model_.maxDepth = int(loaded_->scene.maxDepth);
         // Flying speed: a quarter of the scene's size per second.
@@ -127,13 +128,11 @@ class App {
     }
 
     void SwitchBackend(bool useCuda) {
-        if (useCuda == (gpu_ != nullptr)) return;
+        const Backend backend = useCuda ? Backend::kCuda : Backend::kCpu;
+        if (renderer_->Kind() == backend) return;
         model_.useCuda = useCuda;
-        world_->SetHostTlas(!useCuda);
-        if (useCuda)
-            gpu_ = std::make_unique<CudaFrameRenderer>(world_->Scene());
-        else
-            gpu_.reset();
+        // The new renderer takes the scene as it is now: every record, a fresh TLAS.
+        renderer_ = MakeFrameRenderer(backend, world_->Scene());
         interop_.Unregister();
     }
 
@@ -151,13 +150,7 @@ class App {
     void Pick() {
         const Ray ray = RayThroughMouse();
         SceneHit hit{};
-        bool found = false;
-        if (gpu_) {
-            found = gpu_->Pick(ray, &hit);
-        } else {
-            const RenderSceneView view = world_->Scene().HostView(1, 1, 1);
-            found = IntersectScene(view.tlas, ray, &hit);
-        }
+        const bool found = renderer_->Pick(ray, &hit);
         selected_ = found ? world_->EntityOfInstance(hit.instance) : ecs::Entity{};
         model_.selected.clear();
         if (selected_.IsNull()) return;
@@ -321,46 +314,38 @@ class App {
     void RenderFrame() {
         const RenderScene& scene = world_->Scene();
         const RenderSettings s = Settings();
-        RenderStats stats;
-        if (gpu_) {
-            gpu_->Update(scene, world_->ChangedInstances());
-            // Views other than shaded are finished on the host (FinishView).
-            const bool viaHost = s.view != ViewMode::kShaded || interopFailed_;
-            gpu_->Trace(scene, s, viaHost ? &raw_ : nullptr, &stats);
-            const GpuFrameTimes& t = gpu_->Times();
-            model_.times.upload = t.uploadMs;
-            model_.times.tlas = t.tlasMs;
-            model_.times.trace = t.traceMs;
-            if (viaHost) {
-                shown_ = FinishView(raw_, s.view);
-                display_.Upload(shown_);
-                model_.display = "frames through host memory";
-            } else {
-                if (display_.Resize(s.width, s.height) || !interop_.Registered()) {
-                    std::string why;
-                    if (!interop_.Register(display_.Texture(), &why)) {
-                        std::printf(
-                            "rtrt: CUDA-GL interop is not available (%s); frames are copied "
-                            "through host memory\n",
-                            why.c_str());
-                        interopFailed_ = true;
-                        return RenderFrame();
-                    }
-                }
-                interop_.Present(gpu_->DeviceFrame(), s.width, s.height);
-                model_.display = "CUDA-GL interop";
+        const bool gpu = renderer_->Kind() == Backend::kCuda;
+        renderer_->Update(scene, world_->Changes());
+        // Views other than shaded are finished on the host (FinishView).
+        const bool viaHost = !gpu || s.view != ViewMode::kShaded || interopFailed_;
+        if (!viaHost && (display_.Resize(s.width, s.height) || !interop_.Registered())) {
+            std::string why;
+            if (!interop_.Register(display_.Texture(), &why)) {
+                std::printf(
+                    "rtrt: CUDA-GL interop is not available (%s); frames are copied through host "
+                    "memory\n",
+                    why.c_str());
+                interopFailed_ = true;
+                return RenderFrame();
             }
-        } else {
-            Stopwatch trace;
-            RenderInto(scene, s, raw_, &stats);
-            model_.times.trace = trace.Milliseconds();
-            model_.times.upload = 0.0;
+        }
+        // GPU times (and the ray count) arrive a frame or two late rather than make this wait.
+        RenderStats stats;
+        renderer_->Trace(scene, s, viaHost ? &raw_ : nullptr, &stats);
+        const FrameTimes& t = renderer_->Times();
+        model_.times.upload = t.uploadMs;
+        model_.times.tlas = t.tlasMs;
+        model_.times.trace = t.traceMs;
+        model_.rays = t.rays;
+        if (viaHost) {
             shown_ = FinishView(raw_, s.view);
             display_.Upload(shown_);
-            model_.display = "CPU upload";
+            model_.display = gpu ? "frames through host memory" : "CPU upload";
+        } else {
+            interop_.Present(renderer_->DeviceFrame(), s.width, s.height);
+            model_.display = "CUDA-GL interop";
         }
-        model_.backend = gpu_ ? "CUDA" : "CPU";
-        model_.rays = stats.rays;
+        model_.backend = gpu ? "CUDA" : "CPU";
         model_.instances = scene.instances.size();
         model_.triangles = scene.TriangleCount();
         model_.tlasNodes = scene.instances.empty() ? 0 : 2 * scene.instances.size() - 1;
@@ -376,7 +361,7 @@ class App {
     std::unique_ptr<LoadedScene> loaded_;
     std::unique_ptr<World> world_;
     std::unique_ptr<SpawnPalette> palette_;
-    std::unique_ptr<CudaFrameRenderer> gpu_;
+    std::unique_ptr<FrameRenderer> renderer_;
     CameraController camera_;
     bool cameraTaken_ = false;
     OverlayModel model_;

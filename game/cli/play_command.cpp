@@ -9,7 +9,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
-#include "engine/render_rt/cuda/cuda_frame_renderer.h"
+#include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
 #include "game/assets/image_io.h"
 #include "game/cli/commands.h"
@@ -113,23 +113,18 @@ void RunPlay(const PlayOptions& o) {
     if (backend == Backend::kCuda && !cuda)
         throw InputError("--backend", "cuda", why + "; use --backend cpu");
 
-    // On the GPU the TLAS lives there: the World keeps none on the host, and each frame sends
-    // only the changed instance records.
-    World world(loaded, {false, 0.25f}, backend == Backend::kCpu);
-    std::unique_ptr<CudaFrameRenderer> gpu;
-    if (backend == Backend::kCuda) gpu = std::make_unique<CudaFrameRenderer>(world.Scene());
+    World world(loaded);
+    const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(backend, world.Scene());
     const float dt = float(1.0 / o.fps);
     Image frame;
     double total = 0.0;
     for (int i = 0; i < o.frames; ++i) {
         Stopwatch timer;
-        if (i > 0) world.Advance(dt);
-        if (gpu) {
-            if (i > 0) gpu->Update(world.Scene(), world.ChangedInstances());
-            gpu->Trace(world.Scene(), settings, &frame);
-        } else {
-            RenderInto(world.Scene(), settings, frame);
+        if (i > 0) {
+            world.Advance(dt);
+            renderer->Update(world.Scene(), world.Changes());
         }
+        renderer->Trace(world.Scene(), settings, &frame);
         WriteImage(FramePath(o.output, i), frame);
         total += timer.Milliseconds();
         PrintProgress(i + 1, o.frames, total / (i + 1));

@@ -8,8 +8,7 @@
 
 namespace rtrt {
 
-World::World(const LoadedScene& scene, TlasPolicy policy, bool hostTlas)
-    : source_(scene), tlas_(policy), hostTlas_(hostTlas) {
+World::World(const LoadedScene& scene) : source_(scene) {
     scene_.blases = scene.scene.blases;
     scene_.materials = scene.scene.materials;
     scene_.lights = scene.scene.lights;
@@ -18,23 +17,11 @@ World::World(const LoadedScene& scene, TlasPolicy policy, bool hostTlas)
     scene_.camera = scene.scene.camera;
     scene_.background = scene.scene.background;
     scene_.maxDepth = scene.scene.maxDepth;
-    for (const auto& blas : scene_.blases) blasBounds_.push_back(blas->bounds);
     physics::AddPhysicsAnimSystems(scheduler_, physics_, transforms_);
     SpawnDue();
     transforms_.Update(registry_);
     Extract();
-    UpdateTlas();
-}
-
-bool World::UpdateTlas() {
-    if (!hostTlas_) {
-        topologyChanged_ = false;
-        return false;
-    }
-    const bool rebuilt = tlas_.Update(scene_.instances, blasBounds_, topologyChanged_).rebuilt;
-    scene_.SetTlas({tlas_.Tree().nodes, tlas_.Tree().primOrder});
-    topologyChanged_ = false;
-    return rebuilt;
+    topologyPending_ = false;
 }
 
 void World::SpawnDue() {
@@ -56,12 +43,11 @@ ecs::Entity World::Create(const EntityDesc& d) {
         registry_.Add(e, *d.body);
         registry_.Add(e, d.collider);
     }
-    topologyChanged_ = true;
+    topologyPending_ = true;
     return e;
 }
 
 uint32_t World::AddBlas(std::shared_ptr<const Blas> blas) {
-    blasBounds_.push_back(blas->bounds);
     return scene_.AddBlas(std::move(blas));
 }
 
@@ -97,22 +83,13 @@ bool World::Remove(ecs::Entity e) {
         instanceOwner_.pop_back();
     }
     registry_.Destroy(e);
-    topologyChanged_ = true;
+    topologyPending_ = true;
     return true;
 }
 
 void World::OverrideCamera(const Camera& camera) {
     cameraOverride_ = camera;
     scene_.camera = camera;
-}
-
-void World::SetHostTlas(bool on) {
-    if (on == hostTlas_) return;
-    hostTlas_ = on;
-    if (on) {
-        topologyChanged_ = true;
-        UpdateTlas();
-    }
 }
 
 bool World::HasPhysics() const {
@@ -160,9 +137,8 @@ FrameStats World::Advance(float dt) {
     timer.Restart();
     stats.extracted = Extract();
     stats.extractMs = timer.Milliseconds();
-    timer.Restart();
-    if (stats.extracted > 0 || topologyChanged_) stats.tlasRebuilt = UpdateTlas();
-    stats.tlasMs = timer.Milliseconds();
+    topologyChanged_ = topologyPending_;
+    topologyPending_ = false;
     scene_.camera = cameraOverride_ ? *cameraOverride_ : CameraAt(source_, float(time_));
     return stats;
 }

@@ -1,17 +1,18 @@
 #pragma once
 // The runtime: a scene's entities in the ECS, moved by animation and physics on a fixed schedule,
-// and extracted every frame into the RenderScene the back ends trace. Only changed transforms are
-// re-extracted; the TLAS is an LBVH refit or rebuilt by the DynamicTlas policy.
+// and extracted every frame into the instance records of a RenderScene. Only changed transforms
+// are re-extracted, and what changed is handed on (Changes()) to the FrameRenderer, which owns
+// the acceleration structures.
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include "engine/bvh/tlas/dynamic_tlas.h"
 #include "engine/ecs/registry.h"
 #include "engine/ecs/scheduler.h"
 #include "engine/physics_anim/physics_world.h"
 #include "engine/physics_anim/transform_system.h"
+#include "engine/render_rt/frame_renderer.h"
 #include "game/scene/scene_file.h"
 
 namespace rtrt {
@@ -26,31 +27,27 @@ struct Renderable {
 struct FrameStats {
     uint32_t spawned = 0;
     uint32_t extracted = 0;  // instance records rewritten this frame
-    bool tlasRebuilt = false;
-    double simulateMs = 0.0, extractMs = 0.0, tlasMs = 0.0;
+    double simulateMs = 0.0, extractMs = 0.0;
 };
 
 class World {
   public:
-    // hostTlas: keep the CPU's TLAS up to date (the CPU back end traces it). A GPU frame loop
-    // builds its own on the device (CudaFrameRenderer) and passes false.
-    explicit World(const LoadedScene& scene, TlasPolicy policy = {false, 0.25f},
-                   bool hostTlas = true);
+    explicit World(const LoadedScene& scene);
 
-    // Advances time by dt: spawns what is due, runs the phases (physics, animation, transforms),
-    // extracts changed instances and brings the TLAS up to date.
+    // Advances time by dt: spawns what is due, runs the phases (physics, animation, transforms)
+    // and extracts changed instances.
     FrameStats Advance(float dt);
 
     const RenderScene& Scene() const { return scene_; }
-    // The instance records rewritten or added by the last Advance (all of them after
-    // construction): what a GPU copy of the scene must receive.
-    const std::vector<uint32_t>& ChangedInstances() const { return changed_; }
+    // What the last Advance changed (after construction: every record, and the topology): what a
+    // FrameRenderer's copy of the scene must receive.
+    SceneChanges Changes() const { return {changed_, topologyChanged_}; }
     double Time() const { return time_; }
     ecs::Registry& Registry() { return registry_; }
     // Interactive edits (the window's spawn, drag and delete). They take effect at the next
     // Advance, which a paused frame loop calls with dt = 0.
     //
-    // Adds a model or a material for later spawns; call before a GPU renderer uploads the scene.
+    // Adds a model or a material for later spawns; call before a FrameRenderer takes the scene.
     uint32_t AddBlas(std::shared_ptr<const Blas> blas);
     uint32_t AddMaterial(const Material& material);
     // Creates an entity as a scene file's spawner would (its spawnTime is ignored).
@@ -64,8 +61,6 @@ class World {
 
     // The window's camera replaces the scene's (and its camera path) from now on.
     void OverrideCamera(const Camera& camera);
-    // Whether the host keeps a TLAS (the CPU back end traces it); turning it on builds one now.
-    void SetHostTlas(bool on);
     // Any entity of the scene file has a rigid body: spawned objects are thrown, not placed.
     bool HasPhysics() const;
 
@@ -76,8 +71,6 @@ class World {
     void SpawnDue();
     ecs::Entity Create(const EntityDesc& desc);
     uint32_t Extract();
-    // Refits or rebuilds the TLAS (per the policy) and hands it to the RenderScene.
-    bool UpdateTlas();
 
     const LoadedScene& source_;
     RenderScene scene_;
@@ -85,15 +78,13 @@ class World {
     ecs::Scheduler scheduler_;
     physics::PhysicsWorld physics_;
     physics::TransformSystem transforms_;
-    DynamicTlas tlas_;
-    std::vector<Aabb> blasBounds_;
     std::vector<uint32_t> changed_;
     std::optional<Camera> cameraOverride_;
     std::vector<ecs::Entity> instanceOwner_;  // instance record -> entity
     std::vector<ecs::Entity> created_;        // LoadedScene::entities index -> entity
-    bool hostTlas_ = true;
     size_t nextSpawn_ = 0;
-    bool topologyChanged_ = true;
+    bool topologyPending_ = true;  // entities created or destroyed since the last Advance
+    bool topologyChanged_ = true;  // ... before the last Advance
     double time_ = 0.0;
 };
 

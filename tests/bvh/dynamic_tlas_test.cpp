@@ -45,14 +45,14 @@ const Aabb kUnitBox{vec3(-0.5f), vec3(0.5f)};
 
 TEST(DynamicTlas, AlwaysRebuildModeRebuildsEveryFrame) {
     std::vector<Instance> instances = Grid(4, 1.5f);
-    DynamicTlas tlas;  // default policy: rebuild every frame
+    DynamicTlas tlas(TlasPolicy::AlwaysRebuild());
     for (int frame = 0; frame < 3; ++frame)
         EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
 }
 
 TEST(DynamicTlas, RefitsWhileQualityHoldsThenRebuilds) {
     std::vector<Instance> instances = Grid(8, 1.5f);
-    DynamicTlas tlas(TlasPolicy{false, 0.25f});
+    DynamicTlas tlas;
     EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
     // Small motion: refit, quality within the threshold.
     Move(instances, 1, 0.01f);
@@ -76,7 +76,7 @@ TEST(DynamicTlas, RefitsWhileQualityHoldsThenRebuilds) {
 
 TEST(DynamicTlas, TopologyChangeForcesARebuild) {
     std::vector<Instance> instances = Grid(3, 1.5f);
-    DynamicTlas tlas(TlasPolicy{false, 0.25f});
+    DynamicTlas tlas;
     tlas.Update(instances, std::span(&kUnitBox, 1), false);
     EXPECT_FALSE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
     instances.pop_back();

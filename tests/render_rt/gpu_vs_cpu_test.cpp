@@ -6,7 +6,9 @@
 // edge. Label gpu: CI has no GPU and skips these.
 #include <gtest/gtest.h>
 
-#include "engine/render_rt/cuda/cuda_frame_renderer.h"
+#include <cstring>
+
+#include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
 #include "game/runtime/world.h"
 #include "game/scene/default_scene.h"
@@ -53,15 +55,17 @@ void ExpectGpuMatchesCpu(const RenderScene& scene, ViewMode view = ViewMode::kSh
     ExpectImagesClose(cpu, gpu, cpuStats, gpuStats);
 }
 
-// A demo scene played for `frames` frames twice: on the CPU (host TLAS) and through the GPU frame
-// loop (changed records only, TLAS refit or rebuilt on the device). Every 10th frame must match.
+// A demo scene played for `frames` frames twice, through the CPU frame renderer (host TLAS) and
+// the CUDA one (changed records only, TLAS refit or rebuilt on the device). Every 10th frame must
+// match.
 void ExpectPlayedGpuMatchesCpu(const std::string& file, int frames) {
     std::string why;
     if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
     const LoadedScene loaded = LoadSceneFile(test::SourcePath("assets/scenes/" + file));
     World cpuWorld(loaded);
-    World gpuWorld(loaded, {false, 0.25f}, false);
-    CudaFrameRenderer gpu(gpuWorld.Scene());
+    World gpuWorld(loaded);
+    const std::unique_ptr<FrameRenderer> cpu = MakeFrameRenderer(Backend::kCpu, cpuWorld.Scene());
+    const std::unique_ptr<FrameRenderer> gpu = MakeFrameRenderer(Backend::kCuda, gpuWorld.Scene());
     RenderSettings s;
     s.width = 320;
     s.height = 180;
@@ -70,16 +74,20 @@ void ExpectPlayedGpuMatchesCpu(const std::string& file, int frames) {
     for (int f = 1; f <= frames; ++f) {
         cpuWorld.Advance(1.0f / 60.0f);
         gpuWorld.Advance(1.0f / 60.0f);
-        gpu.Update(gpuWorld.Scene(), gpuWorld.ChangedInstances());
-        rebuilds += gpu.Times().tlasRebuilt;
-        refits += !gpu.Times().tlasRebuilt && gpu.Times().uploaded > 0;
-        if (f % 10 != 0) continue;
-        SCOPED_TRACE("frame " + std::to_string(f));
+        cpu->Update(cpuWorld.Scene(), cpuWorld.Changes());
+        gpu->Update(gpuWorld.Scene(), gpuWorld.Changes());
+        const bool compare = f % 10 == 0;
         RenderStats cpuStats, gpuStats;
-        const Image cpu = RenderRaw(cpuWorld.Scene(), s, &cpuStats);
-        Image image;
-        gpu.Trace(gpuWorld.Scene(), s, &image, &gpuStats);
-        ExpectImagesClose(cpu, image, cpuStats, gpuStats);
+        Image cpuImage, gpuImage;
+        gpu->Trace(gpuWorld.Scene(), s, compare ? &gpuImage : nullptr, &gpuStats);
+        gpu->Finish();
+        ASSERT_EQ(gpu->Times().frame, uint64_t(f));
+        rebuilds += gpu->Times().tlasRebuilt;
+        refits += !gpu->Times().tlasRebuilt && gpu->Times().uploaded > 0;
+        if (!compare) continue;
+        SCOPED_TRACE("frame " + std::to_string(f));
+        cpu->Trace(cpuWorld.Scene(), s, &cpuImage, &cpuStats);
+        ExpectImagesClose(cpuImage, gpuImage, cpuStats, gpuStats);
     }
     // The scenes move things: the device TLAS was refit, and rebuilt when spawns came.
     EXPECT_GT(refits, 0u);
@@ -159,18 +167,44 @@ TEST(GpuFrameRenderer, UploadsOnlyChangedRecords) {
     RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
     const LoadedScene loaded =
         LoadSceneFile(test::SourcePath("assets/scenes/demo_1000_instances.json"));
-    World world(loaded, {false, 0.25f}, false);
-    CudaFrameRenderer gpu(world.Scene());
+    World world(loaded);
+    const std::unique_ptr<FrameRenderer> gpu = MakeFrameRenderer(Backend::kCuda, world.Scene());
+    RenderSettings s;
+    s.width = 64;
+    s.height = 36;
     world.Advance(1.0f / 60.0f);
-    gpu.Update(world.Scene(), world.ChangedInstances());
+    gpu->Update(world.Scene(), world.Changes());
+    gpu->Trace(world.Scene(), s, nullptr);
+    gpu->Finish();
     // Every spawned object moves; the floor never does.
-    EXPECT_EQ(gpu.Times().uploaded, world.Scene().instances.size() - 1);
-    EXPECT_FALSE(gpu.Times().tlasRebuilt);
+    EXPECT_EQ(gpu->Times().frame, 1u);
+    EXPECT_EQ(gpu->Times().uploaded, world.Scene().instances.size() - 1);
+    EXPECT_FALSE(gpu->Times().tlasRebuilt);
     // With nothing changed, nothing travels and the TLAS is left alone.
-    const std::vector<uint32_t> none;
-    gpu.Update(world.Scene(), none);
-    EXPECT_EQ(gpu.Times().uploaded, 0u);
-    EXPECT_FALSE(gpu.Times().tlasRebuilt);
+    gpu->Update(world.Scene(), SceneChanges{});
+    gpu->Trace(world.Scene(), s, nullptr);
+    gpu->Finish();
+    EXPECT_EQ(gpu->Times().frame, 2u);
+    EXPECT_EQ(gpu->Times().uploaded, 0u);
+    EXPECT_FALSE(gpu->Times().tlasRebuilt);
+}
+
+// Both frame renderers build their first TLAS from the same records: the same LBVH, bit for bit.
+TEST(GpuFrameRenderer, FirstTlasEqualsTheCpuRenderers) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
+    RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
+    const LoadedScene loaded =
+        LoadSceneFile(test::SourcePath("assets/scenes/demo_1000_instances.json"));
+    World world(loaded);
+    for (int f = 0; f < 30; ++f) world.Advance(1.0f / 60.0f);
+    const Lbvh cpu = MakeFrameRenderer(Backend::kCpu, world.Scene())->CurrentTlas();
+    const Lbvh gpu = MakeFrameRenderer(Backend::kCuda, world.Scene())->CurrentTlas();
+    ASSERT_EQ(cpu.primOrder, gpu.primOrder);
+    ASSERT_EQ(cpu.nodes.size(), gpu.nodes.size());
+    EXPECT_EQ(std::memcmp(cpu.nodes.data(), gpu.nodes.data(), cpu.nodes.size() * sizeof(BvhNode)),
+              0);
 }
 
 TEST(GpuVsCpu, FullDragon) {

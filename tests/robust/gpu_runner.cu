@@ -41,7 +41,7 @@ struct TriangleEval {
     RT_HD PrimResult operator()(const TriangleCase& c) const { return EvaluateTriangle(c); }
 };
 
-TlasView DeviceTlas(const DeviceScene& device, const RenderScene& scene) {
+TlasView DeviceTlas(const DeviceStaticScene& device, const RenderScene& scene) {
     RenderSettings settings;
     settings.width = settings.height = 1;
     return device.View(scene, settings).tlas;
@@ -60,13 +60,13 @@ std::vector<PrimResult> GpuRunner::Triangle(std::span<const TriangleCase> cases)
 }
 std::vector<SceneResult> GpuRunner::Scene(const RenderScene& scene,
                                           std::span<const Ray> rays) const {
-    const DeviceScene device(scene);
+    const DeviceStaticScene device(scene);
     return Map<SceneResult>(
         rays, SceneEvaluator{DeviceTlas(device, scene), uint32_t(scene.instances.size())});
 }
 std::vector<SpawnResult> GpuRunner::Spawn(const RenderScene& scene,
                                           std::span<const SpawnCase> cases) const {
-    const DeviceScene device(scene);
+    const DeviceStaticScene device(scene);
     return Map<SpawnResult>(cases, SpawnEvaluator{DeviceTlas(device, scene)});
 }
 

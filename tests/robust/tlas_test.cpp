@@ -25,7 +25,7 @@ TEST(TlasHardCases, RefitQualityDriftIsBoundedAndTriggersRebuilds) {
         scene.AddInstance(box, 0, Placement(positions.back()));
     }
     const std::vector<Aabb> blasBounds{scene.blases[0]->bounds};
-    DynamicTlas tlas(TlasPolicy{false, 0.25f});
+    DynamicTlas tlas;
     uint32_t rebuilds = 0;
     float worstGrowth = 0.0f;
     for (uint32_t frame = 0; frame < 1000; ++frame) {

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "engine/core/error.h"
+#include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
 #include "tests/test_util.h"
 
@@ -38,14 +39,19 @@ constexpr const char* kAnimated = R"({
 
 std::vector<Image> Play(const LoadedScene& scene, int frames) {
     World world(scene);
+    const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(Backend::kCpu, world.Scene());
     RenderSettings s;
     s.width = 96;
     s.height = 64;
     s.maxDepth = 2;
     std::vector<Image> images;
     for (int i = 0; i < frames; ++i) {
-        if (i > 0) world.Advance(1.0f / 60.0f);
-        images.push_back(RenderRaw(world.Scene(), s));
+        if (i > 0) {
+            world.Advance(1.0f / 60.0f);
+            renderer->Update(world.Scene(), world.Changes());
+        }
+        images.emplace_back();
+        renderer->Trace(world.Scene(), s, &images.back());
     }
     return images;
 }
@@ -168,14 +174,18 @@ TEST(WorldEdits, SpawnMoveAndRemoveKeepRecordsInStep) {
     ASSERT_EQ(world.Scene().instances.size(), before + 1);
     const uint32_t slot = world.Registry().Get<Renderable>(spawned)->instance;
     EXPECT_EQ(world.EntityOfInstance(slot), spawned);
-    // The new record travels to a GPU copy: it is among the changed ones.
-    const auto& changed = world.ChangedInstances();
-    EXPECT_NE(std::find(changed.begin(), changed.end(), slot), changed.end());
+    // The new record travels to the frame renderer: it is among the changed ones, and the
+    // topology changed.
+    const SceneChanges changes = world.Changes();
+    EXPECT_NE(std::find(changes.instances.begin(), changes.instances.end(), slot),
+              changes.instances.end());
+    EXPECT_TRUE(changes.topologyChanged);
     EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[1].w, 9.0f);
 
     // A drag: the body is teleported and stops.
     ASSERT_TRUE(world.SetPose(spawned, vec3(1.0f, 5.0f, -1.0f), glm::identity<glm::quat>()));
     world.Advance(0.0f);
+    EXPECT_FALSE(world.Changes().topologyChanged);
     EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[0].w, 1.0f);
     EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[1].w, 5.0f);
     EXPECT_EQ(world.Registry().Get<physics::RigidBody>(spawned)->velocity, vec3(0.0f));
@@ -184,15 +194,26 @@ TEST(WorldEdits, SpawnMoveAndRemoveKeepRecordsInStep) {
     // Removing an entity from the middle moves the last record into its slot.
     const ecs::Entity middle = world.EntityOfInstance(3);
     const ecs::Entity last = world.EntityOfInstance(uint32_t(before));
+    const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(Backend::kCpu, world.Scene());
     ASSERT_TRUE(world.Remove(middle));
     EXPECT_FALSE(world.Registry().Valid(middle));
     EXPECT_EQ(world.Scene().instances.size(), before);
     EXPECT_EQ(world.EntityOfInstance(3), last);
     world.Advance(1.0f / 60.0f);
+    EXPECT_TRUE(world.Changes().topologyChanged);
+    renderer->Update(world.Scene(), world.Changes());
     ExpectRecordsMatchEntities(world);
     EXPECT_FALSE(world.Remove(middle));  // already gone
-    // The host TLAS was rebuilt over the new set: a ray at the moved record finds it.
-    EXPECT_EQ(world.Scene().GetTlas().instanceOrder.size(), world.Scene().instances.size());
+    // The CPU renderer's TLAS was rebuilt over the new set: a ray at the moved record finds it.
+    EXPECT_EQ(renderer->CurrentTlas().primOrder.size(), world.Scene().instances.size());
+    const Instance& moved = world.Scene().instances[3];
+    const vec3 centre(moved.objectToWorld.row[0].w, moved.objectToWorld.row[1].w,
+                      moved.objectToWorld.row[2].w);
+    const Ray ray{centre + vec3(0.0f, 0.0f, 50.0f), 1e30f, vec3(0.0f, 0.0f, -1.0f), 0.0f};
+    SceneHit hit{};
+    ASSERT_TRUE(renderer->Pick(ray, &hit));
+    EXPECT_TRUE(hit.instance == 3 ||
+                world.Scene().instances[hit.instance].objectToWorld.row[2].w > centre.z);
 }
 
 }  // namespace

@@ -9,9 +9,12 @@
 
 namespace rtrt {
 
+// The default is the runtime's: refit while the tree stays good, rebuild when it has drifted.
 struct TlasPolicy {
-    bool alwaysRebuild = true;   // the benchmark's mode: a fresh LBVH every frame
+    bool alwaysRebuild = false;  // a fresh LBVH every frame (benchmarks of the build)
     float maxSahGrowth = 0.25f;  // with refits: rebuild once cost > (1 + this) x rebuilt cost
+
+    static constexpr TlasPolicy AlwaysRebuild() { return {true, 0.25f}; }
 };
 
 struct TlasUpdateStats {

@@ -3,20 +3,21 @@
 
 #include <atomic>
 
+#include "engine/render_rt/cpu/cpu_trace.h"
 #include "engine/render_rt/pixel_kernel.h"
 #include "engine/render_rt/renderer.h"
 
 namespace rtrt {
 
-void RenderInto(const RenderScene& scene, const RenderSettings& settings, Image& image,
-                RenderStats* stats) {
+void TraceViewCpu(const RenderSceneView& sceneView, uint32_t sceneFeatures,
+                  const RenderSettings& settings, Image& image, RenderStats* stats) {
     if (image.width != settings.width || image.height != settings.height)
         image = Image(settings.width, settings.height);
-    RenderSceneView view = scene.HostView(settings.width, settings.height, settings.maxDepth);
+    RenderSceneView view = sceneView;
     view.samplesPerPixel = settings.samplesPerPixel;
     const uint32_t features =
         // The traversal form matters on the GPU only: one CPU specialisation per effect set.
-        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view) &
+        EffectiveFeatures(sceneFeatures, settings.enabledFeatures, settings.view) &
         ~kFeatureManyInstances;
     constexpr uint32_t kTile = 16;
     std::atomic<uint64_t> rays{0};
@@ -33,6 +34,12 @@ void RenderInto(const RenderScene& scene, const RenderSettings& settings, Image&
             });
     });
     if (stats) stats->rays = rays.load();
+}
+
+void RenderInto(const RenderScene& scene, const RenderSettings& settings, Image& image,
+                RenderStats* stats) {
+    TraceViewCpu(scene.HostView(settings.width, settings.height, settings.maxDepth),
+                 scene.Features(), settings, image, stats);
 }
 
 }  // namespace rtrt

@@ -60,201 +60,264 @@ double Elapsed(cudaEvent_t a, cudaEvent_t b) {
     return ms;
 }
 
-}  // namespace
-
-struct CudaFrameRenderer::Impl {
-    TlasPolicy policy;
-    DeviceScene device;
-    DeviceBuffer<Aabb> blasBounds;
-    DeviceBuffer<Instance> instances;
-    DeviceBuffer<Aabb> worldBounds;
-    DeviceBuffer<uint32_t> changedIndices;
-    DeviceBuffer<Instance> changedRecords;
-    std::vector<uint32_t> hostIndices;
-    std::vector<Instance> hostRecords;
-    GpuLbvh tlas;
-    bool built = false;
-    float rebuiltSahCost = 0.0f;
-    float lastSahCost = 0.0f;
-    DeviceBuffer<float> sahTerms, sahSum;
-    float* sahHost = nullptr;  // pinned: the cost arrives without a synchronous copy
-    bool sahPending = false, sahPendingIsRebuild = false;
-    DeviceBuffer<unsigned char> scratch;
-    DeviceBuffer<vec3> frame;
-    DeviceBuffer<unsigned long long> rayCount;
+// The events of one frame: start, instances uploaded, TLAS done, traced. Two sets take turns,
+// so a frame's times are read when the set comes round again (or by Finish), never by waiting
+// for the frame that was just queued.
+struct FrameEvents {
     cudaEvent_t events[4];
-    GpuFrameTimes times;
+    bool pending = false;                    // recorded and not read yet
+    bool counted = false;                    // rays were counted into raysHost
+    unsigned long long* raysHost = nullptr;  // pinned
+    FrameTimes times;                        // filled in as far as the host knows it
+};
 
-    explicit Impl(const RenderScene& scene, TlasPolicy p) : policy(p), device(scene) {
+class CudaFrameRenderer final : public FrameRenderer {
+  public:
+    CudaFrameRenderer(const RenderScene& scene, TlasPolicy policy)
+        : policy_(policy), device_(scene) {
         std::vector<Aabb> bounds;
         for (const auto& blas : scene.blases) bounds.push_back(blas->bounds);
-        blasBounds.Upload(bounds);
-        for (cudaEvent_t& e : events) RT_CUDA_CHECK(cudaEventCreate(&e));
-        rayCount.Resize(1);
-        sahSum.Resize(1);
-        RT_CUDA_CHECK(cudaMallocHost(&sahHost, sizeof(float)));
+        blasBounds_.Upload(bounds);
+        for (FrameEvents& f : frames_) {
+            for (cudaEvent_t& e : f.events) RT_CUDA_CHECK(cudaEventCreate(&e));
+            RT_CUDA_CHECK(cudaMallocHost(&f.raysHost, sizeof(unsigned long long)));
+        }
+        RT_CUDA_CHECK(cudaEventCreate(&sahCopied_));
+        rayCount_.Resize(1);
+        sahSum_.Resize(1);
+        RT_CUDA_CHECK(cudaMallocHost(&sahHost_, sizeof(float)));
+        Update(scene, {{}, true});
     }
-    ~Impl() {
-        for (cudaEvent_t e : events) cudaEventDestroy(e);
-        cudaFreeHost(sahHost);
+    ~CudaFrameRenderer() override {
+        for (FrameEvents& f : frames_) {
+            for (cudaEvent_t e : f.events) cudaEventDestroy(e);
+            cudaFreeHost(f.raysHost);
+        }
+        cudaEventDestroy(sahCopied_);
+        cudaFreeHost(sahHost_);
+    }
+
+    Backend Kind() const override { return Backend::kCuda; }
+
+    void Update(const RenderScene& scene, const SceneChanges& changes) override {
+        CollectSahCost();
+        FrameEvents& f = BeginFrame();
+        const uint32_t n = uint32_t(scene.instances.size());
+        // Added or removed instances move records around: all of them go up again.
+        const bool countChanged = changes.topologyChanged || instances_.Size() != n;
+        if (countChanged) {
+            UploadAll(scene);
+            f.times.uploaded = n;
+        } else {
+            f.times.uploaded = UploadChanged(scene, changes.instances);
+        }
+        RT_CUDA_CHECK(cudaEventRecord(f.events[1]));
+        // The policy of DynamicTlas, with one difference: a tree's SAH cost is known one update
+        // later (it is copied back asynchronously), so that no frame waits on the GPU halfway.
+        const bool rebuild = policy_.alwaysRebuild || countChanged || !built_ ||
+                             lastSahCost_ > (1.0f + policy_.maxSahGrowth) * rebuiltSahCost_;
+        if (rebuild) {
+            tlas_.Build(worldBounds_.Data(), n);
+            built_ = true;
+        } else if (f.times.uploaded > 0) {
+            tlas_.Refit(worldBounds_.Data());
+        }
+        // Always-rebuild (the benchmark's mode) needs no cost.
+        if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild) QueueSahCost(rebuild);
+        RT_CUDA_CHECK(cudaEventRecord(f.events[2]));
+        f.times.tlasRebuilt = rebuild;
+        f.times.tlasSahCost = lastSahCost_;
+    }
+
+    void Trace(const RenderScene& scene, const RenderSettings& settings, Image* image,
+               RenderStats* stats) override {
+        FrameEvents& f = inFrame_ ? frames_[current_] : BeginEmptyFrame();
+        inFrame_ = false;
+        RenderSceneView view = device_.View(scene, settings);
+        view.tlas = TlasOnDevice();
+        const size_t pixels = size_t(settings.width) * settings.height;
+        if (frame_.Size() != pixels) frame_.Resize(pixels);
+        if (stats) RT_CUDA_CHECK(cudaMemsetAsync(rayCount_.Data(), 0, sizeof(unsigned long long)));
+        LaunchTrace(view, settings.view,
+                    EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
+                    frame_.Data(), stats ? rayCount_.Data() : nullptr);
+        if (stats)
+            RT_CUDA_CHECK(cudaMemcpyAsync(f.raysHost, rayCount_.Data(), sizeof(unsigned long long),
+                                          cudaMemcpyDeviceToHost));
+        RT_CUDA_CHECK(cudaEventRecord(f.events[3]));
+        f.times.frame = ++traced_;
+        f.pending = true;
+        f.counted = stats != nullptr;
+        if (image) {
+            image->width = settings.width;
+            image->height = settings.height;
+            image->pixels.resize(pixels);
+            frame_.Download(image->pixels);  // waits for the frame: its times are known too
+            Collect(f);
+            if (stats) stats->rays = f.times.rays;
+        }
+        // The other set's frame has most likely finished by now; if so its times are shown.
+        FrameEvents& other = frames_[1 - current_];
+        if (other.pending && cudaEventQuery(other.events[3]) == cudaSuccess) Collect(other);
+    }
+
+    void Finish() override {
+        FrameEvents& f = frames_[current_];
+        if (f.pending) Collect(f);
+    }
+
+    bool Pick(const Ray& ray, SceneHit* hit) override {
+        DeviceBuffer<SceneHit> deviceHit;
+        deviceHit.Resize(1);
+        DeviceBuffer<uint32_t> found;
+        found.Resize(1);
+        PickKernel<<<1, 1>>>(TlasOnDevice(), ray, deviceHit.Data(), found.Data());
+        RT_CUDA_CHECK_LAUNCH();
+        uint32_t f = 0;
+        found.Download(std::span<uint32_t>(&f, 1));
+        deviceHit.Download(std::span<SceneHit>(hit, 1));
+        return f != 0;
+    }
+
+    const FrameTimes& Times() const override { return times_; }
+    const vec3* DeviceFrame() const override { return frame_.Data(); }
+    Lbvh CurrentTlas() const override { return tlas_.Download(); }
+
+  private:
+    TlasView TlasOnDevice() const {
+        return {tlas_.Nodes(), tlas_.PrimOrder(), instances_.Data(), device_.blasViews.Data()};
+    }
+
+    // Takes the next set of events for a frame (reading its previous frame's times first: that
+    // frame was queued two frames ago) and records its start.
+    FrameEvents& BeginFrame() {
+        current_ = 1 - current_;
+        FrameEvents& f = frames_[current_];
+        if (f.pending) Collect(f);
+        f.times = {};
+        inFrame_ = true;
+        RT_CUDA_CHECK(cudaEventRecord(f.events[0]));
+        return f;
+    }
+
+    // A frame traced without an update: its upload and TLAS stages take no time.
+    FrameEvents& BeginEmptyFrame() {
+        FrameEvents& f = BeginFrame();
+        RT_CUDA_CHECK(cudaEventRecord(f.events[1]));
+        RT_CUDA_CHECK(cudaEventRecord(f.events[2]));
+        f.times.tlasSahCost = lastSahCost_;
+        return f;
+    }
+
+    // Reads a recorded frame's stage times (waiting for it if it has not finished).
+    void Collect(FrameEvents& f) {
+        RT_CUDA_CHECK(cudaEventSynchronize(f.events[3]));
+        f.times.uploadMs = Elapsed(f.events[0], f.events[1]);
+        f.times.tlasMs = Elapsed(f.events[1], f.events[2]);
+        f.times.traceMs = Elapsed(f.events[2], f.events[3]);
+        f.times.rays = f.counted ? *f.raysHost : 0;
+        f.pending = false;
+        if (f.times.frame > times_.frame) times_ = f.times;
     }
 
     // The cost the last update queued, once its copy has landed.
     void CollectSahCost() {
-        if (!sahPending) return;
-        RT_CUDA_CHECK(cudaEventSynchronize(events[2]));
-        lastSahCost = *sahHost;
-        if (sahPendingIsRebuild) rebuiltSahCost = lastSahCost;
-        sahPending = false;
+        if (!sahPending_) return;
+        RT_CUDA_CHECK(cudaEventSynchronize(sahCopied_));
+        lastSahCost_ = *sahHost_;
+        if (sahPendingIsRebuild_) rebuiltSahCost_ = lastSahCost_;
+        sahPending_ = false;
     }
 
     // Every record again, after the instance count changed.
     void UploadAll(const RenderScene& scene) {
         const uint32_t n = uint32_t(scene.instances.size());
-        instances.Upload(scene.instances);
-        worldBounds.Resize(n);
+        instances_.Upload(scene.instances);
+        worldBounds_.Resize(n);
         if (n == 0) return;
-        AllWorldBoundsKernel<<<Blocks(n), kBlock>>>(instances.Data(), n, blasBounds.Data(),
-                                                    worldBounds.Data());
+        AllWorldBoundsKernel<<<Blocks(n), kBlock>>>(instances_.Data(), n, blasBounds_.Data(),
+                                                    worldBounds_.Data());
         RT_CUDA_CHECK_LAUNCH();
     }
 
     uint32_t UploadChanged(const RenderScene& scene, std::span<const uint32_t> changed) {
-        hostIndices.clear();
-        hostRecords.clear();
+        hostIndices_.clear();
+        hostRecords_.clear();
         for (uint32_t i : changed) {
-            hostIndices.push_back(i);
-            hostRecords.push_back(scene.instances[i]);
+            hostIndices_.push_back(i);
+            hostRecords_.push_back(scene.instances[i]);
         }
-        const uint32_t count = uint32_t(hostIndices.size());
+        const uint32_t count = uint32_t(hostIndices_.size());
         if (count == 0) return 0;
-        if (changedIndices.Size() < count) {
-            changedIndices.Resize(count);
-            changedRecords.Resize(count);
+        if (changedIndices_.Size() < count) {
+            changedIndices_.Resize(count);
+            changedRecords_.Resize(count);
         }
-        RT_CUDA_CHECK(cudaMemcpyAsync(changedIndices.Data(), hostIndices.data(),
+        RT_CUDA_CHECK(cudaMemcpyAsync(changedIndices_.Data(), hostIndices_.data(),
                                       count * sizeof(uint32_t), cudaMemcpyHostToDevice));
-        RT_CUDA_CHECK(cudaMemcpyAsync(changedRecords.Data(), hostRecords.data(),
+        RT_CUDA_CHECK(cudaMemcpyAsync(changedRecords_.Data(), hostRecords_.data(),
                                       count * sizeof(Instance), cudaMemcpyHostToDevice));
         ScatterInstancesKernel<<<Blocks(count), kBlock>>>(
-            changedIndices.Data(), changedRecords.Data(), count, blasBounds.Data(),
-            instances.Data(), worldBounds.Data());
+            changedIndices_.Data(), changedRecords_.Data(), count, blasBounds_.Data(),
+            instances_.Data(), worldBounds_.Data());
         RT_CUDA_CHECK_LAUNCH();
         return count;
     }
 
-    // Queues the SAH cost of the tree; it arrives in sahHost.
+    // Queues the SAH cost of the tree; it arrives in sahHost_.
     void QueueSahCost(bool afterRebuild) {
-        const uint32_t n = tlas.Count();
+        const uint32_t n = tlas_.Count();
         const uint32_t positions = n == 0 ? 2u : 2u * n;
-        if (sahTerms.Size() < positions) sahTerms.Resize(positions);
-        SahTermsKernel<<<Blocks(positions), kBlock>>>(tlas.Nodes(), positions, sahTerms.Data());
+        if (sahTerms_.Size() < positions) sahTerms_.Resize(positions);
+        SahTermsKernel<<<Blocks(positions), kBlock>>>(tlas_.Nodes(), positions, sahTerms_.Data());
         RT_CUDA_CHECK_LAUNCH();
         size_t bytes = 0;
-        RT_CUDA_CHECK(
-            cub::DeviceReduce::Sum(nullptr, bytes, sahTerms.Data(), sahSum.Data(), int(positions)));
-        if (scratch.Size() < bytes) scratch.Resize(bytes);
-        // CUB's reduction is deterministic run to run, so the rebuild decisions are too.
-        RT_CUDA_CHECK(cub::DeviceReduce::Sum(scratch.Data(), bytes, sahTerms.Data(), sahSum.Data(),
+        RT_CUDA_CHECK(cub::DeviceReduce::Sum(nullptr, bytes, sahTerms_.Data(), sahSum_.Data(),
                                              int(positions)));
+        if (scratch_.Size() < bytes) scratch_.Resize(bytes);
+        // CUB's reduction is deterministic run to run, so the rebuild decisions are too.
+        RT_CUDA_CHECK(cub::DeviceReduce::Sum(scratch_.Data(), bytes, sahTerms_.Data(),
+                                             sahSum_.Data(), int(positions)));
         RT_CUDA_CHECK(
-            cudaMemcpyAsync(sahHost, sahSum.Data(), sizeof(float), cudaMemcpyDeviceToHost));
-        sahPending = true;
-        sahPendingIsRebuild = afterRebuild;
+            cudaMemcpyAsync(sahHost_, sahSum_.Data(), sizeof(float), cudaMemcpyDeviceToHost));
+        RT_CUDA_CHECK(cudaEventRecord(sahCopied_));
+        sahPending_ = true;
+        sahPendingIsRebuild_ = afterRebuild;
     }
+
+    TlasPolicy policy_;
+    DeviceScene device_;
+    DeviceBuffer<Aabb> blasBounds_;
+    DeviceBuffer<Instance> instances_;
+    DeviceBuffer<Aabb> worldBounds_;
+    DeviceBuffer<uint32_t> changedIndices_;
+    DeviceBuffer<Instance> changedRecords_;
+    std::vector<uint32_t> hostIndices_;
+    std::vector<Instance> hostRecords_;
+    GpuLbvh tlas_;
+    bool built_ = false;
+    float rebuiltSahCost_ = 0.0f;
+    float lastSahCost_ = 0.0f;
+    DeviceBuffer<float> sahTerms_, sahSum_;
+    float* sahHost_ = nullptr;  // pinned: the cost arrives without a synchronous copy
+    cudaEvent_t sahCopied_;
+    bool sahPending_ = false, sahPendingIsRebuild_ = false;
+    DeviceBuffer<unsigned char> scratch_;
+    DeviceBuffer<vec3> frame_;
+    DeviceBuffer<unsigned long long> rayCount_;
+    FrameEvents frames_[2];
+    uint32_t current_ = 1;  // the first frame takes set 0
+    bool inFrame_ = false;  // Update began the frame that Trace ends
+    uint64_t traced_ = 0;
+    FrameTimes times_;
 };
 
-CudaFrameRenderer::CudaFrameRenderer(const RenderScene& scene, TlasPolicy policy) {
+}  // namespace
+
+std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene& scene, TlasPolicy policy) {
     std::string why;
     if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use --backend cpu");
-    impl_ = std::make_unique<Impl>(scene, policy);
-    impl_->UploadAll(scene);
-    std::vector<uint32_t> none;
-    Update(scene, none);
+    return std::make_unique<CudaFrameRenderer>(scene, policy);
 }
-
-CudaFrameRenderer::~CudaFrameRenderer() = default;
-
-void CudaFrameRenderer::Update(const RenderScene& scene, std::span<const uint32_t> changed) {
-    Impl& m = *impl_;
-    m.CollectSahCost();
-    m.times = {};
-    RT_CUDA_CHECK(cudaEventRecord(m.events[0]));
-    const uint32_t n = uint32_t(scene.instances.size());
-    const bool countChanged = m.instances.Size() != n;
-    if (countChanged) {
-        m.UploadAll(scene);
-        m.times.uploaded = n;
-    } else {
-        m.times.uploaded = m.UploadChanged(scene, changed);
-    }
-    RT_CUDA_CHECK(cudaEventRecord(m.events[1]));
-    // The policy of DynamicTlas, with one difference: a tree's SAH cost is known one update
-    // later (it is copied back asynchronously), so that no frame waits on the GPU halfway.
-    const bool rebuild = m.policy.alwaysRebuild || countChanged || !m.built ||
-                         m.lastSahCost > (1.0f + m.policy.maxSahGrowth) * m.rebuiltSahCost;
-    if (rebuild) {
-        m.tlas.Build(m.worldBounds.Data(), n);
-        m.built = true;
-    } else if (m.times.uploaded > 0) {
-        m.tlas.Refit(m.worldBounds.Data());
-    }
-    // Always-rebuild (the benchmark's mode) needs no cost.
-    if ((rebuild || m.times.uploaded > 0) && !m.policy.alwaysRebuild) m.QueueSahCost(rebuild);
-    RT_CUDA_CHECK(cudaEventRecord(m.events[2]));
-    m.times.tlasRebuilt = rebuild;
-    m.times.tlasSahCost = m.lastSahCost;
-}
-
-void CudaFrameRenderer::Trace(const RenderScene& scene, const RenderSettings& settings,
-                              Image* image, RenderStats* stats) {
-    Impl& m = *impl_;
-    RenderSceneView view = m.device.View(scene, settings);
-    view.tlas = {m.tlas.Nodes(), m.tlas.PrimOrder(), m.instances.Data(), view.tlas.blases};
-    const size_t pixels = size_t(settings.width) * settings.height;
-    if (m.frame.Size() != pixels) m.frame.Resize(pixels);
-    if (stats) RT_CUDA_CHECK(cudaMemsetAsync(m.rayCount.Data(), 0, sizeof(unsigned long long)));
-    LaunchTrace(view, settings.view,
-                EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
-                m.frame.Data(), stats ? m.rayCount.Data() : nullptr);
-    RT_CUDA_CHECK(cudaEventRecord(m.events[3]));
-    RT_CUDA_CHECK(cudaEventSynchronize(m.events[3]));
-    m.times.uploadMs = Elapsed(m.events[0], m.events[1]);
-    m.times.tlasMs = Elapsed(m.events[1], m.events[2]);
-    m.times.traceMs = Elapsed(m.events[2], m.events[3]);
-    if (image) {
-        image->width = settings.width;
-        image->height = settings.height;
-        image->pixels.resize(pixels);
-        m.frame.Download(image->pixels);
-    }
-    if (stats) {
-        unsigned long long rays = 0;
-        m.rayCount.Download(std::span<unsigned long long>(&rays, 1));
-        stats->rays = rays;
-    }
-}
-
-bool CudaFrameRenderer::Pick(const Ray& ray, SceneHit* hit) {
-    Impl& m = *impl_;
-    DeviceBuffer<SceneHit> deviceHit;
-    deviceHit.Resize(1);
-    DeviceBuffer<uint32_t> found;
-    found.Resize(1);
-    const TlasView tlas{m.tlas.Nodes(), m.tlas.PrimOrder(), m.instances.Data(),
-                        m.device.blasViews.Data()};
-    PickKernel<<<1, 1>>>(tlas, ray, deviceHit.Data(), found.Data());
-    RT_CUDA_CHECK_LAUNCH();
-    uint32_t f = 0;
-    found.Download(std::span<uint32_t>(&f, 1));
-    deviceHit.Download(std::span<SceneHit>(hit, 1));
-    return f != 0;
-}
-
-const vec3* CudaFrameRenderer::DeviceFrame() const { return impl_->frame.Data(); }
-
-const GpuFrameTimes& CudaFrameRenderer::Times() const { return impl_->times; }
-
-Lbvh CudaFrameRenderer::DownloadTlas() const { return impl_->tlas.Download(); }
 
 }  // namespace rtrt

@@ -70,7 +70,7 @@ std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings
                                   int warmup, int frames, RenderStats* stats) {
     std::string why;
     if (!CudaBackendAvailable(&why)) throw std::runtime_error(why);
-    DeviceScene device(scene);
+    DeviceStaticScene device(scene);
     const RenderSceneView view = device.View(scene, settings);
     DeviceBuffer<vec3> frame;
     frame.Resize(size_t(settings.width) * settings.height);
@@ -106,7 +106,7 @@ std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings
 Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, RenderStats* stats) {
     std::string why;
     if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use --backend cpu");
-    DeviceScene device(scene);
+    DeviceStaticScene device(scene);
     const RenderSceneView view = device.View(scene, settings);
     DeviceBuffer<unsigned long long> rayCount;
     if (stats) {

@@ -20,19 +20,8 @@ std::vector<double> TimeCudaTrace(const RenderScene&, const RenderSettings&, int
     throw std::runtime_error("the CUDA back end is not built into this rtrt");
 }
 
-struct CudaFrameRenderer::Impl {
-    GpuFrameTimes times;
-};
-
-CudaFrameRenderer::CudaFrameRenderer(const RenderScene&, TlasPolicy) {
+std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene&, TlasPolicy) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
 }
-CudaFrameRenderer::~CudaFrameRenderer() = default;
-void CudaFrameRenderer::Update(const RenderScene&, std::span<const uint32_t>) {}
-void CudaFrameRenderer::Trace(const RenderScene&, const RenderSettings&, Image*, RenderStats*) {}
-bool CudaFrameRenderer::Pick(const Ray&, SceneHit*) { return false; }
-const vec3* CudaFrameRenderer::DeviceFrame() const { return nullptr; }
-const GpuFrameTimes& CudaFrameRenderer::Times() const { return impl_->times; }
-Lbvh CudaFrameRenderer::DownloadTlas() const { return {}; }
 
 }  // namespace rtrt

@@ -1,11 +1,13 @@
 #pragma once
-// The arrays of a RenderScene in device memory (BLASes, TLAS, instances, materials, lights,
-// textures), for
-// CUDA host code. The BLASes go up once; a frame loop replaces only what changed.
+// The arrays of a RenderScene in device memory, for CUDA host code. DeviceScene holds what a
+// running scene never changes (BLASes, materials, lights, textures); the TLAS and the instances
+// belong to whoever keeps them up to date (CudaFrameRenderer), or, for an image of the scene as it
+// is, to DeviceStaticScene.
 #include <vector>
 
 #include "engine/core/device_buffer.h"
-#include "engine/render_rt/renderer.h"
+#include "engine/render_rt/render_scene.h"
+#include "engine/render_rt/render_settings.h"
 
 namespace rtrt {
 
@@ -16,9 +18,6 @@ struct DeviceScene {
     std::vector<DeviceBuffer<Sphere>> spheres;
     std::vector<DeviceBuffer<TriangleUvs>> uvs;
     DeviceBuffer<BlasView> blasViews;
-    DeviceBuffer<BvhNode> tlasNodes;
-    DeviceBuffer<uint32_t> instanceOrder;
-    DeviceBuffer<Instance> instances;
     DeviceBuffer<Material> materials;
     DeviceBuffer<Light> lights;
     DeviceBuffer<Texture> textures;
@@ -42,23 +41,42 @@ struct DeviceScene {
             views.push_back(v);
         }
         blasViews.Upload(views);
-        tlasNodes.Upload(scene.GetTlas().nodes);
-        instanceOrder.Upload(scene.GetTlas().instanceOrder);
-        instances.Upload(scene.instances);
         materials.Upload(scene.materials);
         lights.Upload(scene.lights);
         textures.Upload(scene.textures);
         texels.Upload(scene.texels);
     }
 
+    // The view with no TLAS or instances yet (view.tlas.blases is set): the caller supplies them.
     RenderSceneView View(const RenderScene& scene, const RenderSettings& s) const {
         RenderSceneView view = scene.HostView(s.width, s.height, s.maxDepth);
         view.samplesPerPixel = s.samplesPerPixel;
-        view.tlas = {tlasNodes.Data(), instanceOrder.Data(), instances.Data(), blasViews.Data()};
+        view.tlas = {nullptr, nullptr, nullptr, blasViews.Data()};
         view.materials = materials.Data();
         view.lights = lights.Data();
         view.textures = textures.Data();
         view.texels = texels.Data();
+        return view;
+    }
+};
+
+// A scene with its own TLAS and instances on the device: one image of it as it is.
+struct DeviceStaticScene {
+    DeviceScene scene;
+    DeviceBuffer<BvhNode> tlasNodes;
+    DeviceBuffer<uint32_t> instanceOrder;
+    DeviceBuffer<Instance> instances;
+
+    explicit DeviceStaticScene(const RenderScene& s) : scene(s) {
+        tlasNodes.Upload(s.GetTlas().nodes);
+        instanceOrder.Upload(s.GetTlas().instanceOrder);
+        instances.Upload(s.instances);
+    }
+
+    RenderSceneView View(const RenderScene& s, const RenderSettings& settings) const {
+        RenderSceneView view = scene.View(s, settings);
+        view.tlas = {tlasNodes.Data(), instanceOrder.Data(), instances.Data(),
+                     scene.blasViews.Data()};
         return view;
     }
 };

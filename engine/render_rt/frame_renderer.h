@@ -1,0 +1,72 @@
+#pragma once
+// The seam between a running scene and a back end. Every frame the runtime hands over what
+// changed (instance records rewritten or added, and whether instances were added or removed);
+// the frame renderer brings its own copy of the scene up to date (the TLAS is its business: an
+// LBVH refit or rebuilt under the TlasPolicy, on the host or on the device), traces into a
+// target, answers picking rays against what it traced, and reports per-stage times. One factory
+// chooses the implementation; the window, `rtrt play --headless` and `rtrt bench frame` use it.
+#include <memory>
+#include <span>
+
+#include "engine/bvh/build/lbvh.h"
+#include "engine/bvh/tlas/dynamic_tlas.h"
+#include "engine/render_rt/image.h"
+#include "engine/render_rt/render_scene.h"
+#include "engine/render_rt/render_settings.h"
+
+namespace rtrt {
+
+// What changed in a RenderScene since the last update.
+struct SceneChanges {
+    std::span<const uint32_t> instances;  // records rewritten or appended (indices)
+    bool topologyChanged = false;         // instances were added or removed
+};
+
+// One frame's stages. The GPU times them with CUDA events and collects them a frame or two later,
+// so that no frame waits for the GPU to read them; the CPU times them with the host clock.
+struct FrameTimes {
+    uint64_t frame = 0;     // which Trace these are (1 = the first); 0: none known yet
+    double uploadMs = 0.0;  // changed instance records (and their world boxes) sent
+    double tlasMs = 0.0;    // LBVH rebuild or refit, and its SAH cost
+    double traceMs = 0.0;
+    uint32_t uploaded = 0;  // instance records sent to the device
+    bool tlasRebuilt = false;
+    float tlasSahCost = 0.0f;  // the cost the rebuild policy last saw
+    uint64_t rays = 0;         // rays traced, when Trace was asked to count them
+};
+
+class FrameRenderer {
+  public:
+    virtual ~FrameRenderer() = default;
+    virtual Backend Kind() const = 0;
+
+    // Brings the renderer's copy of the scene up to date with `scene`, given what changed.
+    virtual void Update(const RenderScene& scene, const SceneChanges& changes) = 0;
+    // Traces a frame of the scene as last updated (camera and settings from the arguments). With
+    // `image`, waits for the frame and copies it there (linear RGB); without, the frame may still
+    // be in flight on the device when this returns (DeviceFrame(), Finish()). With `stats`, rays
+    // are counted: into *stats when the call waited for the frame (an image, or the CPU), and
+    // into the frame's Times().rays in any case.
+    virtual void Trace(const RenderScene& scene, const RenderSettings& settings, Image* image,
+                       RenderStats* stats = nullptr) = 0;
+    // Waits for the last traced frame; its times are then Times().
+    virtual void Finish() = 0;
+    // The closest hit of one ray through the structures the last frame was traced with (the
+    // window's picking). False on a miss.
+    virtual bool Pick(const Ray& ray, SceneHit* hit) = 0;
+    // The latest frame whose stage times are known (see FrameTimes).
+    virtual const FrameTimes& Times() const = 0;
+    // The last traced frame in device memory (width x height linear RGB) for CUDA-GL interop;
+    // null where frames live on the host.
+    virtual const vec3* DeviceFrame() const = 0;
+    // The TLAS as the renderer holds it (tests compare the back ends' trees).
+    virtual Lbvh CurrentTlas() const = 0;
+};
+
+// The frame renderer of `backend` over `scene` (its BLASes, materials, lights and textures are
+// taken now; add models before this). Throws std::runtime_error when the back end cannot run
+// here, saying why.
+std::unique_ptr<FrameRenderer> MakeFrameRenderer(Backend backend, const RenderScene& scene,
+                                                 TlasPolicy policy = {});
+
+}  // namespace rtrt

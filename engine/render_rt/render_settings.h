@@ -1,0 +1,29 @@
+#pragma once
+// What a frame is traced with (size, depth, view, features, samples), which back end traces it,
+// and what tracing it counted.
+#include <cstdint>
+#include <string>
+
+#include "engine/render_rt/scene_features.h"
+
+namespace rtrt {
+
+enum class Backend { kCpu, kCuda };
+
+struct RenderSettings {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    uint32_t maxDepth = 4;
+    ViewMode view = ViewMode::kShaded;
+    uint32_t enabledFeatures = kAllFeatures;  // a feature runs only if the scene has it too
+    uint32_t samplesPerPixel = 1;  // shaded view; a square (1, 4, 9...), see pixel_sample.h
+};
+
+struct RenderStats {
+    uint64_t rays = 0;  // primary, shadow and secondary rays traced
+};
+
+// Whether the CUDA back end can run here; if not, why (for the CLI's message).
+bool CudaBackendAvailable(std::string* why);
+
+}  // namespace rtrt
