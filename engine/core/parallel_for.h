@@ -1,6 +1,7 @@
 #pragma once
-// Host-side data parallelism (TBB). The CUDA back end launches kernels instead; both run the same
-// RT_HD body per item.
+// Data parallelism with one body for both back ends: ParallelFor runs body(i) for i in
+// [begin, end) over TBB on the host; ParallelForCuda (parallel_for_cuda.h) runs the same body,
+// one CUDA thread per index. Bodies that run on both are RT_HD function objects.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 

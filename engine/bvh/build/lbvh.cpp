@@ -1,44 +1,19 @@
 #include "engine/bvh/build/lbvh.h"
 
 #include <algorithm>
-#include <atomic>
-#include <memory>
-#include <numeric>
+#include <vector>
 
-#include "engine/bvh/build/morton.h"
+#include "engine/bvh/build/lbvh_steps.h"
 #include "engine/core/parallel_for.h"
 
 namespace rtrt {
 namespace {
 
-constexpr uint32_t kNoParent = UINT32_MAX;
-
-BvhNode LeafNode(const Aabb& bounds, uint32_t slot) {
-    BvhNode node;
-    node.SetBounds(bounds);
-    node.leftFirst = slot;
-    node.primCount = 1;
-    return node;
-}
-
-// Bounds of every interior node from its children: each leaf walks up; at each parent the first
-// arrival stops and the second (which then sees both children done) computes the bounds.
 void BoundsBottomUp(Lbvh& bvh) {
     const size_t positions = bvh.nodes.size();
-    std::unique_ptr<std::atomic<uint32_t>[]> arrivals(new std::atomic<uint32_t>[positions]);
-    for (size_t p = 0; p < positions; ++p) arrivals[p].store(0, std::memory_order_relaxed);
-    ParallelFor(2, positions, 1024, [&](size_t leaf) {
-        if (!bvh.nodes[leaf].IsLeaf()) return;
-        uint32_t p = bvh.parents[leaf];
-        while (p != kNoParent) {
-            if (arrivals[p].fetch_add(1, std::memory_order_acq_rel) == 0) return;
-            BvhNode& node = bvh.nodes[p];
-            Aabb b = bvh.nodes[node.leftFirst].Bounds();
-            b.Grow(bvh.nodes[node.leftFirst + 1].Bounds());
-            node.SetBounds(b);
-            p = bvh.parents[p];
-        }
-    });
+    std::vector<uint32_t> arrivals(positions, 0);
+    ParallelFor(0, positions - 2, 1024,
+                LbvhBoundsBottomUp{bvh.parents.data(), bvh.nodes.data(), arrivals.data()});
 }
 
 }  // namespace
@@ -48,51 +23,39 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
     const uint32_t n = uint32_t(primBounds.size());
     if (n == 0) {
         bvh.nodes.resize(2, BvhNode{vec3(kInfinity), 0, vec3(-kInfinity), 0});
-        bvh.parents.assign(2, kNoParent);
+        bvh.parents.assign(2, kLbvhNoParent);
         return bvh;
     }
     Aabb centroidBounds;
     for (const Aabb& b : primBounds) centroidBounds.Grow(b.Centroid());
-    std::vector<uint64_t> keys(n);  // Morton code << 32 | primitive: equal codes keep input order
-    ParallelFor(0, n, 4096, [&](size_t i) {
-        keys[i] = (uint64_t(MortonCode(primBounds[i].Centroid(), centroidBounds)) << 32) | i;
-    });
-    std::sort(keys.begin(), keys.end());
     std::vector<uint32_t> codes(n);
     bvh.primOrder.resize(n);
+    ParallelFor(
+        0, n, 4096,
+        LbvhMortonCodes{primBounds.data(), &centroidBounds, codes.data(), bvh.primOrder.data()});
+    // Sorted as (code, index) pairs: equal codes keep input order, as the GPU's stable radix sort.
+    std::vector<uint64_t> keys(n);
+    for (uint32_t i = 0; i < n; ++i) keys[i] = uint64_t(codes[i]) << 32 | bvh.primOrder[i];
+    std::sort(keys.begin(), keys.end());
     for (uint32_t s = 0; s < n; ++s) {
         codes[s] = uint32_t(keys[s] >> 32);
         bvh.primOrder[s] = uint32_t(keys[s]);
     }
 
     bvh.nodes.resize(2 * size_t(n));
-    bvh.parents.assign(bvh.nodes.size(), kNoParent);
+    bvh.parents.assign(bvh.nodes.size(), kLbvhNoParent);
     bvh.nodes[1] = BvhNode{vec3(0), 0, vec3(0), 0};
     if (n == 1) {
-        bvh.nodes[0] = LeafNode(primBounds[bvh.primOrder[0]], 0);
+        LbvhRootLeaf{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
         return bvh;
     }
     // Internal node k sits where its parent put it: position 0 for the root, else a child slot.
     std::vector<uint32_t> positionOf(n - 1, 0);
-    ParallelFor(0, n - 1, 1024, [&](size_t k) {
-        const KarrasNode range = KarrasInternalNode(codes.data(), n, uint32_t(k));
-        const uint32_t pair = 2 + 2 * uint32_t(k);
-        const uint32_t children[2] = {range.split, range.split + 1};
-        const bool isLeaf[2] = {range.split == range.first, range.split + 1 == range.last};
-        for (int c = 0; c < 2; ++c) {
-            if (isLeaf[c])
-                bvh.nodes[pair + c] = LeafNode(primBounds[bvh.primOrder[children[c]]], children[c]);
-            else
-                positionOf[children[c]] = pair + c;
-        }
-    });
-    ParallelFor(0, n - 1, 1024, [&](size_t k) {
-        const uint32_t position = positionOf[k];
-        const uint32_t pair = 2 + 2 * uint32_t(k);
-        bvh.nodes[position].leftFirst = pair;
-        bvh.nodes[position].primCount = 0;
-        bvh.parents[pair] = bvh.parents[pair + 1] = position;
-    });
+    ParallelFor(0, n - 1, 1024,
+                LbvhKarrasNodes{codes.data(), n, bvh.primOrder.data(), primBounds.data(),
+                                bvh.nodes.data(), positionOf.data()});
+    ParallelFor(0, n - 1, 1024,
+                LbvhLinkNodes{positionOf.data(), bvh.nodes.data(), bvh.parents.data()});
     BoundsBottomUp(bvh);
     return bvh;
 }
@@ -100,13 +63,11 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
 void RefitLbvh(Lbvh& bvh, std::span<const Aabb> primBounds) {
     if (bvh.primOrder.empty()) return;
     if (bvh.nodes[0].IsLeaf()) {
-        bvh.nodes[0].SetBounds(primBounds[bvh.primOrder[0]]);
+        LbvhRootLeaf{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
         return;
     }
-    ParallelFor(2, bvh.nodes.size(), 4096, [&](size_t p) {
-        BvhNode& node = bvh.nodes[p];
-        if (node.IsLeaf()) node.SetBounds(primBounds[bvh.primOrder[node.leftFirst]]);
-    });
+    ParallelFor(0, bvh.nodes.size() - 2, 4096,
+                LbvhRefitLeaves{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()});
     BoundsBottomUp(bvh);
 }
 
