@@ -9,14 +9,17 @@ namespace rtrt {
 
 template <typename T>
 struct CacheLineAllocator {
-    using value_type = T;
+    // The names std::allocator_traits looks for.
+    using value_type = T;  // NOLINT(readability-identifier-naming)
     static constexpr std::align_val_t kAlignment{64};
 
     CacheLineAllocator() = default;
     template <typename U>
     CacheLineAllocator(const CacheLineAllocator<U>&) {}
 
+    // NOLINTNEXTLINE(readability-identifier-naming)
     T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+    // NOLINTNEXTLINE(readability-identifier-naming)
     void deallocate(T* p, size_t) { ::operator delete(p, kAlignment); }
     template <typename U>
     bool operator==(const CacheLineAllocator<U>&) const {

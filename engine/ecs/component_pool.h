@@ -23,8 +23,8 @@ inline uint32_t NextComponentTypeId() {
 // A small dense id per component type, shared by all registries; indexes the pool tables.
 template <typename T>
 uint32_t ComponentTypeId() {
-    static const uint32_t id = detail::NextComponentTypeId();
-    return id;
+    static const uint32_t kId = detail::NextComponentTypeId();
+    return kId;
 }
 
 // What every pool offers without knowing its component type: the owner set, the changed set, and

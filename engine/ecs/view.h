@@ -40,23 +40,23 @@ class View {
   private:
     static constexpr size_t kCount = sizeof...(Ts);
 
-    template <typename Fn, size_t... I>
-    void EachImpl(Fn& fn, std::index_sequence<I...>) const {
+    template <typename Fn, size_t... kI>
+    void EachImpl(Fn& fn, std::index_sequence<kI...>) const {
         const PoolBase* driver = Smallest();
         if (driver == nullptr) return;
         const std::span<const Entity> entities = driver->Entities();
         for (uint32_t i = 0; i < entities.size(); ++i) {
             const Entity e = entities[i];
-            const std::array<uint32_t, kCount> pos{PositionIn<I>(driver, e, i)...};
-            if (((pos[I] == SparseSet::kAbsent) || ...)) continue;
-            fn(e, std::get<I>(pools_)->At(pos[I])...);
+            const std::array<uint32_t, kCount> pos{PositionIn<kI>(driver, e, i)...};
+            if (((pos[kI] == SparseSet::kAbsent) || ...)) continue;
+            fn(e, std::get<kI>(pools_)->At(pos[kI])...);
         }
     }
 
     // The driver's position is the loop index; other pools are probed through their sparse index.
-    template <size_t I>
+    template <size_t kI>
     uint32_t PositionIn(const PoolBase* driver, Entity e, uint32_t i) const {
-        const PoolBase* pool = std::get<I>(pools_);
+        const PoolBase* pool = std::get<kI>(pools_);
         return pool == driver ? i : pool->Find(e);
     }
 

@@ -20,19 +20,19 @@ class GpuRobust : public ::testing::Test {
         std::string why;
         if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
     }
-    GpuRunner run;
+    GpuRunner run_;
 };
 
-TEST_F(GpuRobust, Watertight) { CheckWatertightAll(run); }
-TEST_F(GpuRobust, SlabCases) { CheckSlabCases(run); }
-TEST_F(GpuRobust, TriangleDirectionScale) { CheckTriangleDirectionScale(run); }
-TEST_F(GpuRobust, TriangleTMaxIdempotent) { CheckTriangleTMaxIdempotent(run); }
-TEST_F(GpuRobust, SphereCases) { CheckSphereCases(run); }
-TEST_F(GpuRobust, TraversalMatchesBruteForce) { CheckTraversalMatchesBruteForce(run, 2'000'000); }
-TEST_F(GpuRobust, BadRays) { CheckBadRays(run); }
-TEST_F(GpuRobust, SpawnFromFarSurfaces) { CheckSpawnFromFarPlanes(run); }
-TEST_F(GpuRobust, SpawnIntoFarObjects) { CheckSpawnIntoFarObjects(run); }
-TEST_F(GpuRobust, TlasDegenerateInputs) { CheckTlasDegenerateInputs(run); }
+TEST_F(GpuRobust, Watertight) { CheckWatertightAll(run_); }
+TEST_F(GpuRobust, SlabCases) { CheckSlabCases(run_); }
+TEST_F(GpuRobust, TriangleDirectionScale) { CheckTriangleDirectionScale(run_); }
+TEST_F(GpuRobust, TriangleTMaxIdempotent) { CheckTriangleTMaxIdempotent(run_); }
+TEST_F(GpuRobust, SphereCases) { CheckSphereCases(run_); }
+TEST_F(GpuRobust, TraversalMatchesBruteForce) { CheckTraversalMatchesBruteForce(run_, 2'000'000); }
+TEST_F(GpuRobust, BadRays) { CheckBadRays(run_); }
+TEST_F(GpuRobust, SpawnFromFarSurfaces) { CheckSpawnFromFarPlanes(run_); }
+TEST_F(GpuRobust, SpawnIntoFarObjects) { CheckSpawnIntoFarObjects(run_); }
+TEST_F(GpuRobust, TlasDegenerateInputs) { CheckTlasDegenerateInputs(run_); }
 
 }  // namespace
 }  // namespace rtrt::robust

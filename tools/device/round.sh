@@ -2,8 +2,8 @@
 # One GPU round on the device machine: build for sm_90 without OpenImageIO, run the GPU tests
 # (ctest -L gpu), render the verification scenes on the GPU, and leave logs, JSON and images in
 # $OUT. Expects .device/ from tools/device/pack.sh. With .device/baseline (pack.sh's
-# RTRT_BASELINE), the earlier commit is built too and benchmarked right after this tree, on the
-# same machine: baseline.tar holds its JSON, bench.log both tables.
+# RTRT_BASELINE), the earlier commit is built too and benchmarked (gpu, grid, frame) right after
+# this tree, on the same machine: baseline.tar holds its JSON, bench.log both tables.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root"
@@ -63,6 +63,12 @@ if [ -d "$base" ]; then
     {
         "$base/build/gpu/game/rtrt" bench gpu -o "$bdir/baseline-gpu-bench.json"
         "$base/build/gpu/game/rtrt" bench grid -o "$bdir/baseline-grid-bench.json"
+        "$base/build/gpu/game/rtrt" bench frame assets/scenes/demo_1000_instances.json \
+            assets/scenes/demo_physics.json assets/scenes/demo_glass.json \
+            -o "$bdir/baseline-frame-bench.json"
+        "$base/build/gpu/game/rtrt" bench frame assets/scenes/demo_1000_instances.json \
+            assets/scenes/demo_physics.json assets/scenes/demo_glass.json --size 1920x1080 \
+            -o "$bdir/baseline-frame-bench-1080p.json"
     } 2>&1 | tee -a "$out/bench.log"
     tar -C "$bdir" -cf "$out/baseline.tar" .
 fi
