@@ -12,7 +12,7 @@
 #include "engine/ecs/scheduler.h"
 #include "engine/physics_anim/physics_world.h"
 #include "engine/physics_anim/transform_system.h"
-#include "game/scene/scene_file.h"
+#include "game/scene/loaded_scene.h"
 
 namespace rtrt {
 
