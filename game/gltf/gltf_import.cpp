@@ -14,6 +14,7 @@
 #include "engine/core/error.h"
 #include "game/gltf/gltf_image_loader.h"
 #include "game/gltf/gltf_precheck.h"
+#include "game/scene/json_fields.h"
 
 namespace rtrt {
 namespace {
@@ -134,7 +135,7 @@ class Importer {
                    : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
                                                 unsigned(bytes.size()), dir.empty() ? "." : dir);
         if (imageFailure.index >= 0)
-            Fail(GltfIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
+            Fail(JsonIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
         if (!ok || !err.empty()) Fail("", OneLine(err));
     }
 
@@ -162,7 +163,7 @@ class Importer {
             const std::vector<int>& children = model_.nodes[i].children;
             for (size_t c = 0; c < children.size(); ++c) {
                 const int child = children[c];
-                const std::string field = GltfIndexed(GltfIndexed("nodes", i) + ".children", c);
+                const std::string field = JsonIndexed(JsonIndexed("nodes", i) + ".children", c);
                 if (child < 0 || size_t(child) >= n)
                     Fail(field, "node " + std::to_string(child) + " out of range (" +
                                     std::to_string(n) + " nodes)");
@@ -179,7 +180,7 @@ class Importer {
             int at = int(i);
             for (size_t steps = 0; at >= 0; ++steps) {
                 if (steps > n)
-                    Fail(GltfIndexed("nodes", i) + ".children",
+                    Fail(JsonIndexed("nodes", i) + ".children",
                          "node " + std::to_string(i) + " is its own ancestor (a cycle)");
                 at = parentOf_[at];
             }
@@ -197,7 +198,7 @@ class Importer {
             const std::vector<int>& nodes = model_.scenes[size_t(sceneIndex)].nodes;
             for (size_t i = 0; i < nodes.size(); ++i) {
                 const std::string field =
-                    GltfIndexed(GltfIndexed("scenes", size_t(sceneIndex)) + ".nodes", i);
+                    JsonIndexed(JsonIndexed("scenes", size_t(sceneIndex)) + ".nodes", i);
                 if (nodes[i] < 0 || size_t(nodes[i]) >= model_.nodes.size())
                     Fail(field, "node " + std::to_string(nodes[i]) + " out of range");
                 if (parentOf_[nodes[i]] >= 0)
@@ -218,7 +219,7 @@ class Importer {
 
     physics::LocalTransform NodeTransform(size_t index) {
         const tinygltf::Node& node = model_.nodes[index];
-        const std::string at = GltfIndexed("nodes", index);
+        const std::string at = JsonIndexed("nodes", index);
         auto finite = [&](const std::vector<double>& values, const char* field, size_t size) {
             if (!values.empty() && values.size() != size)
                 Fail(at + "." + field, "expected " + std::to_string(size) + " numbers");
@@ -277,14 +278,14 @@ class Importer {
             if (c.type == "perspective") {
                 const double fov = c.perspective.yfov * 180.0 / 3.14159265358979323846;
                 if (!(fov >= 1.0 && fov <= 179.0))
-                    Fail(GltfIndexed("cameras", i) + ".perspective.yfov",
+                    Fail(JsonIndexed("cameras", i) + ".perspective.yfov",
                          "must be between 1 and 179 degrees (in radians), got " +
                              std::to_string(c.perspective.yfov));
                 camera.fovYDegrees = float(fov);
                 if (Finite(c.perspective.aspectRatio) && c.perspective.aspectRatio > 0.0)
                     camera.aspect = float(c.perspective.aspectRatio);
             } else {
-                Warn("orthographic", GltfIndexed("cameras", i) + ": " + c.type +
+                Warn("orthographic", JsonIndexed("cameras", i) + ": " + c.type +
                                          " cameras are not supported; skipped");
                 camera.fovYDegrees = 0.0f;  // marks it skipped
             }
@@ -330,7 +331,7 @@ class Importer {
             out.parent = parent;
             out.source = uint32_t(index);
             out.local = NodeTransform(size_t(index));
-            const std::string at = GltfIndexed("nodes", size_t(index));
+            const std::string at = JsonIndexed("nodes", size_t(index));
             if (node.mesh >= 0) {
                 if (size_t(node.mesh) >= model_.meshes.size())
                     Fail(at + ".mesh", "mesh " + std::to_string(node.mesh) + " out of range");
@@ -383,7 +384,7 @@ class Importer {
         const tinygltf::Mesh& m = model_.meshes[mesh];
         for (size_t p = 0; p < m.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = m.primitives[p];
-            const std::string at = GltfIndexed(GltfIndexed("meshes", mesh) + ".primitives", p);
+            const std::string at = JsonIndexed(JsonIndexed("meshes", mesh) + ".primitives", p);
             if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
                 Warn("mode", at + ".mode: mode " + std::to_string(prim.mode) +
                                  " (points, lines, strips or fans) is not supported; such "
@@ -419,7 +420,7 @@ class Importer {
             Fail(field, "accessor " + std::to_string(index) + " out of range (" +
                             std::to_string(model_.accessors.size()) + " accessors)");
         const tinygltf::Accessor& a = model_.accessors[size_t(index)];
-        const std::string at = GltfIndexed("accessors", size_t(index));
+        const std::string at = JsonIndexed("accessors", size_t(index));
         if (a.sparse.isSparse) throw Unsupported{"sparse accessors are not supported"};
         if (std::find(types.begin(), types.end(), a.type) == types.end())
             Fail(at + ".type", "wrong element type for " + field);
@@ -433,7 +434,7 @@ class Importer {
             Fail(at + ".bufferView",
                  "buffer view " + std::to_string(a.bufferView) + " out of range");
         const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
-        const std::string viewAt = GltfIndexed("bufferViews", size_t(a.bufferView));
+        const std::string viewAt = JsonIndexed("bufferViews", size_t(a.bufferView));
         if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
             Fail(viewAt + ".buffer", "buffer " + std::to_string(view.buffer) + " out of range");
         const std::vector<unsigned char>& buffer = model_.buffers[size_t(view.buffer)].data;
@@ -512,7 +513,7 @@ class Importer {
             if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
                 a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
                 a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-                Fail(GltfIndexed("accessors", size_t(prim.indices)) + ".componentType",
+                Fail(JsonIndexed("accessors", size_t(prim.indices)) + ".componentType",
                      "indices must be unsigned bytes, shorts or ints");
             indices.resize(a.count);
             for (size_t i = 0; i < a.count; ++i) {
@@ -548,7 +549,7 @@ class Importer {
         auto found = materialIds_.find(index);
         if (found != materialIds_.end()) return found->second;
         const tinygltf::Material& g = model_.materials[size_t(index)];
-        const std::string at = GltfIndexed("materials", size_t(index));
+        const std::string at = JsonIndexed("materials", size_t(index));
         const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
         auto number = [&](double v, const std::string& name, double lo, double hi) {
             if (!(v >= lo && v <= hi))
@@ -659,7 +660,7 @@ class Importer {
         auto found = textureIds_.find(info.index);
         if (found != textureIds_.end()) return found->second;
         const tinygltf::Texture& t = model_.textures[size_t(info.index)];
-        const std::string textureAt = GltfIndexed("textures", size_t(info.index));
+        const std::string textureAt = JsonIndexed("textures", size_t(info.index));
         if (t.source < 0) {
             Warn("texture-source", textureAt +
                                        ": no image rtrt can read (an extension's "
@@ -669,7 +670,7 @@ class Importer {
         if (size_t(t.source) >= model_.images.size())
             Fail(textureAt + ".source", "image " + std::to_string(t.source) + " out of range");
         const tinygltf::Image& image = model_.images[size_t(t.source)];
-        const std::string imageAt = GltfIndexed("images", size_t(t.source));
+        const std::string imageAt = JsonIndexed("images", size_t(t.source));
         const int channels = image.component, bytes = image.bits / 8;
         if (image.width <= 0 || image.height <= 0 || channels < 1 || channels > 4 ||
             (bytes != 1 && bytes != 2) ||
@@ -722,7 +723,7 @@ class Importer {
         float duration = 0.0f;
         for (size_t c = 0; c < anim.channels.size(); ++c) {
             const tinygltf::AnimationChannel& ch = anim.channels[c];
-            const std::string at = GltfIndexed("animations[0].channels", c);
+            const std::string at = JsonIndexed("animations[0].channels", c);
             if (ch.target_path == "weights") {
                 Warn("morph", at + ".target.path: weights (morph targets) are not "
                                    "supported; meshes keep their base shape");
@@ -739,7 +740,7 @@ class Importer {
             const int32_t slot = nodeSlot_[size_t(ch.target_node)];
             if (slot < 0) continue;  // a node outside the scene shown
             const tinygltf::AnimationSampler& s = anim.samplers[size_t(ch.sampler)];
-            const std::string samplerAt = GltfIndexed("animations[0].samplers", size_t(ch.sampler));
+            const std::string samplerAt = JsonIndexed("animations[0].samplers", size_t(ch.sampler));
             physics::Interpolation mode = physics::Interpolation::kLinear;
             const bool cubic = s.interpolation == "CUBICSPLINE";
             if (s.interpolation == "STEP")

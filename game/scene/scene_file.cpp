@@ -7,9 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <random>
-#include <set>
 #include <sstream>
 
 #include "engine/core/error.h"
@@ -19,13 +17,10 @@
 #include "game/assets/procedural_shapes.h"
 #include "game/assets/teapot.h"
 #include "game/gltf/gltf_import.h"
+#include "game/scene/json_fields.h"
 
 namespace rtrt {
 namespace {
-
-using Json = nlohmann::json;
-
-const char* TypeName(const Json& j) { return j.type_name(); }
 
 // Rotation by degrees about x, then y, then z (the scene files' convention).
 glm::quat EulerDegrees(vec3 degrees) {
@@ -34,127 +29,14 @@ glm::quat EulerDegrees(vec3 degrees) {
            glm::angleAxis(glm::radians(degrees.x), vec3(1, 0, 0));
 }
 
-// One JSON object of the scene file at a known path. Reading a key marks it as known; Finish()
-// rejects any key nobody read, so a typo never passes silently.
-class Fields {
-  public:
-    Fields(const Json& j, std::string path, const std::string& file)
-        : j_(j), path_(std::move(path)), file_(file) {
-        if (!j.is_object()) Fail("", std::string("expected an object, got ") + TypeName(j));
-    }
-
-    bool Has(const std::string& key) {
-        allowed_.insert(key);
-        return j_.contains(key);
-    }
-    const Json& Get(const std::string& key) {
-        if (!Has(key)) Fail(key, "missing required field");
-        return j_.at(key);
-    }
-
-    float Number(const std::string& key, std::optional<float> fallback = std::nullopt) {
-        if (!Has(key)) return fallback ? *fallback : Missing<float>(key);
-        return ToNumber(j_.at(key), key);
-    }
-    float Positive(const std::string& key, std::optional<float> fallback = std::nullopt) {
-        const float v = Number(key, fallback);
-        if (!(v > 0.0f)) Fail(key, "must be greater than 0, got " + Format(v));
-        return v;
-    }
-    float InRange(const std::string& key, float lo, float hi, float fallback) {
-        const float v = Number(key, fallback);
-        if (!(v >= lo && v <= hi))
-            Fail(key,
-                 "must be between " + Format(lo) + " and " + Format(hi) + ", got " + Format(v));
-        return v;
-    }
-    uint32_t Count(const std::string& key, uint32_t lo, uint32_t hi, uint32_t fallback) {
-        if (!Has(key)) return fallback;
-        const Json& v = j_.at(key);
-        if (!v.is_number_integer() && !v.is_number_unsigned())
-            Fail(key, std::string("expected an integer, got ") + TypeName(v));
-        const int64_t n = v.get<int64_t>();
-        if (n < lo || n > hi)
-            Fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-                          ", got " + std::to_string(n));
-        return uint32_t(n);
-    }
-    vec3 Vec3(const std::string& key, std::optional<vec3> fallback = std::nullopt) {
-        if (!Has(key)) return fallback ? *fallback : Missing<vec3>(key);
-        const Json& v = j_.at(key);
-        if (!v.is_array() || v.size() != 3)
-            Fail(key, std::string("expected an array of 3 numbers, got ") +
-                          (v.is_array() ? std::to_string(v.size()) + " elements" : TypeName(v)));
-        return vec3(ToNumber(v[0], key + "[0]"), ToNumber(v[1], key + "[1]"),
-                    ToNumber(v[2], key + "[2]"));
-    }
-    // A colour: 3 numbers, or one number for grey.
-    vec3 Colour(const std::string& key, vec3 fallback) {
-        if (Has(key) && j_.at(key).is_number()) return vec3(Number(key));
-        const vec3 c = Vec3(key, fallback);
-        if (c.x < 0 || c.y < 0 || c.z < 0) Fail(key, "colour components must not be negative");
-        return c;
-    }
-    std::string String(const std::string& key, std::optional<std::string> fallback = std::nullopt) {
-        if (!Has(key)) return fallback ? *fallback : Missing<std::string>(key);
-        const Json& v = j_.at(key);
-        if (!v.is_string()) Fail(key, std::string("expected a string, got ") + TypeName(v));
-        return v.get<std::string>();
-    }
-
-    void Finish() {
-        for (const auto& [key, value] : j_.items()) {
-            if (allowed_.count(key)) continue;
-            std::string known;
-            for (const std::string& k : allowed_) known += (known.empty() ? "" : ", ") + k;
-            Fail(key, "unknown field (known fields here: " + known + ")");
-        }
-    }
-
-    std::string Path(const std::string& key) const {
-        if (key.empty()) return path_;
-        return path_.empty() ? key : path_ + "." + key;
-    }
-    [[noreturn]] void Fail(const std::string& key, const std::string& reason) const {
-        throw InputError(file_, Path(key), reason);
-    }
-
-  private:
-    template <typename T>
-    [[noreturn]] T Missing(const std::string& key) const {
-        Fail(key, "missing required field");
-    }
-    float ToNumber(const Json& v, const std::string& key) const {
-        if (!v.is_number()) Fail(key, std::string("expected a number, got ") + TypeName(v));
-        const double d = v.get<double>();
-        if (!std::isfinite(d) || std::fabs(d) > 3.0e38) Fail(key, "number out of range");
-        return float(d);
-    }
-    static std::string Format(float v) {
-        std::ostringstream s;
-        s << v;
-        return s.str();
-    }
-
-    const Json& j_;
-    std::string path_;
-    const std::string& file_;
-    std::set<std::string> allowed_;
-};
-
 class SceneParser {
   public:
     SceneParser(std::string name, std::string baseDir)
         : file_(std::move(name)), baseDir_(std::move(baseDir)) {}
 
     LoadedScene Parse(const std::string& text) {
-        Json root;
-        try {
-            root = Json::parse(text);
-        } catch (const Json::exception& e) {  // parse_error, or out_of_range for 1e999
-            throw InputError(file_, "", std::string("malformed JSON: ") + e.what());
-        }
-        Fields top(root, "", file_);
+        const Json root = ParseJson(text, file_);
+        JsonFields top(root, "", file_);
         LoadedScene out;
         out_ = &out;
         RenderScene& scene = out.scene;
@@ -163,7 +45,7 @@ class SceneParser {
         scene.background = top.Colour("background", scene.background);
         scene.maxDepth = top.Count("max_depth", 1, 16, scene.maxDepth);
         if (top.Has("image")) {
-            Fields image(top.Get("image"), "image", file_);
+            JsonFields image(top.Get("image"), "image", file_);
             out.width = image.Count("width", 1, 16384, 1280);
             out.height = image.Count("height", 1, 16384, 720);
             image.Finish();
@@ -181,7 +63,7 @@ class SceneParser {
 
   private:
     Camera ParseCamera(const Json& j) {
-        Fields f(j, "camera", file_);
+        JsonFields f(j, "camera", file_);
         Camera c;
         c.position = f.Vec3("position", c.position);
         if (f.Has("look_at") && f.Has("forward"))
@@ -204,9 +86,9 @@ class SceneParser {
         if (!j.is_object())
             throw InputError(
                 file_, "materials",
-                std::string("expected an object of named materials, got ") + TypeName(j));
+                std::string("expected an object of named materials, got ") + j.type_name());
         for (const auto& [name, value] : j.items()) {
-            Fields f(value, "materials." + name, file_);
+            JsonFields f(value, "materials." + name, file_);
             Material m;
             m.diffuse = f.Colour("diffuse", m.diffuse);
             m.ambient = f.Colour("ambient", 0.1f * m.diffuse);
@@ -225,9 +107,10 @@ class SceneParser {
 
     void ParseLights(const Json& j, RenderScene& scene) {
         if (!j.is_array())
-            throw InputError(file_, "lights", std::string("expected an array, got ") + TypeName(j));
+            throw InputError(file_, "lights",
+                             std::string("expected an array, got ") + j.type_name());
         for (size_t i = 0; i < j.size(); ++i) {
-            Fields f(j[i], "lights[" + std::to_string(i) + "]", file_);
+            JsonFields f(j[i], JsonIndexed("lights", i), file_);
             Light light;
             const std::string type = f.String("type");
             if (type == "directional") {
@@ -250,10 +133,11 @@ class SceneParser {
 
     void ParseModels(const Json& j, RenderScene& scene) {
         if (!j.is_object())
-            throw InputError(file_, "models",
-                             std::string("expected an object of named models, got ") + TypeName(j));
+            throw InputError(
+                file_, "models",
+                std::string("expected an object of named models, got ") + j.type_name());
         for (const auto& [name, value] : j.items()) {
-            Fields f(value, "models." + name, file_);
+            JsonFields f(value, "models." + name, file_);
             if (value.contains("type") && value["type"] == "gltf") {
                 // A glTF scene: its meshes, materials and textures are added once here; every
                 // instance places its node hierarchy again.
@@ -273,7 +157,7 @@ class SceneParser {
         }
     }
 
-    Blas ParseModel(Fields& f) {
+    Blas ParseModel(JsonFields& f) {
         BvhBuildOptions options;
         const std::string builder = f.String("builder", "binned");
         if (!ParseBuilder(builder, &options.builder))
@@ -318,14 +202,14 @@ class SceneParser {
         return BuildTriangleBlas(mesh, options);
     }
 
-    std::vector<Sphere> ParseSphereList(Fields& f) {
+    std::vector<Sphere> ParseSphereList(JsonFields& f) {
         const Json& list = f.Get("spheres");
         if (!list.is_array() || list.empty())
             f.Fail("spheres", "expected a non-empty array of [x, y, z, radius]");
         std::vector<Sphere> spheres;
         for (size_t i = 0; i < list.size(); ++i) {
             const Json& s = list[i];
-            const std::string key = "spheres[" + std::to_string(i) + "]";
+            const std::string key = JsonIndexed("spheres", i);
             if (!s.is_array() || s.size() != 4) f.Fail(key, "expected [x, y, z, radius]");
             for (const Json& v : s)
                 if (!v.is_number() || !std::isfinite(v.get<double>()))
@@ -340,9 +224,9 @@ class SceneParser {
     void ParseInstances(const Json& j, LoadedScene& out) {
         if (!j.is_array())
             throw InputError(file_, "instances",
-                             std::string("expected an array, got ") + TypeName(j));
+                             std::string("expected an array, got ") + j.type_name());
         for (size_t i = 0; i < j.size(); ++i) {
-            Fields f(j[i], "instances[" + std::to_string(i) + "]", file_);
+            JsonFields f(j[i], JsonIndexed("instances", i), file_);
             out.entities.push_back(ParseEntity(f, out.scene));
             out.entities.back().sourceIndex = uint32_t(i);
             f.Finish();
@@ -359,7 +243,7 @@ class SceneParser {
     }
 
     // The fields an instance and a spawner share: model, material, pose, animation, rigid body.
-    EntityDesc ParseEntity(Fields& f, RenderScene& scene) {
+    EntityDesc ParseEntity(JsonFields& f, RenderScene& scene) {
         EntityDesc e;
         const std::string model = f.String("model");
         auto gltf = gltfAssets_.find(model);
@@ -401,11 +285,11 @@ class SceneParser {
     // Motions apply in a fixed order: orbit, then spin, then bob.
     physics::Animator ParseAnimator(const Json& j, const std::string& path,
                                     const physics::LocalTransform& base) {
-        Fields f(j, path, file_);
+        JsonFields f(j, path, file_);
         physics::Animator a;
         a.base = base;
         if (f.Has("orbit")) {
-            Fields o(f.Get("orbit"), f.Path("orbit"), file_);
+            JsonFields o(f.Get("orbit"), f.Path("orbit"), file_);
             physics::Orbit orbit;
             orbit.centre = o.Vec3("centre", base.translation);
             orbit.radius = o.Positive("radius", 1.0f);
@@ -415,7 +299,7 @@ class SceneParser {
             a.motions.push_back(orbit);
         }
         if (f.Has("spin")) {
-            Fields sp(f.Get("spin"), f.Path("spin"), file_);
+            JsonFields sp(f.Get("spin"), f.Path("spin"), file_);
             physics::Spin spin;
             spin.axis = NonZero(sp, "axis", vec3(0, 1, 0));
             spin.angularSpeed = sp.Number("speed", 1.0f);
@@ -423,7 +307,7 @@ class SceneParser {
             a.motions.push_back(spin);
         }
         if (f.Has("bob")) {
-            Fields b(f.Get("bob"), f.Path("bob"), file_);
+            JsonFields b(f.Get("bob"), f.Path("bob"), file_);
             physics::Bob bob;
             bob.amplitude = b.Number("amplitude", 0.25f);
             bob.frequency = b.Positive("frequency", 0.5f);
@@ -442,7 +326,7 @@ class SceneParser {
     // "scale": [[t, x, y, z], ...], "interpolation": "step" | "linear" | "slerp", "loop": bool}.
     // The clip sets the channels it has keys for; the motions apply after it.
     std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std::string& path) {
-        Fields f(j, path, file_);
+        JsonFields f(j, path, file_);
         auto clip = std::make_shared<physics::KeyframeClip>();
         physics::Interpolation mode = physics::Interpolation::kLinear;
         const std::string interpolation = f.String("interpolation", "linear");
@@ -497,7 +381,7 @@ class SceneParser {
         return clip;
     }
 
-    vec3 NonZero(Fields& f, const std::string& key, vec3 fallback) {
+    vec3 NonZero(JsonFields& f, const std::string& key, vec3 fallback) {
         const vec3 v = f.Vec3(key, fallback);
         if (glm::length(v) == 0.0f) f.Fail(key, "must not be the zero vector");
         return glm::normalize(v);
@@ -506,7 +390,7 @@ class SceneParser {
     // The collider follows the model: a sphere (radius x largest scale), a box (half size x
     // scale) or a plane (its normal turned by the rotation).
     void ParseRigidBody(const Json& j, const std::string& path, EntityDesc& e) {
-        Fields f(j, path, file_);
+        JsonFields f(j, path, file_);
         physics::RigidBody body;
         body.mass = f.InRange("mass", 0.0f, 1e9f, body.mass);
         if (f.Has("static") && f.Get("static").is_boolean() && f.Get("static").get<bool>())
@@ -541,9 +425,9 @@ class SceneParser {
     void ParseSpawners(const Json& j, LoadedScene& out) {
         if (!j.is_array())
             throw InputError(file_, "spawners",
-                             std::string("expected an array, got ") + TypeName(j));
+                             std::string("expected an array, got ") + j.type_name());
         for (size_t i = 0; i < j.size(); ++i) {
-            Fields f(j[i], "spawners[" + std::to_string(i) + "]", file_);
+            JsonFields f(j[i], JsonIndexed("spawners", i), file_);
             EntityDesc proto = ParseEntity(f, out.scene);
             if (gltf_)
                 f.Fail("model", "spawners place single models, and this one is a glTF scene");
@@ -569,8 +453,8 @@ class SceneParser {
         }
     }
 
-    std::vector<vec3> GridPlaces(Fields& f, const EntityDesc& proto) {
-        Fields g(f.Get("grid"), f.Path("grid"), file_);
+    std::vector<vec3> GridPlaces(JsonFields& f, const EntityDesc& proto) {
+        JsonFields g(f.Get("grid"), f.Path("grid"), file_);
         const vec3 count = g.Vec3("count");
         const float spacing = g.Positive("spacing", 1.5f);
         g.Finish();
@@ -588,8 +472,8 @@ class SceneParser {
 
     // Jittered cells of a grid that fills [min, max], chosen in a seeded order: places never
     // overlap, so a rain of bodies starts without interpenetration.
-    std::vector<vec3> RainPlaces(Fields& f, const LoadedScene& out, const EntityDesc& proto) {
-        Fields r(f.Get("rain"), f.Path("rain"), file_);
+    std::vector<vec3> RainPlaces(JsonFields& f, const LoadedScene& out, const EntityDesc& proto) {
+        JsonFields r(f.Get("rain"), f.Path("rain"), file_);
         const uint32_t count = r.Count("count", 1, 1000000, 100);
         const vec3 lo = r.Vec3("min"), hi = r.Vec3("max");
         const uint32_t seed = r.Count("seed", 0, UINT32_MAX - 1, 1);
@@ -629,7 +513,7 @@ class SceneParser {
         if (!j.is_array() || j.empty())
             throw InputError(file_, "camera_path", "expected a non-empty array of camera keys");
         for (size_t i = 0; i < j.size(); ++i) {
-            Fields f(j[i], "camera_path[" + std::to_string(i) + "]", file_);
+            JsonFields f(j[i], JsonIndexed("camera_path", i), file_);
             CameraKey key;
             key.time = f.InRange("time", 0.0f, 1e6f, 0.0f);
             key.position = f.Vec3("position");
@@ -643,7 +527,7 @@ class SceneParser {
     }
 
     // position * rotation (degrees about x, then y, then z) * scale.
-    physics::LocalTransform ParseTransform(Fields& f) {
+    physics::LocalTransform ParseTransform(JsonFields& f) {
         const vec3 position = f.Vec3("position", vec3(0.0f));
         const vec3 rotation = f.Vec3("rotation", vec3(0.0f));
         vec3 scale(1.0f);
@@ -655,7 +539,7 @@ class SceneParser {
                 scale = f.Vec3("scale");
             } else {
                 f.Fail("scale", std::string("expected a number or an array of 3 numbers, got ") +
-                                    TypeName(value));
+                                    value.type_name());
             }
             if (!(scale.x > 0 && scale.y > 0 && scale.z > 0))
                 f.Fail("scale", "scale factors must be greater than 0");
