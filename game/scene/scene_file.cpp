@@ -1,33 +1,23 @@
 #include "game/scene/scene_file.h"
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
+#include <glm/glm.hpp>
 #include <map>
+#include <memory>
 #include <random>
 #include <sstream>
 
 #include "engine/core/error.h"
-#include "game/assets/mesh_io.h"
-#include "game/assets/model_cache.h"
 #include "game/assets/model_dir.h"
-#include "game/assets/procedural_shapes.h"
-#include "game/assets/teapot.h"
 #include "game/gltf/gltf_import.h"
 #include "game/scene/json_fields.h"
+#include "game/scene/scene_animation.h"
+#include "game/scene/scene_models.h"
 
 namespace rtrt {
 namespace {
-
-// Rotation by degrees about x, then y, then z (the scene files' convention).
-glm::quat EulerDegrees(vec3 degrees) {
-    return glm::angleAxis(glm::radians(degrees.z), vec3(0, 0, 1)) *
-           glm::angleAxis(glm::radians(degrees.y), vec3(0, 1, 0)) *
-           glm::angleAxis(glm::radians(degrees.x), vec3(1, 0, 0));
-}
 
 class SceneParser {
   public:
@@ -148,77 +138,14 @@ class SceneParser {
                 out_->gltfFiles.push_back(gltfAssets_[name]->summary);
                 continue;
             }
-            shape_ = {};
-            modelIds_[name] = scene.AddBlas(std::make_shared<const Blas>(ParseModel(f)));
-            modelShapes_[modelIds_[name]] = shape_;
+            ModelShape shape;
+            modelIds_[name] =
+                scene.AddBlas(std::make_shared<const Blas>(ParseSceneModel(f, baseDir_, shape)));
+            modelShapes_[modelIds_[name]] = shape;
             modelNames_[modelIds_[name]] = name;
             out_->modelNames.push_back(name);
             f.Finish();
         }
-    }
-
-    Blas ParseModel(JsonFields& f) {
-        BvhBuildOptions options;
-        const std::string builder = f.String("builder", "binned");
-        if (!ParseBuilder(builder, &options.builder))
-            f.Fail("builder",
-                   "unknown builder \"" + builder + "\" (expected binned, sweep or centroid)");
-        const std::string type = f.String("type");
-        if (type == "sphere") {
-            const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
-            shape_ = {ModelShape::kSphere, s.radius, vec3(0.0f)};
-            return BuildSphereBlas(std::span<const Sphere>(&s, 1), options);
-        }
-        if (type == "spheres") return BuildSphereBlas(ParseSphereList(f), options);
-        TriangleMesh mesh;
-        if (type == "box") {
-            mesh = MakeBoxMesh(f.Vec3("size", vec3(1.0f)));
-            shape_ = {ModelShape::kBox, 0.0f, 0.5f * mesh.Bounds().Extent()};
-            const vec3 size = mesh.Bounds().Extent();
-            if (!(size.x > 0 && size.y > 0 && size.z > 0))
-                f.Fail("size", "box sides must be greater than 0");
-        } else if (type == "plane") {
-            const vec3 size = f.Vec3("size", vec3(10.0f, 0.0f, 10.0f));
-            if (!(size.x > 0 && size.z > 0))
-                f.Fail("size", "plane size x and z must be greater than 0");
-            mesh = MakePlaneMesh(size.x, size.z);
-            shape_ = {ModelShape::kPlane, 0.0f, vec3(0.0f)};
-        } else if (type == "teapot") {
-            const uint32_t resolution = f.Count("resolution", 1, 64, 6);
-            mesh =
-                TessellateTeapot(ResolveModelPath(f.String("file", "@models/teapot.inc"), baseDir_),
-                                 int(resolution));
-        } else if (type == "mesh") {
-            // Meshes come through the BLAS cache; fitting moves the built BLAS exactly as
-            // FitMesh would have moved the mesh's vertices.
-            MeshModel model = LoadMeshModel(ResolveModelPath(f.String("file"), baseDir_), options);
-            if (f.Has("fit")) FitBlas(model.blas, model.info.sourceBounds, f.Positive("fit"));
-            return std::move(model.blas);
-        } else {
-            f.Fail("type", "unknown model type \"" + type +
-                               "\" (expected sphere, spheres, box, plane, teapot, mesh or gltf)");
-        }
-        if (f.Has("fit")) FitMesh(mesh, f.Positive("fit"));
-        return BuildTriangleBlas(mesh, options);
-    }
-
-    std::vector<Sphere> ParseSphereList(JsonFields& f) {
-        const Json& list = f.Get("spheres");
-        if (!list.is_array() || list.empty())
-            f.Fail("spheres", "expected a non-empty array of [x, y, z, radius]");
-        std::vector<Sphere> spheres;
-        for (size_t i = 0; i < list.size(); ++i) {
-            const Json& s = list[i];
-            const std::string key = JsonIndexed("spheres", i);
-            if (!s.is_array() || s.size() != 4) f.Fail(key, "expected [x, y, z, radius]");
-            for (const Json& v : s)
-                if (!v.is_number() || !std::isfinite(v.get<double>()))
-                    f.Fail(key, "expected finite numbers");
-            if (!(s[3].get<float>() > 0.0f)) f.Fail(key, "radius must be greater than 0");
-            spheres.push_back(
-                {vec3(s[0].get<float>(), s[1].get<float>(), s[2].get<float>()), s[3].get<float>()});
-        }
-        return spheres;
     }
 
     void ParseInstances(const Json& j, LoadedScene& out) {
@@ -254,7 +181,7 @@ class SceneParser {
             e.renderable = false;
             e.local = ParseTransform(f);
             if (f.Has("animate"))
-                e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local);
+                e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local, file_);
             return e;
         }
         auto modelIt = modelIds_.find(model);
@@ -273,118 +200,13 @@ class SceneParser {
         }
         e.local = ParseTransform(f);
         if (f.Has("animate"))
-            e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local);
+            e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local, file_);
         if (f.Has("rigid_body")) {
             if (e.animator)
                 f.Fail("rigid_body", "an entity is either animated or simulated, not both");
             ParseRigidBody(f.Get("rigid_body"), f.Path("rigid_body"), e);
         }
         return e;
-    }
-
-    // Motions apply in a fixed order: orbit, then spin, then bob.
-    physics::Animator ParseAnimator(const Json& j, const std::string& path,
-                                    const physics::LocalTransform& base) {
-        JsonFields f(j, path, file_);
-        physics::Animator a;
-        a.base = base;
-        if (f.Has("orbit")) {
-            JsonFields o(f.Get("orbit"), f.Path("orbit"), file_);
-            physics::Orbit orbit;
-            orbit.centre = o.Vec3("centre", base.translation);
-            orbit.radius = o.Positive("radius", 1.0f);
-            orbit.axis = NonZero(o, "axis", vec3(0, 1, 0));
-            orbit.period = o.Positive("period", 4.0f);
-            o.Finish();
-            a.motions.push_back(orbit);
-        }
-        if (f.Has("spin")) {
-            JsonFields sp(f.Get("spin"), f.Path("spin"), file_);
-            physics::Spin spin;
-            spin.axis = NonZero(sp, "axis", vec3(0, 1, 0));
-            spin.angularSpeed = sp.Number("speed", 1.0f);
-            sp.Finish();
-            a.motions.push_back(spin);
-        }
-        if (f.Has("bob")) {
-            JsonFields b(f.Get("bob"), f.Path("bob"), file_);
-            physics::Bob bob;
-            bob.amplitude = b.Number("amplitude", 0.25f);
-            bob.frequency = b.Positive("frequency", 0.5f);
-            bob.axis = NonZero(b, "axis", vec3(0, 1, 0));
-            b.Finish();
-            a.motions.push_back(bob);
-        }
-        if (f.Has("keyframes")) a.clip = ParseClip(f.Get("keyframes"), f.Path("keyframes"));
-        f.Finish();
-        if (a.motions.empty() && !a.clip)
-            f.Fail("", "give at least one of keyframes, orbit, spin, bob");
-        return a;
-    }
-
-    // keyframes: {"translation": [[t, x, y, z], ...], "rotation": [[t, degrees x, y, z], ...],
-    // "scale": [[t, x, y, z], ...], "interpolation": "step" | "linear" | "slerp", "loop": bool}.
-    // The clip sets the channels it has keys for; the motions apply after it.
-    std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std::string& path) {
-        JsonFields f(j, path, file_);
-        auto clip = std::make_shared<physics::KeyframeClip>();
-        physics::Interpolation mode = physics::Interpolation::kLinear;
-        const std::string interpolation = f.String("interpolation", "linear");
-        if (interpolation == "step")
-            mode = physics::Interpolation::kStep;
-        else if (interpolation == "slerp")
-            mode = physics::Interpolation::kSlerp;
-        else if (interpolation != "linear")
-            f.Fail("interpolation",
-                   "expected step, linear or slerp, got \"" + interpolation + "\"");
-        if (f.Has("loop")) {
-            if (!f.Get("loop").is_boolean()) f.Fail("loop", "expected true or false");
-            clip->wrap =
-                f.Get("loop").get<bool>() ? physics::WrapMode::kLoop : physics::WrapMode::kClamp;
-        }
-        auto keys = [&](const std::string& channel, auto&& add) {
-            if (!f.Has(channel)) return;
-            const Json& list = f.Get(channel);
-            if (!list.is_array() || list.empty())
-                f.Fail(channel, "expected a non-empty array of [time, x, y, z]");
-            for (size_t k = 0; k < list.size(); ++k) {
-                const Json& key = list[k];
-                const std::string at = channel + "[" + std::to_string(k) + "]";
-                if (!key.is_array() || key.size() != 4) f.Fail(at, "expected [time, x, y, z]");
-                for (const Json& v : key)
-                    if (!v.is_number() || !std::isfinite(v.get<double>()))
-                        f.Fail(at, "expected finite numbers");
-                add(key[0].get<float>(),
-                    vec3(key[1].get<float>(), key[2].get<float>(), key[3].get<float>()));
-            }
-        };
-        keys("translation", [&](float t, vec3 v) {
-            clip->translation.times.push_back(t);
-            clip->translation.values.push_back(v);
-        });
-        keys("rotation", [&](float t, vec3 degrees) {
-            clip->rotation.times.push_back(t);
-            clip->rotation.values.push_back(EulerDegrees(degrees));
-        });
-        keys("scale", [&](float t, vec3 v) {
-            clip->scale.times.push_back(t);
-            clip->scale.values.push_back(v);
-        });
-        clip->translation.interpolation = clip->scale.interpolation = mode;
-        clip->rotation.interpolation =
-            mode == physics::Interpolation::kLinear ? physics::Interpolation::kSlerp : mode;
-        f.Finish();
-        if (clip->translation.Empty() && clip->rotation.Empty() && clip->scale.Empty())
-            f.Fail("", "give keys for at least one of translation, rotation, scale");
-        if (const std::string problem = physics::ValidateClip(*clip); !problem.empty())
-            f.Fail("", problem);
-        return clip;
-    }
-
-    vec3 NonZero(JsonFields& f, const std::string& key, vec3 fallback) {
-        const vec3 v = f.Vec3(key, fallback);
-        if (glm::length(v) == 0.0f) f.Fail(key, "must not be the zero vector");
-        return glm::normalize(v);
     }
 
     // The collider follows the model: a sphere (radius x largest scale), a box (half size x
@@ -551,12 +373,6 @@ class SceneParser {
         return t;
     }
 
-    struct ModelShape {
-        enum Kind { kOther, kSphere, kBox, kPlane } kind = kOther;
-        float radius = 0.0f;
-        vec3 halfExtents{0.0f};
-    };
-
     std::string file_, baseDir_;
     std::map<std::string, uint32_t> materialIds_, modelIds_;
     std::map<uint32_t, ModelShape> modelShapes_;
@@ -564,7 +380,6 @@ class SceneParser {
     std::map<std::string, std::shared_ptr<const GltfAsset>> gltfAssets_;
     const GltfAsset* gltf_ = nullptr;  // the glTF model of the entity just parsed, if it is one
     bool hasCamera_ = false;           // the file or an included glTF has set the camera
-    ModelShape shape_;                 // of the model being parsed
     LoadedScene* out_ = nullptr;       // the scene being parsed
     uint32_t defaultMaterial_ = UINT32_MAX;
 };
