@@ -1,8 +1,8 @@
 // Placing a glTF asset in a scene (InstantiateGltf, gltf_import.h): its nodes as entities, its
 // lights and first camera at their world poses.
-#include "game/gltf/gltf_import.h"
-
 #include <glm/glm.hpp>
+
+#include "game/gltf/gltf_import.h"
 
 namespace rtrt {
 
