@@ -18,6 +18,7 @@
 #include "game/app/spawn_palette.h"
 #include "game/app/window.h"
 #include "game/assets/image_io.h"
+#include "game/scene/scene_file.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

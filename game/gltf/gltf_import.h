@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "game/scene/scene_file.h"
+#include "game/scene/loaded_scene.h"
 
 namespace rtrt {
 

@@ -4,10 +4,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "game/scene/json_fields.h"
 
 namespace rtrt {
 namespace {
@@ -38,7 +38,7 @@ void CheckGlbHeader(const std::string& file, const std::string& bytes) {
     if (bytes.size() == 12) throw InputError(file, "chunks", "none: a GLB needs a JSON chunk");
     size_t at = 12;
     for (int chunk = 0; at < bytes.size(); ++chunk) {
-        const std::string field = GltfIndexed("chunks", size_t(chunk));
+        const std::string field = JsonIndexed("chunks", size_t(chunk));
         if (bytes.size() - at < 8) throw InputError(file, field, "truncated chunk header");
         const uint64_t length = u32(at);
         if (length > bytes.size() - at - 8)
@@ -74,140 +74,66 @@ std::string DecodeUri(const std::string& uri) {
 
 // The JSON types of the fields rtrt reads, per top-level array (glTF 2.0 schema). tinygltf
 // treats a field of the wrong type as absent; rtrt rejects it, naming it.
-enum class Kind {
-    kInt,
-    kString,
-    kBool,
-    kObject,
-    kInts,
-    kNumbers3,
-    kNumbers4,
-    kNumbers16,
-    kObjects
-};
 struct FieldKind {
     const char* array;
     const char* field;
-    Kind kind;
+    JsonKind kind;
 };
 constexpr FieldKind kFieldKinds[] = {
-    {"nodes", "children", Kind::kInts},
-    {"nodes", "mesh", Kind::kInt},
-    {"nodes", "camera", Kind::kInt},
-    {"nodes", "skin", Kind::kInt},
-    {"nodes", "translation", Kind::kNumbers3},
-    {"nodes", "scale", Kind::kNumbers3},
-    {"nodes", "rotation", Kind::kNumbers4},
-    {"nodes", "matrix", Kind::kNumbers16},
-    {"nodes", "extensions", Kind::kObject},
-    {"scenes", "nodes", Kind::kInts},
-    {"meshes", "primitives", Kind::kObjects},
-    {"accessors", "bufferView", Kind::kInt},
-    {"accessors", "byteOffset", Kind::kInt},
-    {"accessors", "componentType", Kind::kInt},
-    {"accessors", "count", Kind::kInt},
-    {"accessors", "type", Kind::kString},
-    {"accessors", "normalized", Kind::kBool},
-    {"bufferViews", "buffer", Kind::kInt},
-    {"bufferViews", "byteOffset", Kind::kInt},
-    {"bufferViews", "byteLength", Kind::kInt},
-    {"bufferViews", "byteStride", Kind::kInt},
-    {"buffers", "uri", Kind::kString},
-    {"buffers", "byteLength", Kind::kInt},
-    {"images", "uri", Kind::kString},
-    {"textures", "source", Kind::kInt},
-    {"textures", "sampler", Kind::kInt},
-    {"materials", "pbrMetallicRoughness", Kind::kObject},
-    {"materials", "extensions", Kind::kObject},
-    {"animations", "channels", Kind::kObjects},
-    {"animations", "samplers", Kind::kObjects},
-    {"cameras", "type", Kind::kString},
+    {"nodes", "children", JsonKind::kInts},
+    {"nodes", "mesh", JsonKind::kInt},
+    {"nodes", "camera", JsonKind::kInt},
+    {"nodes", "skin", JsonKind::kInt},
+    {"nodes", "translation", JsonKind::kNumbers3},
+    {"nodes", "scale", JsonKind::kNumbers3},
+    {"nodes", "rotation", JsonKind::kNumbers4},
+    {"nodes", "matrix", JsonKind::kNumbers16},
+    {"nodes", "extensions", JsonKind::kObject},
+    {"scenes", "nodes", JsonKind::kInts},
+    {"meshes", "primitives", JsonKind::kObjects},
+    {"accessors", "bufferView", JsonKind::kInt},
+    {"accessors", "byteOffset", JsonKind::kInt},
+    {"accessors", "componentType", JsonKind::kInt},
+    {"accessors", "count", JsonKind::kInt},
+    {"accessors", "type", JsonKind::kString},
+    {"accessors", "normalized", JsonKind::kBool},
+    {"bufferViews", "buffer", JsonKind::kInt},
+    {"bufferViews", "byteOffset", JsonKind::kInt},
+    {"bufferViews", "byteLength", JsonKind::kInt},
+    {"bufferViews", "byteStride", JsonKind::kInt},
+    {"buffers", "uri", JsonKind::kString},
+    {"buffers", "byteLength", JsonKind::kInt},
+    {"images", "uri", JsonKind::kString},
+    {"textures", "source", JsonKind::kInt},
+    {"textures", "sampler", JsonKind::kInt},
+    {"materials", "pbrMetallicRoughness", JsonKind::kObject},
+    {"materials", "extensions", JsonKind::kObject},
+    {"animations", "channels", JsonKind::kObjects},
+    {"animations", "samplers", JsonKind::kObjects},
+    {"cameras", "type", JsonKind::kString},
 };
-
-bool IsKind(const nlohmann::json& v, Kind kind) {
-    auto numbers = [&](size_t n) {
-        if (!v.is_array() || v.size() != n) return false;
-        for (const nlohmann::json& x : v)
-            if (!x.is_number()) return false;
-        return true;
-    };
-    switch (kind) {
-        case Kind::kInt:
-            return v.is_number_integer();
-        case Kind::kString:
-            return v.is_string();
-        case Kind::kBool:
-            return v.is_boolean();
-        case Kind::kObject:
-            return v.is_object();
-        case Kind::kNumbers3:
-            return numbers(3);
-        case Kind::kNumbers4:
-            return numbers(4);
-        case Kind::kNumbers16:
-            return numbers(16);
-        case Kind::kInts:
-        case Kind::kObjects:
-            if (!v.is_array()) return false;
-            for (const nlohmann::json& x : v)
-                if (kind == Kind::kInts ? !x.is_number_integer() : !x.is_object()) return false;
-            return true;
-    }
-    return false;
-}
-
-const char* KindName(Kind kind) {
-    switch (kind) {
-        case Kind::kInt:
-            return "an integer";
-        case Kind::kString:
-            return "a string";
-        case Kind::kBool:
-            return "true or false";
-        case Kind::kObject:
-            return "an object";
-        case Kind::kInts:
-            return "an array of integers";
-        case Kind::kNumbers3:
-            return "an array of 3 numbers";
-        case Kind::kNumbers4:
-            return "an array of 4 numbers";
-        case Kind::kNumbers16:
-            return "an array of 16 numbers";
-        case Kind::kObjects:
-            return "an array of objects";
-    }
-    return "";
-}
 
 // Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
 // that external buffers and images exist, so that the message names the field
 // ("buffers[0].uri") where tinygltf's would not.
 void CheckJson(const std::string& file, const std::string& json, const std::string& dir) {
-    nlohmann::json root;
-    try {
-        root = nlohmann::json::parse(json);
-    } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for 1e999
-        throw InputError(file, "", std::string("malformed JSON: ") + e.what());
-    }
+    const Json root = ParseJson(json, file);
     if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
     for (const char* array : {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers",
                               "images", "textures", "materials", "animations", "cameras"}) {
         if (!root.contains(array)) continue;
-        const nlohmann::json& list = root[array];
-        if (!IsKind(list, Kind::kObjects))
+        const Json& list = root[array];
+        if (!IsKind(list, JsonKind::kObjects))
             throw InputError(file, array, "expected an array of objects");
-        for (size_t i = 0; i < list.size(); ++i)
+        for (size_t i = 0; i < list.size(); ++i) {
+            JsonFields element(list[i], JsonIndexed(array, i), file);
             for (const FieldKind& f : kFieldKinds)
-                if (std::strcmp(f.array, array) == 0 && list[i].contains(f.field) &&
-                    !IsKind(list[i][f.field], f.kind))
-                    throw InputError(file, GltfIndexed(array, i) + "." + f.field,
-                                     std::string("expected ") + KindName(f.kind) + ", got " +
-                                         list[i][f.field].type_name());
+                if (std::strcmp(f.array, array) == 0) element.ExpectKind(f.field, f.kind);
+        }
     }
     for (const char* array : {"buffers", "images"}) {
         if (!root.contains(array) || !root[array].is_array()) continue;
-        const nlohmann::json& list = root[array];
+        const Json& list = root[array];
         for (size_t i = 0; i < list.size(); ++i) {
             if (!list[i].is_object() || !list[i].contains("uri") || !list[i]["uri"].is_string())
                 continue;
@@ -216,7 +142,7 @@ void CheckJson(const std::string& file, const std::string& json, const std::stri
             std::error_code ec;
             const fs::path path = fs::path(dir.empty() ? "." : dir) / DecodeUri(uri);
             if (!fs::is_regular_file(path, ec))
-                throw InputError(file, GltfIndexed(array, i) + ".uri",
+                throw InputError(file, JsonIndexed(array, i) + ".uri",
                                  "no such file \"" + path.string() + "\"");
         }
     }
@@ -235,10 +161,6 @@ std::string ReadWholeFile(const std::string& path) {
 }
 
 }  // namespace
-
-std::string GltfIndexed(const std::string& array, size_t i) {
-    return array + "[" + std::to_string(i) + "]";
-}
 
 GltfFileBytes ReadCheckedGltf(const std::string& file) {
     GltfFileBytes out;

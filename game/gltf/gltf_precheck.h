@@ -6,9 +6,6 @@
 
 namespace rtrt {
 
-// "array[i]", the way error messages name an element of a glTF array.
-std::string GltfIndexed(const std::string& array, size_t i);
-
 struct GltfFileBytes {
     std::string bytes;  // the whole file
     bool binary;        // GLB (by extension or magic) rather than JSON text

@@ -13,7 +13,7 @@
 #include "engine/physics_anim/physics_world.h"
 #include "engine/physics_anim/transform_system.h"
 #include "engine/render_rt/frame_renderer.h"
-#include "game/scene/scene_file.h"
+#include "game/scene/loaded_scene.h"
 
 namespace rtrt {
 

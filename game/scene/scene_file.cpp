@@ -1,146 +1,23 @@
 #include "game/scene/scene_file.h"
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
+#include <glm/glm.hpp>
 #include <map>
-#include <nlohmann/json.hpp>
+#include <memory>
 #include <random>
-#include <set>
 #include <sstream>
 
 #include "engine/core/error.h"
-#include "game/assets/mesh_io.h"
-#include "game/assets/model_cache.h"
 #include "game/assets/model_dir.h"
-#include "game/assets/procedural_shapes.h"
-#include "game/assets/teapot.h"
 #include "game/gltf/gltf_import.h"
+#include "game/scene/json_fields.h"
+#include "game/scene/scene_animation.h"
+#include "game/scene/scene_models.h"
 
 namespace rtrt {
 namespace {
-
-using Json = nlohmann::json;
-
-const char* TypeName(const Json& j) { return j.type_name(); }
-
-// Rotation by degrees about x, then y, then z (the scene files' convention).
-glm::quat EulerDegrees(vec3 degrees) {
-    return glm::angleAxis(glm::radians(degrees.z), vec3(0, 0, 1)) *
-           glm::angleAxis(glm::radians(degrees.y), vec3(0, 1, 0)) *
-           glm::angleAxis(glm::radians(degrees.x), vec3(1, 0, 0));
-}
-
-// One JSON object of the scene file at a known path. Reading a key marks it as known; Finish()
-// rejects any key nobody read, so a typo never passes silently.
-class Fields {
-  public:
-    Fields(const Json& j, std::string path, const std::string& file)
-        : j_(j), path_(std::move(path)), file_(file) {
-        if (!j.is_object()) Fail("", std::string("expected an object, got ") + TypeName(j));
-    }
-
-    bool Has(const std::string& key) {
-        allowed_.insert(key);
-        return j_.contains(key);
-    }
-    const Json& Get(const std::string& key) {
-        if (!Has(key)) Fail(key, "missing required field");
-        return j_.at(key);
-    }
-
-    float Number(const std::string& key, std::optional<float> fallback = std::nullopt) {
-        if (!Has(key)) return fallback ? *fallback : Missing<float>(key);
-        return ToNumber(j_.at(key), key);
-    }
-    float Positive(const std::string& key, std::optional<float> fallback = std::nullopt) {
-        const float v = Number(key, fallback);
-        if (!(v > 0.0f)) Fail(key, "must be greater than 0, got " + Format(v));
-        return v;
-    }
-    float InRange(const std::string& key, float lo, float hi, float fallback) {
-        const float v = Number(key, fallback);
-        if (!(v >= lo && v <= hi))
-            Fail(key,
-                 "must be between " + Format(lo) + " and " + Format(hi) + ", got " + Format(v));
-        return v;
-    }
-    uint32_t Count(const std::string& key, uint32_t lo, uint32_t hi, uint32_t fallback) {
-        if (!Has(key)) return fallback;
-        const Json& v = j_.at(key);
-        if (!v.is_number_integer() && !v.is_number_unsigned())
-            Fail(key, std::string("expected an integer, got ") + TypeName(v));
-        const int64_t n = v.get<int64_t>();
-        if (n < lo || n > hi)
-            Fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-                          ", got " + std::to_string(n));
-        return uint32_t(n);
-    }
-    vec3 Vec3(const std::string& key, std::optional<vec3> fallback = std::nullopt) {
-        if (!Has(key)) return fallback ? *fallback : Missing<vec3>(key);
-        const Json& v = j_.at(key);
-        if (!v.is_array() || v.size() != 3)
-            Fail(key, std::string("expected an array of 3 numbers, got ") +
-                          (v.is_array() ? std::to_string(v.size()) + " elements" : TypeName(v)));
-        return vec3(ToNumber(v[0], key + "[0]"), ToNumber(v[1], key + "[1]"),
-                    ToNumber(v[2], key + "[2]"));
-    }
-    // A colour: 3 numbers, or one number for grey.
-    vec3 Colour(const std::string& key, vec3 fallback) {
-        if (Has(key) && j_.at(key).is_number()) return vec3(Number(key));
-        const vec3 c = Vec3(key, fallback);
-        if (c.x < 0 || c.y < 0 || c.z < 0) Fail(key, "colour components must not be negative");
-        return c;
-    }
-    std::string String(const std::string& key, std::optional<std::string> fallback = std::nullopt) {
-        if (!Has(key)) return fallback ? *fallback : Missing<std::string>(key);
-        const Json& v = j_.at(key);
-        if (!v.is_string()) Fail(key, std::string("expected a string, got ") + TypeName(v));
-        return v.get<std::string>();
-    }
-
-    void Finish() {
-        for (const auto& [key, value] : j_.items()) {
-            if (allowed_.count(key)) continue;
-            std::string known;
-            for (const std::string& k : allowed_) known += (known.empty() ? "" : ", ") + k;
-            Fail(key, "unknown field (known fields here: " + known + ")");
-        }
-    }
-
-    std::string Path(const std::string& key) const {
-        if (key.empty()) return path_;
-        return path_.empty() ? key : path_ + "." + key;
-    }
-    [[noreturn]] void Fail(const std::string& key, const std::string& reason) const {
-        throw InputError(file_, Path(key), reason);
-    }
-
-  private:
-    template <typename T>
-    [[noreturn]] T Missing(const std::string& key) const {
-        Fail(key, "missing required field");
-    }
-    float ToNumber(const Json& v, const std::string& key) const {
-        if (!v.is_number()) Fail(key, std::string("expected a number, got ") + TypeName(v));
-        const double d = v.get<double>();
-        if (!std::isfinite(d) || std::fabs(d) > 3.0e38) Fail(key, "number out of range");
-        return float(d);
-    }
-    static std::string Format(float v) {
-        std::ostringstream s;
-        s << v;
-        return s.str();
-    }
-
-    const Json& j_;
-    std::string path_;
-    const std::string& file_;
-    std::set<std::string> allowed_;
-};
 
 class SceneParser {
   public:
@@ -148,13 +25,8 @@ class SceneParser {
         : file_(std::move(name)), baseDir_(std::move(baseDir)) {}
 
     LoadedScene Parse(const std::string& text) {
-        Json root;
-        try {
-            root = Json::parse(text);
-        } catch (const Json::exception& e) {  // parse_error, or out_of_range for 1e999
-            throw InputError(file_, "", std::string("malformed JSON: ") + e.what());
-        }
-        Fields top(root, "", file_);
+        const Json root = ParseJson(text, file_);
+        JsonFields top(root, "", file_);
         LoadedScene out;
         out_ = &out;
         RenderScene& scene = out.scene;
@@ -163,7 +35,7 @@ class SceneParser {
         scene.background = top.Colour("background", scene.background);
         scene.maxDepth = top.Count("max_depth", 1, 16, scene.maxDepth);
         if (top.Has("image")) {
-            Fields image(top.Get("image"), "image", file_);
+            JsonFields image(top.Get("image"), "image", file_);
             out.width = image.Count("width", 1, 16384, 1280);
             out.height = image.Count("height", 1, 16384, 720);
             image.Finish();
@@ -181,7 +53,7 @@ class SceneParser {
 
   private:
     Camera ParseCamera(const Json& j) {
-        Fields f(j, "camera", file_);
+        JsonFields f(j, "camera", file_);
         Camera c;
         c.position = f.Vec3("position", c.position);
         if (f.Has("look_at") && f.Has("forward"))
@@ -204,9 +76,9 @@ class SceneParser {
         if (!j.is_object())
             throw InputError(
                 file_, "materials",
-                std::string("expected an object of named materials, got ") + TypeName(j));
+                std::string("expected an object of named materials, got ") + j.type_name());
         for (const auto& [name, value] : j.items()) {
-            Fields f(value, "materials." + name, file_);
+            JsonFields f(value, "materials." + name, file_);
             Material m;
             m.diffuse = f.Colour("diffuse", m.diffuse);
             m.ambient = f.Colour("ambient", 0.1f * m.diffuse);
@@ -225,9 +97,10 @@ class SceneParser {
 
     void ParseLights(const Json& j, RenderScene& scene) {
         if (!j.is_array())
-            throw InputError(file_, "lights", std::string("expected an array, got ") + TypeName(j));
+            throw InputError(file_, "lights",
+                             std::string("expected an array, got ") + j.type_name());
         for (size_t i = 0; i < j.size(); ++i) {
-            Fields f(j[i], "lights[" + std::to_string(i) + "]", file_);
+            JsonFields f(j[i], JsonIndexed("lights", i), file_);
             Light light;
             const std::string type = f.String("type");
             if (type == "directional") {
@@ -250,10 +123,11 @@ class SceneParser {
 
     void ParseModels(const Json& j, RenderScene& scene) {
         if (!j.is_object())
-            throw InputError(file_, "models",
-                             std::string("expected an object of named models, got ") + TypeName(j));
+            throw InputError(
+                file_, "models",
+                std::string("expected an object of named models, got ") + j.type_name());
         for (const auto& [name, value] : j.items()) {
-            Fields f(value, "models." + name, file_);
+            JsonFields f(value, "models." + name, file_);
             if (value.contains("type") && value["type"] == "gltf") {
                 // A glTF scene: its meshes, materials and textures are added once here; every
                 // instance places its node hierarchy again.
@@ -264,85 +138,22 @@ class SceneParser {
                 out_->gltfFiles.push_back(gltfAssets_[name]->summary);
                 continue;
             }
-            shape_ = {};
-            modelIds_[name] = scene.AddBlas(std::make_shared<const Blas>(ParseModel(f)));
-            modelShapes_[modelIds_[name]] = shape_;
+            ModelShape shape;
+            modelIds_[name] =
+                scene.AddBlas(std::make_shared<const Blas>(ParseSceneModel(f, baseDir_, shape)));
+            modelShapes_[modelIds_[name]] = shape;
             modelNames_[modelIds_[name]] = name;
             out_->modelNames.push_back(name);
             f.Finish();
         }
     }
 
-    Blas ParseModel(Fields& f) {
-        BvhBuildOptions options;
-        const std::string builder = f.String("builder", "binned");
-        if (!ParseBuilder(builder, &options.builder))
-            f.Fail("builder",
-                   "unknown builder \"" + builder + "\" (expected binned, sweep or centroid)");
-        const std::string type = f.String("type");
-        if (type == "sphere") {
-            const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
-            shape_ = {ModelShape::kSphere, s.radius, vec3(0.0f)};
-            return BuildSphereBlas(std::span<const Sphere>(&s, 1), options);
-        }
-        if (type == "spheres") return BuildSphereBlas(ParseSphereList(f), options);
-        TriangleMesh mesh;
-        if (type == "box") {
-            mesh = MakeBoxMesh(f.Vec3("size", vec3(1.0f)));
-            shape_ = {ModelShape::kBox, 0.0f, 0.5f * mesh.Bounds().Extent()};
-            const vec3 size = mesh.Bounds().Extent();
-            if (!(size.x > 0 && size.y > 0 && size.z > 0))
-                f.Fail("size", "box sides must be greater than 0");
-        } else if (type == "plane") {
-            const vec3 size = f.Vec3("size", vec3(10.0f, 0.0f, 10.0f));
-            if (!(size.x > 0 && size.z > 0))
-                f.Fail("size", "plane size x and z must be greater than 0");
-            mesh = MakePlaneMesh(size.x, size.z);
-            shape_ = {ModelShape::kPlane, 0.0f, vec3(0.0f)};
-        } else if (type == "teapot") {
-            const uint32_t resolution = f.Count("resolution", 1, 64, 6);
-            mesh =
-                TessellateTeapot(ResolveModelPath(f.String("file", "@models/teapot.inc"), baseDir_),
-                                 int(resolution));
-        } else if (type == "mesh") {
-            // Meshes come through the BLAS cache; fitting moves the built BLAS exactly as
-            // FitMesh would have moved the mesh's vertices.
-            MeshModel model = LoadMeshModel(ResolveModelPath(f.String("file"), baseDir_), options);
-            if (f.Has("fit")) FitBlas(model.blas, model.info.sourceBounds, f.Positive("fit"));
-            return std::move(model.blas);
-        } else {
-            f.Fail("type", "unknown model type \"" + type +
-                               "\" (expected sphere, spheres, box, plane, teapot, mesh or gltf)");
-        }
-        if (f.Has("fit")) FitMesh(mesh, f.Positive("fit"));
-        return BuildTriangleBlas(mesh, options);
-    }
-
-    std::vector<Sphere> ParseSphereList(Fields& f) {
-        const Json& list = f.Get("spheres");
-        if (!list.is_array() || list.empty())
-            f.Fail("spheres", "expected a non-empty array of [x, y, z, radius]");
-        std::vector<Sphere> spheres;
-        for (size_t i = 0; i < list.size(); ++i) {
-            const Json& s = list[i];
-            const std::string key = "spheres[" + std::to_string(i) + "]";
-            if (!s.is_array() || s.size() != 4) f.Fail(key, "expected [x, y, z, radius]");
-            for (const Json& v : s)
-                if (!v.is_number() || !std::isfinite(v.get<double>()))
-                    f.Fail(key, "expected finite numbers");
-            if (!(s[3].get<float>() > 0.0f)) f.Fail(key, "radius must be greater than 0");
-            spheres.push_back(
-                {vec3(s[0].get<float>(), s[1].get<float>(), s[2].get<float>()), s[3].get<float>()});
-        }
-        return spheres;
-    }
-
     void ParseInstances(const Json& j, LoadedScene& out) {
         if (!j.is_array())
             throw InputError(file_, "instances",
-                             std::string("expected an array, got ") + TypeName(j));
+                             std::string("expected an array, got ") + j.type_name());
         for (size_t i = 0; i < j.size(); ++i) {
-            Fields f(j[i], "instances[" + std::to_string(i) + "]", file_);
+            JsonFields f(j[i], JsonIndexed("instances", i), file_);
             out.entities.push_back(ParseEntity(f, out.scene));
             out.entities.back().sourceIndex = uint32_t(i);
             f.Finish();
@@ -359,7 +170,7 @@ class SceneParser {
     }
 
     // The fields an instance and a spawner share: model, material, pose, animation, rigid body.
-    EntityDesc ParseEntity(Fields& f, RenderScene& scene) {
+    EntityDesc ParseEntity(JsonFields& f, RenderScene& scene) {
         EntityDesc e;
         const std::string model = f.String("model");
         auto gltf = gltfAssets_.find(model);
@@ -370,7 +181,7 @@ class SceneParser {
             e.renderable = false;
             e.local = ParseTransform(f);
             if (f.Has("animate"))
-                e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local);
+                e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local, file_);
             return e;
         }
         auto modelIt = modelIds_.find(model);
@@ -389,7 +200,7 @@ class SceneParser {
         }
         e.local = ParseTransform(f);
         if (f.Has("animate"))
-            e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local);
+            e.animator = ParseAnimator(f.Get("animate"), f.Path("animate"), e.local, file_);
         if (f.Has("rigid_body")) {
             if (e.animator)
                 f.Fail("rigid_body", "an entity is either animated or simulated, not both");
@@ -398,115 +209,10 @@ class SceneParser {
         return e;
     }
 
-    // Motions apply in a fixed order: orbit, then spin, then bob.
-    physics::Animator ParseAnimator(const Json& j, const std::string& path,
-                                    const physics::LocalTransform& base) {
-        Fields f(j, path, file_);
-        physics::Animator a;
-        a.base = base;
-        if (f.Has("orbit")) {
-            Fields o(f.Get("orbit"), f.Path("orbit"), file_);
-            physics::Orbit orbit;
-            orbit.centre = o.Vec3("centre", base.translation);
-            orbit.radius = o.Positive("radius", 1.0f);
-            orbit.axis = NonZero(o, "axis", vec3(0, 1, 0));
-            orbit.period = o.Positive("period", 4.0f);
-            o.Finish();
-            a.motions.push_back(orbit);
-        }
-        if (f.Has("spin")) {
-            Fields sp(f.Get("spin"), f.Path("spin"), file_);
-            physics::Spin spin;
-            spin.axis = NonZero(sp, "axis", vec3(0, 1, 0));
-            spin.angularSpeed = sp.Number("speed", 1.0f);
-            sp.Finish();
-            a.motions.push_back(spin);
-        }
-        if (f.Has("bob")) {
-            Fields b(f.Get("bob"), f.Path("bob"), file_);
-            physics::Bob bob;
-            bob.amplitude = b.Number("amplitude", 0.25f);
-            bob.frequency = b.Positive("frequency", 0.5f);
-            bob.axis = NonZero(b, "axis", vec3(0, 1, 0));
-            b.Finish();
-            a.motions.push_back(bob);
-        }
-        if (f.Has("keyframes")) a.clip = ParseClip(f.Get("keyframes"), f.Path("keyframes"));
-        f.Finish();
-        if (a.motions.empty() && !a.clip)
-            f.Fail("", "give at least one of keyframes, orbit, spin, bob");
-        return a;
-    }
-
-    // keyframes: {"translation": [[t, x, y, z], ...], "rotation": [[t, degrees x, y, z], ...],
-    // "scale": [[t, x, y, z], ...], "interpolation": "step" | "linear" | "slerp", "loop": bool}.
-    // The clip sets the channels it has keys for; the motions apply after it.
-    std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std::string& path) {
-        Fields f(j, path, file_);
-        auto clip = std::make_shared<physics::KeyframeClip>();
-        physics::Interpolation mode = physics::Interpolation::kLinear;
-        const std::string interpolation = f.String("interpolation", "linear");
-        if (interpolation == "step")
-            mode = physics::Interpolation::kStep;
-        else if (interpolation == "slerp")
-            mode = physics::Interpolation::kSlerp;
-        else if (interpolation != "linear")
-            f.Fail("interpolation",
-                   "expected step, linear or slerp, got \"" + interpolation + "\"");
-        if (f.Has("loop")) {
-            if (!f.Get("loop").is_boolean()) f.Fail("loop", "expected true or false");
-            clip->wrap =
-                f.Get("loop").get<bool>() ? physics::WrapMode::kLoop : physics::WrapMode::kClamp;
-        }
-        auto keys = [&](const std::string& channel, auto&& add) {
-            if (!f.Has(channel)) return;
-            const Json& list = f.Get(channel);
-            if (!list.is_array() || list.empty())
-                f.Fail(channel, "expected a non-empty array of [time, x, y, z]");
-            for (size_t k = 0; k < list.size(); ++k) {
-                const Json& key = list[k];
-                const std::string at = channel + "[" + std::to_string(k) + "]";
-                if (!key.is_array() || key.size() != 4) f.Fail(at, "expected [time, x, y, z]");
-                for (const Json& v : key)
-                    if (!v.is_number() || !std::isfinite(v.get<double>()))
-                        f.Fail(at, "expected finite numbers");
-                add(key[0].get<float>(),
-                    vec3(key[1].get<float>(), key[2].get<float>(), key[3].get<float>()));
-            }
-        };
-        keys("translation", [&](float t, vec3 v) {
-            clip->translation.times.push_back(t);
-            clip->translation.values.push_back(v);
-        });
-        keys("rotation", [&](float t, vec3 degrees) {
-            clip->rotation.times.push_back(t);
-            clip->rotation.values.push_back(EulerDegrees(degrees));
-        });
-        keys("scale", [&](float t, vec3 v) {
-            clip->scale.times.push_back(t);
-            clip->scale.values.push_back(v);
-        });
-        clip->translation.interpolation = clip->scale.interpolation = mode;
-        clip->rotation.interpolation =
-            mode == physics::Interpolation::kLinear ? physics::Interpolation::kSlerp : mode;
-        f.Finish();
-        if (clip->translation.Empty() && clip->rotation.Empty() && clip->scale.Empty())
-            f.Fail("", "give keys for at least one of translation, rotation, scale");
-        if (const std::string problem = physics::ValidateClip(*clip); !problem.empty())
-            f.Fail("", problem);
-        return clip;
-    }
-
-    vec3 NonZero(Fields& f, const std::string& key, vec3 fallback) {
-        const vec3 v = f.Vec3(key, fallback);
-        if (glm::length(v) == 0.0f) f.Fail(key, "must not be the zero vector");
-        return glm::normalize(v);
-    }
-
     // The collider follows the model: a sphere (radius x largest scale), a box (half size x
     // scale) or a plane (its normal turned by the rotation).
     void ParseRigidBody(const Json& j, const std::string& path, EntityDesc& e) {
-        Fields f(j, path, file_);
+        JsonFields f(j, path, file_);
         physics::RigidBody body;
         body.mass = f.InRange("mass", 0.0f, 1e9f, body.mass);
         if (f.Has("static") && f.Get("static").is_boolean() && f.Get("static").get<bool>())
@@ -541,9 +247,9 @@ class SceneParser {
     void ParseSpawners(const Json& j, LoadedScene& out) {
         if (!j.is_array())
             throw InputError(file_, "spawners",
-                             std::string("expected an array, got ") + TypeName(j));
+                             std::string("expected an array, got ") + j.type_name());
         for (size_t i = 0; i < j.size(); ++i) {
-            Fields f(j[i], "spawners[" + std::to_string(i) + "]", file_);
+            JsonFields f(j[i], JsonIndexed("spawners", i), file_);
             EntityDesc proto = ParseEntity(f, out.scene);
             if (gltf_)
                 f.Fail("model", "spawners place single models, and this one is a glTF scene");
@@ -569,8 +275,8 @@ class SceneParser {
         }
     }
 
-    std::vector<vec3> GridPlaces(Fields& f, const EntityDesc& proto) {
-        Fields g(f.Get("grid"), f.Path("grid"), file_);
+    std::vector<vec3> GridPlaces(JsonFields& f, const EntityDesc& proto) {
+        JsonFields g(f.Get("grid"), f.Path("grid"), file_);
         const vec3 count = g.Vec3("count");
         const float spacing = g.Positive("spacing", 1.5f);
         g.Finish();
@@ -588,8 +294,8 @@ class SceneParser {
 
     // Jittered cells of a grid that fills [min, max], chosen in a seeded order: places never
     // overlap, so a rain of bodies starts without interpenetration.
-    std::vector<vec3> RainPlaces(Fields& f, const LoadedScene& out, const EntityDesc& proto) {
-        Fields r(f.Get("rain"), f.Path("rain"), file_);
+    std::vector<vec3> RainPlaces(JsonFields& f, const LoadedScene& out, const EntityDesc& proto) {
+        JsonFields r(f.Get("rain"), f.Path("rain"), file_);
         const uint32_t count = r.Count("count", 1, 1000000, 100);
         const vec3 lo = r.Vec3("min"), hi = r.Vec3("max");
         const uint32_t seed = r.Count("seed", 0, UINT32_MAX - 1, 1);
@@ -629,7 +335,7 @@ class SceneParser {
         if (!j.is_array() || j.empty())
             throw InputError(file_, "camera_path", "expected a non-empty array of camera keys");
         for (size_t i = 0; i < j.size(); ++i) {
-            Fields f(j[i], "camera_path[" + std::to_string(i) + "]", file_);
+            JsonFields f(j[i], JsonIndexed("camera_path", i), file_);
             CameraKey key;
             key.time = f.InRange("time", 0.0f, 1e6f, 0.0f);
             key.position = f.Vec3("position");
@@ -643,7 +349,7 @@ class SceneParser {
     }
 
     // position * rotation (degrees about x, then y, then z) * scale.
-    physics::LocalTransform ParseTransform(Fields& f) {
+    physics::LocalTransform ParseTransform(JsonFields& f) {
         const vec3 position = f.Vec3("position", vec3(0.0f));
         const vec3 rotation = f.Vec3("rotation", vec3(0.0f));
         vec3 scale(1.0f);
@@ -655,7 +361,7 @@ class SceneParser {
                 scale = f.Vec3("scale");
             } else {
                 f.Fail("scale", std::string("expected a number or an array of 3 numbers, got ") +
-                                    TypeName(value));
+                                    value.type_name());
             }
             if (!(scale.x > 0 && scale.y > 0 && scale.z > 0))
                 f.Fail("scale", "scale factors must be greater than 0");
@@ -667,12 +373,6 @@ class SceneParser {
         return t;
     }
 
-    struct ModelShape {
-        enum Kind { kOther, kSphere, kBox, kPlane } kind = kOther;
-        float radius = 0.0f;
-        vec3 halfExtents{0.0f};
-    };
-
     std::string file_, baseDir_;
     std::map<std::string, uint32_t> materialIds_, modelIds_;
     std::map<uint32_t, ModelShape> modelShapes_;
@@ -680,69 +380,11 @@ class SceneParser {
     std::map<std::string, std::shared_ptr<const GltfAsset>> gltfAssets_;
     const GltfAsset* gltf_ = nullptr;  // the glTF model of the entity just parsed, if it is one
     bool hasCamera_ = false;           // the file or an included glTF has set the camera
-    ModelShape shape_;                 // of the model being parsed
     LoadedScene* out_ = nullptr;       // the scene being parsed
     uint32_t defaultMaterial_ = UINT32_MAX;
 };
 
 }  // namespace
-
-std::vector<glm::mat4> InitialWorlds(const LoadedScene& out) {
-    std::vector<glm::mat4> worlds(out.entities.size());
-    for (size_t i = 0; i < out.entities.size(); ++i) {
-        const EntityDesc& e = out.entities[i];
-        const glm::mat4 local = physics::ToMatrix(e.local);
-        worlds[i] = e.parent >= 0 ? worlds[size_t(e.parent)] * local : local;
-    }
-    return worlds;
-}
-
-void FinishLoadedScene(LoadedScene& out, const std::string& file) {
-    // Entities with parents are all of time 0 and come before every spawner's, so the stable
-    // sort moves none of them nor their parents.
-    std::stable_sort(
-        out.entities.begin(), out.entities.end(),
-        [](const EntityDesc& a, const EntityDesc& b) { return a.spawnTime < b.spawnTime; });
-    const std::vector<glm::mat4> worlds = InitialWorlds(out);
-    for (size_t i = 0; i < out.entities.size(); ++i) {
-        const EntityDesc& e = out.entities[i];
-        if (e.renderable) {
-            const Aabb b = out.scene.blases[e.blasId]->bounds;
-            for (int corner = 0; corner < 8; ++corner) {
-                const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
-                             (corner & 4) ? b.max.z : b.min.z);
-                const glm::vec4 w = worlds[i] * glm::vec4(p, 1.0f);
-                if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
-                    throw InputError(
-                        file,
-                        std::string(e.sourceArray) + "[" + std::to_string(e.sourceIndex) + "]",
-                        "its world bounds are not finite (position, scale or model "
-                        "size too large)");
-            }
-        }
-        out.dynamic |= e.animator.has_value() || e.body.has_value() || e.spawnTime > 0.0f;
-        if (e.spawnTime == 0.0f && e.renderable)
-            out.scene.AddInstance(e.blasId, e.materialId, worlds[i]);
-    }
-    out.dynamic |= !out.cameraPath.empty();
-    if (!out.cameraPath.empty()) out.scene.camera = CameraAt(out, 0.0f);
-    out.scene.BuildTlas();
-}
-
-Camera CameraAt(const LoadedScene& loaded, float t) {
-    Camera camera = loaded.scene.camera;
-    const std::vector<CameraKey>& path = loaded.cameraPath;
-    if (path.empty()) return camera;
-    size_t next = 0;
-    while (next < path.size() && path[next].time <= t) ++next;
-    const CameraKey& a = path[next == 0 ? 0 : next - 1];
-    const CameraKey& b = path[next == path.size() ? path.size() - 1 : next];
-    const float span = b.time - a.time;
-    const float w = span > 0.0f ? std::clamp((t - a.time) / span, 0.0f, 1.0f) : 0.0f;
-    camera.position = glm::mix(a.position, b.position, w);
-    camera.forward = glm::mix(a.lookAt, b.lookAt, w) - camera.position;
-    return camera;
-}
 
 LoadedScene ParseScene(const std::string& text, const std::string& name,
                        const std::string& baseDir) {

@@ -1,80 +1,15 @@
 #pragma once
 // rtrt scene files (JSON; the format is documented in the README).
-#include <optional>
 #include <string>
-#include <vector>
 
-#include "engine/physics_anim/animator.h"
-#include "engine/physics_anim/collider.h"
-#include "engine/physics_anim/rigid_body.h"
-#include "engine/render_rt/render_scene.h"
+#include "game/scene/loaded_scene.h"
 
 namespace rtrt {
-
-// One entity a scene file asks for: an instance of a model, posed, maybe animated or simulated,
-// appearing at spawnTime seconds (spawners and the timeline give later times).
-struct EntityDesc {
-    uint32_t blasId = 0;
-    uint32_t materialId = 0;
-    // A transform-only entity (a glTF node, the root of an included glTF scene) has no instance.
-    bool renderable = true;
-    // The entity whose transform this one's local pose is relative to: an index into
-    // LoadedScene::entities, always smaller than this entity's (parents come first), or -1.
-    int32_t parent = -1;
-    // Where the entity came from, for messages: sourceArray[sourceIndex] ("instances", 3).
-    const char* sourceArray = "instances";
-    uint32_t sourceIndex = 0;
-    physics::LocalTransform local;
-    std::optional<physics::Animator> animator;
-    std::optional<physics::RigidBody> body;  // with collider, derived from the model's shape
-    physics::Collider collider;
-    float spawnTime = 0.0f;
-};
-
-// A camera key of the scene's camera_path; the camera moves linearly between keys.
-struct CameraKey {
-    float time = 0.0f;
-    vec3 position{0.0f};
-    vec3 lookAt{0.0f};
-};
-
-// What a glTF file brought into a scene (rtrt info prints it).
-struct GltfSummary {
-    std::string file;
-    uint32_t nodes = 0, meshes = 0, primitives = 0, vertices = 0, triangles = 0;
-    uint32_t materials = 0, textures = 0, cameras = 0, lights = 0, animations = 0;
-    uint32_t animatedNodes = 0;
-    float animationSeconds = 0.0f;  // of the animation played (the first)
-};
-
-struct LoadedScene {
-    // The scene at time 0: every entity with spawnTime 0 in its initial pose, TLAS built.
-    RenderScene scene;
-    std::optional<uint32_t> width, height;   // the file's "image" size, if it gives one
-    std::vector<EntityDesc> entities;        // everything the file places or spawns, by time
-    std::vector<CameraKey> cameraPath;       // empty: the camera stays where "camera" puts it
-    bool dynamic = false;                    // any animator, rigid body, later spawn or camera path
-    std::vector<std::string> modelNames;     // by BLAS id
-    std::vector<std::string> materialNames;  // by material id (a grey default, if used, comes last)
-    std::vector<GltfSummary> gltfFiles;      // the glTF files loaded or included
-};
-
-// The camera of a scene at time t (its camera_path if it has one).
-Camera CameraAt(const LoadedScene& scene, float t);
 
 // Reads a scene file (or a glTF file, .gltf or .glb: gltf_import.h) and builds its BLASes and
 // TLAS. Throws InputError naming the file, the field (e.g. "instances[2].scale") and the reason
 // for anything malformed.
 LoadedScene LoadSceneFile(const std::string& path);
-
-// The last step of loading: entities ordered by spawn time (parents stay ahead of their
-// children), an instance for every renderable entity of time 0 at its world pose, the TLAS.
-// Throws InputError(file, e.g. "instances[3]", ...) when an entity's world bounds are not finite
-// (positions and scales each in range can still multiply beyond float range).
-void FinishLoadedScene(LoadedScene& out, const std::string& file);
-
-// The world matrix of every entity in its initial pose (parent chains followed).
-std::vector<glm::mat4> InitialWorlds(const LoadedScene& out);
 
 // Same, from JSON text; `name` stands for the file in messages and `baseDir` resolves paths.
 LoadedScene ParseScene(const std::string& text, const std::string& name,

@@ -13,6 +13,7 @@
 
 #include "engine/core/error.h"
 #include "game/runtime/world.h"
+#include "game/scene/scene_file.h"
 #include "tests/gltf/gltf_builder.h"
 #include "tests/test_util.h"
 

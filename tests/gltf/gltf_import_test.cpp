@@ -16,6 +16,7 @@
 #include "engine/core/error.h"
 #include "engine/render_rt/renderer.h"
 #include "game/runtime/world.h"
+#include "game/scene/scene_file.h"
 #include "tests/gltf/gltf_builder.h"
 #include "tests/test_util.h"
 

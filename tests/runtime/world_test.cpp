@@ -9,6 +9,7 @@
 #include "engine/core/error.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
+#include "game/scene/scene_file.h"
 #include "tests/test_util.h"
 
 namespace rtrt {

@@ -1,0 +1,52 @@
+#pragma once
+// What the OBJ and PLY readers share: record errors, number parsing and file normals.
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/core/math.h"
+
+namespace rtrt::mesh_text {
+
+constexpr uint64_t kMaxVertices = std::numeric_limits<uint32_t>::max();
+
+// A problem inside one record (an OBJ line, a PLY element); the caller knows which record it is
+// and rethrows it as an InputError.
+struct RecordError {
+    std::string reason;
+};
+
+inline bool IsSpace(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
+
+// Splits off the next whitespace-separated word of LINE.
+std::string_view NextWord(std::string_view& line);
+
+// TOKEN in quotes for a message, cut short when long.
+std::string Quote(std::string_view token);
+
+// Parses all of TOKEN as a number; from_chars rejects the leading '+' that some writers emit.
+template <class T>
+bool ParseNumber(std::string_view token, T& value) {
+    if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
+    const char* end = token.data() + token.size();
+    auto [next, ec] = std::from_chars(token.data(), end, value);
+    return ec == std::errc() && next == end;
+}
+
+// TOKEN as a float; RecordError when it is not a number.
+float ParseCoordinate(std::string_view token);
+
+inline bool IsFinite(vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Normalises normals read from a file; false when one of them has no direction.
+bool NormalizeFileNormals(std::vector<vec3>& normals);
+
+}  // namespace rtrt::mesh_text

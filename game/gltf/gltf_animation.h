@@ -1,0 +1,17 @@
+#pragma once
+// glTF animation: node TRS channels as keyframe clips.
+#include <cstdint>
+#include <vector>
+
+#include "game/gltf/gltf_document.h"
+#include "game/gltf/gltf_import.h"
+
+namespace rtrt {
+
+// The first animation's translation, rotation and scale channels as per-node keyframe clips,
+// looping over the animation's duration.
+// NODESLOT maps glTF nodes to asset.nodes (ReadGltfNodes); channels of nodes outside the scene
+// shown are dropped.
+void ReadGltfAnimation(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, GltfAsset& asset);
+
+}  // namespace rtrt

@@ -1,0 +1,54 @@
+#include "game/gltf/gltf_document.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "engine/core/error.h"
+#include "game/gltf/gltf_image_loader.h"
+#include "game/gltf/gltf_precheck.h"
+#include "game/scene/json_fields.h"
+
+namespace rtrt {
+namespace {
+
+// tinygltf's messages can span lines and start with "Error: "; the CLI prints one line.
+std::string OneLine(std::string text) {
+    for (char& c : text)
+        if (c == '\n' || c == '\r') c = ' ';
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    if (text.rfind("Error: ", 0) == 0) text = text.substr(7);
+    return text.empty() ? "tinygltf could not load the file" : text;
+}
+
+}  // namespace
+
+GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
+    const GltfFileBytes checked = ReadCheckedGltf(file_);
+    const std::string& bytes = checked.bytes;
+    const bool binary = checked.binary;
+    const std::string dir = std::filesystem::path(file_).parent_path().string();
+    tinygltf::TinyGLTF loader;
+    GltfImageFailure imageFailure;
+    InstallGltfImageLoader(loader, &imageFailure);
+    std::string err, warn;
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+    const bool ok =
+        binary ? loader.LoadBinaryFromMemory(&model_, &err, &warn, data, unsigned(bytes.size()),
+                                             dir.empty() ? "." : dir)
+               : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
+                                            unsigned(bytes.size()), dir.empty() ? "." : dir);
+    if (imageFailure.index >= 0)
+        Fail(JsonIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
+    if (!ok || !err.empty()) Fail("", OneLine(err));
+}
+
+void GltfDocument::Fail(const std::string& field, const std::string& reason) const {
+    throw InputError(file_, field, reason);
+}
+
+void GltfDocument::Warn(const std::string& kind, const std::string& text) {
+    if (!warned_.insert(kind).second) return;
+    std::fprintf(stderr, "rtrt: warning: %s: %s\n", file_.c_str(), text.c_str());
+}
+
+}  // namespace rtrt

@@ -1,0 +1,68 @@
+// Placing a glTF asset in a scene (InstantiateGltf, gltf_import.h): its nodes as entities, its
+// lights and first camera at their world poses.
+#include <glm/glm.hpp>
+
+#include "game/gltf/gltf_import.h"
+
+namespace rtrt {
+
+std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, int32_t parent,
+                                      const glm::mat4& parentWorld) {
+    std::optional<Camera> camera;
+    std::vector<int32_t> entity(asset.nodes.size());
+    std::vector<glm::mat4> world(asset.nodes.size());
+    for (size_t i = 0; i < asset.nodes.size(); ++i) {
+        const GltfNode& node = asset.nodes[i];
+        const int32_t up = node.parent >= 0 ? entity[size_t(node.parent)] : parent;
+        world[i] = (node.parent >= 0 ? world[size_t(node.parent)] : parentWorld) *
+                   physics::ToMatrix(node.local);
+        EntityDesc e;
+        e.renderable = false;
+        e.parent = up;
+        e.sourceArray = "nodes";
+        e.sourceIndex = node.source;
+        e.local = node.local;
+        if (node.clip) {
+            physics::Animator animator;
+            animator.clip = node.clip;
+            animator.base = node.local;
+            e.animator = animator;
+        }
+        entity[i] = int32_t(out.entities.size());
+        out.entities.push_back(e);
+        for (const auto& [blas, material] : node.primitives) {
+            EntityDesc p;
+            p.blasId = blas;
+            p.materialId = material;
+            p.parent = entity[i];
+            p.sourceArray = "nodes";
+            p.sourceIndex = node.source;
+            out.entities.push_back(p);
+        }
+        const vec3 origin = vec3(world[i] * glm::vec4(0, 0, 0, 1));
+        if (node.light >= 0) {
+            const GltfLight& l = asset.lights[size_t(node.light)];
+            Light light;
+            light.type = l.type;
+            light.color = l.color;
+            // Directional lights shine along the node's -z: the direction toward them is +z.
+            const vec3 toward = vec3(world[i] * glm::vec4(0, 0, 1, 0));
+            light.vector =
+                l.type == LightType::kPoint
+                    ? origin
+                    : (glm::length(toward) > 0.0f ? glm::normalize(toward) : vec3(0, 0, 1));
+            out.scene.lights.push_back(light);
+        }
+        if (node.camera >= 0 && !camera) {
+            Camera c;
+            c.position = origin;
+            c.forward = vec3(world[i] * glm::vec4(0, 0, -1, 0));
+            c.up = vec3(world[i] * glm::vec4(0, 1, 0, 0));
+            c.fovYDegrees = asset.cameras[size_t(node.camera)].fovYDegrees;
+            if (glm::length(glm::cross(c.forward, c.up)) > 0.0f) camera = c;
+        }
+    }
+    return camera;
+}
+
+}  // namespace rtrt

@@ -1,0 +1,107 @@
+#include "game/gltf/gltf_meshes.h"
+
+#include <filesystem>
+#include <memory>
+
+#include "engine/bvh/blas/blas.h"
+#include "game/gltf/gltf_accessors.h"
+#include "game/scene/json_fields.h"
+
+namespace rtrt {
+
+namespace fs = std::filesystem;
+
+std::vector<std::pair<uint32_t, uint32_t>> GltfMeshes::Primitives(size_t mesh) {
+    auto found = meshPrimitives_.find(mesh);
+    if (found != meshPrimitives_.end()) return found->second;
+    std::vector<std::pair<uint32_t, uint32_t>> result;
+    const tinygltf::Mesh& m = model_.meshes[mesh];
+    for (size_t p = 0; p < m.primitives.size(); ++p) {
+        const tinygltf::Primitive& prim = m.primitives[p];
+        const std::string at = JsonIndexed(JsonIndexed("meshes", mesh) + ".primitives", p);
+        if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
+            doc_.Warn("mode", at + ".mode: mode " + std::to_string(prim.mode) +
+                                  " (points, lines, strips or fans) is not supported; such "
+                                  "primitives are skipped");
+            continue;
+        }
+        if (!prim.targets.empty())
+            doc_.Warn("morph", at + ".targets: morph targets are not supported; meshes keep "
+                                    "their base shape");
+        TriangleMesh triangles;
+        try {
+            triangles = ReadPrimitive(prim, at);
+        } catch (const GltfUnsupported& u) {
+            doc_.Warn("unsupported:" + u.what, at + ": " + u.what + "; the primitive is skipped");
+            continue;
+        }
+        if (triangles.indices.empty()) continue;
+        summary_.primitives++;
+        summary_.vertices += uint32_t(triangles.positions.size());
+        summary_.triangles += uint32_t(triangles.indices.size());
+        const uint32_t blas =
+            out_.scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(triangles)));
+        out_.modelNames.push_back(fs::path(doc_.File()).filename().string() + " " + at +
+                                  (m.name.empty() ? "" : " (" + m.name + ")"));
+        result.push_back({blas, materials_.Id(prim.material, at + ".material")});
+    }
+    meshPrimitives_[mesh] = result;
+    return result;
+}
+
+TriangleMesh GltfMeshes::ReadPrimitive(const tinygltf::Primitive& prim, const std::string& at) {
+    TriangleMesh mesh;
+    auto attribute = [&](const char* name) {
+        auto it = prim.attributes.find(name);
+        return it == prim.attributes.end() ? -1 : it->second;
+    };
+    const int position = attribute("POSITION");
+    if (position < 0) throw GltfUnsupported{"a primitive without POSITION (compressed?)"};
+    mesh.positions =
+        ReadGltfFloats<3>(doc_, position, at + ".attributes.POSITION", TINYGLTF_TYPE_VEC3);
+    const size_t vertices = mesh.positions.size();
+    if (const int normal = attribute("NORMAL"); normal >= 0) {
+        mesh.normals =
+            ReadGltfFloats<3>(doc_, normal, at + ".attributes.NORMAL", TINYGLTF_TYPE_VEC3);
+        if (mesh.normals.size() != vertices)
+            doc_.Fail(at + ".attributes.NORMAL", "count differs from POSITION's");
+        for (vec3& n : mesh.normals) {
+            const float length = glm::length(n);
+            n = length > 0.0f ? n / length : vec3(0, 1, 0);
+        }
+    }
+    if (const int uv = attribute("TEXCOORD_0"); uv >= 0) {
+        mesh.uvs = ReadGltfFloats<2>(doc_, uv, at + ".attributes.TEXCOORD_0", TINYGLTF_TYPE_VEC2);
+        if (mesh.uvs.size() != vertices)
+            doc_.Fail(at + ".attributes.TEXCOORD_0", "count differs from POSITION's");
+    }
+    std::vector<uint32_t> indices;
+    if (prim.indices >= 0) {
+        const AccessorView a =
+            GltfAccessor(doc_, prim.indices, at + ".indices", {TINYGLTF_TYPE_SCALAR});
+        if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            doc_.Fail(JsonIndexed("accessors", size_t(prim.indices)) + ".componentType",
+                      "indices must be unsigned bytes, shorts or ints");
+        indices.resize(a.count);
+        for (size_t i = 0; i < a.count; ++i) {
+            indices[i] = a.Index(i);
+            if (indices[i] >= vertices)
+                doc_.Fail(at + ".indices", "index " + std::to_string(i) + " is " +
+                                               std::to_string(indices[i]) + ", out of range (" +
+                                               std::to_string(vertices) + " vertices)");
+        }
+    } else {
+        indices.resize(vertices);
+        for (size_t i = 0; i < vertices; ++i) indices[i] = uint32_t(i);
+    }
+    if (indices.size() % 3 != 0)
+        doc_.Fail(prim.indices >= 0 ? at + ".indices" : at + ".attributes.POSITION",
+                  std::to_string(indices.size()) + " indices do not make whole triangles");
+    for (size_t i = 0; i < indices.size(); i += 3)
+        mesh.indices.push_back({indices[i], indices[i + 1], indices[i + 2]});
+    return mesh;
+}
+
+}  // namespace rtrt

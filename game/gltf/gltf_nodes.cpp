@@ -1,0 +1,243 @@
+#include "game/gltf/gltf_nodes.h"
+
+#include <cmath>
+#include <glm/gtc/quaternion.hpp>
+#include <string>
+#include <utility>
+
+#include "game/scene/json_fields.h"
+
+namespace rtrt {
+namespace {
+
+// The nodes of the scene shown: the default scene's roots, else the first scene's, else
+// every node without a parent.
+std::vector<int> Roots(GltfDocument& doc, const std::vector<int>& parentOf) {
+    const tinygltf::Model& model = doc.Model();
+    std::vector<int> roots;
+    const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (model.defaultScene >= int(model.scenes.size()))
+        doc.Fail("scene", "scene " + std::to_string(model.defaultScene) + " out of range");
+    if (!model.scenes.empty()) {
+        const std::vector<int>& nodes = model.scenes[size_t(sceneIndex)].nodes;
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            const std::string field =
+                JsonIndexed(JsonIndexed("scenes", size_t(sceneIndex)) + ".nodes", i);
+            if (nodes[i] < 0 || size_t(nodes[i]) >= model.nodes.size())
+                doc.Fail(field, "node " + std::to_string(nodes[i]) + " out of range");
+            if (parentOf[nodes[i]] >= 0)
+                doc.Fail(field, "node " + std::to_string(nodes[i]) +
+                                    " is not a root (its parent is node " +
+                                    std::to_string(parentOf[nodes[i]]) + ")");
+            roots.push_back(nodes[i]);
+        }
+        if (model.scenes.size() > 1)
+            doc.Warn("scenes", "scenes: " + std::to_string(model.scenes.size()) +
+                                   " scenes; rtrt shows scene " + std::to_string(sceneIndex));
+    } else {
+        for (size_t i = 0; i < model.nodes.size(); ++i)
+            if (parentOf[i] < 0) roots.push_back(int(i));
+    }
+    return roots;
+}
+
+// A node matrix as translation, rotation and scale (rtrt's LocalTransform); a shear is lost,
+// with a warning.
+physics::LocalTransform Decompose(GltfDocument& doc, const std::vector<double>& m,
+                                  const std::string& field) {
+    glm::mat4 matrix;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) matrix[c][r] = float(m[size_t(c) * 4 + size_t(r)]);
+    physics::LocalTransform t;
+    t.translation = vec3(matrix[3]);
+    glm::mat3 basis(matrix);
+    t.scale = vec3(glm::length(basis[0]), glm::length(basis[1]), glm::length(basis[2]));
+    if (!(t.scale.x > 0.0f && t.scale.y > 0.0f && t.scale.z > 0.0f))
+        doc.Fail(field, "the matrix is singular (a zero scale)");
+    if (glm::determinant(basis) < 0.0f) t.scale.x = -t.scale.x;
+    for (int c = 0; c < 3; ++c) basis[c] /= t.scale[c];
+    const float shear = std::fabs(glm::dot(basis[0], basis[1])) +
+                        std::fabs(glm::dot(basis[1], basis[2])) +
+                        std::fabs(glm::dot(basis[0], basis[2]));
+    if (shear > 1e-3f || m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0)
+        doc.Warn("shear", field +
+                              ": shear or projection is not supported; the node keeps its "
+                              "translation, rotation and scale");
+    t.rotation = glm::normalize(glm::quat_cast(basis));
+    return t;
+}
+
+physics::LocalTransform NodeTransform(GltfDocument& doc, size_t index) {
+    const tinygltf::Model& model = doc.Model();
+    const tinygltf::Node& node = model.nodes[index];
+    const std::string at = JsonIndexed("nodes", index);
+    auto finite = [&](const std::vector<double>& values, const char* field, size_t size) {
+        if (!values.empty() && values.size() != size)
+            doc.Fail(at + "." + field, "expected " + std::to_string(size) + " numbers");
+        for (double v : values)
+            if (!FiniteFloat(v))
+                doc.Fail(at + "." + field, "a value is NaN or infinite (or beyond float range)");
+    };
+    finite(node.translation, "translation", 3);
+    finite(node.rotation, "rotation", 4);
+    finite(node.scale, "scale", 3);
+    finite(node.matrix, "matrix", 16);
+    physics::LocalTransform t;
+    if (!node.matrix.empty()) return Decompose(doc, node.matrix, at + ".matrix");
+    if (!node.translation.empty())
+        t.translation = vec3(node.translation[0], node.translation[1], node.translation[2]);
+    if (!node.rotation.empty()) {
+        // Normalised in double: components near float's range would overflow the length.
+        const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+        if (!(glm::length(q) > 0.0)) doc.Fail(at + ".rotation", "the quaternion is zero");
+        t.rotation = glm::quat(glm::normalize(q));
+    }
+    if (!node.scale.empty()) t.scale = vec3(node.scale[0], node.scale[1], node.scale[2]);
+    return t;
+}
+
+}  // namespace
+
+// Every node has at most one parent and no node is its own ancestor: the hierarchy is a
+// forest, so that entities can be created parents first.
+std::vector<int> CheckGltfNodeGraph(const GltfDocument& doc) {
+    const tinygltf::Model& model = doc.Model();
+    const size_t n = model.nodes.size();
+    std::vector<int> parentOf(n, -1);
+    for (size_t i = 0; i < n; ++i) {
+        const std::vector<int>& children = model.nodes[i].children;
+        for (size_t c = 0; c < children.size(); ++c) {
+            const int child = children[c];
+            const std::string field = JsonIndexed(JsonIndexed("nodes", i) + ".children", c);
+            if (child < 0 || size_t(child) >= n)
+                doc.Fail(field, "node " + std::to_string(child) + " out of range (" +
+                                    std::to_string(n) + " nodes)");
+            if (size_t(child) == i)
+                doc.Fail(field, "node " + std::to_string(i) + " is its own child");
+            if (parentOf[child] >= 0)
+                doc.Fail(field, "node " + std::to_string(child) + " has two parents (nodes " +
+                                    std::to_string(parentOf[child]) + " and " + std::to_string(i) +
+                                    ")");
+            parentOf[child] = int(i);
+        }
+    }
+    for (size_t i = 0; i < n; ++i) {
+        int at = int(i);
+        for (size_t steps = 0; at >= 0; ++steps) {
+            if (steps > n)
+                doc.Fail(JsonIndexed("nodes", i) + ".children",
+                         "node " + std::to_string(i) + " is its own ancestor (a cycle)");
+            at = parentOf[at];
+        }
+    }
+    return parentOf;
+}
+
+void ReadGltfCamerasAndLights(GltfDocument& doc, GltfAsset& asset) {
+    const tinygltf::Model& model = doc.Model();
+    for (size_t i = 0; i < model.cameras.size(); ++i) {
+        const tinygltf::Camera& c = model.cameras[i];
+        GltfCamera camera;
+        if (c.type == "perspective") {
+            const double fov = c.perspective.yfov * 180.0 / 3.14159265358979323846;
+            if (!(fov >= 1.0 && fov <= 179.0))
+                doc.Fail(JsonIndexed("cameras", i) + ".perspective.yfov",
+                         "must be between 1 and 179 degrees (in radians), got " +
+                             std::to_string(c.perspective.yfov));
+            camera.fovYDegrees = float(fov);
+            if (FiniteFloat(c.perspective.aspectRatio) && c.perspective.aspectRatio > 0.0)
+                camera.aspect = float(c.perspective.aspectRatio);
+        } else {
+            doc.Warn("orthographic", JsonIndexed("cameras", i) + ": " + c.type +
+                                         " cameras are not supported; skipped");
+            camera.fovYDegrees = 0.0f;  // marks it skipped
+        }
+        asset.cameras.push_back(camera);
+    }
+    for (size_t i = 0; i < model.lights.size(); ++i) {
+        const tinygltf::Light& l = model.lights[i];
+        const std::string at = "extensions.KHR_lights_punctual.lights[" + std::to_string(i) + "]";
+        GltfLight light;
+        if (l.type == "directional") {
+            light.type = LightType::kDirectional;
+        } else if (l.type == "point" || l.type == "spot") {
+            light.type = LightType::kPoint;
+            if (l.type == "spot")
+                doc.Warn("spot", at + ": spot lights are rendered as point lights (no cone)");
+        } else {
+            doc.Fail(at + ".type", "unknown light type \"" + l.type + "\"");
+        }
+        if (!l.color.empty() && l.color.size() != 3) doc.Fail(at + ".color", "expected 3 numbers");
+        for (double c : l.color)
+            if (!FiniteFloat(c) || c < 0.0 || c > 1e6) doc.Fail(at + ".color", "must be 0 to 1e6");
+        if (!FiniteFloat(l.intensity) || l.intensity < 0.0 || l.intensity > 1e6)
+            doc.Fail(at + ".intensity", "must be 0 to 1e6");
+        const vec3 color =
+            l.color.size() == 3 ? vec3(l.color[0], l.color[1], l.color[2]) : vec3(1.0f);
+        // rtrt lights do not fall off with distance: colour x intensity as it is.
+        light.color = color * float(l.intensity);
+        asset.lights.push_back(light);
+    }
+}
+
+std::vector<int32_t> ReadGltfNodes(GltfDocument& doc, const std::vector<int>& parentOf,
+                                   GltfMeshes& meshes, GltfAsset& asset) {
+    const tinygltf::Model& model = doc.Model();
+    const std::vector<int> roots = Roots(doc, parentOf);
+    std::vector<std::pair<int, int32_t>> stack;  // (node, index of its parent in asset nodes)
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, -1});
+    std::vector<int32_t> nodeSlot(model.nodes.size(), -1);
+    while (!stack.empty()) {
+        const auto [index, parent] = stack.back();
+        stack.pop_back();
+        const tinygltf::Node& node = model.nodes[size_t(index)];
+        GltfNode out;
+        out.parent = parent;
+        out.source = uint32_t(index);
+        out.local = NodeTransform(doc, size_t(index));
+        const std::string at = JsonIndexed("nodes", size_t(index));
+        if (node.mesh >= 0) {
+            if (size_t(node.mesh) >= model.meshes.size())
+                doc.Fail(at + ".mesh", "mesh " + std::to_string(node.mesh) + " out of range");
+            out.primitives = meshes.Primitives(size_t(node.mesh));
+        } else if (node.mesh < -1) {
+            doc.Fail(at + ".mesh", "mesh " + std::to_string(node.mesh) + " out of range");
+        }
+        if (node.camera >= 0) {
+            if (size_t(node.camera) >= model.cameras.size())
+                doc.Fail(at + ".camera", "camera " + std::to_string(node.camera) + " out of range");
+            if (asset.cameras[size_t(node.camera)].fovYDegrees > 0.0f) out.camera = node.camera;
+        }
+        auto light = node.extensions.find("KHR_lights_punctual");
+        if (light != node.extensions.end()) {
+            const tinygltf::Value& v = light->second.Get("light");
+            if (!v.IsInt() || v.GetNumberAsInt() < 0 ||
+                size_t(v.GetNumberAsInt()) >= asset.lights.size())
+                doc.Fail(at + ".extensions.KHR_lights_punctual.light",
+                         "expected the index of a light (there are " +
+                             std::to_string(asset.lights.size()) + ")");
+            out.light = v.GetNumberAsInt();
+        }
+        if (node.skin >= 0)
+            doc.Warn("skins", at + ".skin: skinning is not supported; skinned meshes keep "
+                                   "their bind pose");
+        if (!node.weights.empty())
+            doc.Warn("morph", at + ".weights: morph targets are not supported; meshes keep "
+                                   "their base shape");
+        nodeSlot[size_t(index)] = int32_t(asset.nodes.size());
+        asset.nodes.push_back(std::move(out));
+        const int32_t self = nodeSlot[size_t(index)];
+        for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
+            stack.push_back({*c, self});
+    }
+    asset.summary.nodes = uint32_t(asset.nodes.size());
+    asset.summary.cameras = 0;
+    asset.summary.lights = 0;
+    for (const GltfNode& n : asset.nodes) {
+        asset.summary.cameras += n.camera >= 0;
+        asset.summary.lights += n.light >= 0;
+    }
+    return nodeSlot;
+}
+
+}  // namespace rtrt

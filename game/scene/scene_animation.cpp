@@ -1,0 +1,123 @@
+#include "game/scene/scene_animation.h"
+
+#include <cmath>
+#include <glm/gtc/quaternion.hpp>
+#include <memory>
+
+namespace rtrt {
+namespace {
+
+vec3 NonZero(JsonFields& f, const std::string& key, vec3 fallback) {
+    const vec3 v = f.Vec3(key, fallback);
+    if (glm::length(v) == 0.0f) f.Fail(key, "must not be the zero vector");
+    return glm::normalize(v);
+}
+
+// keyframes: {"translation": [[t, x, y, z], ...], "rotation": [[t, degrees x, y, z], ...],
+// "scale": [[t, x, y, z], ...], "interpolation": "step" | "linear" | "slerp", "loop": bool}.
+// The clip sets the channels it has keys for; the motions apply after it.
+std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std::string& path,
+                                                       const std::string& file) {
+    JsonFields f(j, path, file);
+    auto clip = std::make_shared<physics::KeyframeClip>();
+    physics::Interpolation mode = physics::Interpolation::kLinear;
+    const std::string interpolation = f.String("interpolation", "linear");
+    if (interpolation == "step")
+        mode = physics::Interpolation::kStep;
+    else if (interpolation == "slerp")
+        mode = physics::Interpolation::kSlerp;
+    else if (interpolation != "linear")
+        f.Fail("interpolation", "expected step, linear or slerp, got \"" + interpolation + "\"");
+    if (f.Has("loop")) {
+        if (!f.Get("loop").is_boolean()) f.Fail("loop", "expected true or false");
+        clip->wrap =
+            f.Get("loop").get<bool>() ? physics::WrapMode::kLoop : physics::WrapMode::kClamp;
+    }
+    auto keys = [&](const std::string& channel, auto&& add) {
+        if (!f.Has(channel)) return;
+        const Json& list = f.Get(channel);
+        if (!list.is_array() || list.empty())
+            f.Fail(channel, "expected a non-empty array of [time, x, y, z]");
+        for (size_t k = 0; k < list.size(); ++k) {
+            const Json& key = list[k];
+            const std::string at = channel + "[" + std::to_string(k) + "]";
+            if (!key.is_array() || key.size() != 4) f.Fail(at, "expected [time, x, y, z]");
+            for (const Json& v : key)
+                if (!v.is_number() || !std::isfinite(v.get<double>()))
+                    f.Fail(at, "expected finite numbers");
+            add(key[0].get<float>(),
+                vec3(key[1].get<float>(), key[2].get<float>(), key[3].get<float>()));
+        }
+    };
+    keys("translation", [&](float t, vec3 v) {
+        clip->translation.times.push_back(t);
+        clip->translation.values.push_back(v);
+    });
+    keys("rotation", [&](float t, vec3 degrees) {
+        clip->rotation.times.push_back(t);
+        clip->rotation.values.push_back(EulerDegrees(degrees));
+    });
+    keys("scale", [&](float t, vec3 v) {
+        clip->scale.times.push_back(t);
+        clip->scale.values.push_back(v);
+    });
+    clip->translation.interpolation = clip->scale.interpolation = mode;
+    clip->rotation.interpolation =
+        mode == physics::Interpolation::kLinear ? physics::Interpolation::kSlerp : mode;
+    f.Finish();
+    if (clip->translation.Empty() && clip->rotation.Empty() && clip->scale.Empty())
+        f.Fail("", "give keys for at least one of translation, rotation, scale");
+    if (const std::string problem = physics::ValidateClip(*clip); !problem.empty())
+        f.Fail("", problem);
+    return clip;
+}
+
+}  // namespace
+
+glm::quat EulerDegrees(vec3 degrees) {
+    return glm::angleAxis(glm::radians(degrees.z), vec3(0, 0, 1)) *
+           glm::angleAxis(glm::radians(degrees.y), vec3(0, 1, 0)) *
+           glm::angleAxis(glm::radians(degrees.x), vec3(1, 0, 0));
+}
+
+// Motions apply in a fixed order: orbit, then spin, then bob.
+physics::Animator ParseAnimator(const Json& j, const std::string& path,
+                                const physics::LocalTransform& base, const std::string& file) {
+    JsonFields f(j, path, file);
+    physics::Animator a;
+    a.base = base;
+    if (f.Has("orbit")) {
+        JsonFields o(f.Get("orbit"), f.Path("orbit"), file);
+        physics::Orbit orbit;
+        orbit.centre = o.Vec3("centre", base.translation);
+        orbit.radius = o.Positive("radius", 1.0f);
+        orbit.axis = NonZero(o, "axis", vec3(0, 1, 0));
+        orbit.period = o.Positive("period", 4.0f);
+        o.Finish();
+        a.motions.push_back(orbit);
+    }
+    if (f.Has("spin")) {
+        JsonFields sp(f.Get("spin"), f.Path("spin"), file);
+        physics::Spin spin;
+        spin.axis = NonZero(sp, "axis", vec3(0, 1, 0));
+        spin.angularSpeed = sp.Number("speed", 1.0f);
+        sp.Finish();
+        a.motions.push_back(spin);
+    }
+    if (f.Has("bob")) {
+        JsonFields b(f.Get("bob"), f.Path("bob"), file);
+        physics::Bob bob;
+        bob.amplitude = b.Number("amplitude", 0.25f);
+        bob.frequency = b.Positive("frequency", 0.5f);
+        bob.axis = NonZero(b, "axis", vec3(0, 1, 0));
+        b.Finish();
+        a.motions.push_back(bob);
+    }
+    if (f.Has("keyframes")) a.clip = ParseClip(f.Get("keyframes"), f.Path("keyframes"), file);
+    f.Finish();
+    if (a.motions.empty() && !a.clip)
+        f.Fail("", "give at least one of keyframes, orbit, spin, bob");
+    return a;
+}
+
+}  // namespace rtrt

@@ -1,0 +1,81 @@
+#include "game/scene/scene_models.h"
+
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include "game/assets/mesh_io.h"
+#include "game/assets/model_cache.h"
+#include "game/assets/model_dir.h"
+#include "game/assets/procedural_shapes.h"
+#include "game/assets/teapot.h"
+
+namespace rtrt {
+namespace {
+
+std::vector<Sphere> ParseSphereList(JsonFields& f) {
+    const Json& list = f.Get("spheres");
+    if (!list.is_array() || list.empty())
+        f.Fail("spheres", "expected a non-empty array of [x, y, z, radius]");
+    std::vector<Sphere> spheres;
+    for (size_t i = 0; i < list.size(); ++i) {
+        const Json& s = list[i];
+        const std::string key = "spheres[" + std::to_string(i) + "]";
+        if (!s.is_array() || s.size() != 4) f.Fail(key, "expected [x, y, z, radius]");
+        for (const Json& v : s)
+            if (!v.is_number() || !std::isfinite(v.get<double>()))
+                f.Fail(key, "expected finite numbers");
+        if (!(s[3].get<float>() > 0.0f)) f.Fail(key, "radius must be greater than 0");
+        spheres.push_back(
+            {vec3(s[0].get<float>(), s[1].get<float>(), s[2].get<float>()), s[3].get<float>()});
+    }
+    return spheres;
+}
+
+}  // namespace
+
+Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shape) {
+    BvhBuildOptions options;
+    const std::string builder = f.String("builder", "binned");
+    if (!ParseBuilder(builder, &options.builder))
+        f.Fail("builder",
+               "unknown builder \"" + builder + "\" (expected binned, sweep or centroid)");
+    const std::string type = f.String("type");
+    if (type == "sphere") {
+        const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
+        shape = {ModelShape::kSphere, s.radius, vec3(0.0f)};
+        return BuildSphereBlas(std::span<const Sphere>(&s, 1), options);
+    }
+    if (type == "spheres") return BuildSphereBlas(ParseSphereList(f), options);
+    TriangleMesh mesh;
+    if (type == "box") {
+        mesh = MakeBoxMesh(f.Vec3("size", vec3(1.0f)));
+        shape = {ModelShape::kBox, 0.0f, 0.5f * mesh.Bounds().Extent()};
+        const vec3 size = mesh.Bounds().Extent();
+        if (!(size.x > 0 && size.y > 0 && size.z > 0))
+            f.Fail("size", "box sides must be greater than 0");
+    } else if (type == "plane") {
+        const vec3 size = f.Vec3("size", vec3(10.0f, 0.0f, 10.0f));
+        if (!(size.x > 0 && size.z > 0))
+            f.Fail("size", "plane size x and z must be greater than 0");
+        mesh = MakePlaneMesh(size.x, size.z);
+        shape = {ModelShape::kPlane, 0.0f, vec3(0.0f)};
+    } else if (type == "teapot") {
+        const uint32_t resolution = f.Count("resolution", 1, 64, 6);
+        mesh = TessellateTeapot(ResolveModelPath(f.String("file", "@models/teapot.inc"), baseDir),
+                                int(resolution));
+    } else if (type == "mesh") {
+        // Meshes come through the BLAS cache; fitting moves the built BLAS exactly as
+        // FitMesh would have moved the mesh's vertices.
+        MeshModel model = LoadMeshModel(ResolveModelPath(f.String("file"), baseDir), options);
+        if (f.Has("fit")) FitBlas(model.blas, model.info.sourceBounds, f.Positive("fit"));
+        return std::move(model.blas);
+    } else {
+        f.Fail("type", "unknown model type \"" + type +
+                           "\" (expected sphere, spheres, box, plane, teapot, mesh or gltf)");
+    }
+    if (f.Has("fit")) FitMesh(mesh, f.Positive("fit"));
+    return BuildTriangleBlas(mesh, options);
+}
+
+}  // namespace rtrt
