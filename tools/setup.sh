@@ -25,7 +25,7 @@ esac
 packages=(g++ cmake ninja-build pkg-config git ca-certificates libglm-dev libtbb-dev libcli11-dev
     nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev libxxhash-dev
     libglfw3-dev libgl-dev libimgui-dev xvfb xauth libgl1-mesa-dri clang libtinygltf-dev
-    assimp-testmodels)
+    assimp-testmodels python3)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
