@@ -23,7 +23,7 @@ namespace {
 
 struct FrameBenchOptions {
     std::vector<std::string> scenes;
-    std::string backend = "cuda";
+    std::string backend = "auto";
     std::string size;
     int frames = 300;
     int warmup = 30;
@@ -118,8 +118,8 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("scenes", o->scenes, "Scene files to play")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--backend", o->backend, "cuda or cpu")
-        ->check(CLI::IsMember({"cuda", "cpu"}))
+    cmd->add_option("--backend", o->backend, "auto (CUDA when usable), cuda or cpu")
+        ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
         ->capture_default_str();
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT (default: the scene's image size)");
     cmd->add_option("--frames", o->frames, "Timed frames per scene")
@@ -131,8 +131,10 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
     cmd->callback([o, exitCode] {
         std::string why;
-        if (o->backend == "cuda" && !CudaBackendAvailable(&why))
+        const bool cuda = CudaBackendAvailable(&why);
+        if (o->backend == "cuda" && !cuda)
             throw InputError("--backend", "cuda", why + "; use --backend cpu");
+        if (o->backend == "auto") o->backend = cuda ? "cuda" : "cpu";
         RunFrameBench(*o);
         *exitCode = kExitOk;
     });

@@ -13,6 +13,7 @@
 #include "engine/render_rt/renderer.h"
 #include "game/assets/image_io.h"
 #include "game/cli/commands.h"
+#include "game/cli/progress_bar.h"
 #include "game/runtime/world.h"
 #include "game/scene/scene_file.h"
 #if defined(RTRT_HAVE_WINDOW)
@@ -53,15 +54,6 @@ void CheckPattern(const std::string& pattern) {
                              pattern + "\"");
 }
 
-void PrintProgress(int done, int total, double ms) {
-    constexpr int kWidth = 30;
-    const int filled = total ? done * kWidth / total : kWidth;
-    std::fprintf(stderr, "\rrtrt play: [%.*s%*s] %d/%d frames, %.1f ms/frame", filled,
-                 "==============================", kWidth - filled, "", done, total, ms);
-    if (done == total) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-}
-
 void RunWindowed(const PlayOptions& o) {
 #if defined(RTRT_HAVE_WINDOW)
     WindowOptions w;
@@ -91,7 +83,8 @@ void RunWindowed(const PlayOptions& o) {
 #endif
 }
 
-void RunPlay(const PlayOptions& o) {
+void RunPlay(PlayOptions o) {
+    if (o.scenes.empty()) o.scenes = {"default"};
     if (!o.headless) return RunWindowed(o);
     if (o.scenes.size() != 1)
         throw InputError("play", "", "--headless plays one scene; give exactly one");
@@ -127,7 +120,9 @@ void RunPlay(const PlayOptions& o) {
         renderer->Trace(world.Scene(), settings, &frame);
         WriteImage(FramePath(o.output, i), frame);
         total += timer.Milliseconds();
-        PrintProgress(i + 1, o.frames, total / (i + 1));
+        char what[64];
+        std::snprintf(what, sizeof(what), "frames, %.1f ms/frame", total / (i + 1));
+        DrawProgressBar("play", i + 1, o.frames, what);
     }
     std::printf(
         "rtrt: wrote %d frames to %s (%ux%u, %.0f fps time step, %zu instances at the end)\n",
@@ -142,8 +137,8 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
     CLI::App* cmd =
         app.add_subcommand("play", "Play a scene: animation, physics, spawners, camera path");
     cmd->add_option("scenes", options->scenes,
-                    "Scene files (.json); in the window PageDown/PageUp switch between them")
-        ->required();
+                    "Scene files (.json, .gltf, .glb) or \"default\" (the built-in scene, also "
+                    "when none is named); in the window PageDown/PageUp switch between them");
     cmd->add_flag("--headless", options->headless, "Render to files instead of a window");
     cmd->add_option("--frames", options->frames,
                     "Frames to write (headless), or to show before closing the window")

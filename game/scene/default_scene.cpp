@@ -1,6 +1,7 @@
 #include "game/scene/default_scene.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtx/matrix_decompose.hpp>
 
 #include "game/assets/procedural_shapes.h"
 
@@ -53,6 +54,28 @@ RenderScene MakeDefaultScene() {
     scene.lights.push_back({vec3(3.0f, 4.0f, 3.0f), LightType::kPoint, vec3(0.35f), 0.0f});
     scene.BuildTlas();
     return scene;
+}
+
+LoadedScene MakeDefaultLoadedScene() {
+    LoadedScene out;
+    out.scene = MakeDefaultScene();
+    for (uint32_t i = 0; i < out.scene.instances.size(); ++i) {
+        const Instance& inst = out.scene.instances[i];
+        EntityDesc d;
+        d.blasId = inst.blasId;
+        d.materialId = inst.materialId;
+        d.sourceIndex = i;
+        vec3 skew;
+        vec4 perspective;
+        glm::decompose(Mat4FromAffine(inst.objectToWorld), d.local.scale, d.local.rotation,
+                       d.local.translation, skew, perspective);
+        out.entities.push_back(d);
+    }
+    for (const auto& blas : out.scene.blases)
+        out.modelNames.push_back(blas->kind == GeometryKind::kSpheres ? "sphere" : "mesh");
+    out.scene.instances.clear();
+    FinishLoadedScene(out, "default");
+    return out;
 }
 
 }  // namespace rtrt

@@ -12,6 +12,7 @@
 #include "engine/core/error.h"
 #include "game/assets/model_dir.h"
 #include "game/gltf/gltf_import.h"
+#include "game/scene/default_scene.h"
 #include "game/scene/json_fields.h"
 #include "game/scene/scene_animation.h"
 #include "game/scene/scene_models.h"
@@ -394,6 +395,7 @@ LoadedScene ParseScene(const std::string& text, const std::string& name,
 LoadedScene LoadSceneFile(const std::string& path) {
     if (IsGltfPath(path)) return LoadGltfScene(path);
     std::error_code ec;
+    if (path == "default" && !std::filesystem::exists(path, ec)) return MakeDefaultLoadedScene();
     if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "no such file");
     if (std::filesystem::is_directory(path, ec))
         throw InputError(path, "", "is a directory, not a scene file");

@@ -6,9 +6,9 @@
 
 namespace rtrt {
 
-// Reads a scene file (or a glTF file, .gltf or .glb: gltf_import.h) and builds its BLASes and
-// TLAS. Throws InputError naming the file, the field (e.g. "instances[2].scale") and the reason
-// for anything malformed.
+// Reads a scene file (or a glTF file, .gltf or .glb: gltf_import.h; or "default", where no file
+// of that name exists: the built-in scene) and builds its BLASes and TLAS. Throws InputError naming
+// the file, the field (e.g. "instances[2].scale") and the reason for anything malformed.
 LoadedScene LoadSceneFile(const std::string& path);
 
 // Same, from JSON text; `name` stands for the file in messages and `baseDir` resolves paths.

@@ -264,3 +264,27 @@ if(NOT status EQUAL 0 OR NOT stdout MATCHES "materials   4, textures 3"
    OR NOT stdout MATCHES "cameras     1 placed, lights 2 placed")
     message(FATAL_ERROR "info textured_quads.gltf: status ${status}: ${stdout}${stderr}")
 endif()
+
+# A mistyped command is named, with the nearest command (exit 2).
+execute_process(COMMAND ${RTRT} rendr default RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR NOT stderr MATCHES "'rendr' is not an rtrt command; did you mean 'render'\\?")
+    message(FATAL_ERROR "rtrt rendr: status ${status}: ${stderr}")
+endif()
+# rtrt play with no scene plays the built-in one (the same first frame as render default), and
+# its progress into a log is lines, not carriage returns.
+execute_process(COMMAND ${RTRT} play --headless --frames 2 --size 32x18 --backend cpu
+    -o ${WORK_DIR}/default_%02d${EXT} RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/default_01${EXT})
+    message(FATAL_ERROR "play with no scene: status ${status}: ${stderr}")
+endif()
+string(FIND "${stderr}" "\r" carriage)
+if(NOT carriage EQUAL -1 OR NOT stderr MATCHES "rtrt play: 2/2 frames")
+    message(FATAL_ERROR "play progress into a log: ${stderr}")
+endif()
+execute_process(COMMAND ${RTRT} render default --size 32x18 -o ${WORK_DIR}/default_render${EXT}
+    RESULT_VARIABLE status)
+file(SHA256 ${WORK_DIR}/default_00${EXT} played)
+file(SHA256 ${WORK_DIR}/default_render${EXT} rendered)
+if(NOT status EQUAL 0 OR NOT played STREQUAL rendered)
+    message(FATAL_ERROR "play default's first frame differs from render default")
+endif()
