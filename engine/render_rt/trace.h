@@ -25,7 +25,7 @@ RT_HD inline bool TraceClosest(const TlasView& tlas, const Ray& ray, SceneHit* h
 #if defined(RT_ON_GPU)
     if constexpr ((kFeatures & kFeatureManyInstances) != 0 && kAccuracy == kAccuracyDefault) {
         float tMax = ray.tMax;
-        return TraverseTwoLevel<false>(tlas, ray, tMax, hit, stats);
+        return TraverseTwoLevel<Query::kIntersect>(tlas, ray, tMax, hit, stats);
     }
 #endif
     return IntersectScene<kAccuracy>(tlas, ray, hit, stats);
@@ -36,7 +36,7 @@ RT_HD inline bool TraceOccluded(const TlasView& tlas, const Ray& ray) {
 #if defined(RT_ON_GPU)
     if constexpr ((kFeatures & kFeatureManyInstances) != 0 && kAccuracy == kAccuracyDefault) {
         float tMax = ray.tMax;
-        return TraverseTwoLevel<true>(tlas, ray, tMax, nullptr, nullptr);
+        return TraverseTwoLevel<Query::kOccluded>(tlas, ray, tMax, nullptr, nullptr);
     }
 #endif
     return OccludedScene<kAccuracy>(tlas, ray);

@@ -36,12 +36,13 @@ RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, floa
             return true;
         };
 #if defined(RTRT_HOST_WIDE_BVH)
-        if (blas.nodes4 && !stats) return TraverseClosest4(blas.nodes4, setup, tMax, intersect);
+        if (blas.nodes4 && !stats)
+            return Traverse4<Query::kIntersect>(blas.nodes4, setup, tMax, intersect);
 #endif
-        return TraverseClosest(blas.nodes, setup, tMax, intersect, stats);
+        return Traverse<Query::kIntersect>(blas.nodes, setup, tMax, intersect, stats);
     }
     const RaySetup setup = MakeBoxRaySetup(objectRay);
-    return TraverseClosest(
+    return Traverse<Query::kIntersect>(
         blas.nodes, setup, tMax,
         [&](uint32_t slot, float& tBest) {
             float t;
@@ -65,12 +66,13 @@ RT_HD inline bool OccludedBlas(const BlasView& blas, const Ray& objectRay, float
             return IntersectTriangleAs<kAccuracy>(blas.triangles[slot], setup, tLimit, &h);
         };
 #if defined(RTRT_HOST_WIDE_BVH)
-        if (blas.nodes4 && !stats) return TraverseAny4(blas.nodes4, setup, tMax, occludes);
+        if (blas.nodes4 && !stats)
+            return Traverse4<Query::kOccluded>(blas.nodes4, setup, tMax, occludes);
 #endif
-        return TraverseAny(blas.nodes, setup, tMax, occludes, stats);
+        return Traverse<Query::kOccluded>(blas.nodes, setup, tMax, occludes, stats);
     }
     const RaySetup setup = MakeBoxRaySetup(objectRay);
-    return TraverseAny(
+    return Traverse<Query::kOccluded>(
         blas.nodes, setup, tMax,
         [&](uint32_t slot, float tLimit) {
             float t;
@@ -86,7 +88,7 @@ RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit
     if (!IsTraceable(ray)) return false;
     const RaySetup setup = MakeBoxRaySetup(ray);
     float tMax = ray.tMax;
-    return TraverseClosest(
+    return Traverse<Query::kIntersect>(
         scene.nodes, setup, tMax,
         [&](uint32_t slot, float& tBest) {
             const uint32_t id = scene.instanceOrder[slot];
@@ -106,8 +108,9 @@ RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
                                 TraversalStats* stats = nullptr) {
     if (!IsTraceable(ray)) return false;
     const RaySetup setup = MakeBoxRaySetup(ray);
-    return TraverseAny(
-        scene.nodes, setup, ray.tMax,
+    float tMax = ray.tMax;
+    return Traverse<Query::kOccluded>(
+        scene.nodes, setup, tMax,
         [&](uint32_t slot, float tLimit) {
             const Instance& inst = scene.instances[scene.instanceOrder[slot]];
             Ray objectRay = ToObjectSpace(ray, inst);
