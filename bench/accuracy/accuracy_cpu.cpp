@@ -36,11 +36,11 @@ void RenderAccuracyCpu(const RenderScene& scene, const RenderSettings& settings,
     const RenderSceneView view = View(scene, settings);
     std::atomic<uint64_t> rays{0};
     DispatchAccuracy(accuracy, [&](auto tag) {
-        constexpr uint32_t kAccuracy = decltype(tag)::value;
+        using Policy = AccuracyPolicy<decltype(tag)::value>;
         ForEachPixel(settings.width, settings.height, [&](uint32_t x, uint32_t y) {
             uint32_t pixelRays = 0;
             image.At(x, y) =
-                RawPixel<kAccuracyFeatures, kAccuracy>(view, ViewMode::kShaded, x, y, &pixelRays);
+                RawPixel<kAccuracyFeatures, Policy>(view, ViewMode::kShaded, x, y, &pixelRays);
             rays += pixelRays;
         });
     });
@@ -52,11 +52,11 @@ ObjectIds PrimaryObjectsCpu(const RenderScene& scene, const RenderSettings& sett
     const RenderSceneView view = View(scene, settings);
     ObjectIds ids(size_t(settings.width) * settings.height);
     DispatchAccuracy(accuracy, [&](auto tag) {
-        constexpr uint32_t kAccuracy = decltype(tag)::value;
+        using Policy = AccuracyPolicy<decltype(tag)::value>;
         ForEachPixel(settings.width, settings.height, [&](uint32_t x, uint32_t y) {
             SceneHit hit;
             const Ray ray = PrimaryRay(view.camera, x, y, view.width, view.height);
-            const bool found = IntersectScene<kAccuracy>(view.tlas, ray, &hit);
+            const bool found = IntersectScene<Policy>(view.tlas, ray, &hit);
             ids[size_t(y) * settings.width + x] = found ? hit.instance + 1 : 0;
         });
     });

@@ -9,7 +9,7 @@
 namespace rtrt {
 namespace {
 
-template <uint32_t kAccuracy>
+template <class Policy>
 __global__ void __launch_bounds__(64)
     AccuracyTraceKernel(RenderSceneView scene, uint32_t sample, uint32_t perSide, vec3* out,
                         unsigned long long* rayCount) {
@@ -17,20 +17,20 @@ __global__ void __launch_bounds__(64)
     const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
     if (x >= scene.width || y >= scene.height) return;
     uint32_t rays = 0;
-    const vec3 value = RawSample<kAccuracyFeatures, kAccuracy>(scene, ViewMode::kShaded, x, y,
-                                                               sample, perSide, &rays);
+    const vec3 value = RawSample<kAccuracyFeatures, Policy>(scene, ViewMode::kShaded, x, y, sample,
+                                                            perSide, &rays);
     AccumulateSample(out[size_t(y) * scene.width + x], value, sample, perSide * perSide);
     if (rayCount) atomicAdd(rayCount, (unsigned long long)rays);
 }
 
-template <uint32_t kAccuracy>
+template <class Policy>
 __global__ void __launch_bounds__(64) AccuracyObjectKernel(RenderSceneView scene, uint32_t* out) {
     const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
     const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
     if (x >= scene.width || y >= scene.height) return;
     SceneHit hit;
     const Ray ray = PrimaryRay(scene.camera, x, y, scene.width, scene.height);
-    const bool found = IntersectScene<kAccuracy>(scene.tlas, ray, &hit);
+    const bool found = IntersectScene<Policy>(scene.tlas, ray, &hit);
     out[size_t(y) * scene.width + x] = found ? hit.instance + 1 : 0;
 }
 
@@ -57,7 +57,7 @@ CudaAccuracyRun RunAccuracyCuda(const RenderScene& scene, const RenderSettings& 
     RT_CUDA_CHECK(cudaEventCreate(&stop));
     CudaAccuracyRun run;
     DispatchAccuracy(accuracy, [&](auto tag) {
-        constexpr uint32_t kAccuracy = decltype(tag)::value;
+        using Policy = AccuracyPolicy<decltype(tag)::value>;
         for (int i = 0; i < warmup + frames; ++i) {
             const bool count = i == 0;  // the atomic ray count runs once, outside the timed frames
             RT_CUDA_CHECK(cudaMemset(rayCount.Data(), 0, sizeof(unsigned long long)));
@@ -65,8 +65,8 @@ CudaAccuracyRun RunAccuracyCuda(const RenderScene& scene, const RenderSettings& 
             // One launch per sample, as the renderer's kernel (pixel_kernel.h).
             const uint32_t perSide = SamplesPerSide(view, ViewMode::kShaded);
             for (uint32_t s = 0; s < perSide * perSide; ++s) {
-                AccuracyTraceKernel<kAccuracy><<<grid, block>>>(view, s, perSide, frame.Data(),
-                                                                count ? rayCount.Data() : nullptr);
+                AccuracyTraceKernel<Policy><<<grid, block>>>(view, s, perSide, frame.Data(),
+                                                             count ? rayCount.Data() : nullptr);
                 RT_CUDA_CHECK_LAUNCH();
             }
             RT_CUDA_CHECK(cudaEventRecord(stop));
@@ -80,7 +80,7 @@ CudaAccuracyRun RunAccuracyCuda(const RenderScene& scene, const RenderSettings& 
                 run.rays = rays;
             }
         }
-        AccuracyObjectKernel<kAccuracy><<<grid, block>>>(view, objects.Data());
+        AccuracyObjectKernel<Policy><<<grid, block>>>(view, objects.Data());
         RT_CUDA_CHECK_LAUNCH();
     });
     RT_CUDA_CHECK(cudaDeviceSynchronize());

@@ -12,8 +12,7 @@
 #include "engine/bvh/blas/blas.h"
 #include "engine/bvh/tlas/instance.h"
 #include "engine/bvh/traversal/traversal.h"
-#include "engine/geometry/sphere_intersect.h"
-#include "engine/geometry/triangle_intersect.h"
+#include "engine/geometry/primitive_tests.h"
 
 namespace rtrt {
 
@@ -64,14 +63,15 @@ RT_HD inline bool AnyLane(bool pred) {
 }
 
 // Either query (traversal.h): kIntersect records the closest hit in hit and shrinks tMax to it;
-// kOccluded returns at the first primitive before tMax.
+// kOccluded returns at the first primitive before tMax. Tests supplies the primitive tests
+// (primitive_tests.h).
 //
 // The loop has the while-while form of Aila and Laine (2009): lanes step through interior nodes
 // together and set a leaf aside when they reach one; on the GPU they keep descending until every
 // lane of the warp holds a leaf ("speculative traversal"), and then the leaves are intersected
 // together. A lane alone (the CPU) intersects each leaf as soon as it is found, which gives the
 // nested form's order exactly.
-template <Query kQuery>
+template <Query kQuery, class Tests = PrimitiveTests>
 RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float& tMax,
                                    SceneHit* hit, TraversalStats* stats) {
     if (!IsTraceable(ray)) return false;
@@ -170,13 +170,13 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                 float t;
                 if (triangles) {
                     TriangleHit h;
-                    if (!IntersectTriangle(blas->triangles[slot], setup, tMax, &h)) continue;
+                    if (!Tests::IntersectTriangle(blas->triangles[slot], setup, tMax, &h)) continue;
                     if constexpr (kQuery == Query::kOccluded) return true;
                     t = h.t;
                     hit->b1 = h.b1;
                     hit->b2 = h.b2;
                 } else {
-                    if (!IntersectSphere(blas->spheres[slot], setup, tMax, &t)) continue;
+                    if (!Tests::IntersectSphere(blas->spheres[slot], setup, tMax, &t)) continue;
                     if constexpr (kQuery == Query::kOccluded) return true;
                     hit->b1 = hit->b2 = 0.0f;
                 }
