@@ -302,10 +302,15 @@ plots from the benchmark's JSON results (see "Regenerating" below); do not edit 
   0); a runtime that rebuilds every N frames traces such a tree just before each rebuild); float instead of double (the base row). The
   "textbook" row turns on all three less robust tests with 1 sample and depth 4.
 
-The test variants are compile-time bits (`bench/accuracy/accuracy_variant.h`,
-`bench/accuracy/spawn_variant.h`) instantiated only in the benchmark's own translation units
-(`bench/accuracy/accuracy_cpu.cpp`, `accuracy_cuda.cu`) for the one feature set of
-its scenes; the default kernels are unchanged.
+The test variants are trace policies (`AccuracyPolicy<bits>` in `bench/accuracy/accuracy_policy.h`,
+beside production's `TracePolicy` in `engine/render_rt/trace_policy.h`): each bit swaps one step,
+the triangle test, the sphere test or the ray offset, inside the policy function of that step.
+They are instantiated only in the benchmark's own translation units
+(`bench/accuracy/accuracy_cpu.cpp`, `accuracy_cuda.cu`), for the one feature set of its scenes,
+through production's CPU tile loop (`engine/render_rt/cpu/trace_tiles.h`) and production's CUDA
+kernel, launch and timing loop (`engine/render_rt/cuda/trace_launch.cuh`), in the traversal form
+the scene's instance count selects (on the GPU, the single two-level loop from 64 instances); the
+default kernels are unchanged.
 
 ## Scenes
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/accuracy/accuracy_policy.h"
 #include "bench/accuracy/accuracy_renderer.h"
 #include "bench/accuracy/accuracy_scenes.h"
 #include "bench/accuracy/image_metrics.h"

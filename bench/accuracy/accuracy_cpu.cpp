@@ -1,11 +1,9 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
-#include <atomic>
-
 #include "bench/accuracy/accuracy_dispatch.h"
 #include "bench/accuracy/accuracy_renderer.h"
-#include "engine/render_rt/pixel_kernel.h"
+#include "engine/render_rt/cpu/trace_tiles.h"
 
 namespace rtrt {
 namespace {
@@ -34,17 +32,12 @@ void RenderAccuracyCpu(const RenderScene& scene, const RenderSettings& settings,
     if (image.width != settings.width || image.height != settings.height)
         image = Image(settings.width, settings.height);
     const RenderSceneView view = View(scene, settings);
-    std::atomic<uint64_t> rays{0};
+    uint64_t rays = 0;
     DispatchAccuracy(accuracy, [&](auto tag) {
-        constexpr uint32_t kAccuracy = decltype(tag)::value;
-        ForEachPixel(settings.width, settings.height, [&](uint32_t x, uint32_t y) {
-            uint32_t pixelRays = 0;
-            image.At(x, y) =
-                RawPixel<kAccuracyFeatures, kAccuracy>(view, ViewMode::kShaded, x, y, &pixelRays);
-            rays += pixelRays;
-        });
+        using Policy = AccuracyPolicy<decltype(tag)::value>;
+        rays = TraceTiles<kAccuracyFeatures, Policy>(view, ViewMode::kShaded, image);
     });
-    if (stats) stats->rays = rays.load();
+    if (stats) stats->rays = rays;
 }
 
 ObjectIds PrimaryObjectsCpu(const RenderScene& scene, const RenderSettings& settings,
@@ -52,11 +45,12 @@ ObjectIds PrimaryObjectsCpu(const RenderScene& scene, const RenderSettings& sett
     const RenderSceneView view = View(scene, settings);
     ObjectIds ids(size_t(settings.width) * settings.height);
     DispatchAccuracy(accuracy, [&](auto tag) {
-        constexpr uint32_t kAccuracy = decltype(tag)::value;
+        using Policy = AccuracyPolicy<decltype(tag)::value>;
         ForEachPixel(settings.width, settings.height, [&](uint32_t x, uint32_t y) {
             SceneHit hit;
             const Ray ray = PrimaryRay(view.camera, x, y, view.width, view.height);
-            const bool found = IntersectScene<kAccuracy>(view.tlas, ray, &hit);
+            const bool found =
+                TraceIntersect<kAccuracyFeatures, Policy>(view.tlas, ray, &hit, nullptr);
             ids[size_t(y) * settings.width + x] = found ? hit.instance + 1 : 0;
         });
     });

@@ -2,7 +2,7 @@
 // From runtime accuracy bits to the compile-time variant: one instantiation per combination.
 #include <type_traits>
 
-#include "bench/accuracy/accuracy_variant.h"
+#include "bench/accuracy/accuracy_policy.h"
 
 namespace rtrt {
 

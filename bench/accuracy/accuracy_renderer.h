@@ -1,9 +1,9 @@
 #pragma once
 // The renderers of `rtrt bench accuracy`: the float trace with accuracy variants
-// (bench/accuracy/accuracy_variant.h) on either back end, and the double-precision reference on the
-// CPU. The variants are instantiated here only, for the one feature set of the benchmark's
-// scenes (shadows, reflection, refraction; few instances), so the default kernels and the build
-// time of everything else stay as they were.
+// (bench/accuracy/accuracy_policy.h) on either back end, and the double-precision reference on the
+// CPU. The variants are instantiated here only, for the one effect set of the benchmark's scenes
+// (kAccuracyFeatures), so the default kernels and the build time of everything else stay as they
+// were; on the GPU, in the traversal form the scene's instance count selects (trace.h).
 #include <string>
 #include <vector>
 

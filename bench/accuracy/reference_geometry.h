@@ -77,10 +77,10 @@ inline bool SlabTestD(const BvhNode& node, const RayD& r, dvec3 invDir, double t
     return t0 <= t1 * (1.0 + 2.0 * GammaD(3));
 }
 
-// Closest (or, with anyHit, first) hit over a binary BVH; leaf(slot, tMax) tests a primitive and
-// shrinks tMax on a nearer hit.
-template <typename Leaf>
-bool TraverseD(const BvhNode* nodes, const RayD& r, double& tMax, bool anyHit, Leaf&& leaf) {
+// Either query (engine/bvh/traversal/traversal.h) over a binary BVH: kIntersect the closest hit,
+// kOccluded the first; leaf(slot, tMax) tests a primitive and shrinks tMax on a nearer hit.
+template <Query kQuery, typename Leaf>
+bool TraverseD(const BvhNode* nodes, const RayD& r, double& tMax, Leaf&& leaf) {
     const dvec3 invDir(1.0 / r.dir.x, 1.0 / r.dir.y, 1.0 / r.dir.z);
     uint32_t stack[kBvhStackSize];
     uint32_t stackSize = 0;
@@ -94,7 +94,7 @@ bool TraverseD(const BvhNode* nodes, const RayD& r, double& tMax, bool anyHit, L
             for (uint32_t i = 0; i < node.primCount; ++i) {
                 if (leaf(node.leftFirst + i, tMax)) {
                     found = true;
-                    if (anyHit) return true;
+                    if constexpr (kQuery == Query::kOccluded) return true;
                 }
             }
         } else {
@@ -195,16 +195,17 @@ inline bool IntersectSphereD(const Sphere& s, const RayD& r, double tMax, double
     return false;
 }
 
-// Closest hit (or, with anyHit, any hit) of a world-space ray within (0, ray.tMax].
-inline bool TraceSceneD(const TlasView& scene, const RayD& ray, bool anyHit, HitD* hit) {
+// Either query of a world-space ray within (0, ray.tMax]; kIntersect records the closest hit.
+template <Query kQuery>
+bool TraceSceneD(const TlasView& scene, const RayD& ray, HitD* hit) {
     double tMax = ray.tMax;
-    return TraverseD(scene.nodes, ray, tMax, anyHit, [&](uint32_t slot, double& tBest) {
+    return TraverseD<kQuery>(scene.nodes, ray, tMax, [&](uint32_t slot, double& tBest) {
         const uint32_t id = scene.instanceOrder[slot];
         const Instance& inst = scene.instances[id];
         const BlasView& blas = scene.blases[inst.blasId];
         const RayD r = ToObjectSpaceD(ray, inst);
         const ShearD shear = MakeShearD(r.dir);
-        return TraverseD(blas.nodes, r, tBest, anyHit, [&](uint32_t prim, double& t) {
+        return TraverseD<kQuery>(blas.nodes, r, tBest, [&](uint32_t prim, double& t) {
             HitD h{};
             if (blas.kind == GeometryKind::kTriangles) {
                 if (!IntersectTriangleD(blas.triangles[prim], r, shear, t, &h)) return false;

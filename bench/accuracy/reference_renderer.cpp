@@ -28,7 +28,7 @@ ObjectIds ReferencePrimaryObjects(const RenderScene& scene, const RenderSettings
             reference::HitD hit;
             const reference::RayD ray =
                 reference::PrimaryRayD(camera, x + 0.5, y + 0.5, settings.width, settings.height);
-            const bool found = reference::TraceSceneD(view.tlas, ray, false, &hit);
+            const bool found = reference::TraceSceneD<Query::kIntersect>(view.tlas, ray, &hit);
             ids[size_t(y) * settings.width + x] = found ? hit.instance + 1 : 0;
         }
     });

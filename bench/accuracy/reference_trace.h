@@ -136,7 +136,8 @@ inline dvec3 ShadeLocalD(const RenderSceneView& scene, const SurfaceD& s, const 
         if (nDotL <= 0.0 || glm::dot(s.geomNormal, l) <= 0.0) continue;
         HitD unused;
         const double tMax = directional ? HUGE_VAL : std::nextafter(1.0, 0.0);
-        if (TraceSceneD(scene.tlas, SpawnRayD(s, toLight, tMax), true, &unused)) continue;
+        if (TraceSceneD<Query::kOccluded>(scene.tlas, SpawnRayD(s, toLight, tMax), &unused))
+            continue;
         const dvec3 h = glm::normalize(l + toViewer);
         const double nDotH = std::fmax(0.0, glm::dot(s.shadingNormal, h));
         color += dvec3(light.color) * (dvec3(m.diffuse) * nDotL +
@@ -159,7 +160,7 @@ inline dvec3 TraceRayD(const RenderSceneView& scene, const RayD& primary) {
     while (stackSize > 0) {
         const PendingRay pending = stack[--stackSize];
         HitD hit;
-        if (!TraceSceneD(scene.tlas, pending.ray, false, &hit)) {
+        if (!TraceSceneD<Query::kIntersect>(scene.tlas, pending.ray, &hit)) {
             color += pending.weight * dvec3(scene.background);
             continue;
         }

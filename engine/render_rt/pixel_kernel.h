@@ -17,13 +17,13 @@ RT_HD inline uint32_t SamplesPerSide(const RenderSceneView& scene, ViewMode view
 // The raw value a view stores for sample s of a pixel's n x n, before the host finishes the image
 // (FinishView): shaded colour, the normal, the primary hit distance, or the heatmap's traversal
 // counts (nodes, primitives).
-template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
+template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline vec3 RawSample(const RenderSceneView& scene, ViewMode view, uint32_t x, uint32_t y,
                             uint32_t s, uint32_t n, uint32_t* rays) {
     const vec2 at = PixelSample(x, y, s, n);
     const Ray ray =
         PrimaryRay(scene.camera, float(x) + at.x, float(y) + at.y, scene.width, scene.height);
-    const PixelResult r = TraceRay<kFeatures, kAccuracy>(scene, ray, view == ViewMode::kHeatmap);
+    const PixelResult r = TraceRay<kFeatures, Policy>(scene, ray, view == ViewMode::kHeatmap);
     *rays += r.rays;
     switch (view) {
         case ViewMode::kNormals:
@@ -46,13 +46,13 @@ RT_HD inline void AccumulateSample(vec3& pixel, vec3 sample, uint32_t s, uint32_
     if (count > 1 && s + 1 == count) pixel /= float(count);
 }
 
-template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
+template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline vec3 RawPixel(const RenderSceneView& scene, ViewMode view, uint32_t x, uint32_t y,
                            uint32_t* rays) {
     const uint32_t n = SamplesPerSide(scene, view);
     vec3 pixel(0.0f);
     for (uint32_t s = 0; s < n * n; ++s)
-        AccumulateSample(pixel, RawSample<kFeatures, kAccuracy>(scene, view, x, y, s, n, rays), s,
+        AccumulateSample(pixel, RawSample<kFeatures, Policy>(scene, view, x, y, s, n, rays), s,
                          n * n);
     return pixel;
 }

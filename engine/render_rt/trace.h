@@ -3,8 +3,8 @@
 // follow an explicit ray stack instead of recursion (the original paper's iterative ray queue):
 // a ray's secondary rays are pushed with the weight they contribute, and the pixel is the sum of
 // weight * local shading over every ray popped.
-#include "bench/accuracy/spawn_variant.h"
 #include "engine/render_rt/optics.h"
+#include "engine/render_rt/trace_policy.h"
 
 namespace rtrt {
 
@@ -17,29 +17,29 @@ struct PixelResult {
 };
 
 // The scene traversal a specialisation uses: on the GPU, scenes of many instances take the single
-// loop over both levels; otherwise (and always on the CPU) the nested form. kAccuracy
-// (accuracy_variant.h) selects the benchmark's less robust variants, in the nested form only.
-template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
-RT_HD inline bool TraceClosest(const TlasView& tlas, const Ray& ray, SceneHit* hit,
-                               TraversalStats* stats) {
+// loop over both levels; otherwise (and always on the CPU) the nested form. Both take the
+// policy's primitive tests (trace_policy.h).
+template <uint32_t kFeatures, class Policy = TracePolicy>
+RT_HD inline bool TraceIntersect(const TlasView& tlas, const Ray& ray, SceneHit* hit,
+                                 TraversalStats* stats) {
 #if defined(RT_ON_GPU)
-    if constexpr ((kFeatures & kFeatureManyInstances) != 0 && kAccuracy == kAccuracyDefault) {
+    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
         float tMax = ray.tMax;
-        return TraverseTwoLevel<false>(tlas, ray, tMax, hit, stats);
+        return TraverseTwoLevel<Query::kIntersect, Policy>(tlas, ray, tMax, hit, stats);
     }
 #endif
-    return IntersectScene<kAccuracy>(tlas, ray, hit, stats);
+    return IntersectScene<Policy>(tlas, ray, hit, stats);
 }
 
-template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
+template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline bool TraceOccluded(const TlasView& tlas, const Ray& ray) {
 #if defined(RT_ON_GPU)
-    if constexpr ((kFeatures & kFeatureManyInstances) != 0 && kAccuracy == kAccuracyDefault) {
+    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
         float tMax = ray.tMax;
-        return TraverseTwoLevel<true>(tlas, ray, tMax, nullptr, nullptr);
+        return TraverseTwoLevel<Query::kOccluded, Policy>(tlas, ray, tMax, nullptr, nullptr);
     }
 #endif
-    return OccludedScene<kAccuracy>(tlas, ray);
+    return OccludedScene<Policy>(tlas, ray);
 }
 
 // The material at a hit, its base-colour texture applied (only in kernels with kFeatureTextures):
@@ -64,7 +64,7 @@ RT_HD inline const Material& MaterialAt(const RenderSceneView& scene, const Scen
 }
 
 // Blinn-Phong for one surface point with hard shadows.
-template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
+template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, const Material& m,
                              vec3 toViewer, uint32_t* rays) {
     vec3 color = m.ambient;
@@ -84,8 +84,8 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
         if (nDotL <= 0.0f || glm::dot(s.geomNormal, l) <= 0.0f) continue;
         if constexpr ((kFeatures & kFeatureShadows) != 0) {
             ++*rays;
-            if (TraceOccluded<kFeatures, kAccuracy>(scene.tlas,
-                                                    SpawnRayAs<kAccuracy>(s, toLight, shadowTMax)))
+            if (TraceOccluded<kFeatures, Policy>(scene.tlas,
+                                                 Policy::SpawnRay(s, toLight, shadowTMax)))
                 continue;
         }
         const vec3 h = glm::normalize(l + toViewer);
@@ -96,7 +96,7 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
 }
 
 // Everything one primary ray brings back.
-template <uint32_t kFeatures, uint32_t kAccuracy = kAccuracyDefault>
+template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& primaryRay,
                                   bool countTraversal = false) {
     struct PendingRay {
@@ -114,7 +114,7 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         const PendingRay pending = stack[--stackSize];
         SceneHit hit;
         ++result.rays;
-        const bool found = TraceClosest<kFeatures, kAccuracy>(
+        const bool found = TraceIntersect<kFeatures, Policy>(
             scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
         if (!found) {
             result.color += pending.weight * scene.background;
@@ -150,17 +150,17 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         const float localWeight = fmaxf(0.0f, 1.0f - m.reflectivity - m.transmissivity);
         if (localWeight > 0.0f)
             result.color += pending.weight * localWeight *
-                            ShadeLocal<kFeatures, kAccuracy>(scene, s, m, toViewer, &result.rays);
+                            ShadeLocal<kFeatures, Policy>(scene, s, m, toViewer, &result.rays);
         if (pending.depth >= scene.maxDepth) continue;
         if (reflectWeight > 0.0f) {
             const vec3 dir = Reflect(toViewer, s.shadingNormal);
             if (glm::dot(dir, s.geomNormal) > 0.0f)
-                stack[stackSize++] = {SpawnRayAs<kAccuracy>(s, dir), pending.weight * reflectWeight,
+                stack[stackSize++] = {Policy::SpawnRay(s, dir), pending.weight * reflectWeight,
                                       pending.depth + 1};
         }
         if (refractWeight > 0.0f) {
-            stack[stackSize++] = {SpawnRayAs<kAccuracy>(s, refracted),
-                                  pending.weight * refractWeight, pending.depth + 1};
+            stack[stackSize++] = {Policy::SpawnRay(s, refracted), pending.weight * refractWeight,
+                                  pending.depth + 1};
         }
     }
     return result;

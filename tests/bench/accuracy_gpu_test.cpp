@@ -3,6 +3,7 @@
 // gpu: CI has no GPU and skips these.
 #include <gtest/gtest.h>
 
+#include "bench/accuracy/accuracy_policy.h"
 #include "bench/accuracy/accuracy_renderer.h"
 #include "bench/accuracy/accuracy_scenes.h"
 #include "bench/accuracy/image_metrics.h"

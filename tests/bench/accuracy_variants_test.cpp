@@ -8,9 +8,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
 
+#include "bench/accuracy/accuracy_policy.h"
 #include "bench/accuracy/accuracy_renderer.h"
 #include "bench/accuracy/image_metrics.h"
-#include "bench/accuracy/spawn_variant.h"
 #include "engine/render_rt/pixel_sample.h"
 #include "game/assets/procedural_shapes.h"
 
@@ -20,7 +20,7 @@ namespace {
 // A closed fan of 16 triangles around a vertex at an awkward position on a tilted plane; rays
 // aimed at the centre vertex and at points of the shared spokes, from random points above.
 // Exactly, every such ray hits the fan. Returns how many missed every triangle.
-template <uint32_t kAccuracy>
+template <uint32_t kVariant>
 int FanMisses() {
     const vec3 centre(0.1234567f, 0.7654321f, -0.3141593f);
     const vec3 u = glm::normalize(vec3(1.0f, 0.3f, 0.2f));
@@ -47,7 +47,7 @@ int FanMisses() {
         bool hit = false;
         for (const Triangle& t : fan) {
             TriangleHit h;
-            hit = hit || IntersectTriangleAs<kAccuracy>(t, setup, kInfinity, &h);
+            hit = hit || AccuracyPolicy<kVariant>::IntersectTriangle(t, setup, kInfinity, &h);
         }
         misses += !hit;
     }
@@ -61,7 +61,7 @@ TEST(AccuracyVariants, MollerTrumboreLetsRaysThroughSharedEdgesWatertightDoesNot
 
 // A sphere of radius 1, 10^4 from the ray origins: rays aimed inside its silhouette (at most
 // 0.9 of the radius off the centre, so |l|^2 <= 0.81 r^2) must hit it, near the double t.
-template <uint32_t kAccuracy>
+template <uint32_t kVariant>
 int FarSphereFailures() {
     const Sphere s{vec3(0.3f, -0.2f, -1.0e4f), 1.0f};
     std::mt19937 rng(5);
@@ -78,7 +78,8 @@ int FarSphereFailures() {
         const double a = glm::dot(d, d), b = glm::dot(c, d);
         const double expected = (b - std::sqrt(b * b - a * (glm::dot(c, c) - 1.0))) / a;
         float t;
-        const bool hit = IntersectSphereAs<kAccuracy>(s, MakeBoxRaySetup(ray), kInfinity, &t);
+        const bool hit =
+            AccuracyPolicy<kVariant>::IntersectSphere(s, MakeBoxRaySetup(ray), kInfinity, &t);
         failures += !hit || std::abs(t - expected) > 0.01;
     }
     return failures;
@@ -91,8 +92,9 @@ TEST(AccuracyVariants, NaiveQuadraticLosesASmallFarSphereRtgFormDoesNot) {
 
 // Shadow rays leaving a surface far from the origin, toward a light above it: how many hit the
 // surface they leave (acne). `scene` holds that surface alone.
-template <uint32_t kAccuracy>
+template <uint32_t kVariant>
 int SelfHits(const RenderScene& scene, vec3 eye, vec3 aim, vec3 spread, vec3 toLight) {
+    using Policy = AccuracyPolicy<kVariant>;
     const RenderSceneView view = scene.HostView(1, 1, 1);
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> r(-1.0f, 1.0f);
@@ -100,12 +102,12 @@ int SelfHits(const RenderScene& scene, vec3 eye, vec3 aim, vec3 spread, vec3 toL
     for (int k = 0; k < 2000; ++k) {
         const vec3 target = aim + spread * vec3(r(rng), r(rng), r(rng));
         SceneHit hit;
-        if (!IntersectScene<kAccuracy>(view.tlas, {eye, kInfinity, target - eye, 0.0f}, &hit))
+        if (!IntersectScene<Policy>(view.tlas, {eye, kInfinity, target - eye, 0.0f}, &hit))
             continue;
         ++surfaceHits;
         const Surface s = MakeSurface(view, {eye, kInfinity, target - eye, 0.0f}, hit);
-        const Ray shadow = SpawnRayAs<kAccuracy>(s, toLight);
-        selfHits += OccludedScene<kAccuracy>(view.tlas, shadow);
+        const Ray shadow = Policy::SpawnRay(s, toLight);
+        selfHits += OccludedScene<Policy>(view.tlas, shadow);
     }
     EXPECT_GT(surfaceHits, 1000);
     return selfHits;

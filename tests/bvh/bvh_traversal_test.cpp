@@ -50,9 +50,9 @@ Found BruteForce(const Blas& blas, const RaySetup& r, float tMax) {
     return f;
 }
 
-Found Traverse(const Blas& blas, const RaySetup& r, float tMax) {
+Found Intersect(const Blas& blas, const RaySetup& r, float tMax) {
     Found f;
-    f.hit = TraverseClosest(
+    f.hit = Traverse<Query::kIntersect>(
         blas.nodes.data(), r, tMax,
         [&](uint32_t slot, float& tBest) {
             float t;
@@ -74,27 +74,29 @@ Found Traverse(const Blas& blas, const RaySetup& r, float tMax) {
 }
 
 // The CPU's 4-wide traversal of the same BLAS (triangles only).
-Found Traverse4(const Blas& blas, const RaySetup& r, float tMax) {
+Found Intersect4(const Blas& blas, const RaySetup& r, float tMax) {
     Found f;
-    f.hit = TraverseClosest4(blas.nodes4.data(), r, tMax, [&](uint32_t slot, float& tBest) {
-        TriangleHit h;
-        if (!IntersectTriangle(blas.triangles[slot], r, tBest, &h)) return false;
-        tBest = f.t = h.t;
-        f.slot = slot;
-        return true;
-    });
+    f.hit =
+        Traverse4<Query::kIntersect>(blas.nodes4.data(), r, tMax, [&](uint32_t slot, float& tBest) {
+            TriangleHit h;
+            if (!IntersectTriangle(blas.triangles[slot], r, tBest, &h)) return false;
+            tBest = f.t = h.t;
+            f.slot = slot;
+            return true;
+        });
     return f;
 }
 
 bool Occluded4(const Blas& blas, const RaySetup& r, float tMax) {
-    return TraverseAny4(blas.nodes4.data(), r, tMax, [&](uint32_t slot, float tLimit) {
-        TriangleHit h;
-        return IntersectTriangle(blas.triangles[slot], r, tLimit, &h);
-    });
+    return Traverse4<Query::kOccluded>(
+        blas.nodes4.data(), r, tMax, [&](uint32_t slot, float tLimit) {
+            TriangleHit h;
+            return IntersectTriangle(blas.triangles[slot], r, tLimit, &h);
+        });
 }
 
 bool Occluded(const Blas& blas, const RaySetup& r, float tMax) {
-    return TraverseAny(
+    return Traverse<Query::kOccluded>(
         blas.nodes.data(), r, tMax,
         [&](uint32_t slot, float tLimit) {
             if (blas.kind == GeometryKind::kTriangles) {
@@ -143,7 +145,7 @@ void ExpectMatchesBruteForce(const Blas& blas, uint32_t seed) {
         const Ray ray = RandomRay(blas, rng);
         const RaySetup r = MakeRaySetup(ray);
         const Found expected = BruteForce(blas, r, ray.tMax);
-        const Found got = Traverse(blas, r, ray.tMax);
+        const Found got = Intersect(blas, r, ray.tMax);
         hits += expected.hit;
         bool same = expected.hit == got.hit;
         if (same && expected.hit) {
@@ -156,12 +158,12 @@ void ExpectMatchesBruteForce(const Blas& blas, uint32_t seed) {
                           << " slot=" << expected.slot << ", BVH " << got.hit << " t=" << got.t
                           << " slot=" << got.slot;
         }
-        // Any-hit with tMax just past the closest hit agrees with closest-hit.
+        // The occlusion query with tMax just past the closest hit agrees with the closest hit.
         const float tLimit = expected.hit ? expected.t * 1.001f : 1e30f;
         if (Occluded(blas, r, tLimit) != expected.hit && ++mismatches <= 5)
-            ADD_FAILURE() << "ray " << i << ": any-hit disagrees with brute force";
+            ADD_FAILURE() << "ray " << i << ": the occlusion query disagrees with brute force";
         if (blas.nodes4.empty()) continue;
-        const Found wide = Traverse4(blas, r, ray.tMax);
+        const Found wide = Intersect4(blas, r, ray.tMax);
         const bool wideSame =
             wide.hit == expected.hit &&
             (!wide.hit || (wide.t == expected.t &&
@@ -170,7 +172,8 @@ void ExpectMatchesBruteForce(const Blas& blas, uint32_t seed) {
             ADD_FAILURE() << "ray " << i << ": 4-wide BVH " << wide.hit << " t=" << wide.t
                           << ", brute force " << expected.hit << " t=" << expected.t;
         if (Occluded4(blas, r, tLimit) != expected.hit && ++mismatches <= 5)
-            ADD_FAILURE() << "ray " << i << ": 4-wide any-hit disagrees with brute force";
+            ADD_FAILURE() << "ray " << i
+                          << ": the 4-wide occlusion query disagrees with brute force";
     }
     EXPECT_EQ(mismatches, 0u);
     EXPECT_GT(hits, kRayCount / 4) << "too few hits for the comparison to mean much";
@@ -238,7 +241,7 @@ TEST(Traversal, EmptyBvhHitsNothing) {
     const Blas blas = BuildSphereBlas({});
     Ray ray{vec3(0), kInfinity, vec3(0, 0, 1), 0};
     const RaySetup r = MakeRaySetup(ray);
-    EXPECT_FALSE(Traverse(blas, r, kInfinity).hit);
+    EXPECT_FALSE(Intersect(blas, r, kInfinity).hit);
     EXPECT_FALSE(Occluded(blas, r, kInfinity));
 }
 

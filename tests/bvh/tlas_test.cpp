@@ -63,7 +63,7 @@ void ExpectSingleLoopEqualsNested(const TlasView& scene, const Ray& ray) {
     TraversalStats nestedStats, singleStats;
     const bool n = IntersectScene(scene, ray, &nested, &nestedStats);
     float tMax = ray.tMax;
-    const bool s = TraverseTwoLevel<false>(scene, ray, tMax, &single, &singleStats);
+    const bool s = TraverseTwoLevel<Query::kIntersect>(scene, ray, tMax, &single, &singleStats);
     ASSERT_EQ(n, s);
     if (n) {
         EXPECT_EQ(nested.t, single.t);
@@ -74,12 +74,12 @@ void ExpectSingleLoopEqualsNested(const TlasView& scene, const Ray& ray) {
     }
     EXPECT_EQ(nestedStats.nodesVisited, singleStats.nodesVisited);
     EXPECT_EQ(nestedStats.primsTested, singleStats.primsTested);
-    TraversalStats nestedAny, singleAny;
-    const bool na = OccludedScene(scene, ray, &nestedAny);
+    TraversalStats nestedOccluded, singleOccluded;
+    const bool na = OccludedScene(scene, ray, &nestedOccluded);
     tMax = ray.tMax;
-    EXPECT_EQ(na, TraverseTwoLevel<true>(scene, ray, tMax, nullptr, &singleAny));
-    EXPECT_EQ(nestedAny.nodesVisited, singleAny.nodesVisited);
-    EXPECT_EQ(nestedAny.primsTested, singleAny.primsTested);
+    EXPECT_EQ(na, TraverseTwoLevel<Query::kOccluded>(scene, ray, tMax, nullptr, &singleOccluded));
+    EXPECT_EQ(nestedOccluded.nodesVisited, singleOccluded.nodesVisited);
+    EXPECT_EQ(nestedOccluded.primsTested, singleOccluded.primsTested);
 }
 
 void ExpectSameAsBruteForce(TwoLevel& world, float spread, uint32_t seed, TlasBuilder builder) {

@@ -24,7 +24,7 @@ TEST(TraversalVsBruteForce, NanRayBelowTheTraceableGateStillTerminates) {
                            Ray{vec3(0, 0, 5), kInfinity, vec3(nan), 0}}) {
         TraversalStats stats;
         float tMax = ray.tMax;
-        const bool hit = TraverseClosest(
+        const bool hit = Traverse<Query::kIntersect>(
             blas.nodes.data(), MakeRaySetup(ray), tMax,
             [&](uint32_t slot, float& tBest) {
                 TriangleHit h;

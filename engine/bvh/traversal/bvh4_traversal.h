@@ -9,6 +9,7 @@
 #include <immintrin.h>
 
 #include "engine/bvh/layout/bvh4.h"
+#include "engine/bvh/traversal/traversal.h"
 #include "engine/geometry/ray_setup.h"
 
 namespace rtrt {
@@ -50,10 +51,10 @@ inline int SlabTest4(const Bvh4Node& node, const WideRay& r, float tMax, __m128*
 
 inline constexpr uint32_t kBvh4StackSize = 3 * kBvhStackSize + 4;
 
-// Closest hit; intersect(slot, tMax) as in traversal.h.
-template <typename IntersectPrim>
-inline bool TraverseClosest4(const Bvh4Node* nodes, const RaySetup& ray, float& tMax,
-                             IntersectPrim&& intersect) {
+// Both queries, as Traverse in traversal.h: test(slot, tMax) tests one primitive; kOccluded stops
+// at the first that blocks the ray and, with tMax fixed, neither sorts children nor prunes pops.
+template <Query kQuery, typename TestPrim>
+inline bool Traverse4(const Bvh4Node* nodes, const RaySetup& ray, float& tMax, TestPrim&& test) {
     struct Entry {
         uint32_t child, count;
         float tEntry;
@@ -65,15 +66,20 @@ inline bool TraverseClosest4(const Bvh4Node* nodes, const RaySetup& ray, float& 
     Entry current{0, 0, 0.0f};
     for (;;) {
         if (current.count > 0) {
-            for (uint32_t i = 0; i < current.count; ++i)
-                if (intersect(current.child + i, tMax)) found = true;
+            for (uint32_t i = 0; i < current.count; ++i) {
+                if (test(current.child + i, tMax)) {
+                    if constexpr (kQuery == Query::kOccluded) return true;
+                    found = true;
+                }
+            }
         } else {
             const Bvh4Node& node = nodes[current.child];
             __m128 tEntry;
             int mask = SlabTest4(node, wide, tMax, &tEntry);
             alignas(16) float t[4];
             _mm_store_ps(t, tEntry);
-            // Collect the hit children, then visit the nearest and stack the rest far to near.
+            // Collect the hit children, then visit the last and stack the rest; kIntersect sorts
+            // them far to near first, so that the nearest is visited first.
             Entry hits[4];
             int hitCount = 0;
             while (mask) {
@@ -81,7 +87,8 @@ inline bool TraverseClosest4(const Bvh4Node* nodes, const RaySetup& ray, float& 
                 mask &= mask - 1;
                 Entry e{node.child[i], node.count[i], t[i]};
                 int j = hitCount++;
-                for (; j > 0 && hits[j - 1].tEntry < e.tEntry; --j) hits[j] = hits[j - 1];
+                if constexpr (kQuery == Query::kIntersect)
+                    for (; j > 0 && hits[j - 1].tEntry < e.tEntry; --j) hits[j] = hits[j - 1];
                 hits[j] = e;
             }
             if (hitCount > 0) {
@@ -97,38 +104,9 @@ inline bool TraverseClosest4(const Bvh4Node* nodes, const RaySetup& ray, float& 
         for (;;) {
             if (stackSize == 0) return found;
             current = stack[--stackSize];
-            if (current.tEntry <= tMax * (1.0f + 2.0f * Gamma(3))) break;
+            if (kQuery == Query::kOccluded || current.tEntry <= tMax * (1.0f + 2.0f * Gamma(3)))
+                break;
         }
-    }
-}
-
-// Any hit; occludes(slot, tMax) as in traversal.h.
-template <typename OccludesPrim>
-inline bool TraverseAny4(const Bvh4Node* nodes, const RaySetup& ray, float tMax,
-                         OccludesPrim&& occludes) {
-    struct Entry {
-        uint32_t child, count;
-    };
-    Entry stack[kBvh4StackSize];
-    uint32_t stackSize = 0;
-    const WideRay wide = MakeWideRay(ray);
-    Entry current{0, 0};
-    for (;;) {
-        if (current.count > 0) {
-            for (uint32_t i = 0; i < current.count; ++i)
-                if (occludes(current.child + i, tMax)) return true;
-        } else {
-            const Bvh4Node& node = nodes[current.child];
-            __m128 tEntry;
-            int mask = SlabTest4(node, wide, tMax, &tEntry);
-            while (mask) {
-                const int i = __builtin_ctz(mask);
-                mask &= mask - 1;
-                stack[stackSize++] = {node.child[i], node.count[i]};
-            }
-        }
-        if (stackSize == 0) return false;
-        current = stack[--stackSize];
     }
 }
 

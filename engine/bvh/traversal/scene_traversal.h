@@ -6,8 +6,8 @@
 // triangle BLASes' 4-wide SSE collapse; the GPU uses it for scenes of few instances, where the
 // ray spends its time in one tight BLAS loop. Scenes of many instances run the single loop of
 // two_level_traversal.h on the GPU (see kFeatureManyInstances); both forms find the same hits.
-#include "bench/accuracy/accuracy_variant.h"
 #include "engine/bvh/traversal/two_level_traversal.h"
+#include "engine/geometry/primitive_tests.h"
 
 // The CPU back end traverses triangle BLASes through their 4-wide collapse (SSE); the GPU and the
 // heatmap's node counts use the binary BVH.
@@ -18,16 +18,15 @@
 
 namespace rtrt {
 
-// kAccuracy (accuracy_variant.h) swaps the primitive tests; the default is 0.
-template <uint32_t kAccuracy = kAccuracyDefault>
+// Tests supplies the primitive tests (primitive_tests.h).
+template <class Tests = PrimitiveTests>
 RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, float& tMax,
                                 SceneHit* hit, TraversalStats* stats) {
     if (blas.kind == GeometryKind::kTriangles) {
         const RaySetup setup = MakeRaySetup(objectRay);
         auto intersect = [&](uint32_t slot, float& tBest) {
             TriangleHit h;
-            if (!IntersectTriangleAs<kAccuracy>(blas.triangles[slot], setup, tBest, &h))
-                return false;
+            if (!Tests::IntersectTriangle(blas.triangles[slot], setup, tBest, &h)) return false;
             tBest = h.t;
             hit->t = h.t;
             hit->prim = slot;
@@ -36,16 +35,17 @@ RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, floa
             return true;
         };
 #if defined(RTRT_HOST_WIDE_BVH)
-        if (blas.nodes4 && !stats) return TraverseClosest4(blas.nodes4, setup, tMax, intersect);
+        if (blas.nodes4 && !stats)
+            return Traverse4<Query::kIntersect>(blas.nodes4, setup, tMax, intersect);
 #endif
-        return TraverseClosest(blas.nodes, setup, tMax, intersect, stats);
+        return Traverse<Query::kIntersect>(blas.nodes, setup, tMax, intersect, stats);
     }
     const RaySetup setup = MakeBoxRaySetup(objectRay);
-    return TraverseClosest(
+    return Traverse<Query::kIntersect>(
         blas.nodes, setup, tMax,
         [&](uint32_t slot, float& tBest) {
             float t;
-            if (!IntersectSphereAs<kAccuracy>(blas.spheres[slot], setup, tBest, &t)) return false;
+            if (!Tests::IntersectSphere(blas.spheres[slot], setup, tBest, &t)) return false;
             tBest = t;
             hit->t = t;
             hit->prim = slot;
@@ -55,44 +55,45 @@ RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, floa
         stats);
 }
 
-template <uint32_t kAccuracy = kAccuracyDefault>
+template <class Tests = PrimitiveTests>
 RT_HD inline bool OccludedBlas(const BlasView& blas, const Ray& objectRay, float tMax,
                                TraversalStats* stats) {
     if (blas.kind == GeometryKind::kTriangles) {
         const RaySetup setup = MakeRaySetup(objectRay);
         auto occludes = [&](uint32_t slot, float tLimit) {
             TriangleHit h;
-            return IntersectTriangleAs<kAccuracy>(blas.triangles[slot], setup, tLimit, &h);
+            return Tests::IntersectTriangle(blas.triangles[slot], setup, tLimit, &h);
         };
 #if defined(RTRT_HOST_WIDE_BVH)
-        if (blas.nodes4 && !stats) return TraverseAny4(blas.nodes4, setup, tMax, occludes);
+        if (blas.nodes4 && !stats)
+            return Traverse4<Query::kOccluded>(blas.nodes4, setup, tMax, occludes);
 #endif
-        return TraverseAny(blas.nodes, setup, tMax, occludes, stats);
+        return Traverse<Query::kOccluded>(blas.nodes, setup, tMax, occludes, stats);
     }
     const RaySetup setup = MakeBoxRaySetup(objectRay);
-    return TraverseAny(
+    return Traverse<Query::kOccluded>(
         blas.nodes, setup, tMax,
         [&](uint32_t slot, float tLimit) {
             float t;
-            return IntersectSphereAs<kAccuracy>(blas.spheres[slot], setup, tLimit, &t);
+            return Tests::IntersectSphere(blas.spheres[slot], setup, tLimit, &t);
         },
         stats);
 }
 
 // Closest hit along ray within (0, ray.tMax].
-template <uint32_t kAccuracy = kAccuracyDefault>
+template <class Tests = PrimitiveTests>
 RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit* hit,
                                  TraversalStats* stats = nullptr) {
     if (!IsTraceable(ray)) return false;
     const RaySetup setup = MakeBoxRaySetup(ray);
     float tMax = ray.tMax;
-    return TraverseClosest(
+    return Traverse<Query::kIntersect>(
         scene.nodes, setup, tMax,
         [&](uint32_t slot, float& tBest) {
             const uint32_t id = scene.instanceOrder[slot];
             const Instance& inst = scene.instances[id];
-            if (!IntersectBlas<kAccuracy>(scene.blases[inst.blasId], ToObjectSpace(ray, inst),
-                                          tBest, hit, stats))
+            if (!IntersectBlas<Tests>(scene.blases[inst.blasId], ToObjectSpace(ray, inst), tBest,
+                                      hit, stats))
                 return false;
             hit->instance = id;
             return true;
@@ -101,17 +102,18 @@ RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit
 }
 
 // Whether anything blocks ray within (0, tMax).
-template <uint32_t kAccuracy = kAccuracyDefault>
+template <class Tests = PrimitiveTests>
 RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
                                 TraversalStats* stats = nullptr) {
     if (!IsTraceable(ray)) return false;
     const RaySetup setup = MakeBoxRaySetup(ray);
-    return TraverseAny(
-        scene.nodes, setup, ray.tMax,
+    float tMax = ray.tMax;
+    return Traverse<Query::kOccluded>(
+        scene.nodes, setup, tMax,
         [&](uint32_t slot, float tLimit) {
             const Instance& inst = scene.instances[scene.instanceOrder[slot]];
             Ray objectRay = ToObjectSpace(ray, inst);
-            return OccludedBlas<kAccuracy>(scene.blases[inst.blasId], objectRay, tLimit, stats);
+            return OccludedBlas<Tests>(scene.blases[inst.blasId], objectRay, tLimit, stats);
         },
         stats);
 }

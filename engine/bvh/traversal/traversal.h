@@ -12,11 +12,17 @@ struct TraversalStats {
     uint32_t primsTested = 0;
 };
 
-// Closest hit. intersect(primIndex, tMax) tests one primitive and returns true when it found a
-// nearer hit, having recorded it; tMax shrinks to that hit's distance.
-template <typename IntersectPrim>
-RT_HD inline bool TraverseClosest(const BvhNode* nodes, const RaySetup& ray, float& tMax,
-                                  IntersectPrim&& intersect, TraversalStats* stats) {
+// The two queries of every traversal here: the closest hit (the Intersect* functions) or whether
+// anything blocks the ray (the Occluded* functions, shadow rays).
+enum class Query { kIntersect, kOccluded };
+
+// One loop for both queries (as madmann91/bvh's intersect<IsAnyHit>). test(primIndex, tMax) tests
+// one primitive. kIntersect: test returns true when it found a nearer hit, having recorded it;
+// tMax shrinks to that hit's distance. kOccluded: test returns true when the primitive blocks the
+// ray before tMax, and the traversal stops there; tMax stays, so children keep the builder's order.
+template <Query kQuery, typename TestPrim>
+RT_HD inline bool Traverse(const BvhNode* nodes, const RaySetup& ray, float& tMax, TestPrim&& test,
+                           TraversalStats* stats) {
     float tRoot;
     if (stats) ++stats->nodesVisited;
     if (!SlabTest(nodes[0], ray, tMax, &tRoot)) return false;
@@ -29,7 +35,10 @@ RT_HD inline bool TraverseClosest(const BvhNode* nodes, const RaySetup& ray, flo
         if (node.IsLeaf()) {
             for (uint32_t i = 0; i < node.primCount; ++i) {
                 if (stats) ++stats->primsTested;
-                if (intersect(node.leftFirst + i, tMax)) found = true;
+                if (test(node.leftFirst + i, tMax)) {
+                    if constexpr (kQuery == Query::kOccluded) return true;
+                    found = true;
+                }
             }
         } else {
             const uint32_t left = node.leftFirst;
@@ -38,9 +47,14 @@ RT_HD inline bool TraverseClosest(const BvhNode* nodes, const RaySetup& ray, flo
             bool hitRight = SlabTest(nodes[left + 1], ray, tMax, &tRight);
             if (stats) stats->nodesVisited += 2;
             if (hitLeft && hitRight) {
-                uint32_t nearChild = tLeft <= tRight ? left : left + 1;
-                stack[stackSize++] = tLeft <= tRight ? left + 1 : left;
-                current = nearChild;
+                if constexpr (kQuery == Query::kIntersect) {
+                    uint32_t nearChild = tLeft <= tRight ? left : left + 1;
+                    stack[stackSize++] = tLeft <= tRight ? left + 1 : left;
+                    current = nearChild;
+                } else {
+                    stack[stackSize++] = left + 1;
+                    current = left;
+                }
                 continue;
             }
             if (hitLeft || hitRight) {
@@ -52,45 +66,6 @@ RT_HD inline bool TraverseClosest(const BvhNode* nodes, const RaySetup& ray, flo
         current = stack[--stackSize];
     }
     return found;
-}
-
-// Any hit (shadow rays): stops at the first primitive that occludes before tMax.
-template <typename OccludesPrim>
-RT_HD inline bool TraverseAny(const BvhNode* nodes, const RaySetup& ray, float tMax,
-                              OccludesPrim&& occludes, TraversalStats* stats) {
-    float tEntry;
-    if (stats) ++stats->nodesVisited;
-    if (!SlabTest(nodes[0], ray, tMax, &tEntry)) return false;
-    uint32_t stack[kBvhStackSize];
-    uint32_t stackSize = 0;
-    uint32_t current = 0;
-    for (;;) {
-        const BvhNode& node = nodes[current];
-        if (node.IsLeaf()) {
-            for (uint32_t i = 0; i < node.primCount; ++i) {
-                if (stats) ++stats->primsTested;
-                if (occludes(node.leftFirst + i, tMax)) return true;
-            }
-        } else {
-            const uint32_t left = node.leftFirst;
-            float tLeft, tRight;
-            bool hitLeft = SlabTest(nodes[left], ray, tMax, &tLeft);
-            bool hitRight = SlabTest(nodes[left + 1], ray, tMax, &tRight);
-            if (stats) stats->nodesVisited += 2;
-            if (hitLeft && hitRight) {
-                stack[stackSize++] = left + 1;
-                current = left;
-                continue;
-            }
-            if (hitLeft || hitRight) {
-                current = hitLeft ? left : left + 1;
-                continue;
-            }
-        }
-        if (stackSize == 0) break;
-        current = stack[--stackSize];
-    }
-    return false;
 }
 
 }  // namespace rtrt

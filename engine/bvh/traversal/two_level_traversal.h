@@ -12,8 +12,7 @@
 #include "engine/bvh/blas/blas.h"
 #include "engine/bvh/tlas/instance.h"
 #include "engine/bvh/traversal/traversal.h"
-#include "engine/geometry/sphere_intersect.h"
-#include "engine/geometry/triangle_intersect.h"
+#include "engine/geometry/primitive_tests.h"
 
 namespace rtrt {
 
@@ -63,14 +62,16 @@ RT_HD inline bool AnyLane(bool pred) {
 #endif
 }
 
-// Closest hit (kAnyHit false: hit records it, tMax shrinks to it) or any hit before tMax.
+// Either query (traversal.h): kIntersect records the closest hit in hit and shrinks tMax to it;
+// kOccluded returns at the first primitive before tMax. Tests supplies the primitive tests
+// (primitive_tests.h).
 //
 // The loop has the while-while form of Aila and Laine (2009): lanes step through interior nodes
 // together and set a leaf aside when they reach one; on the GPU they keep descending until every
 // lane of the warp holds a leaf ("speculative traversal"), and then the leaves are intersected
 // together. A lane alone (the CPU) intersects each leaf as soon as it is found, which gives the
 // nested form's order exactly.
-template <bool kAnyHit>
+template <Query kQuery, class Tests = PrimitiveTests>
 RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float& tMax,
                                    SceneHit* hit, TraversalStats* stats) {
     if (!IsTraceable(ray)) return false;
@@ -139,8 +140,8 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                 const bool hitRight = SlabTest(nodes[left + 1], setup, tMax, &tRight);
                 if (stats) stats->nodesVisited += 2;
                 if (hitLeft && hitRight) {
-                    // Closest hit visits the nearer child first; any hit the builder's order.
-                    const bool leftFirst = kAnyHit || tLeft <= tRight;
+                    // kIntersect visits the nearer child first; kOccluded the builder's order.
+                    const bool leftFirst = kQuery == Query::kOccluded || tLeft <= tRight;
                     stack[stackSize++] = leftFirst ? left + 1 : left;
                     current = leftFirst ? left : left + 1;
                 } else if (hitLeft || hitRight) {
@@ -169,14 +170,14 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                 float t;
                 if (triangles) {
                     TriangleHit h;
-                    if (!IntersectTriangle(blas->triangles[slot], setup, tMax, &h)) continue;
-                    if constexpr (kAnyHit) return true;
+                    if (!Tests::IntersectTriangle(blas->triangles[slot], setup, tMax, &h)) continue;
+                    if constexpr (kQuery == Query::kOccluded) return true;
                     t = h.t;
                     hit->b1 = h.b1;
                     hit->b2 = h.b2;
                 } else {
-                    if (!IntersectSphere(blas->spheres[slot], setup, tMax, &t)) continue;
-                    if constexpr (kAnyHit) return true;
+                    if (!Tests::IntersectSphere(blas->spheres[slot], setup, tMax, &t)) continue;
+                    if constexpr (kQuery == Query::kOccluded) return true;
                     hit->b1 = hit->b2 = 0.0f;
                 }
                 tMax = t;

@@ -1,10 +1,5 @@
-#include <tbb/blocked_range2d.h>
-#include <tbb/parallel_for.h>
-
-#include <atomic>
-
 #include "engine/render_rt/cpu/cpu_trace.h"
-#include "engine/render_rt/pixel_kernel.h"
+#include "engine/render_rt/cpu/trace_tiles.h"
 #include "engine/render_rt/renderer.h"
 
 namespace rtrt {
@@ -19,21 +14,11 @@ void TraceViewCpu(const RenderSceneView& sceneView, uint32_t sceneFeatures,
         // The traversal form matters on the GPU only: one CPU specialisation per effect set.
         EffectiveFeatures(sceneFeatures, settings.enabledFeatures, settings.view) &
         ~kFeatureManyInstances;
-    constexpr uint32_t kTile = 16;
-    std::atomic<uint64_t> rays{0};
+    uint64_t rays = 0;
     DispatchFeatures(features, [&](auto featureTag) {
-        constexpr uint32_t kFeatures = decltype(featureTag)::value;
-        tbb::parallel_for(
-            tbb::blocked_range2d<uint32_t>(0, settings.height, kTile, 0, settings.width, kTile),
-            [&](const tbb::blocked_range2d<uint32_t>& tile) {
-                uint32_t tileRays = 0;
-                for (uint32_t y = tile.rows().begin(); y != tile.rows().end(); ++y)
-                    for (uint32_t x = tile.cols().begin(); x != tile.cols().end(); ++x)
-                        image.At(x, y) = RawPixel<kFeatures>(view, settings.view, x, y, &tileRays);
-                rays += tileRays;
-            });
+        rays = TraceTiles<decltype(featureTag)::value>(view, settings.view, image);
     });
-    if (stats) stats->rays = rays.load();
+    if (stats) stats->rays = rays;
 }
 
 void RenderInto(const RenderScene& scene, const RenderSettings& settings, Image& image,

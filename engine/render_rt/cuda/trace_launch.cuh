@@ -1,0 +1,90 @@
+#pragma once
+// The CUDA trace kernel, its launch and its timing loop, as templates over the feature set and the
+// trace policy (trace_policy.h): cuda_renderer.cu instantiates production's policy for every
+// feature set, the accuracy study (bench/accuracy/accuracy_cuda.cu) its variants, so that both
+// time the same kernel the same way.
+#include <cuda_runtime.h>
+
+#include <span>
+#include <vector>
+
+#include "engine/core/cuda_check.h"
+#include "engine/core/device_buffer.h"
+#include "engine/render_rt/pixel_kernel.h"
+
+namespace rtrt {
+
+// Scenes of many instances trace with a register cap (blocks of 64 threads that must fit per
+// SM): their time goes into long, divergent traversals that more warps in flight hide better.
+// On the H100, 16 blocks (64 registers, some spilled) made the instance grid 1.6-1.8x faster than
+// no cap (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt); the paper scene (few
+// instances) runs fastest uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N overrides it, for experiments.
+#if !defined(RTRT_TRACE_MIN_BLOCKS)
+#define RTRT_TRACE_MIN_BLOCKS 16
+#endif
+constexpr int TraceMinBlocks(uint32_t features) {
+    return (features & kFeatureManyInstances) != 0 ? RTRT_TRACE_MIN_BLOCKS : 1;
+}
+
+template <uint32_t kFeatures, class Policy>
+__global__ void __launch_bounds__(64, TraceMinBlocks(kFeatures))
+    TraceKernel(RenderSceneView scene, ViewMode view, uint32_t sample, uint32_t perSide, vec3* out,
+                unsigned long long* rayCount) {
+    const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
+    const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
+    if (x >= scene.width || y >= scene.height) return;
+    uint32_t rays = 0;
+    const vec3 value = RawSample<kFeatures, Policy>(scene, view, x, y, sample, perSide, &rays);
+    AccumulateSample(out[size_t(y) * scene.width + x], value, sample, perSide * perSide);
+    if (rayCount) atomicAdd(rayCount, (unsigned long long)rays);
+}
+
+// Traces view (all pointers in device memory) into frame (width x height, device memory);
+// rayCount, if not null, accumulates the rays traced.
+template <uint32_t kFeatures, class Policy = TracePolicy>
+void LaunchTraceKernel(const RenderSceneView& view, ViewMode mode, vec3* frame,
+                       unsigned long long* rayCount, cudaStream_t stream = 0) {
+    const dim3 block(8, 8);
+    const dim3 grid((view.width + block.x - 1) / block.x, (view.height + block.y - 1) / block.y);
+    // One launch per sample (AccumulateSample says why).
+    const uint32_t perSide = SamplesPerSide(view, mode);
+    for (uint32_t s = 0; s < perSide * perSide; ++s) {
+        TraceKernel<kFeatures, Policy>
+            <<<grid, block, 0, stream>>>(view, mode, s, perSide, frame, rayCount);
+        RT_CUDA_CHECK_LAUNCH();
+    }
+}
+
+// Times `warmup` untimed and `frames` timed calls of launch(rayCount) with CUDA events and returns
+// the timed ones in ms. The atomic ray count runs once, in the first call, outside the timed
+// frames: that call gets a zeroed device counter, read back into *rays; the others get null.
+template <typename Launch>
+std::vector<double> TimeTraceLaunches(int warmup, int frames, uint64_t* rays, Launch&& launch) {
+    DeviceBuffer<unsigned long long> rayCount;
+    rayCount.Resize(1);
+    cudaEvent_t start, stop;
+    RT_CUDA_CHECK(cudaEventCreate(&start));
+    RT_CUDA_CHECK(cudaEventCreate(&stop));
+    std::vector<double> times;
+    for (int i = 0; i < warmup + frames; ++i) {
+        const bool count = i == 0;
+        RT_CUDA_CHECK(cudaMemset(rayCount.Data(), 0, sizeof(unsigned long long)));
+        RT_CUDA_CHECK(cudaEventRecord(start));
+        launch(count ? rayCount.Data() : nullptr);
+        RT_CUDA_CHECK(cudaEventRecord(stop));
+        RT_CUDA_CHECK(cudaEventSynchronize(stop));
+        float ms = 0.0f;
+        RT_CUDA_CHECK(cudaEventElapsedTime(&ms, start, stop));
+        if (i >= warmup) times.push_back(ms);
+        if (count && rays) {
+            unsigned long long counted = 0;
+            rayCount.Download(std::span<unsigned long long>(&counted, 1));
+            *rays = counted;
+        }
+    }
+    RT_CUDA_CHECK(cudaEventDestroy(start));
+    RT_CUDA_CHECK(cudaEventDestroy(stop));
+    return times;
+}
+
+}  // namespace rtrt
