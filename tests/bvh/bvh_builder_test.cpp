@@ -4,43 +4,13 @@
 #include <numeric>
 
 #include "engine/bvh/blas/blas.h"
-#include "game/assets/mesh_io.h"
+#include "tests/bvh/tree_checks.h"
 #include "tests/test_util.h"
 
 namespace rtrt {
 namespace {
 
-// Every node bounds its children (or its primitives), every primitive sits in exactly one leaf,
-// pairs start at even indices.
-void ExpectWellFormed(const Blas& blas) {
-    std::vector<uint32_t> seen(blas.PrimCount(), 0);
-    std::vector<uint32_t> stack{0};
-    while (!stack.empty()) {
-        const BvhNode& node = blas.nodes[stack.back()];
-        stack.pop_back();
-        if (node.IsLeaf()) {
-            for (uint32_t i = 0; i < node.primCount; ++i) {
-                const uint32_t slot = node.leftFirst + i;
-                ASSERT_LT(slot, blas.PrimCount());
-                ++seen[slot];
-                EXPECT_TRUE(node.Bounds().Contains(blas.triangles[slot].Bounds()));
-            }
-            continue;
-        }
-        ASSERT_EQ(node.leftFirst % 2, 0u);
-        ASSERT_LT(node.leftFirst + 1, blas.nodes.size());
-        EXPECT_TRUE(node.Bounds().Contains(blas.nodes[node.leftFirst].Bounds()));
-        EXPECT_TRUE(node.Bounds().Contains(blas.nodes[node.leftFirst + 1].Bounds()));
-        stack.push_back(node.leftFirst);
-        stack.push_back(node.leftFirst + 1);
-    }
-    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](uint32_t n) { return n == 1; }));
-    std::vector<uint32_t> ids = blas.primIds;
-    std::sort(ids.begin(), ids.end());
-    std::vector<uint32_t> expected(ids.size());
-    std::iota(expected.begin(), expected.end(), 0u);
-    EXPECT_EQ(ids, expected);
-}
+using test::ExpectWellFormed;
 
 TEST(BvhBuilder, EveryBuilderMakesAWellFormedTree) {
     const TriangleMesh mesh = test::RandomTriangles(5000, 1);
@@ -108,13 +78,6 @@ TEST(BvhBuilder, ParsesBuilderNames) {
     EXPECT_TRUE(ParseBuilder("sweep", &b));
     EXPECT_EQ(b, BvhBuilder::kSweepSah);
     EXPECT_FALSE(ParseBuilder("sah", &b));
-}
-
-TEST(BvhBuilder, DragonBinnedTreeIsWellFormed) {
-    RTRT_REQUIRE_MODEL(path, "dragon_vrip_res2.ply.gz");
-    const Blas blas = BuildTriangleBlas(LoadMesh(path));
-    ExpectWellFormed(blas);
-    EXPECT_LT(ComputeStats(blas.nodes).maxDepth, kBvhStackSize);
 }
 
 }  // namespace
