@@ -18,7 +18,13 @@ ALLOWED = {
     "engine/geometry": ["engine/core"],
     "engine/bvh": ["engine/core", "engine/geometry"],
     "engine/render_rt": ["engine/core", "engine/geometry", "engine/bvh"],
-    "game": ["engine", "game"],
+    "game/assets": ["engine"],
+    # The scene description (rtrt::scene_desc) is two files of game/scene that glTF and the
+    # runtime build on; the scene files above them use glTF and the asset loaders.
+    "game/gltf": ["engine", "game/scene/loaded_scene.h", "game/scene/json_fields.h"],
+    "game/scene": ["engine", "game/gltf", "game/assets"],
+    "game/runtime": ["engine", "game/scene/loaded_scene.h"],
+    "game/app": ["engine", "game"],
     "game/cli": ["engine", "game", "bench"],  # main registers `rtrt bench`
     "bench": ["engine", "game", "bench"],
     "tests": ["engine", "game", "bench", "tests"],
@@ -27,7 +33,7 @@ INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
 def module_of(path):
-    for module in sorted(ALLOWED, key=len, reverse=True):
+    for module in sorted((m for m in ALLOWED if not m.endswith(".h")), key=len, reverse=True):
         if path == module or path.startswith(module + "/"):
             return module
     return None
@@ -55,7 +61,7 @@ def main():
         graph[path] = includes
         for inc in includes:
             target = module_of(inc)
-            if target == own or any(inc.startswith(a + "/") for a in ALLOWED[own]):
+            if target == own or any(inc == a or inc.startswith(a + "/") for a in ALLOWED[own]):
                 continue
             problems.append(f"{path}: includes {inc}, but {own} may not depend on {target}")
     # Include cycles: a depth-first search over the project's own headers.
