@@ -15,6 +15,7 @@
 #include "bench/bench_commands.h"
 #include "bench/bench_report.h"
 #include "bench/ecs_benchmark.h"
+#include "bench/gpu_trace_timing.h"
 #include "bench/instance_grid_bench.h"
 #include "engine/core/error.h"
 #include "engine/core/timer.h"

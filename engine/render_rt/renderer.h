@@ -23,12 +23,6 @@ inline Image RenderRaw(const RenderScene& scene, const RenderSettings& settings,
 Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings,
                     RenderStats* stats = nullptr);
 
-// Times the CUDA trace kernel alone with CUDA events (`rtrt bench gpu`): the scene is uploaded
-// once, then `warmup` untimed and `frames` timed launches into a device framebuffer. Returns the
-// per-frame times (ms).
-std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings& settings,
-                                  int warmup, int frames, RenderStats* stats = nullptr);
-
 inline Image Render(const RenderScene& scene, const RenderSettings& settings, Backend backend) {
     Image raw =
         backend == Backend::kCuda ? RenderRawCuda(scene, settings) : RenderRaw(scene, settings);

@@ -1,7 +1,5 @@
 // The CUDA back end: the trace kernel of trace_launch.cuh (the RT_HD body of pixel_kernel.h, one
 // thread per pixel) with production's policy, specialised per scene feature set.
-#include <vector>
-
 #include "engine/core/device_buffer.h"
 #include "engine/render_rt/cuda/cuda_trace.h"
 #include "engine/render_rt/cuda/device_scene.h"
@@ -27,22 +25,6 @@ bool CudaBackendAvailable(std::string* why) {
         return false;
     }
     return true;
-}
-
-std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings& settings,
-                                  int warmup, int frames, RenderStats* stats) {
-    std::string why;
-    if (!CudaBackendAvailable(&why)) throw std::runtime_error(why);
-    DeviceStaticScene device(scene);
-    const RenderSceneView view = device.View(scene, settings);
-    DeviceBuffer<vec3> frame;
-    frame.Resize(size_t(settings.width) * settings.height);
-    const uint32_t features =
-        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
-    return TimeTraceLaunches(warmup, frames, stats ? &stats->rays : nullptr,
-                             [&](unsigned long long* rayCount) {
-                                 LaunchTrace(view, settings.view, features, frame.Data(), rayCount);
-                             });
 }
 
 Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, RenderStats* stats) {

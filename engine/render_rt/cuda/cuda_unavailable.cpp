@@ -15,11 +15,6 @@ Image RenderRawCuda(const RenderScene&, const RenderSettings&, RenderStats*) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
 }
 
-std::vector<double> TimeCudaTrace(const RenderScene&, const RenderSettings&, int, int,
-                                  RenderStats*) {
-    throw std::runtime_error("the CUDA back end is not built into this rtrt");
-}
-
 std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene&, TlasPolicy) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
 }
