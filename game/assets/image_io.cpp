@@ -1,7 +1,11 @@
 #include "game/assets/image_io.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -44,6 +48,11 @@ void WritePortable(const std::string& path, const Image& image, const std::strin
 }  // namespace
 
 void CheckImagePath(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(path, "",
+                         "is a folder; name an image file, e.g. " +
+                             (std::filesystem::path(path) / "out.png").string());
     const std::string ext = Extension(path);
     if (ext.empty())
         throw InputError(path, "", "the output needs an extension such as .png or .exr");
@@ -57,9 +66,12 @@ void CheckImagePath(const std::string& path) {
         throw InputError(path, "", "this rtrt was built without OpenImageIO; write .ppm or .pfm");
 #endif
     const auto dir = std::filesystem::path(path).parent_path();
-    std::error_code ec;
     if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
         throw InputError(path, "", "the folder " + dir.string() + " does not exist");
+    const std::string folder = dir.empty() ? std::string(".") : dir.string();
+    if (access(folder.c_str(), W_OK) != 0)
+        throw InputError(path, "",
+                         "cannot write into the folder " + folder + ": " + std::strerror(errno));
 }
 
 void WriteImage(const std::string& path, const Image& image) {

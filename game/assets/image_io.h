@@ -6,7 +6,8 @@
 namespace rtrt {
 
 // Throws InputError unless path names a format rtrt can write (PNG, EXR, ... through
-// OpenImageIO; PPM and PFM without it). Called before rendering so bad paths fail early.
+// OpenImageIO; PPM and PFM without it) in a folder that exists and can be written, and is not a
+// folder itself. Called before the scene is loaded, so that bad paths fail before any work.
 void CheckImagePath(const std::string& path);
 
 // Writes through a temporary file renamed into place: a failure leaves no partial output.

@@ -288,3 +288,23 @@ file(SHA256 ${WORK_DIR}/default_render${EXT} rendered)
 if(NOT status EQUAL 0 OR NOT played STREQUAL rendered)
     message(FATAL_ERROR "play default's first frame differs from render default")
 endif()
+
+# The output is checked before any work: -o naming a folder, or a folder rtrt may not write into
+# (checked where the test runs as an ordinary user: root may write anywhere), is bad input.
+file(MAKE_DIRECTORY ${WORK_DIR}/out_folder${EXT})
+execute_process(COMMAND ${RTRT} render ${WORK_DIR}/nowhere.json -o ${WORK_DIR}/out_folder${EXT}
+    RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR NOT stderr MATCHES "out_folder${EXT}: is a folder; name an image file")
+    message(FATAL_ERROR "-o naming a folder: status ${status}: ${stderr}")
+endif()
+execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE)
+if(NOT uid STREQUAL "0")
+    file(MAKE_DIRECTORY ${WORK_DIR}/read_only)
+    file(CHMOD ${WORK_DIR}/read_only DIRECTORY_PERMISSIONS OWNER_READ OWNER_EXECUTE)
+    execute_process(COMMAND ${RTRT} play ${WORK_DIR}/nowhere.json --headless --frames 1
+        -o ${WORK_DIR}/read_only/f_%02d${EXT} RESULT_VARIABLE status ERROR_VARIABLE stderr)
+    file(CHMOD ${WORK_DIR}/read_only DIRECTORY_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE)
+    if(NOT status EQUAL 2 OR NOT stderr MATCHES "cannot write into the folder .*read_only: Permission denied")
+        message(FATAL_ERROR "unwritable folder: status ${status}: ${stderr}")
+    endif()
+endif()
