@@ -117,7 +117,7 @@ constexpr FieldKind kFieldKinds[] = {
 // that external buffers and images exist, so that the message names the field
 // ("buffers[0].uri") where tinygltf's would not.
 void CheckJson(const std::string& file, const std::string& json, const std::string& dir) {
-    const Json root = ParseJson(json, file);
+    const Json root = ParseJson(json, file, DuplicateKeys::kLastWins);
     if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
     for (const char* array : {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers",
                               "images", "textures", "materials", "animations", "cameras"}) {

@@ -1,7 +1,13 @@
 #include "game/scene/json_fields.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <set>
 #include <sstream>
+#include <vector>
 
 #include "engine/core/error.h"
 
@@ -14,13 +20,118 @@ std::string Format(float v) {
     return s.str();
 }
 
+// "line L, column C" of a byte offset (both from 1).
+std::string TextPosition(const std::string& text, size_t offset) {
+    offset = std::min(offset, text.size());
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i < offset; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+    }
+    return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// Where the string token starting at text[i] ('"') ends (one past its closing quote).
+size_t StringEnd(const std::string& text, size_t i) {
+    for (++i; i < text.size(); ++i) {
+        if (text[i] == '\\')
+            ++i;
+        else if (text[i] == '"')
+            return i + 1;
+    }
+    return text.size();
+}
+
+// The offset of the n-th object key (from 0) of JSON text that is valid up to it: keys are the
+// string tokens followed by a colon, in the order the parser reports them.
+size_t NthKeyOffset(const std::string& text, size_t n) {
+    for (size_t i = 0; i < text.size(); ++i) {
+        if (text[i] != '"') continue;
+        const size_t start = i, end = StringEnd(text, i);
+        size_t next = end;
+        while (next < text.size() && std::isspace(static_cast<unsigned char>(text[next]))) ++next;
+        if (next < text.size() && text[next] == ':' && n-- == 0) return start;
+        i = end - 1;
+    }
+    return text.size();
+}
+
+// The first number token whose value overflows a double (what nlohmann reports without a place).
+size_t OverflowOffset(const std::string& text) {
+    for (size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '"') {
+            i = StringEnd(text, i) - 1;
+            continue;
+        }
+        const bool startsNumber =
+            text[i] == '-' || std::isdigit(static_cast<unsigned char>(text[i]));
+        if (!startsNumber) continue;
+        size_t end = i;
+        while (end < text.size() && std::strchr("+-0123456789.eE", text[end])) ++end;
+        if (std::isinf(std::strtod(text.substr(i, end - i).c_str(), nullptr))) return i;
+        i = end - 1;
+    }
+    return 0;
+}
+
+std::string NumberAt(const std::string& text, size_t at) {
+    size_t end = at;
+    while (end < text.size() && std::strchr("+-0123456789.eE", text[end])) ++end;
+    return text.substr(at, std::min<size_t>(end - at, 40));
+}
+
+// The parser's complaint in rtrt's words where it is a common one.
+std::string ParseErrorReason(const std::string& text, const Json::parse_error& e) {
+    const size_t at = e.byte == 0 ? 0 : std::min(text.size(), size_t(e.byte - 1));
+    // The invalid literal starts at the last token the parser read, before `at`.
+    size_t start = at;
+    while (start > 0 && std::isalpha(static_cast<unsigned char>(text[start - 1]))) --start;
+    const std::string word = text.substr(start, 8);
+    for (const char* nonNumber : {"NaN", "Infinity", "inf", "nan"})
+        if (word.rfind(nonNumber, 0) == 0)
+            return std::string(nonNumber) + " is not a JSON number; give a finite number";
+    if (e.byte >= text.size()) return "the text ends before the JSON does (truncated?)";
+    // nlohmann's text after its own "parse error at line L, column C: ".
+    const std::string what = e.what();
+    const size_t colon = what.find(": ", what.find("column"));
+    return colon == std::string::npos ? what : what.substr(colon + 2);
+}
+
 }  // namespace
 
-Json ParseJson(const std::string& text, const std::string& file) {
+Json ParseJson(const std::string& text, const std::string& file, DuplicateKeys duplicates) {
+    // Each open object's keys, so that a key given twice is found where it is given again.
+    std::vector<std::set<std::string>> objects;
+    size_t keysSeen = 0;
+    auto callback = [&](int, Json::parse_event_t event, Json& parsed) {
+        if (event == Json::parse_event_t::object_start) objects.emplace_back();
+        if (event == Json::parse_event_t::object_end) objects.pop_back();
+        if (event == Json::parse_event_t::key) {
+            const std::string key = parsed.get<std::string>();
+            if (!objects.back().insert(key).second && duplicates == DuplicateKeys::kError)
+                throw InputError(file, "",
+                                 TextPosition(text, NthKeyOffset(text, keysSeen)) +
+                                     ": malformed JSON: the key \"" + key +
+                                     "\" is given twice in one object");
+            ++keysSeen;
+        }
+        return true;
+    };
     try {
-        return Json::parse(text);
-    } catch (const Json::exception& e) {  // parse_error, or out_of_range for 1e999
-        throw InputError(file, "", std::string("malformed JSON: ") + e.what());
+        return Json::parse(text, callback);
+    } catch (const Json::parse_error& e) {
+        throw InputError(file, "",
+                         TextPosition(text, e.byte == 0 ? 0 : e.byte - 1) +
+                             ": malformed JSON: " + ParseErrorReason(text, e));
+    } catch (const Json::out_of_range&) {  // a number beyond double's range, such as 1e999
+        const size_t at = OverflowOffset(text);
+        throw InputError(file, "",
+                         TextPosition(text, at) + ": malformed JSON: the number " +
+                             NumberAt(text, at) + " is beyond the range of a double");
     }
 }
 

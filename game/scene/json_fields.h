@@ -12,9 +12,15 @@ namespace rtrt {
 
 using Json = nlohmann::json;
 
-// Parses TEXT; throws InputError(file, "", "malformed JSON: ...") for text that is not JSON or
-// holds a number beyond double's range (1e999).
-Json ParseJson(const std::string& text, const std::string& file);
+// Whether a key given twice in one object is an error (rtrt's scene files) or, as most JSON
+// readers do, the later value wins (glTF, whose writers rtrt does not control).
+enum class DuplicateKeys { kError, kLastWins };
+
+// Parses TEXT; throws InputError(file, "", "line L, column C: malformed JSON: REASON") for text
+// that is not JSON (NaN and Infinity named as such), holds a number beyond double's range (1e999),
+// or, with DuplicateKeys::kError, gives a key twice in one object.
+Json ParseJson(const std::string& text, const std::string& file,
+               DuplicateKeys duplicates = DuplicateKeys::kError);
 
 // "array[i]", the way messages name an element of an array.
 std::string JsonIndexed(const std::string& array, size_t i);
