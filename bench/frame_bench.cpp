@@ -130,11 +130,11 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
         ->capture_default_str();
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
     cmd->callback([o, exitCode] {
+        Backend backend;
         std::string why;
-        const bool cuda = CudaBackendAvailable(&why);
-        if (o->backend == "cuda" && !cuda)
-            throw InputError("--backend", "cuda", why + "; use --backend cpu");
-        if (o->backend == "auto") o->backend = cuda ? "cuda" : "cpu";
+        if (!ChooseBackend(o->backend, &backend, &why))
+            throw InputError("--backend", o->backend, why + "; use --backend cpu");
+        o->backend = backend == Backend::kCuda ? "cuda" : "cpu";
         RunFrameBench(*o);
         *exitCode = kExitOk;
     });

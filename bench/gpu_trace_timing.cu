@@ -1,4 +1,5 @@
 #include "bench/gpu_trace_timing.h"
+#include "bench/trace_timing.cuh"
 #include "engine/core/device_buffer.h"
 #include "engine/render_rt/cuda/cuda_trace.h"
 #include "engine/render_rt/cuda/device_scene.h"

@@ -225,7 +225,7 @@ def findings(rows):
     if r:
         out.append(f"- **triangle test**: Moller-Trumbore alone changes "
                    f"{100 * e['mismatch_rate']:.3f}% of the primary hits (rays through shared "
-                   f"edges are rare in an image; tests/accuracy shows them deterministically).")
+                   f"edges are rare in an image; tests/bench/accuracy_variants_test.cpp shows them deterministically).")
     r, e = get("spheres", "naive quadratic")
     if r:
         out.append(f"- **sphere test**: the textbook quadratic loses the far spheres' silhouettes: "

@@ -3,6 +3,7 @@
 // feature set in the traversal form the scene's instance count selects, as the renderer does.
 #include "bench/accuracy/accuracy_dispatch.h"
 #include "bench/accuracy/accuracy_renderer.h"
+#include "bench/trace_timing.cuh"
 #include "engine/render_rt/cuda/device_scene.h"
 #include "engine/render_rt/cuda/trace_launch.cuh"
 

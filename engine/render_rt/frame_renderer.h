@@ -16,12 +16,6 @@
 
 namespace rtrt {
 
-// What changed in a RenderScene since the last update.
-struct SceneChanges {
-    std::span<const uint32_t> instances;  // records rewritten or appended (indices)
-    bool topologyChanged = false;         // instances were added or removed
-};
-
 // One frame's stages. The GPU times them with CUDA events and collects them a frame or two later,
 // so that no frame waits for the GPU to read them; the CPU times them with the host clock.
 struct FrameTimes {

@@ -1,14 +1,22 @@
 #pragma once
-// The host-side scene a back end renders: BLASes shared between instances, instance records, a
-// TLAS over them, materials, lights and camera. The game extracts it from scene files or the
-// ECS; render_rt knows nothing of either.
+// The host-side scene a back end renders: BLASes shared between instances, instance records,
+// materials, lights and camera; for an image of the scene as it is (renderer.h) also its own TLAS
+// (a running scene's TLAS belongs to its FrameRenderer). The game extracts it from scene files or
+// the ECS; render_rt knows nothing of either.
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "engine/bvh/tlas/tlas.h"
 #include "engine/render_rt/render_scene_view.h"
 
 namespace rtrt {
+
+// What changed in a RenderScene since a FrameRenderer last took it (frame_renderer.h).
+struct SceneChanges {
+    std::span<const uint32_t> instances;  // records rewritten or appended (indices)
+    bool topologyChanged = false;         // instances were added or removed
+};
 
 struct RenderScene {
     std::vector<std::shared_ptr<const Blas>> blases;
@@ -29,7 +37,7 @@ struct RenderScene {
 
     // Rebuilds the TLAS over the current instances; call after adding or moving instances.
     void BuildTlas();
-    // Takes a TLAS built elsewhere (the runtime's per-frame LBVH) over the current instances.
+    // Takes a TLAS built elsewhere over the current instances (tests, the accuracy study).
     void SetTlas(Tlas tlas);
     // The SceneFeature bits this scene's materials and lights call for.
     uint32_t Features() const;

@@ -26,4 +26,8 @@ struct RenderStats {
 // Whether the CUDA back end can run here; if not, why (for the CLI's message).
 bool CudaBackendAvailable(std::string* why);
 
+// The back end a user's choice names: "cpu", "cuda", or "auto" (CUDA where it can run, else the
+// CPU). False, with why, for "cuda" where it cannot run, or an unknown name.
+bool ChooseBackend(const std::string& choice, Backend* backend, std::string* why);
+
 }  // namespace rtrt

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "engine/bvh/tlas/tlas.h"
+#include "engine/core/error.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
@@ -36,10 +37,11 @@ class App {
           overlay_(window_.Handle()),
           camera_(Camera{}, 1.0f) {
         std::string why;
-        model_.cudaAvailable = CudaBackendAvailable(&why);
-        if (o.backend == "cuda" && !model_.cudaAvailable)
-            throw std::runtime_error(why + "; use --backend cpu");
-        model_.useCuda = o.backend != "cpu" && model_.cudaAvailable;
+        Backend backend;
+        if (!ChooseBackend(o.backend, &backend, &why))
+            throw InputError("--backend", o.backend, why + "; use --backend cpu");
+        model_.cudaAvailable = CudaBackendAvailable(nullptr);
+        model_.useCuda = backend == Backend::kCuda;
         model_.glRenderer = window_.Renderer();
         if (!o.script.empty()) script_ = InputScript::Load(o.script);
         if (!o.record.empty()) std::filesystem::create_directories(o.record);

@@ -99,12 +99,10 @@ void RunPlay(PlayOptions o) {
     settings.height = loaded.height.value_or(720);
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
     settings.maxDepth = loaded.scene.maxDepth;
+    Backend backend;
     std::string why;
-    const bool cuda = CudaBackendAvailable(&why);
-    const Backend backend =
-        o.backend == "cuda" || (o.backend == "auto" && cuda) ? Backend::kCuda : Backend::kCpu;
-    if (backend == Backend::kCuda && !cuda)
-        throw InputError("--backend", "cuda", why + "; use --backend cpu");
+    if (!ChooseBackend(o.backend, &backend, &why))
+        throw InputError("--backend", o.backend, why + "; use --backend cpu");
 
     World world(loaded);
     const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(backend, world.Scene());

@@ -12,7 +12,7 @@
 #include "engine/ecs/scheduler.h"
 #include "engine/physics_anim/physics_world.h"
 #include "engine/physics_anim/transform_system.h"
-#include "engine/render_rt/frame_renderer.h"
+#include "engine/render_rt/render_scene.h"
 #include "game/scene/loaded_scene.h"
 
 namespace rtrt {

@@ -294,7 +294,7 @@ TEST_F(RtModelTest, EveryHostileCaseGivesItsError) {
 }
 
 // The committed corpus (read by the CLI test) is this generator's output. To write it again
-// after a format change: RTRT_WRITE_HOSTILE_CORPUS=1 rtrt_unit_tests --gtest_filter='*Committed*'
+// after a format change: RTRT_WRITE_HOSTILE_CORPUS=1 rtrt_bvh_tests --gtest_filter='*Committed*'
 TEST_F(RtModelTest, CommittedHostileCorpusIsCurrent) {
     const std::string corpus = test::SourcePath("tests/data/hostile");
     const std::string valid = ValidCorpusFile(dir_.string());

@@ -439,7 +439,7 @@ TEST_F(GltfTest, EveryHostileFileGivesOneError) {
 
 // The committed corpus (tests/data/hostile_gltf/, read by the CLI test and seeding the fuzzer)
 // is this generator's output. To write it again:
-// RTRT_WRITE_HOSTILE_CORPUS=1 rtrt_unit_tests --gtest_filter='*CommittedHostileGltf*'
+// RTRT_WRITE_HOSTILE_CORPUS=1 rtrt_gltf_tests --gtest_filter='*CommittedHostileGltf*'
 TEST_F(GltfTest, CommittedHostileGltfCorpusIsCurrent) {
     const std::string corpus = test::SourcePath("tests/data/hostile_gltf");
     const bool write = std::getenv("RTRT_WRITE_HOSTILE_CORPUS") != nullptr;

@@ -11,6 +11,10 @@ namespace {
 class CpuFrameRenderer final : public FrameRenderer {
   public:
     CpuFrameRenderer(const RenderScene& scene, TlasPolicy policy) : tlas_(policy) {
+        for (const auto& blas : scene.blases) {
+            blasViews_.push_back(blas->View());
+            blasBounds_.push_back(blas->bounds);
+        }
         Update(scene, {{}, true});
     }
 
@@ -18,16 +22,18 @@ class CpuFrameRenderer final : public FrameRenderer {
 
     void Update(const RenderScene& scene, const SceneChanges& changes) override {
         pending_ = {};
-        TakeBlases(scene);
+        pending_.tlasSahCost = lastSahCost_;
         instances_ = scene.instances.data();
-        if (changes.instances.empty() && !changes.topologyChanged && built_) return;
+        // A record count the tree does not cover is a topology change, reported or not.
+        const bool topology = changes.topologyChanged || !built_ ||
+                              tlas_.Tree().primOrder.size() != scene.instances.size();
+        if (changes.instances.empty() && !topology) return;
         Stopwatch timer;
-        const TlasUpdateStats s =
-            tlas_.Update(scene.instances, blasBounds_, changes.topologyChanged || !built_);
+        const TlasUpdateStats s = tlas_.Update(scene.instances, blasBounds_, topology);
         built_ = true;
         pending_.tlasMs = timer.Milliseconds();
         pending_.tlasRebuilt = s.rebuilt;
-        pending_.tlasSahCost = s.sahCost;
+        pending_.tlasSahCost = lastSahCost_ = s.sahCost;
     }
 
     void Trace(const RenderScene& scene, const RenderSettings& settings, Image* image,
@@ -42,6 +48,9 @@ class CpuFrameRenderer final : public FrameRenderer {
         if (stats) *stats = counted;
         pending_.frame = ++traced_;
         times_ = pending_;
+        // A frame traced again without an update spent nothing on the TLAS.
+        pending_ = {};
+        pending_.tlasSahCost = lastSahCost_;
     }
 
     void Finish() override {}
@@ -56,14 +65,6 @@ class CpuFrameRenderer final : public FrameRenderer {
     Lbvh CurrentTlas() const override { return tlas_.Tree(); }
 
   private:
-    // Models added to the scene since the last update (the window's spawn palette adds some).
-    void TakeBlases(const RenderScene& scene) {
-        for (size_t i = blasViews_.size(); i < scene.blases.size(); ++i) {
-            blasViews_.push_back(scene.blases[i]->View());
-            blasBounds_.push_back(scene.blases[i]->bounds);
-        }
-    }
-
     TlasView Tlas() const {
         return {tlas_.Tree().nodes.data(), tlas_.Tree().primOrder.data(), instances_,
                 blasViews_.data()};
@@ -79,8 +80,11 @@ class CpuFrameRenderer final : public FrameRenderer {
     bool built_ = false;
     std::vector<BlasView> blasViews_;
     std::vector<Aabb> blasBounds_;
-    const Instance* instances_ = nullptr;  // the scene's records as of the last update
-    Image frame_;                          // where frames nobody asked to see go
+    // The scene's records as of the last update or trace: Pick reads them, so the scene must
+    // not have changed size since (a frame loop picks before it advances).
+    const Instance* instances_ = nullptr;
+    float lastSahCost_ = 0.0f;
+    Image frame_;  // where frames nobody asked to see go
     uint64_t traced_ = 0;
     FrameTimes pending_, times_;
 };

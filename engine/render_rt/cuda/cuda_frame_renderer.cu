@@ -113,7 +113,8 @@ class CudaFrameRenderer final : public FrameRenderer {
         }
         RT_CUDA_CHECK(cudaEventRecord(f.events[1]));
         // The policy of DynamicTlas, with one difference: a tree's SAH cost is known one update
-        // later (it is copied back asynchronously), so that no frame waits on the GPU halfway.
+        // later (copied back asynchronously; CollectSahCost waits for the previous frame's TLAS
+        // stage at most, never for its trace), so that decisions stay deterministic run to run.
         const bool rebuild = policy_.alwaysRebuild || countChanged || !built_ ||
                              lastSahCost_ > (1.0f + policy_.maxSahGrowth) * rebuiltSahCost_;
         if (rebuild) {
@@ -162,8 +163,10 @@ class CudaFrameRenderer final : public FrameRenderer {
     }
 
     void Finish() override {
-        FrameEvents& f = frames_[current_];
-        if (f.pending) Collect(f);
+        // Oldest first, so that the last traced frame's times are the ones kept.
+        FrameEvents& other = frames_[1 - current_];
+        if (other.pending) Collect(other);
+        if (frames_[current_].pending) Collect(frames_[current_]);
     }
 
     bool Pick(const Ray& ray, SceneHit* hit) override {
@@ -316,7 +319,7 @@ class CudaFrameRenderer final : public FrameRenderer {
 
 std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene& scene, TlasPolicy policy) {
     std::string why;
-    if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use --backend cpu");
+    if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use the CPU back end");
     return std::make_unique<CudaFrameRenderer>(scene, policy);
 }
 

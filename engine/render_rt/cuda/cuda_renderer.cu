@@ -29,7 +29,7 @@ bool CudaBackendAvailable(std::string* why) {
 
 Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, RenderStats* stats) {
     std::string why;
-    if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use --backend cpu");
+    if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use the CPU back end");
     DeviceStaticScene device(scene);
     const RenderSceneView view = device.View(scene, settings);
     DeviceBuffer<unsigned long long> rayCount;

@@ -12,11 +12,11 @@ bool CudaBackendAvailable(std::string* why) {
 }
 
 Image RenderRawCuda(const RenderScene&, const RenderSettings&, RenderStats*) {
-    throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
+    throw std::runtime_error("the CUDA back end is not built into this rtrt; use the CPU back end");
 }
 
 std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene&, TlasPolicy) {
-    throw std::runtime_error("the CUDA back end is not built into this rtrt; use --backend cpu");
+    throw std::runtime_error("the CUDA back end is not built into this rtrt; use the CPU back end");
 }
 
 }  // namespace rtrt

@@ -1,7 +1,7 @@
 #pragma once
 // The arrays of a RenderScene in device memory, for CUDA host code. DeviceScene holds what a
 // running scene never changes (BLASes, materials, lights, textures); the TLAS and the instances
-// belong to whoever keeps them up to date (CudaFrameRenderer), or, for an image of the scene as it
+// belong to whoever keeps them up to date (the CUDA frame renderer), or, for an image of the scene as it
 // is, to DeviceStaticScene.
 #include <vector>
 
