@@ -41,21 +41,4 @@ TriangleMesh LoadMesh(const std::string& path) {
     return mesh;
 }
 
-void ComputeSmoothNormals(TriangleMesh& mesh) {
-    std::vector<vec3> normals(mesh.positions.size(), vec3(0.0f));
-    for (const glm::uvec3& t : mesh.indices) {
-        vec3 p0 = mesh.positions[t.x];
-        // The cross product's length is twice the triangle's area: the sum is area-weighted.
-        vec3 n = glm::cross(mesh.positions[t.y] - p0, mesh.positions[t.z] - p0);
-        normals[t.x] += n;
-        normals[t.y] += n;
-        normals[t.z] += n;
-    }
-    for (vec3& n : normals) {
-        float length = glm::length(n);
-        n = length > 0.0f && std::isfinite(length) ? n / length : vec3(0.0f, 1.0f, 0.0f);
-    }
-    mesh.normals = std::move(normals);
-}
-
 }  // namespace rtrt

@@ -9,15 +9,11 @@ namespace rtrt {
 
 // Loads PATH by its extension (any case): .obj, .ply or .ply.gz. Polygons are fan-triangulated and
 // faces with a repeated vertex index dropped. Normals come from the file when it gives one for
-// every vertex (PLY) or every face corner (OBJ), otherwise from ComputeSmoothNormals. Throws
+// every vertex (PLY) or every face corner (OBJ), otherwise from ComputeSmoothNormals
+// (engine/geometry/smooth_normals.h). Throws
 // InputError naming the file, the field ("vertex 12", "face 7", "line 33", "header line 4") and
 // the reason for a missing or unreadable file, an unknown extension, a malformed or truncated file,
 // non-finite coordinates, out-of-range indices or a mesh without triangles.
 TriangleMesh LoadMesh(const std::string& path);
-
-// Sets mesh.normals to area-weighted vertex normals: the normalised sum of the cross products of
-// the triangles around each vertex. A vertex on no triangle of nonzero area gets +y. The indices
-// must be in range.
-void ComputeSmoothNormals(TriangleMesh& mesh);
 
 }  // namespace rtrt

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
-#include "game/assets/mesh_io.h"
+#include "engine/geometry/smooth_normals.h"
 #include "game/assets/mesh_text.h"
 
 namespace rtrt {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
-#include "game/assets/mesh_io.h"
+#include "engine/geometry/smooth_normals.h"
 
 namespace rtrt {
 namespace {

@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "game/gltf/gltf_asset.h"
 #include "game/gltf/gltf_document.h"
-#include "game/gltf/gltf_import.h"
 
 namespace rtrt {
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "game/gltf/gltf_asset.h"
 #include "game/gltf/gltf_document.h"
-#include "game/gltf/gltf_import.h"
 #include "game/gltf/gltf_meshes.h"
 
 namespace rtrt {

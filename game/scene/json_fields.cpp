@@ -112,7 +112,7 @@ Json ParseJson(const std::string& text, const std::string& file, DuplicateKeys d
         if (event == Json::parse_event_t::object_end) objects.pop_back();
         if (event == Json::parse_event_t::key) {
             const std::string key = parsed.get<std::string>();
-            if (!objects.back().insert(key).second && duplicates == DuplicateKeys::kError)
+            if (!objects.back().insert(key).second)
                 throw InputError(file, "",
                                  TextPosition(text, NthKeyOffset(text, keysSeen)) +
                                      ": malformed JSON: the key \"" + key +
@@ -122,7 +122,9 @@ Json ParseJson(const std::string& text, const std::string& file, DuplicateKeys d
         return true;
     };
     try {
-        return Json::parse(text, callback);
+        // Without a duplicate check there is nothing to track per key.
+        return duplicates == DuplicateKeys::kError ? Json::parse(text, callback)
+                                                   : Json::parse(text);
     } catch (const Json::parse_error& e) {
         throw InputError(file, "",
                          TextPosition(text, e.byte == 0 ? 0 : e.byte - 1) +

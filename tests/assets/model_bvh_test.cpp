@@ -18,14 +18,7 @@ TEST(ModelBvh, DragonBinnedTreeIsWellFormed) {
     EXPECT_LT(ComputeStats(blas.nodes).maxDepth, kBvhStackSize);
 }
 
-class ModelTraversal : public ::testing::TestWithParam<BvhBuilder> {
-  protected:
-    BvhBuildOptions Options() const {
-        BvhBuildOptions o;
-        o.builder = GetParam();
-        return o;
-    }
-};
+class ModelTraversal : public test::EveryBuilder {};
 
 TEST_P(ModelTraversal, DragonRes4MatchesBruteForce) {
     RTRT_REQUIRE_MODEL(path, "dragon_vrip_res4.ply.gz");
@@ -37,10 +30,7 @@ TEST_P(ModelTraversal, TeapotMatchesBruteForce) {
     test::ExpectMatchesBruteForce(BuildTriangleBlas(TessellateTeapot(path, 6), Options()), 15);
 }
 
-INSTANTIATE_TEST_SUITE_P(Builders, ModelTraversal,
-                         ::testing::Values(BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah,
-                                           BvhBuilder::kCentroidSplit),
-                         [](const auto& info) { return std::string(BuilderName(info.param)); });
+INSTANTIATE_TEST_SUITE_P(Builders, ModelTraversal, test::kAllBuilders, test::BuilderTestName);
 
 }  // namespace
 }  // namespace rtrt

@@ -15,14 +15,7 @@ using test::ExpectMatchesBruteForce;
 using test::Intersect;
 using test::Occluded;
 
-class TraversalTest : public ::testing::TestWithParam<BvhBuilder> {
-  protected:
-    BvhBuildOptions Options() const {
-        BvhBuildOptions o;
-        o.builder = GetParam();
-        return o;
-    }
-};
+class TraversalTest : public test::EveryBuilder {};
 
 TEST_P(TraversalTest, RandomTriangleSoupMatchesBruteForce) {
     ExpectMatchesBruteForce(BuildTriangleBlas(test::RandomTriangles(3000, 7), Options()), 11);
@@ -41,10 +34,7 @@ TEST_P(TraversalTest, SpheresMatchBruteForce) {
     ExpectMatchesBruteForce(BuildSphereBlas(spheres, Options()), 13);
 }
 
-INSTANTIATE_TEST_SUITE_P(Builders, TraversalTest,
-                         ::testing::Values(BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah,
-                                           BvhBuilder::kCentroidSplit),
-                         [](const auto& info) { return std::string(BuilderName(info.param)); });
+INSTANTIATE_TEST_SUITE_P(Builders, TraversalTest, test::kAllBuilders, test::BuilderTestName);
 
 TEST(Traversal, RefitKeepsResultsAfterTheMeshMoves) {
     TriangleMesh mesh = test::RandomTriangles(2000, 3);

@@ -15,6 +15,7 @@
 
 #include "engine/bvh/blas/rtmodel_format.h"
 #include "engine/core/error.h"
+#include "engine/geometry/smooth_normals.h"
 #include "tests/test_util.h"
 
 namespace rtrt {
@@ -67,23 +68,11 @@ class RtModelTest : public ::testing::Test {
     fs::path dir_;
 };
 
-// Per-vertex normals of a mesh whose triangles share no vertex: each its face's unit normal, in
-// the operations game/assets' ComputeSmoothNormals does (so the committed corpus stays the same).
-void FaceNormals(TriangleMesh& mesh) {
-    mesh.normals.assign(mesh.positions.size(), vec3(0.0f));
-    for (const glm::uvec3& t : mesh.indices) {
-        const vec3 p0 = mesh.positions[t.x];
-        const vec3 n = glm::cross(mesh.positions[t.y] - p0, mesh.positions[t.z] - p0);
-        for (uint32_t v : {t.x, t.y, t.z}) mesh.normals[v] += n;
-    }
-    for (vec3& n : mesh.normals) n = n / glm::length(n);
-}
-
 // The model every hostile case starts from: 40 random triangles with smooth normals and texture
 // coordinates.
 Blas CorpusBlas() {
     TriangleMesh mesh = test::RandomTriangles(40, 7);
-    FaceNormals(mesh);
+    ComputeSmoothNormals(mesh);
     for (const vec3& p : mesh.positions) mesh.uvs.push_back(vec2(p.x, p.z));
     return BuildTriangleBlas(mesh);
 }

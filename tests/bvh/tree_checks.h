@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "engine/bvh/blas/blas.h"
@@ -210,6 +211,21 @@ inline void ExpectWellFormed(const Blas& blas) {
     std::vector<uint32_t> expected(ids.size());
     std::iota(expected.begin(), expected.end(), 0u);
     EXPECT_EQ(ids, expected);
+}
+
+// A test over every BVH builder: TEST_P suites derive from it and instantiate with kAllBuilders.
+class EveryBuilder : public ::testing::TestWithParam<BvhBuilder> {
+  protected:
+    BvhBuildOptions Options() const {
+        BvhBuildOptions o;
+        o.builder = GetParam();
+        return o;
+    }
+};
+inline const auto kAllBuilders =
+    ::testing::Values(BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit);
+inline std::string BuilderTestName(const ::testing::TestParamInfo<BvhBuilder>& info) {
+    return std::string(BuilderName(info.param));
 }
 
 }  // namespace rtrt::test

@@ -1,8 +1,8 @@
 #pragma once
 // The arrays of a RenderScene in device memory, for CUDA host code. DeviceScene holds what a
 // running scene never changes (BLASes, materials, lights, textures); the TLAS and the instances
-// belong to whoever keeps them up to date (the CUDA frame renderer), or, for an image of the scene as it
-// is, to DeviceStaticScene.
+// belong to whoever keeps them up to date (the CUDA frame renderer), or, for an image of the scene
+// as it is, to DeviceStaticScene.
 #include <vector>
 
 #include "engine/core/device_buffer.h"

@@ -1,7 +1,8 @@
-#include "engine/render_rt/frame_renderer.h"
-
+// MakeFrameRenderer (frame_renderer.h), apart from the interface so that the back ends, which
+// include the interface, are not included back by it.
 #include "engine/render_rt/cpu/cpu_frame_renderer.h"
 #include "engine/render_rt/cuda/cuda_frame_renderer.h"
+#include "engine/render_rt/frame_renderer.h"
 
 namespace rtrt {
 
