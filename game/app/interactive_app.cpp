@@ -318,7 +318,6 @@ class App {
         const RenderScene& scene = world_->Scene();
         const RenderSettings s = Settings();
         const bool gpu = renderer_->Kind() == Backend::kCuda;
-        renderer_->Update(scene, world_->Changes());
         // Views other than shaded are finished on the host (FinishView).
         const bool viaHost = !gpu || s.view != ViewMode::kShaded || interopFailed_;
         if (!viaHost && (display_.Resize(s.width, s.height) || !interop_.Registered())) {
@@ -332,6 +331,7 @@ class App {
                 return RenderFrame();
             }
         }
+        renderer_->Update(scene, world_->Changes());
         // GPU times (and the ray count) arrive a frame or two late rather than make this wait.
         RenderStats stats;
         renderer_->Trace(scene, s, viaHost ? &raw_ : nullptr, &stats);
