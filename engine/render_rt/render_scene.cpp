@@ -33,6 +33,22 @@ uint32_t RenderScene::AddInstance(uint32_t blasId, uint32_t materialId,
     return uint32_t(instances.size() - 1);
 }
 
+uint32_t RenderScene::AddDeformableMesh(std::shared_ptr<const DeformableMesh> mesh) {
+    deformableMeshes.push_back(std::move(mesh));
+    return uint32_t(deformableMeshes.size() - 1);
+}
+
+uint32_t RenderScene::AddDeformation(uint32_t meshId, uint32_t restBlasId) {
+    Deformation d;
+    d.mesh = meshId;
+    d.blasId = AddBlas(blases[restBlasId]);
+    const DeformableMesh& mesh = *deformableMeshes[meshId];
+    d.morphWeights = mesh.defaultWeights;
+    d.jointMatrices.assign(mesh.jointCount, Affine::Identity());
+    deformations.push_back(std::move(d));
+    return uint32_t(deformations.size() - 1);
+}
+
 void RenderScene::BuildTlas() {
     std::vector<Aabb> blasBounds;
     blasViews_.clear();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/bvh/tlas/tlas.h"
+#include "engine/render_rt/deformation.h"
 #include "engine/render_rt/render_scene_view.h"
 
 namespace rtrt {
@@ -16,6 +17,7 @@ namespace rtrt {
 struct SceneChanges {
     std::span<const uint32_t> instances;  // records rewritten or appended (indices)
     bool topologyChanged = false;         // instances were added or removed
+    std::span<const uint32_t> deformations;  // deformation records whose pose changed (indices)
 };
 
 struct RenderScene {
@@ -28,12 +30,21 @@ struct RenderScene {
     Camera camera;
     vec3 background{0.2f, 0.3f, 0.5f};
     uint32_t maxDepth = 4;
+    // Deforming instances: each Deformation owns one BLAS slot of `blases` (which starts as its
+    // mesh's rest tree); frame renderers deform and refit their own copy of it.
+    std::vector<std::shared_ptr<const DeformableMesh>> deformableMeshes;
+    std::vector<Deformation> deformations;
 
     uint32_t AddBlas(std::shared_ptr<const Blas> blas);
     uint32_t AddMaterial(const Material& material);
     // Appends width x height RGBA8 texels (row 0 the top) as a texture; texelOffset is set here.
     uint32_t AddTexture(Texture texture, const uint32_t* rgba);
     uint32_t AddInstance(uint32_t blasId, uint32_t materialId, const glm::mat4& objectToWorld);
+    uint32_t AddDeformableMesh(std::shared_ptr<const DeformableMesh> mesh);
+    // A deformation of mesh `meshId` whose rest tree is BLAS `restBlasId` (built from the mesh,
+    // same triangle order): appends a BLAS slot for it (the deformation's blasId, which its
+    // instance uses) and the record, with the mesh's default morph weights. Returns its index.
+    uint32_t AddDeformation(uint32_t meshId, uint32_t restBlasId);
 
     // Rebuilds the TLAS over the current instances; call after adding or moving instances.
     void BuildTlas();
