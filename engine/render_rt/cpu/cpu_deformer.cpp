@@ -56,6 +56,22 @@ BlasView CpuDeformer::ViewOf(uint32_t d) const {
     return v;
 }
 
+Blas CpuDeformer::Snapshot(uint32_t d) const {
+    const DeformJob& at = plan_.Slot(d);
+    const uint32_t n = plan_.SlotCount(d);
+    const BlasView v = ViewOf(d);
+    Blas blas;
+    blas.nodes.assign(nodes_.begin() + at.nodeOffset,
+                      nodes_.begin() + at.nodeOffset + at.nodeCount);
+    blas.triangles.assign(v.triangles, v.triangles + n);
+    if (v.normals) blas.normals.assign(v.normals, v.normals + n);
+    if (v.uvs) blas.uvs.assign(v.uvs, v.uvs + n);
+    blas.primIds.assign(slotTriangle_.begin() + at.slotOffset,
+                        slotTriangle_.begin() + at.slotOffset + n);
+    blas.bounds = blas.nodes[0].Bounds();
+    return blas;
+}
+
 // An LBVH over the deformed triangles replaces the job's tree.
 void CpuDeformer::Rebuild(uint32_t j) {
     const DeformJob& job = plan_.Jobs()[j];

@@ -21,6 +21,9 @@ class CpuDeformer {
                        std::vector<BlasView>& views, std::vector<Aabb>& bounds);
 
     const DeformPlan& Plan() const { return plan_; }
+    // Deformation d's BLAS as it stands (tree, leaf-ordered triangles, slot -> rest triangle as
+    // primIds), for tests and benchmarks.
+    Blas Snapshot(uint32_t deformation) const;
 
   private:
     void Admit(const RenderScene& scene);

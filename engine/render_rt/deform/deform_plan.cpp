@@ -62,7 +62,9 @@ std::vector<DeformSlotInit> DeformPlan::Admit(const RenderScene& scene) {
         slot.slotCount = rest.PrimCount();
         slot.rebuiltCost = slot.lastCost = TreeSahCost(rest.nodes);
         // Room for the largest tree it may get: an LBVH of one triangle per leaf.
-        const uint32_t capacity = std::max(uint32_t(rest.nodes.size()), 2 * slot.slotCount);
+        // Even, so that every tree's node pairs start on a cache line as the layout wants.
+        const uint32_t capacity =
+            (std::max(uint32_t(rest.nodes.size()), 2 * slot.slotCount) + 1) & ~1u;
         vertexTotal_ += mesh.VertexCount();
         slotTotal_ += slot.slotCount;
         nodeTotal_ += capacity;
