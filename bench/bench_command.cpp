@@ -245,20 +245,25 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
 // Runtime cost per stage on a played scene: what a scene does not use must cost ~nothing.
 void RunRuntimeBench(const std::vector<std::string>& scenes, int frames) {
     std::printf("rtrt bench runtime: medians over %d frames at 60 fps (CPU, ms)\n", frames);
-    std::printf("%-28s %9s %9s %9s %11s %9s %9s %9s\n", "scene", "instances", "moving", "physics",
-                "animators", "transform", "extract", "TLAS");
+    std::printf("%-28s %9s %9s %9s %11s %9s %9s %9s %9s %9s\n", "scene", "instances", "moving",
+                "physics", "animators", "transform", "extract", "deform", "BLAS", "TLAS");
     for (const std::string& path : scenes) {
         const LoadedScene loaded = LoadSceneFile(path);
         World world(loaded);
         // The TLAS stage of the CPU back end: its frame renderer's update, without a trace.
         const std::unique_ptr<FrameRenderer> renderer =
             MakeFrameRenderer(Backend::kCpu, world.Scene());
-        std::vector<double> physics, animators, transforms, extract, tlas, moving;
+        std::vector<double> physics, animators, transforms, extract, deform, blas, tlas, moving;
         for (int i = 0; i < frames; ++i) {
             const FrameStats stats = world.Advance(1.0f / 60.0f);
-            Stopwatch tlasTimer;
             renderer->Update(world.Scene(), world.Changes());
-            tlas.push_back(tlasTimer.Milliseconds());
+            // A frame's times are published by its trace: a one-pixel one costs nothing here.
+            RenderSettings onePixel;
+            onePixel.width = onePixel.height = 1;
+            renderer->Trace(world.Scene(), onePixel, nullptr);
+            deform.push_back(renderer->Times().deformMs);
+            blas.push_back(renderer->Times().blasMs);
+            tlas.push_back(renderer->Times().tlasMs);
             for (const ecs::SystemTiming& t : world.Scheduler().SystemTimings()) {
                 if (t.name == "physics") physics.push_back(t.milliseconds);
                 if (t.name == "animators") animators.push_back(t.milliseconds);
@@ -267,10 +272,11 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames) {
             extract.push_back(stats.extractMs);
             moving.push_back(stats.extracted);
         }
-        std::printf("%-28s %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f\n",
+        std::printf("%-28s %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f\n",
                     std::filesystem::path(path).filename().string().c_str(),
                     world.Scene().instances.size(), Median(moving), Median(physics),
-                    Median(animators), Median(transforms), Median(extract), Median(tlas));
+                    Median(animators), Median(transforms), Median(extract), Median(deform),
+                    Median(blas), Median(tlas));
     }
 }
 
@@ -358,6 +364,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         *exitCode = kExitOk;
     });
     AddFrameBench(*bench, exitCode);
+    AddDeformBench(*bench, exitCode);
     AddAccuracyBench(*bench, exitCode);
     CLI::App* gpu = bench->add_subcommand(
         "gpu", "Trace time on the GPU (CUDA events) of the paper scene, median of --frames");

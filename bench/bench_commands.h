@@ -10,6 +10,8 @@ namespace rtrt {
 void AddBenchCommand(CLI::App& app, int* exitCode);
 // `rtrt bench frame`, registered by AddBenchCommand.
 void AddFrameBench(CLI::App& bench, int* exitCode);
+// `rtrt bench deform`, registered by AddBenchCommand.
+void AddDeformBench(CLI::App& bench, int* exitCode);
 // `rtrt bench accuracy`, registered by AddBenchCommand.
 void AddAccuracyBench(CLI::App& bench, int* exitCode);
 // `rtrt bench convert`, registered by AddBenchCommand; machineInfo describes the machine for the

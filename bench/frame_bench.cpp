@@ -1,6 +1,7 @@
 // `rtrt bench frame`: whole frames of played scenes, every stage timed: simulation (physics,
-// animation, transforms), extraction, and then on the GPU the upload of changed instance
-// records, the TLAS and the trace (CUDA events), or on the CPU the TLAS and the trace. The frame
+// animation, transforms), extraction, and then on the GPU the deformation of deforming meshes
+// and their BLAS refits or rebuilds, the upload of changed instance records, the TLAS and the
+// trace (CUDA events), or on the CPU the TLAS and the trace. The frame
 // time is the wall clock from the start of the simulation to the finished image on the device.
 #include <algorithm>
 #include <cstdio>
@@ -31,7 +32,8 @@ struct FrameBenchOptions {
 };
 
 struct StageSamples {
-    std::vector<double> simulate, extract, upload, tlas, trace, frame, instances, uploaded;
+    std::vector<double> simulate, extract, deform, blas, upload, tlas, trace, frame, instances,
+        uploaded;
 };
 
 nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
@@ -60,6 +62,8 @@ nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
         if (f < o.warmup) continue;
         s.simulate.push_back(fs.simulateMs);
         s.extract.push_back(fs.extractMs);
+        s.deform.push_back(t.deformMs);
+        s.blas.push_back(t.blasMs);
         s.upload.push_back(t.uploadMs);
         s.tlas.push_back(t.tlasMs);
         s.trace.push_back(t.traceMs);
@@ -75,17 +79,19 @@ nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
                           {"rays_first_frame", stats.rays},
                           {"simulate_ms", Median(s.simulate)},
                           {"extract_ms", Median(s.extract)},
+                          {"deform_ms", Median(s.deform)},
+                          {"blas_ms", Median(s.blas)},
                           {"upload_ms", Median(s.upload)},
                           {"tlas_ms", Median(s.tlas)},
                           {"trace_ms", Median(s.trace)},
                           {"frame_ms", Median(s.frame)},
                           {"frame_ms_max", *std::max_element(s.frame.begin(), s.frame.end())}};
-    std::printf("%-26s %9s %9zu %8.0f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f\n",
+    std::printf("%-26s %9s %9zu %8.0f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f\n",
                 row["scene"].get<std::string>().c_str(),
                 (std::to_string(settings.width) + "x" + std::to_string(settings.height)).c_str(),
                 world.Scene().instances.size(), Median(s.uploaded), Median(s.simulate),
-                Median(s.extract), Median(s.upload), Median(s.tlas), Median(s.trace),
-                Median(s.frame));
+                Median(s.extract), Median(s.deform), Median(s.blas), Median(s.upload),
+                Median(s.tlas), Median(s.trace), Median(s.frame));
     return row;
 }
 
@@ -100,8 +106,9 @@ void RunFrameBench(const FrameBenchOptions& o) {
         "image is finished in device memory)";
     std::printf("rtrt bench frame (%s back end), medians over %d frames, ms\n", o.backend.c_str(),
                 o.frames);
-    std::printf("%-26s %9s %9s %8s %9s %9s %9s %9s %9s %9s\n", "scene", "size", "instances",
-                "changed", "simulate", "extract", "upload", "TLAS", "trace", "frame");
+    std::printf("%-26s %9s %9s %8s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene", "size",
+                "instances", "changed", "simulate", "extract", "deform", "BLAS", "upload", "TLAS",
+                "trace", "frame");
     for (const std::string& path : o.scenes) report["rows"].push_back(RunScene(path, o));
     if (!o.output.empty()) {
         std::ofstream(o.output) << report.dump(2) << "\n";

@@ -58,14 +58,18 @@ void ExpectGpuMatchesCpu(const RenderScene& scene, ViewMode view = ViewMode::kSh
 // A demo scene played for `frames` frames twice, through the CPU frame renderer (host TLAS) and
 // the CUDA one (changed records only, TLAS refit or rebuilt on the device). Every 10th frame must
 // match.
-void ExpectPlayedGpuMatchesCpu(const std::string& file, int frames) {
+// Deforming meshes are deformed and refit (or rebuilt, under `blasPolicy`) on each back end.
+void ExpectPlayedGpuMatchesCpu(const std::string& file, int frames,
+                               BlasRebuildPolicy blasPolicy = {}) {
     std::string why;
     if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
     const LoadedScene loaded = LoadSceneFile(test::SourcePath("assets/scenes/" + file));
     World cpuWorld(loaded);
     World gpuWorld(loaded);
-    const std::unique_ptr<FrameRenderer> cpu = MakeFrameRenderer(Backend::kCpu, cpuWorld.Scene());
-    const std::unique_ptr<FrameRenderer> gpu = MakeFrameRenderer(Backend::kCuda, gpuWorld.Scene());
+    const std::unique_ptr<FrameRenderer> cpu =
+        MakeFrameRenderer(Backend::kCpu, cpuWorld.Scene(), {}, blasPolicy);
+    const std::unique_ptr<FrameRenderer> gpu =
+        MakeFrameRenderer(Backend::kCuda, gpuWorld.Scene(), {}, blasPolicy);
     RenderSettings s;
     s.width = 320;
     s.height = 180;
@@ -118,6 +122,20 @@ TEST(GpuVsCpu, DemoThousandInstancesPlayed) {
 TEST(GpuVsCpu, DemoPhysicsPlayed) {
     RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
     ExpectPlayedGpuMatchesCpu("demo_physics.json", 90);
+}
+
+// A deforming dragon: skinned on each device, its BLAS refit every frame (and, in the second
+// test, rebuilt every frame by each back end's LBVH).
+TEST(GpuVsCpu, DeformingDragonPlayed) {
+    RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
+    ExpectPlayedGpuMatchesCpu("demo_deforming_dragon.json", 60);
+}
+
+TEST(GpuVsCpu, DeformingDragonRebuiltEveryFrame) {
+    RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
+    BlasRebuildPolicy rebuild;
+    rebuild.mode = BlasRebuildPolicy::Mode::kAlwaysRebuild;
+    ExpectPlayedGpuMatchesCpu("demo_deforming_dragon.json", 20, rebuild);
 }
 
 TEST(GpuVsCpu, DemoGlassPlayed) {
