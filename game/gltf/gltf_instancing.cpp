@@ -30,10 +30,10 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
         }
         entity[i] = int32_t(out.entities.size());
         out.entities.push_back(e);
-        for (const auto& [blas, material] : node.primitives) {
+        for (const GltfPrimitive& prim : node.primitives) {
             EntityDesc p;
-            p.blasId = blas;
-            p.materialId = material;
+            p.blasId = prim.blas;
+            p.materialId = prim.material;
             p.parent = entity[i];
             p.sourceArray = "nodes";
             p.sourceIndex = node.source;

@@ -46,6 +46,7 @@ struct GltfSummary {
     uint32_t nodes = 0, meshes = 0, primitives = 0, vertices = 0, triangles = 0;
     uint32_t materials = 0, textures = 0, cameras = 0, lights = 0, animations = 0;
     uint32_t animatedNodes = 0;
+    uint32_t skins = 0, deformingPrimitives = 0;  // skinned or morphed primitives, as read
     float animationSeconds = 0.0f;  // of the animation played (the first)
 };
 
