@@ -32,6 +32,18 @@ class DeviceBuffer {
         size_ = count;
         if (count) RT_CUDA_CHECK(cudaMalloc(&data_, count * sizeof(T)));
     }
+    // Resizes to at least count, keeping the contents (a copy on the device).
+    void GrowTo(size_t count) {
+        if (count <= size_) return;
+        T* grown = nullptr;
+        RT_CUDA_CHECK(cudaMalloc(&grown, count * sizeof(T)));
+        if (data_) {
+            RT_CUDA_CHECK(cudaMemcpy(grown, data_, size_ * sizeof(T), cudaMemcpyDeviceToDevice));
+            RT_CUDA_CHECK(cudaFree(data_));
+        }
+        data_ = grown;
+        size_ = count;
+    }
     void Upload(std::span<const T> host) {
         Resize(host.size());
         if (!host.empty())

@@ -20,10 +20,14 @@ namespace rtrt {
 // so that no frame waits for the GPU to read them; the CPU times them with the host clock.
 struct FrameTimes {
     uint64_t frame = 0;     // which Trace these are (1 = the first); 0: none known yet
+    double deformMs = 0.0;  // deforming meshes skinned / morphed into their triangles
+    double blasMs = 0.0;    // their BLASes refit or rebuilt, and the SAH costs of the policy
     double uploadMs = 0.0;  // changed instance records (and their world boxes) sent
     double tlasMs = 0.0;    // LBVH rebuild or refit, and its SAH cost
     double traceMs = 0.0;
     uint32_t uploaded = 0;  // instance records sent to the device
+    uint32_t deformed = 0;  // deforming BLASes brought up to date
+    uint32_t blasRebuilt = 0;  // of them rebuilt rather than refit
     bool tlasRebuilt = false;
     float tlasSahCost = 0.0f;  // the cost the rebuild policy last saw
     uint64_t rays = 0;         // rays traced, when Trace was asked to count them
@@ -57,10 +61,11 @@ class FrameRenderer {
     virtual Lbvh CurrentTlas() const = 0;
 };
 
-// The frame renderer of `backend` over `scene` (its BLASes, materials, lights and textures are
-// taken now; add models before this). Throws std::runtime_error when the back end cannot run
+// The frame renderer of `backend` over `scene` (its materials, lights and textures are taken
+// now; BLASes and deformations the scene gains later are taken by Update). Throws std::runtime_error when the back end cannot run
 // here, saying why.
 std::unique_ptr<FrameRenderer> MakeFrameRenderer(Backend backend, const RenderScene& scene,
-                                                 TlasPolicy policy = {});
+                                                 TlasPolicy policy = {},
+                                                 BlasRebuildPolicy blasPolicy = {});
 
 }  // namespace rtrt

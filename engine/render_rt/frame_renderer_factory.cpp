@@ -7,9 +7,9 @@
 namespace rtrt {
 
 std::unique_ptr<FrameRenderer> MakeFrameRenderer(Backend backend, const RenderScene& scene,
-                                                 TlasPolicy policy) {
-    if (backend == Backend::kCuda) return MakeCudaFrameRenderer(scene, policy);
-    return MakeCpuFrameRenderer(scene, policy);
+                                                 TlasPolicy policy, BlasRebuildPolicy blasPolicy) {
+    if (backend == Backend::kCuda) return MakeCudaFrameRenderer(scene, policy, blasPolicy);
+    return MakeCpuFrameRenderer(scene, policy, blasPolicy);
 }
 
 }  // namespace rtrt

@@ -3,10 +3,12 @@
 
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
+#include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
 #include "game/assets/image_io.h"
 #include "game/cli/cli_options.h"
 #include "game/cli/commands.h"
+#include "game/runtime/world.h"
 #include "game/scene/default_scene.h"
 #include "game/scene/scene_file.h"
 
@@ -34,6 +36,12 @@ ViewMode ParseView(const std::string& view) {
     return ViewMode::kShaded;
 }
 
+bool HasDeformation(const LoadedScene& loaded) {
+    for (const EntityDesc& e : loaded.entities)
+        if (e.deformableMesh >= 0 && e.spawnTime <= 0.0f) return true;
+    return false;
+}
+
 void RunRender(const RenderOptions& o) {
     CheckImagePath(o.output);
     RenderSettings settings;
@@ -57,8 +65,17 @@ void RunRender(const RenderOptions& o) {
 
     Stopwatch renderTimer;
     RenderStats stats;
-    Image raw = backend == Backend::kCuda ? RenderRawCuda(loaded.scene, settings, &stats)
-                                          : RenderRaw(loaded.scene, settings, &stats);
+    Image raw;
+    if (HasDeformation(loaded)) {
+        // Deformed meshes exist only in a running scene: its first frame is the image.
+        World world(loaded);
+        auto renderer = MakeFrameRenderer(backend, world.Scene());
+        renderer->Update(world.Scene(), world.Changes());
+        renderer->Trace(world.Scene(), settings, &raw, &stats);
+    } else {
+        raw = backend == Backend::kCuda ? RenderRawCuda(loaded.scene, settings, &stats)
+                                        : RenderRaw(loaded.scene, settings, &stats);
+    }
     const double renderMs = renderTimer.Milliseconds();
     HeatmapScale heat;
     WriteImage(o.output, FinishView(raw, settings.view, &heat));

@@ -17,10 +17,12 @@ World::World(const LoadedScene& scene) : source_(scene) {
     scene_.camera = scene.scene.camera;
     scene_.background = scene.scene.background;
     scene_.maxDepth = scene.scene.maxDepth;
+    scene_.deformableMeshes = scene.scene.deformableMeshes;
     physics::AddPhysicsAnimSystems(scheduler_, physics_, transforms_);
     SpawnDue();
     transforms_.Update(registry_);
     Extract();
+    deformChanged_.swap(deformPending_);
     topologyPending_ = false;
 }
 
@@ -37,7 +39,15 @@ void World::SpawnDue() {
 ecs::Entity World::Create(const EntityDesc& d) {
     const ecs::Entity e = registry_.Create();
     registry_.Add(e, d.local);
-    if (d.renderable) registry_.Add(e, Renderable{d.blasId, d.materialId});
+    if (d.renderable && d.deformableMesh >= 0) {
+        const uint32_t deformation = AcquireDeformation(d);
+        scene_.deformations[deformation].procedural = d.procedural;
+        registry_.Add(e, Renderable{scene_.deformations[deformation].blasId, d.materialId});
+        registry_.Add(e, DeformationLink{deformation, d.procedural.time, time_});
+        deformPending_.push_back(deformation);
+    } else if (d.renderable) {
+        registry_.Add(e, Renderable{d.blasId, d.materialId});
+    }
     if (d.animator) registry_.Add(e, *d.animator);
     if (d.body) {
         registry_.Add(e, *d.body);
@@ -45,6 +55,31 @@ ecs::Entity World::Create(const EntityDesc& d) {
     }
     topologyPending_ = true;
     return e;
+}
+
+uint32_t World::AcquireDeformation(const EntityDesc& d) {
+    for (size_t k = 0; k < freeDeformations_.size(); ++k) {
+        const uint32_t candidate = freeDeformations_[k];
+        const Deformation& def = scene_.deformations[candidate];
+        if (def.mesh == uint32_t(d.deformableMesh) &&
+            scene_.blases[def.blasId] == scene_.blases[d.blasId]) {
+            freeDeformations_.erase(freeDeformations_.begin() + k);
+            return candidate;
+        }
+    }
+    return scene_.AddDeformation(uint32_t(d.deformableMesh), d.blasId);
+}
+
+// Procedural deformations follow the clock; a paused frame (dt = 0) changes none.
+void World::AdvanceDeformations() {
+    registry_.View<DeformationLink>().Each([&](ecs::Entity, DeformationLink& link) {
+        ProceduralDeform& p = scene_.deformations[link.deformation].procedural;
+        if (p.kind == ProceduralDeformKind::kNone) return;
+        const float t = link.phase + float(time_ - link.born);
+        if (p.time == t) return;
+        p.time = t;
+        deformChanged_.push_back(link.deformation);
+    });
 }
 
 uint32_t World::AddBlas(std::shared_ptr<const Blas> blas) {
@@ -82,6 +117,8 @@ bool World::Remove(ecs::Entity e) {
         scene_.instances.pop_back();
         instanceOwner_.pop_back();
     }
+    if (const DeformationLink* link = registry_.Get<DeformationLink>(e))
+        freeDeformations_.push_back(link->deformation);
     registry_.Destroy(e);
     topologyPending_ = true;
     return true;
@@ -127,6 +164,8 @@ uint32_t World::Extract() {
 FrameStats World::Advance(float dt) {
     FrameStats stats;
     changed_.clear();
+    deformChanged_.swap(deformPending_);
+    deformPending_.clear();
     time_ += dt;
     const size_t before = nextSpawn_;
     SpawnDue();
@@ -136,6 +175,7 @@ FrameStats World::Advance(float dt) {
     stats.simulateMs = timer.Milliseconds();
     timer.Restart();
     stats.extracted = Extract();
+    AdvanceDeformations();
     stats.extractMs = timer.Milliseconds();
     topologyChanged_ = topologyPending_;
     topologyPending_ = false;

@@ -24,6 +24,13 @@ struct Renderable {
     uint32_t instance = UINT32_MAX;  // index in RenderScene::instances once extracted
 };
 
+// Links a deforming entity to its Deformation record in the RenderScene.
+struct DeformationLink {
+    uint32_t deformation = 0;
+    float phase = 0.0f;  // procedural deformations: time offset of this instance
+    double born = 0.0;   // world time the entity appeared
+};
+
 struct FrameStats {
     uint32_t spawned = 0;
     uint32_t extracted = 0;  // instance records rewritten this frame
@@ -41,7 +48,7 @@ class World {
     const RenderScene& Scene() const { return scene_; }
     // What the last Advance changed (after construction: every record, and the topology): what a
     // FrameRenderer's copy of the scene must receive.
-    SceneChanges Changes() const { return {changed_, topologyChanged_}; }
+    SceneChanges Changes() const { return {changed_, topologyChanged_, deformChanged_}; }
     double Time() const { return time_; }
     ecs::Registry& Registry() { return registry_; }
     // Interactive edits (the window's spawn, drag and delete). They take effect at the next
@@ -71,6 +78,10 @@ class World {
     void SpawnDue();
     ecs::Entity Create(const EntityDesc& desc);
     uint32_t Extract();
+    // A Deformation for a new deforming entity: a released one of the same mesh and rest tree
+    // if there is one (a despawned instance's), else a new record and BLAS slot.
+    uint32_t AcquireDeformation(const EntityDesc& desc);
+    void AdvanceDeformations();
 
     const LoadedScene& source_;
     RenderScene scene_;
@@ -79,6 +90,9 @@ class World {
     physics::PhysicsWorld physics_;
     physics::TransformSystem transforms_;
     std::vector<uint32_t> changed_;
+    std::vector<uint32_t> deformChanged_;     // deformation records rewritten this frame
+    std::vector<uint32_t> deformPending_;     // ... by edits since the last Advance
+    std::vector<uint32_t> freeDeformations_;  // released by removed entities
     std::optional<Camera> cameraOverride_;
     std::vector<ecs::Entity> instanceOwner_;  // instance record -> entity
     std::vector<ecs::Entity> created_;        // LoadedScene::entities index -> entity

@@ -40,7 +40,8 @@ void FinishLoadedScene(LoadedScene& out, const std::string& file) {
                         "size too large)");
             }
         }
-        out.dynamic |= e.animator.has_value() || e.body.has_value() || e.spawnTime > 0.0f;
+        out.dynamic |= e.animator.has_value() || e.body.has_value() || e.spawnTime > 0.0f ||
+                       e.deformableMesh >= 0;
         if (e.spawnTime == 0.0f && e.renderable)
             out.scene.AddInstance(e.blasId, e.materialId, worlds[i]);
     }

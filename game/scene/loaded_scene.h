@@ -31,6 +31,12 @@ struct EntityDesc {
     std::optional<physics::RigidBody> body;  // with collider, derived from the model's shape
     physics::Collider collider;
     float spawnTime = 0.0f;
+    // A deforming instance: the RenderScene::deformableMeshes index of its mesh, whose rest tree
+    // is blasId (-1: the instance shows blasId as it is). Each such entity gets a Deformation
+    // of its own, so instances of one mesh deform independently.
+    int32_t deformableMesh = -1;
+    // Its procedural deformation; `time` is its phase, added to the time since it appeared.
+    ProceduralDeform procedural;
 };
 
 // A camera key of the scene's camera_path; the camera moves linearly between keys.

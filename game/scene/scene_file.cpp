@@ -15,6 +15,7 @@
 #include "game/scene/default_scene.h"
 #include "game/scene/json_fields.h"
 #include "game/scene/scene_animation.h"
+#include "game/scene/scene_deform.h"
 #include "game/scene/scene_models.h"
 
 namespace rtrt {
@@ -179,6 +180,8 @@ class SceneParser {
         if (gltf_) {
             if (f.Has("material")) f.Fail("material", "a glTF model brings its own materials");
             if (f.Has("rigid_body")) f.Fail("rigid_body", "a glTF model cannot be a rigid body");
+            if (f.Has("deform"))
+                f.Fail("deform", "a glTF model deforms by its own skins and morph targets");
             e.renderable = false;
             e.local = ParseTransform(f);
             if (f.Has("animate"))
@@ -207,7 +210,25 @@ class SceneParser {
                 f.Fail("rigid_body", "an entity is either animated or simulated, not both");
             ParseRigidBody(f.Get("rigid_body"), f.Path("rigid_body"), e);
         }
+        if (f.Has("deform")) {
+            const Blas& blas = *scene.blases[e.blasId];
+            if (blas.kind != GeometryKind::kTriangles)
+                f.Fail("deform", "model \"" + model + "\" is not a triangle mesh");
+            if (e.body) f.Fail("deform", "a rigid body cannot deform");
+            e.procedural = ParseDeform(f.Get("deform"), f.Path("deform"), blas.bounds, file_);
+            e.deformableMesh = int32_t(DeformableMeshOf(e.blasId, scene));
+        }
         return e;
+    }
+
+    // The rest mesh of a model that deforms, made once however many instances deform it.
+    uint32_t DeformableMeshOf(uint32_t blasId, RenderScene& scene) {
+        auto known = deformableMeshes_.find(blasId);
+        if (known != deformableMeshes_.end()) return known->second;
+        const uint32_t id = scene.AddDeformableMesh(
+            std::make_shared<const DeformableMesh>(RestMeshOfBlas(*scene.blases[blasId])));
+        deformableMeshes_[blasId] = id;
+        return id;
     }
 
     // The collider follows the model: a sphere (radius x largest scale), a box (half size x
@@ -378,6 +399,7 @@ class SceneParser {
     std::map<std::string, uint32_t> materialIds_, modelIds_;
     std::map<uint32_t, ModelShape> modelShapes_;
     std::map<uint32_t, std::string> modelNames_;
+    std::map<uint32_t, uint32_t> deformableMeshes_;  // BLAS id -> its rest mesh, once deformed
     std::map<std::string, std::shared_ptr<const GltfAsset>> gltfAssets_;
     const GltfAsset* gltf_ = nullptr;  // the glTF model of the entity just parsed, if it is one
     bool hasCamera_ = false;           // the file or an included glTF has set the camera

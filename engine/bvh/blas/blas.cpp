@@ -25,6 +25,35 @@ size_t Blas::Bytes() const {
 
 size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4Node); }
 
+DeformableMesh RestMeshOfBlas(const Blas& blas) {
+    DeformableMesh mesh;
+    const size_t n = blas.triangles.size();
+    TriangleMesh& rest = mesh.rest;
+    rest.positions.resize(3 * n);
+    rest.indices.resize(n);
+    if (!blas.normals.empty()) rest.normals.resize(3 * n);
+    if (!blas.uvs.empty()) rest.uvs.resize(3 * n);
+    ParallelFor(0, n, 4096, [&](size_t s) {
+        const uint32_t v = uint32_t(3 * s);
+        const Triangle& t = blas.triangles[s];
+        rest.positions[v] = t.v0;
+        rest.positions[v + 1] = t.v1;
+        rest.positions[v + 2] = t.v2;
+        rest.indices[blas.primIds[s]] = glm::uvec3(v, v + 1, v + 2);
+        if (!blas.normals.empty()) {
+            rest.normals[v] = blas.normals[s].n0;
+            rest.normals[v + 1] = blas.normals[s].n1;
+            rest.normals[v + 2] = blas.normals[s].n2;
+        }
+        if (!blas.uvs.empty()) {
+            rest.uvs[v] = blas.uvs[s].uv0;
+            rest.uvs[v + 1] = blas.uvs[s].uv1;
+            rest.uvs[v + 2] = blas.uvs[s].uv2;
+        }
+    });
+    return mesh;
+}
+
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     const size_t count = mesh.indices.size();
     auto triangle = [&](size_t i) {

@@ -7,6 +7,7 @@
 
 #include "engine/bvh/build/bvh_builder.h"
 #include "engine/bvh/layout/bvh4.h"
+#include "engine/geometry/deformable_mesh.h"
 #include "engine/geometry/primitives.h"
 #include "engine/geometry/triangle_mesh.h"
 
@@ -43,6 +44,11 @@ struct Blas {
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options = {});
 Blas BuildSphereBlas(std::span<const Sphere> spheres, const BvhBuildOptions& options = {});
+
+// A triangle BLAS's mesh as a deformable rest mesh whose triangle primIds[s] is the BLAS's slot s
+// (three vertices of its own per triangle, with its normals and uvs), so that the BLAS is the
+// rest tree of the mesh: models loaded as BLASes only (.rtmodel caches) can deform too.
+DeformableMesh RestMeshOfBlas(const Blas& blas);
 
 // Moves and scales a triangle BLAS in place, p -> (p - centre) * scale with scale > 0, on every
 // vertex and node box. Rounding is monotonic, so each box stays exactly the bounds of what it

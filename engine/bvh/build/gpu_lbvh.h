@@ -19,6 +19,7 @@ class GpuLbvh {
 
     const BvhNode* Nodes() const { return nodes_.Data(); }
     const uint32_t* PrimOrder() const { return primOrder_.Data(); }
+    const uint32_t* Parents() const { return parents_.Data(); }
     uint32_t Count() const { return count_; }
     // Copies the tree to the host, for tests and for comparison with the CPU build.
     Lbvh Download() const;

@@ -122,9 +122,10 @@ struct LbvhBoundsBottomUp {
 #endif
     }
 
-    RT_HD void operator()(size_t i) const {
-        const size_t leaf = i + 2;
-        if (!nodes[leaf].IsLeaf()) return;
+    // The walk from one leaf (at any position but the root) towards the root. Any tree of the
+    // pair layout with parent links works: the deforming BLASes' refit runs it too.
+    RT_HD static void WalkUp(const uint32_t* parents, BvhNode* nodes, uint32_t* arrivals,
+                             uint32_t leaf) {
         uint32_t p = parents[leaf];
         while (p != kLbvhNoParent) {
             if (Arrive(&arrivals[p]) == 0) return;  // the sibling's walk finishes p
@@ -135,6 +136,11 @@ struct LbvhBoundsBottomUp {
             nodes[p].boundsMax = b.max;
             p = parents[p];
         }
+    }
+
+    RT_HD void operator()(size_t i) const {
+        const uint32_t leaf = uint32_t(i + 2);
+        if (nodes[leaf].IsLeaf()) WalkUp(parents, nodes, arrivals, leaf);
     }
 };
 

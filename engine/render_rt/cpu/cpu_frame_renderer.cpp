@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "engine/core/timer.h"
+#include "engine/render_rt/cpu/cpu_deformer.h"
 #include "engine/render_rt/cpu/cpu_trace.h"
 
 namespace rtrt {
@@ -10,11 +11,8 @@ namespace {
 
 class CpuFrameRenderer final : public FrameRenderer {
   public:
-    CpuFrameRenderer(const RenderScene& scene, TlasPolicy policy) : tlas_(policy) {
-        for (const auto& blas : scene.blases) {
-            blasViews_.push_back(blas->View());
-            blasBounds_.push_back(blas->bounds);
-        }
+    CpuFrameRenderer(const RenderScene& scene, TlasPolicy policy, BlasRebuildPolicy blasPolicy)
+        : tlas_(policy), deformer_(blasPolicy) {
         Update(scene, {{}, true});
     }
 
@@ -24,10 +22,20 @@ class CpuFrameRenderer final : public FrameRenderer {
         pending_ = {};
         pending_.tlasSahCost = lastSahCost_;
         instances_ = scene.instances.data();
+        for (size_t id = blasViews_.size(); id < scene.blases.size(); ++id) {
+            blasViews_.push_back(scene.blases[id]->View());
+            blasBounds_.push_back(scene.blases[id]->bounds);
+        }
+        const DeformStats deformed =
+            deformer_.Update(scene, changes.deformations, blasViews_, blasBounds_);
+        pending_.deformMs = deformed.deformMs;
+        pending_.blasMs = deformed.blasMs;
+        pending_.deformed = deformed.deformed;
+        pending_.blasRebuilt = deformed.rebuilt;
         // A record count the tree does not cover is a topology change, reported or not.
         const bool topology = changes.topologyChanged || !built_ ||
                               tlas_.Tree().primOrder.size() != scene.instances.size();
-        if (changes.instances.empty() && !topology) return;
+        if (changes.instances.empty() && !topology && deformed.deformed == 0) return;
         Stopwatch timer;
         const TlasUpdateStats s = tlas_.Update(scene.instances, blasBounds_, topology);
         built_ = true;
@@ -77,6 +85,7 @@ class CpuFrameRenderer final : public FrameRenderer {
     }
 
     DynamicTlas tlas_;
+    CpuDeformer deformer_;
     bool built_ = false;
     std::vector<BlasView> blasViews_;
     std::vector<Aabb> blasBounds_;
@@ -91,8 +100,9 @@ class CpuFrameRenderer final : public FrameRenderer {
 
 }  // namespace
 
-std::unique_ptr<FrameRenderer> MakeCpuFrameRenderer(const RenderScene& scene, TlasPolicy policy) {
-    return std::make_unique<CpuFrameRenderer>(scene, policy);
+std::unique_ptr<FrameRenderer> MakeCpuFrameRenderer(const RenderScene& scene, TlasPolicy policy,
+                                                    BlasRebuildPolicy blasPolicy) {
+    return std::make_unique<CpuFrameRenderer>(scene, policy, blasPolicy);
 }
 
 }  // namespace rtrt

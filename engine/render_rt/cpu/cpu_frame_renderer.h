@@ -7,6 +7,7 @@
 
 namespace rtrt {
 
-std::unique_ptr<FrameRenderer> MakeCpuFrameRenderer(const RenderScene& scene, TlasPolicy policy);
+std::unique_ptr<FrameRenderer> MakeCpuFrameRenderer(const RenderScene& scene, TlasPolicy policy,
+                                                    BlasRebuildPolicy blasPolicy);
 
 }  // namespace rtrt

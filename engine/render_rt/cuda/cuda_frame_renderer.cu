@@ -3,6 +3,7 @@
 
 #include "engine/bvh/build/gpu_lbvh.h"
 #include "engine/bvh/tlas/tlas.h"
+#include "engine/render_rt/cuda/cuda_deformer.h"
 #include "engine/render_rt/cuda/cuda_frame_renderer.h"
 #include "engine/render_rt/cuda/cuda_trace.h"
 #include "engine/render_rt/cuda/device_scene.h"
@@ -60,11 +61,12 @@ double Elapsed(cudaEvent_t a, cudaEvent_t b) {
     return ms;
 }
 
-// The events of one frame: start, instances uploaded, TLAS done, traced. Two sets take turns,
+// The events of one frame: start, the deformer's four (deform_events), instances uploaded, TLAS
+// done, traced. Two sets take turns,
 // so a frame's times are read when the set comes round again (or by Finish), never by waiting
 // for the frame that was just queued.
 struct FrameEvents {
-    cudaEvent_t events[4];
+    cudaEvent_t events[8];
     bool pending = false;                    // recorded and not read yet
     bool counted = false;                    // rays were counted into raysHost
     unsigned long long* raysHost = nullptr;  // pinned
@@ -73,8 +75,8 @@ struct FrameEvents {
 
 class CudaFrameRenderer final : public FrameRenderer {
   public:
-    CudaFrameRenderer(const RenderScene& scene, TlasPolicy policy)
-        : policy_(policy), device_(scene) {
+    CudaFrameRenderer(const RenderScene& scene, TlasPolicy policy, BlasRebuildPolicy blasPolicy)
+        : policy_(policy), device_(scene), deformer_(blasPolicy) {
         std::vector<Aabb> bounds;
         for (const auto& blas : scene.blases) bounds.push_back(blas->bounds);
         blasBounds_.Upload(bounds);
@@ -102,16 +104,27 @@ class CudaFrameRenderer final : public FrameRenderer {
     void Update(const RenderScene& scene, const SceneChanges& changes) override {
         CollectSahCost();
         FrameEvents& f = BeginFrame();
+        AddBlases(scene);
+        if (deformer_.Update(scene, changes.deformations, blasBounds_.Data(),
+                             {f.events[1], f.events[2], f.events[3], f.events[4]})) {
+            const std::vector<BlasView> views = deformer_.Views();
+            for (uint32_t d = 0; d < views.size(); ++d)
+                device_.SetView(deformer_.Plan().Slot(d).blasId, views[d]);
+            device_.CommitViews();
+        }
+        f.times.deformed = deformer_.Deformed();
+        f.times.blasRebuilt = deformer_.Rebuilt();
         const uint32_t n = uint32_t(scene.instances.size());
         // Added or removed instances move records around: all of them go up again.
         const bool countChanged = changes.topologyChanged || instances_.Size() != n;
         if (countChanged) {
             UploadAll(scene);
             f.times.uploaded = n;
+            MapDeformedInstances(scene);
         } else {
             f.times.uploaded = UploadChanged(scene, changes.instances);
         }
-        RT_CUDA_CHECK(cudaEventRecord(f.events[1]));
+        RT_CUDA_CHECK(cudaEventRecord(f.events[5]));
         // The policy of DynamicTlas, with one difference: a tree's SAH cost is known one update
         // later (copied back asynchronously; CollectSahCost waits for the previous frame's TLAS
         // stage at most, never for its trace), so that decisions stay deterministic run to run.
@@ -125,7 +138,7 @@ class CudaFrameRenderer final : public FrameRenderer {
         }
         // Always-rebuild (the benchmark's mode) needs no cost.
         if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild) QueueSahCost(rebuild);
-        RT_CUDA_CHECK(cudaEventRecord(f.events[2]));
+        RT_CUDA_CHECK(cudaEventRecord(f.events[6]));
         f.times.tlasRebuilt = rebuild;
         f.times.tlasSahCost = lastSahCost_;
     }
@@ -145,7 +158,7 @@ class CudaFrameRenderer final : public FrameRenderer {
         if (stats)
             RT_CUDA_CHECK(cudaMemcpyAsync(f.raysHost, rayCount_.Data(), sizeof(unsigned long long),
                                           cudaMemcpyDeviceToHost));
-        RT_CUDA_CHECK(cudaEventRecord(f.events[3]));
+        RT_CUDA_CHECK(cudaEventRecord(f.events[7]));
         f.times.frame = ++traced_;
         f.pending = true;
         f.counted = stats != nullptr;
@@ -159,7 +172,7 @@ class CudaFrameRenderer final : public FrameRenderer {
         }
         // The other set's frame has most likely finished by now; if so its times are shown.
         FrameEvents& other = frames_[1 - current_];
-        if (other.pending && cudaEventQuery(other.events[3]) == cudaSuccess) Collect(other);
+        if (other.pending && cudaEventQuery(other.events[7]) == cudaSuccess) Collect(other);
     }
 
     void Finish() override {
@@ -206,18 +219,22 @@ class CudaFrameRenderer final : public FrameRenderer {
     // A frame traced without an update: its upload and TLAS stages take no time.
     FrameEvents& BeginEmptyFrame() {
         FrameEvents& f = BeginFrame();
-        RT_CUDA_CHECK(cudaEventRecord(f.events[1]));
-        RT_CUDA_CHECK(cudaEventRecord(f.events[2]));
+        for (int e = 1; e < 7; ++e) RT_CUDA_CHECK(cudaEventRecord(f.events[e]));
         f.times.tlasSahCost = lastSahCost_;
         return f;
     }
 
     // Reads a recorded frame's stage times (waiting for it if it has not finished).
     void Collect(FrameEvents& f) {
-        RT_CUDA_CHECK(cudaEventSynchronize(f.events[3]));
-        f.times.uploadMs = Elapsed(f.events[0], f.events[1]);
-        f.times.tlasMs = Elapsed(f.events[1], f.events[2]);
-        f.times.traceMs = Elapsed(f.events[2], f.events[3]);
+        RT_CUDA_CHECK(cudaEventSynchronize(f.events[7]));
+        const cudaEvent_t* e = f.events;
+        // Start, vertices, rebuilt, gathered, refit: a rebuild sits between the two halves of
+        // the deformation.
+        f.times.deformMs = Elapsed(e[0], e[1]) + Elapsed(e[2], e[3]);
+        f.times.blasMs = Elapsed(e[1], e[2]) + Elapsed(e[3], e[4]);
+        f.times.uploadMs = Elapsed(e[4], e[5]);
+        f.times.tlasMs = Elapsed(e[5], e[6]);
+        f.times.traceMs = Elapsed(e[6], e[7]);
         f.times.rays = f.counted ? *f.raysHost : 0;
         f.pending = false;
         if (f.times.frame > times_.frame) times_ = f.times;
@@ -243,12 +260,46 @@ class CudaFrameRenderer final : public FrameRenderer {
         RT_CUDA_CHECK_LAUNCH();
     }
 
+    // BLASes the scene gained (spawned models, new deformations' slots), and room for their
+    // boxes.
+    void AddBlases(const RenderScene& scene) {
+        const size_t known = blasBounds_.Size();
+        if (!device_.AddBlases(scene)) return;
+        blasBounds_.GrowTo(scene.blases.size());
+        std::vector<Aabb> bounds;
+        for (size_t id = known; id < scene.blases.size(); ++id)
+            bounds.push_back(scene.blases[id]->bounds);
+        RT_CUDA_CHECK(cudaMemcpy(blasBounds_.Data() + known, bounds.data(),
+                                 bounds.size() * sizeof(Aabb), cudaMemcpyHostToDevice));
+    }
+
+    // Which instances show each deformed BLAS: their world boxes follow the deformation.
+    void MapDeformedInstances(const RenderScene& scene) {
+        deformedInstances_.assign(scene.blases.size(), {});
+        std::vector<uint8_t> deformed(scene.blases.size(), 0);
+        for (const Deformation& d : scene.deformations)
+            if (d.blasId < deformed.size()) deformed[d.blasId] = 1;
+        for (uint32_t i = 0; i < scene.instances.size(); ++i)
+            if (deformed[scene.instances[i].blasId])
+                deformedInstances_[scene.instances[i].blasId].push_back(i);
+    }
+
     uint32_t UploadChanged(const RenderScene& scene, std::span<const uint32_t> changed) {
         hostIndices_.clear();
         hostRecords_.clear();
-        for (uint32_t i : changed) {
+        auto add = [&](uint32_t i) {
+            if (i >= marks_.size()) marks_.resize(scene.instances.size(), 0);
+            if (marks_[i] == mark_) return;
+            marks_[i] = mark_;
             hostIndices_.push_back(i);
             hostRecords_.push_back(scene.instances[i]);
+        };
+        ++mark_;
+        for (uint32_t i : changed) add(i);
+        for (uint32_t d : deformer_.Plan().JobDeformations()) {
+            const uint32_t blas = deformer_.Plan().Slot(d).blasId;
+            if (blas < deformedInstances_.size())
+                for (uint32_t i : deformedInstances_[blas]) add(i);
         }
         const uint32_t count = uint32_t(hostIndices_.size());
         if (count == 0) return 0;
@@ -290,6 +341,10 @@ class CudaFrameRenderer final : public FrameRenderer {
 
     TlasPolicy policy_;
     DeviceScene device_;
+    CudaDeformer deformer_;
+    std::vector<std::vector<uint32_t>> deformedInstances_;  // by BLAS id
+    std::vector<uint32_t> marks_;                           // instance -> last frame queued
+    uint32_t mark_ = 0;
     DeviceBuffer<Aabb> blasBounds_;
     DeviceBuffer<Instance> instances_;
     DeviceBuffer<Aabb> worldBounds_;
@@ -317,10 +372,11 @@ class CudaFrameRenderer final : public FrameRenderer {
 
 }  // namespace
 
-std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene& scene, TlasPolicy policy) {
+std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene& scene, TlasPolicy policy,
+                                                     BlasRebuildPolicy blasPolicy) {
     std::string why;
     if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use the CPU back end");
-    return std::make_unique<CudaFrameRenderer>(scene, policy);
+    return std::make_unique<CudaFrameRenderer>(scene, policy, blasPolicy);
 }
 
 }  // namespace rtrt

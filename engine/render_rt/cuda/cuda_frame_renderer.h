@@ -11,6 +11,7 @@
 namespace rtrt {
 
 // Throws std::runtime_error when the CUDA back end is unavailable, saying why.
-std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene& scene, TlasPolicy policy);
+std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene& scene, TlasPolicy policy,
+                                                     BlasRebuildPolicy blasPolicy);
 
 }  // namespace rtrt

@@ -3,6 +3,7 @@
 // running scene never changes (BLASes, materials, lights, textures); the TLAS and the instances
 // belong to whoever keeps them up to date (the CUDA frame renderer), or, for an image of the scene
 // as it is, to DeviceStaticScene.
+#include <unordered_map>
 #include <vector>
 
 #include "engine/core/device_buffer.h"
@@ -24,8 +25,24 @@ struct DeviceScene {
     DeviceBuffer<uint32_t> texels;
 
     explicit DeviceScene(const RenderScene& scene) {
-        std::vector<BlasView> views;
-        for (const auto& blas : scene.blases) {
+        AddBlases(scene);
+        materials.Upload(scene.materials);
+        lights.Upload(scene.lights);
+        textures.Upload(scene.textures);
+        texels.Upload(scene.texels);
+    }
+
+    // Uploads the BLASes the scene gained since (each distinct one once: slots that share a BLAS,
+    // as deformations share their rest tree, share its copy). Returns whether any were added.
+    bool AddBlases(const RenderScene& scene) {
+        if (scene.blases.size() == views_.size()) return false;
+        for (size_t id = views_.size(); id < scene.blases.size(); ++id) {
+            const Blas* blas = scene.blases[id].get();
+            auto known = uploaded_.find(blas);
+            if (known != uploaded_.end()) {
+                views_.push_back(known->second);
+                continue;
+            }
             blasNodes.emplace_back(std::span<const BvhNode>(blas->nodes));
             triangles.emplace_back(std::span<const Triangle>(blas->triangles));
             normals.emplace_back(std::span<const TriangleNormals>(blas->normals));
@@ -38,14 +55,17 @@ struct DeviceScene {
             v.normals = blas->normals.empty() ? nullptr : normals.back().Data();
             v.spheres = spheres.back().Data();
             v.uvs = blas->uvs.empty() ? nullptr : uvs.back().Data();
-            views.push_back(v);
+            uploaded_[blas] = v;
+            views_.push_back(v);
         }
-        blasViews.Upload(views);
-        materials.Upload(scene.materials);
-        lights.Upload(scene.lights);
-        textures.Upload(scene.textures);
-        texels.Upload(scene.texels);
+        blasViews.Upload(views_);
+        return true;
     }
+
+    // Points BLAS slot `id` at arrays someone else keeps (a deformed BLAS); CommitViews sends
+    // the changed table.
+    void SetView(uint32_t id, const BlasView& view) { views_[id] = view; }
+    void CommitViews() { blasViews.Upload(views_); }
 
     // The view with no TLAS or instances yet (view.tlas.blases is set): the caller supplies them.
     RenderSceneView View(const RenderScene& scene, const RenderSettings& s) const {
@@ -58,6 +78,10 @@ struct DeviceScene {
         view.texels = texels.Data();
         return view;
     }
+
+  private:
+    std::vector<BlasView> views_;
+    std::unordered_map<const Blas*, BlasView> uploaded_;  // each distinct BLAS's copy
 };
 
 // A scene with its own TLAS and instances on the device: one image of it as it is.
