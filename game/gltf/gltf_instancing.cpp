@@ -11,7 +11,8 @@ namespace {
 // this instance's entities of the joint nodes (ENTITY: each node's entity index), and its
 // morph weights, played by its node's animator.
 void Deforming(const GltfAsset& asset, size_t node, const GltfPrimitive& prim,
-               const std::vector<int32_t>& entity, const LoadedScene& out, EntityDesc& p) {
+               const std::vector<int32_t>& entity, double phase, const LoadedScene& out,
+               EntityDesc& p) {
     const GltfNode& n = asset.nodes[node];
     const DeformableMesh& mesh = *out.scene.deformableMeshes[size_t(prim.deformableMesh)];
     p.deformableMesh = prim.deformableMesh;
@@ -29,7 +30,10 @@ void Deforming(const GltfAsset& asset, size_t node, const GltfPrimitive& prim,
     if (mesh.targetCount > 0) {
         EntityDesc::MorphDesc m;
         m.weights = n.morphWeights;
-        if (n.clip && !n.clip->weights.Empty()) m.animator = entity[node];
+        if (n.clip && !n.clip->weights.Empty() && n.clip->weights.count == m.weights.size()) {
+            m.animator = entity[node];
+            physics::SampleTrack(n.clip->weights, physics::ClipTime(*n.clip, phase), m.weights);
+        }
         p.morph = std::move(m);
     }
 }
@@ -37,7 +41,7 @@ void Deforming(const GltfAsset& asset, size_t node, const GltfPrimitive& prim,
 }  // namespace
 
 std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, int32_t parent,
-                                      const glm::mat4& parentWorld) {
+                                      const glm::mat4& parentWorld, double phase) {
     std::optional<Camera> camera;
     // Each node's entity index, known before any is placed: a skin's joints can come after the
     // primitives they bend. A node's entity is followed by its primitives' entities.
@@ -63,7 +67,9 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
             physics::Animator animator;
             animator.clip = node.clip;
             animator.base = node.local;
+            animator.time = phase;
             e.animator = animator;
+            if (phase != 0.0) e.local = physics::EvaluateAnimator(animator);  // posed at it
         }
         out.entities.push_back(e);
         for (const GltfPrimitive& prim : node.primitives) {
@@ -73,7 +79,7 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
             p.parent = entity[i];
             p.sourceArray = "nodes";
             p.sourceIndex = node.source;
-            if (prim.deformableMesh >= 0) Deforming(asset, i, prim, entity, out, p);
+            if (prim.deformableMesh >= 0) Deforming(asset, i, prim, entity, phase, out, p);
             out.entities.push_back(p);
         }
         const vec3 origin = vec3(world[i] * glm::vec4(0, 0, 0, 1));
