@@ -25,7 +25,7 @@ struct GltfNode {
     int32_t parent = -1;  // index into GltfAsset::nodes, or -1 for a root of the scene
     uint32_t source = 0;  // its index in the file's nodes
     physics::LocalTransform local;
-    std::shared_ptr<const physics::KeyframeClip> clip;      // its channels of the played animation
+    std::shared_ptr<const physics::KeyframeClip> clip;  // its channels of the played animation
     std::vector<GltfPrimitive> primitives;
     int32_t camera = -1;  // index into GltfAsset::cameras
     int32_t light = -1;   // index into GltfAsset::lights
