@@ -51,6 +51,7 @@ class PoolBase {
     void MarkChanged(Entity e) {
         if (owners_.Contains(e) && !changed_.Contains(e)) changed_.Insert(e);
     }
+    bool IsChanged(Entity e) const { return changed_.Contains(e); }
     std::span<const Entity> ChangedEntities() const { return changed_.Entities(); }
     void ClearChanged() { changed_.Clear(); }
 

@@ -93,6 +93,13 @@ class Registry {
     void EachChanged(Fn&& fn) const {
         if (const ComponentPool<T>* pool = FindPool<T>()) EachChangedIn(*pool, fn);
     }
+    // Whether e's T is marked (a system that derives from other entities' components, such as
+    // a skin from its joints, asks this of each of them).
+    template <typename T>
+    bool IsChanged(Entity e) const {
+        const ComponentPool<T>* pool = FindPool<T>();
+        return pool != nullptr && pool->IsChanged(e);
+    }
     template <typename T>
     size_t ChangedCount() const {
         const ComponentPool<T>* pool = FindPool<T>();

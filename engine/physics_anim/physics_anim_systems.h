@@ -7,8 +7,9 @@
 namespace rtrt::physics {
 
 // "simulation": physics (writes dynamic bodies' LocalTransform); "animation": animators (write
-// animated LocalTransforms), then transforms (derive WorldTransform from every LocalTransform
-// changed this frame), so that "extraction" sees this frame's world transforms.
+// animated LocalTransforms), morph weights (follow their animators' clocks), then transforms
+// (derive WorldTransform from every LocalTransform changed this frame), then skins (joint
+// matrices from this frame's world transforms), so that "extraction" sees this frame's poses.
 void AddPhysicsAnimSystems(ecs::Scheduler& scheduler, PhysicsWorld& physics,
                            TransformSystem& transforms);
 

@@ -103,6 +103,8 @@ void PrintScene(const std::string& path) {
                     Grouped(g.vertices).c_str());
         std::printf("    materials   %u, textures %u\n", g.materials, g.textures);
         std::printf("    cameras     %u placed, lights %u placed\n", g.cameras, g.lights);
+        std::printf("    deforming   %u skins; %u skinned or morphed primitives\n", g.skins,
+                    g.deformingPrimitives);
         std::printf("    animations  %u", g.animations);
         if (g.animations > 0)
             std::printf(" (the first plays: %u nodes, %.3g s, looping)", g.animatedNodes,

@@ -1,5 +1,5 @@
 #pragma once
-// glTF animation: node TRS channels as keyframe clips.
+// glTF animation: node translation, rotation, scale and morph weights channels as keyframe clips.
 #include <cstdint>
 #include <vector>
 
@@ -8,7 +8,8 @@
 
 namespace rtrt {
 
-// The first animation's translation, rotation and scale channels as per-node keyframe clips,
+// The first animation's translation, rotation, scale and weights channels as per-node keyframe
+// clips (STEP, LINEAR and CUBICSPLINE as the specification defines them),
 // looping over the animation's duration.
 // NODESLOT maps glTF nodes to asset.nodes (ReadGltfNodes); channels of nodes outside the scene
 // shown are dropped.

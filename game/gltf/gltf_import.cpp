@@ -12,6 +12,7 @@
 #include "game/gltf/gltf_materials.h"
 #include "game/gltf/gltf_meshes.h"
 #include "game/gltf/gltf_nodes.h"
+#include "game/gltf/gltf_skins.h"
 
 namespace rtrt {
 namespace {
@@ -29,8 +30,6 @@ void CheckExtensions(GltfDocument& doc) {
         if (!kUsed.count(ext))
             doc.Warn("ext:" + ext, "extensionsRequired: " + ext +
                                        " is not supported; what needs it is ignored or skipped");
-    if (!doc.Model().skins.empty())
-        doc.Warn("skins", "skins: skinning is not supported; skinned meshes keep their bind pose");
 }
 
 // A camera that sees the whole scene from the front (+z), a little above and to the right, so
@@ -81,7 +80,9 @@ GltfAsset LoadGltfAsset(const std::string& path, LoadedScene& out) {
     GltfMaterials materials(doc, out);
     GltfMeshes meshes(doc, out, materials, asset.summary);
     const std::vector<int32_t> nodeSlot = ReadGltfNodes(doc, parentOf, meshes, asset);
+    ReadGltfSkins(doc, nodeSlot, asset);
     ReadGltfAnimation(doc, nodeSlot, asset);
+    asset.summary.skins = uint32_t(model.skins.size());
     return asset;
 }
 

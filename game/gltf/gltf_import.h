@@ -23,9 +23,11 @@ GltfAsset LoadGltfAsset(const std::string& path, LoadedScene& out);
 
 // Adds the asset's nodes as entities under entity `parent` (an index into out.entities, -1 for
 // none) whose initial world matrix is parentWorld, and its lights, placed there, to the scene.
-// Returns the first camera (in node order) placed the same way, if the file has one.
+// Returns the first camera (in node order) placed the same way, if the file has one. The
+// instance's animation starts `phase` seconds in; each instance has its own animators, so
+// instances play independently.
 std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, int32_t parent,
-                                      const glm::mat4& parentWorld);
+                                      const glm::mat4& parentWorld, double phase = 0.0);
 
 // A glTF file as a whole scene (rtrt render/play/info x.glb): its first camera, or one that
 // frames the scene along -z; its lights, or one white directional light when it has none.

@@ -5,11 +5,52 @@
 #include "game/gltf/gltf_import.h"
 
 namespace rtrt {
+namespace {
+
+// What makes primitive PRIM of node NODE deform in this instance: its skin, whose joints are
+// this instance's entities of the joint nodes (ENTITY: each node's entity index), and its
+// morph weights, played by its node's animator.
+void Deforming(const GltfAsset& asset, size_t node, const GltfPrimitive& prim,
+               const std::vector<int32_t>& entity, double phase, const LoadedScene& out,
+               EntityDesc& p) {
+    const GltfNode& n = asset.nodes[node];
+    const DeformableMesh& mesh = *out.scene.deformableMeshes[size_t(prim.deformableMesh)];
+    p.deformableMesh = prim.deformableMesh;
+    if (mesh.Skinned() && n.skin >= 0 && !asset.skins[size_t(n.skin)].joints.empty()) {
+        const GltfSkin& skin = asset.skins[size_t(n.skin)];
+        EntityDesc::SkinDesc s;
+        for (int32_t joint : skin.joints) s.joints.push_back(entity[size_t(joint)]);
+        s.inverseBind = skin.inverseBind;
+        if (prim.nodeJoint) {  // unweighted vertices follow this very entity: an identity joint
+            s.joints.push_back(int32_t(out.entities.size()));
+            s.inverseBind.push_back(glm::mat4(1.0f));
+        }
+        p.skin = std::move(s);
+    }
+    if (mesh.targetCount > 0) {
+        EntityDesc::MorphDesc m;
+        m.weights = n.morphWeights;
+        if (n.clip && !n.clip->weights.Empty() && n.clip->weights.count == m.weights.size()) {
+            m.animator = entity[node];
+            physics::SampleTrack(n.clip->weights, physics::ClipTime(*n.clip, phase), m.weights);
+        }
+        p.morph = std::move(m);
+    }
+}
+
+}  // namespace
 
 std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, int32_t parent,
-                                      const glm::mat4& parentWorld) {
+                                      const glm::mat4& parentWorld, double phase) {
     std::optional<Camera> camera;
+    // Each node's entity index, known before any is placed: a skin's joints can come after the
+    // primitives they bend. A node's entity is followed by its primitives' entities.
     std::vector<int32_t> entity(asset.nodes.size());
+    int32_t next = int32_t(out.entities.size());
+    for (size_t i = 0; i < asset.nodes.size(); ++i) {
+        entity[i] = next;
+        next += 1 + int32_t(asset.nodes[i].primitives.size());
+    }
     std::vector<glm::mat4> world(asset.nodes.size());
     for (size_t i = 0; i < asset.nodes.size(); ++i) {
         const GltfNode& node = asset.nodes[i];
@@ -26,17 +67,19 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
             physics::Animator animator;
             animator.clip = node.clip;
             animator.base = node.local;
+            animator.time = phase;
             e.animator = animator;
+            if (phase != 0.0) e.local = physics::EvaluateAnimator(animator);  // posed at it
         }
-        entity[i] = int32_t(out.entities.size());
         out.entities.push_back(e);
-        for (const auto& [blas, material] : node.primitives) {
+        for (const GltfPrimitive& prim : node.primitives) {
             EntityDesc p;
-            p.blasId = blas;
-            p.materialId = material;
+            p.blasId = prim.blas;
+            p.materialId = prim.material;
             p.parent = entity[i];
             p.sourceArray = "nodes";
             p.sourceIndex = node.source;
+            if (prim.deformableMesh >= 0) Deforming(asset, i, prim, entity, phase, out, p);
             out.entities.push_back(p);
         }
         const vec3 origin = vec3(world[i] * glm::vec4(0, 0, 0, 1));

@@ -5,16 +5,17 @@
 
 #include "engine/bvh/blas/blas.h"
 #include "game/gltf/gltf_accessors.h"
+#include "game/gltf/gltf_deformable.h"
 #include "game/scene/json_fields.h"
 
 namespace rtrt {
 
 namespace fs = std::filesystem;
 
-std::vector<std::pair<uint32_t, uint32_t>> GltfMeshes::Primitives(size_t mesh) {
-    auto found = meshPrimitives_.find(mesh);
+std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
+    auto found = meshPrimitives_.find({mesh, skin});
     if (found != meshPrimitives_.end()) return found->second;
-    std::vector<std::pair<uint32_t, uint32_t>> result;
+    std::vector<GltfPrimitive> result;
     const tinygltf::Mesh& m = model_.meshes[mesh];
     for (size_t p = 0; p < m.primitives.size(); ++p) {
         const tinygltf::Primitive& prim = m.primitives[p];
@@ -25,9 +26,10 @@ std::vector<std::pair<uint32_t, uint32_t>> GltfMeshes::Primitives(size_t mesh) {
                                   "primitives are skipped");
             continue;
         }
-        if (!prim.targets.empty())
-            doc_.Warn("morph", at + ".targets: morph targets are not supported; meshes keep "
-                                    "their base shape");
+        if (prim.targets.size() != m.primitives[0].targets.size())
+            doc_.Fail(at + ".targets", std::to_string(prim.targets.size()) +
+                                           " morph targets, but primitive 0 has " +
+                                           std::to_string(m.primitives[0].targets.size()));
         TriangleMesh triangles;
         try {
             triangles = ReadPrimitive(prim, at);
@@ -39,14 +41,34 @@ std::vector<std::pair<uint32_t, uint32_t>> GltfMeshes::Primitives(size_t mesh) {
         summary_.primitives++;
         summary_.vertices += uint32_t(triangles.positions.size());
         summary_.triangles += uint32_t(triangles.indices.size());
-        const uint32_t blas =
-            out_.scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(triangles)));
+        GltfPrimitive out;
+        // The BLAS's primIds index triangles.indices: a deformable mesh's rest pose is these very
+        // triangles, so that the frame renderer can deform them in the tree's order.
+        out.blas = out_.scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(triangles)));
         out_.modelNames.push_back(fs::path(doc_.File()).filename().string() + " " + at +
                                   (m.name.empty() ? "" : " (" + m.name + ")"));
-        result.push_back({blas, materials_.Id(prim.material, at + ".material")});
+        out.material = materials_.Id(prim.material, at + ".material");
+        ReadDeformation(prim, at, mesh, skin, triangles, out);
+        result.push_back(out);
     }
-    meshPrimitives_[mesh] = result;
+    meshPrimitives_[{mesh, skin}] = result;
     return result;
+}
+
+void GltfMeshes::ReadDeformation(const tinygltf::Primitive& prim, const std::string& at,
+                                 size_t mesh, int skin, const TriangleMesh& triangles,
+                                 GltfPrimitive& out) {
+    auto deformable = std::make_shared<DeformableMesh>();
+    deformable->rest = triangles;
+    const bool skinned =
+        skin >= 0 &&
+        ReadGltfSkinInfluences(doc_, prim, at, uint32_t(model_.skins[size_t(skin)].joints.size()),
+                               *deformable, out.nodeJoint);
+    const bool morphed = ReadGltfMorphTargets(doc_, prim, at, model_.meshes[mesh],
+                                              JsonIndexed("meshes", mesh), *deformable);
+    if (!skinned && !morphed) return;
+    out.deformableMesh = int32_t(out_.scene.AddDeformableMesh(std::move(deformable)));
+    summary_.deformingPrimitives++;
 }
 
 TriangleMesh GltfMeshes::ReadPrimitive(const tinygltf::Primitive& prim, const std::string& at) {

@@ -1,6 +1,7 @@
 #pragma once
-// glTF meshes: each triangle primitive becomes a BLAS with its material; other primitive modes,
-// morph targets and compressed primitives are skipped with a warning.
+// glTF meshes: each triangle primitive becomes a BLAS with its material, and a skinned or morphed
+// one also a DeformableMesh (its rest pose, the triangles of that BLAS in the same order); other
+// primitive modes and compressed primitives are skipped with a warning.
 #include <cstdint>
 #include <map>
 #include <string>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "engine/geometry/triangle_mesh.h"
+#include "game/gltf/gltf_asset.h"
 #include "game/gltf/gltf_document.h"
 #include "game/gltf/gltf_materials.h"
 #include "game/scene/loaded_scene.h"
@@ -20,18 +22,24 @@ class GltfMeshes {
     GltfMeshes(GltfDocument& doc, LoadedScene& out, GltfMaterials& materials, GltfSummary& summary)
         : doc_(doc), model_(doc.Model()), out_(out), materials_(materials), summary_(summary) {}
 
-    // The BLAS and material of each triangle primitive of MESH, built on first use.
-    std::vector<std::pair<uint32_t, uint32_t>> Primitives(size_t mesh);
+    // The triangle primitives of MESH as a node with skin SKIN (-1: none) shows them, built on
+    // first use: a mesh skinned by two skins is read twice, since its joint indices refer to
+    // each skin's joints.
+    std::vector<GltfPrimitive> Primitives(size_t mesh, int skin);
 
   private:
     TriangleMesh ReadPrimitive(const tinygltf::Primitive& prim, const std::string& at);
+    // Registers the primitive as a deformable mesh when it is skinned (SKIN >= 0 and it has
+    // joints) or has morph targets.
+    void ReadDeformation(const tinygltf::Primitive& prim, const std::string& at, size_t mesh,
+                         int skin, const TriangleMesh& triangles, GltfPrimitive& out);
 
     GltfDocument& doc_;
     const tinygltf::Model& model_;
     LoadedScene& out_;
     GltfMaterials& materials_;
     GltfSummary& summary_;
-    std::map<size_t, std::vector<std::pair<uint32_t, uint32_t>>> meshPrimitives_;
+    std::map<std::pair<size_t, int>, std::vector<GltfPrimitive>> meshPrimitives_;
 };
 
 }  // namespace rtrt

@@ -96,6 +96,26 @@ physics::LocalTransform NodeTransform(GltfDocument& doc, size_t index) {
     return t;
 }
 
+// The weights a node's mesh starts with: the node's own, else the mesh's, else zeros; none
+// for a mesh without morph targets.
+std::vector<float> MorphWeights(const GltfDocument& doc, size_t index, const std::string& at) {
+    const tinygltf::Model& model = doc.Model();
+    const tinygltf::Node& node = model.nodes[index];
+    const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
+    const size_t targets = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+    if (!node.weights.empty() && node.weights.size() != targets)
+        doc.Fail(at + ".weights", std::to_string(node.weights.size()) + " weights for " +
+                                      std::to_string(targets) + " morph targets of its mesh");
+    const std::vector<double>& given = node.weights.empty() ? mesh.weights : node.weights;
+    std::vector<float> weights(targets, 0.0f);
+    for (size_t t = 0; t < given.size() && t < targets; ++t) {
+        if (!FiniteFloat(given[t]))
+            doc.Fail(at + ".weights", "a weight is NaN or infinite (or beyond float range)");
+        weights[t] = float(given[t]);
+    }
+    return weights;
+}
+
 }  // namespace
 
 // Every node has at most one parent and no node is its own ancestor: the hierarchy is a
@@ -196,10 +216,14 @@ std::vector<int32_t> ReadGltfNodes(GltfDocument& doc, const std::vector<int>& pa
         out.source = uint32_t(index);
         out.local = NodeTransform(doc, size_t(index));
         const std::string at = JsonIndexed("nodes", size_t(index));
+        if (node.skin < -1 || (node.skin >= 0 && size_t(node.skin) >= model.skins.size()))
+            doc.Fail(at + ".skin", "skin " + std::to_string(node.skin) + " out of range");
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
                 doc.Fail(at + ".mesh", "mesh " + std::to_string(node.mesh) + " out of range");
-            out.primitives = meshes.Primitives(size_t(node.mesh));
+            out.primitives = meshes.Primitives(size_t(node.mesh), node.skin);
+            out.skin = node.skin;
+            out.morphWeights = MorphWeights(doc, size_t(index), at);
         } else if (node.mesh < -1) {
             doc.Fail(at + ".mesh", "mesh " + std::to_string(node.mesh) + " out of range");
         }
@@ -218,12 +242,6 @@ std::vector<int32_t> ReadGltfNodes(GltfDocument& doc, const std::vector<int>& pa
                              std::to_string(asset.lights.size()) + ")");
             out.light = v.GetNumberAsInt();
         }
-        if (node.skin >= 0)
-            doc.Warn("skins", at + ".skin: skinning is not supported; skinned meshes keep "
-                                   "their bind pose");
-        if (!node.weights.empty())
-            doc.Warn("morph", at + ".weights: morph targets are not supported; meshes keep "
-                                   "their base shape");
         nodeSlot[size_t(index)] = int32_t(asset.nodes.size());
         asset.nodes.push_back(std::move(out));
         const int32_t self = nodeSlot[size_t(index)];

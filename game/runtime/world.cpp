@@ -1,9 +1,11 @@
 #include "game/runtime/world.h"
 
+#include <algorithm>
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "engine/core/timer.h"
 #include "engine/physics_anim/physics_anim_systems.h"
+#include "engine/physics_anim/skinning.h"
 #include "engine/physics_anim/transform_system.h"
 
 namespace rtrt {
@@ -21,19 +23,67 @@ World::World(const LoadedScene& scene) : source_(scene) {
     physics::AddPhysicsAnimSystems(scheduler_, physics_, transforms_);
     SpawnDue();
     transforms_.Update(registry_);
+    physics::UpdateSkins(registry_);
     Extract();
     deformChanged_.swap(deformPending_);
+    ExtractPoses();
     topologyPending_ = false;
 }
 
 void World::SpawnDue() {
     const std::vector<EntityDesc>& entities = source_.entities;
+    const size_t first = nextSpawn_;
     for (; nextSpawn_ < entities.size() && entities[nextSpawn_].spawnTime <= time_; ++nextSpawn_) {
         const EntityDesc& d = entities[nextSpawn_];
         created_.push_back(Create(d));
         // Parents come first (FinishLoadedScene keeps them so): the link never closes a cycle.
         if (d.parent >= 0) physics::SetParent(registry_, created_.back(), created_[d.parent]);
     }
+    // Joints may come after the mesh they bend: skins are attached once the batch exists.
+    for (size_t i = first; i < nextSpawn_; ++i) AttachPose(entities[i], created_[i], true);
+}
+
+void World::AttachPose(const EntityDesc& d, ecs::Entity e, bool ofScene) {
+    if (!d.renderable || d.deformableMesh < 0) return;
+    auto entityAt = [&](int32_t index) {
+        return ofScene && index >= 0 && size_t(index) < created_.size() ? created_[size_t(index)]
+                                                                        : ecs::Entity{};
+    };
+    if (d.skin && ofScene) {
+        physics::Skin skin;
+        for (int32_t joint : d.skin->joints) skin.joints.push_back(entityAt(joint));
+        skin.inverseBind = d.skin->inverseBind;
+        registry_.Add(e, std::move(skin));
+    }
+    if (d.morph)
+        registry_.Add(e, physics::MorphWeights{d.morph->weights, entityAt(d.morph->animator)});
+}
+
+// Copies the skins and morph weights that changed into their entities' Deformation records.
+void World::ExtractPoses() {
+    registry_.EachChanged<physics::Skin>([&](ecs::Entity e, physics::Skin& skin) {
+        const DeformationLink* link = registry_.Get<DeformationLink>(e);
+        if (!link) return;
+        Deformation& d = scene_.deformations[link->deformation];
+        if (skin.jointMatrices.size() != d.jointMatrices.size()) return;
+        for (size_t j = 0; j < d.jointMatrices.size(); ++j)
+            d.jointMatrices[j] = AffineFromMat4(skin.jointMatrices[j]);
+        deformChanged_.push_back(link->deformation);
+    });
+    registry_.ClearChanged<physics::Skin>();
+    registry_.EachChanged<physics::MorphWeights>([&](ecs::Entity e, physics::MorphWeights& m) {
+        const DeformationLink* link = registry_.Get<DeformationLink>(e);
+        if (!link) return;
+        Deformation& d = scene_.deformations[link->deformation];
+        if (m.weights.size() != d.morphWeights.size()) return;
+        d.morphWeights = m.weights;
+        deformChanged_.push_back(link->deformation);
+    });
+    registry_.ClearChanged<physics::MorphWeights>();
+    // A record can change by its pose and its procedural clock in one frame: listed once.
+    std::sort(deformChanged_.begin(), deformChanged_.end());
+    deformChanged_.erase(std::unique(deformChanged_.begin(), deformChanged_.end()),
+                         deformChanged_.end());
 }
 
 ecs::Entity World::Create(const EntityDesc& d) {
@@ -88,7 +138,11 @@ uint32_t World::AddBlas(std::shared_ptr<const Blas> blas) {
 
 uint32_t World::AddMaterial(const Material& material) { return scene_.AddMaterial(material); }
 
-ecs::Entity World::Spawn(const EntityDesc& desc) { return Create(desc); }
+ecs::Entity World::Spawn(const EntityDesc& desc) {
+    const ecs::Entity e = Create(desc);
+    AttachPose(desc, e, false);
+    return e;
+}
 
 bool World::SetPose(ecs::Entity e, vec3 position, glm::quat rotation) {
     physics::LocalTransform* local = registry_.Get<physics::LocalTransform>(e);
@@ -176,6 +230,7 @@ FrameStats World::Advance(float dt) {
     timer.Restart();
     stats.extracted = Extract();
     AdvanceDeformations();
+    ExtractPoses();
     stats.extractMs = timer.Milliseconds();
     topologyChanged_ = topologyPending_;
     topologyPending_ = false;

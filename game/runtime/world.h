@@ -57,7 +57,8 @@ class World {
     // Adds a model or a material for later spawns; call before a FrameRenderer takes the scene.
     uint32_t AddBlas(std::shared_ptr<const Blas> blas);
     uint32_t AddMaterial(const Material& material);
-    // Creates an entity as a scene file's spawner would (its spawnTime is ignored).
+    // Creates an entity as a scene file's spawner would (its spawnTime is ignored; a skin's
+    // joints are not resolved: a spawned skinned mesh keeps its rest pose).
     ecs::Entity Spawn(const EntityDesc& desc);
     // Moves an entity; a rigid body is teleported there and stops.
     bool SetPose(ecs::Entity e, vec3 position, glm::quat rotation);
@@ -82,6 +83,11 @@ class World {
     // if there is one (a despawned instance's), else a new record and BLAS slot.
     uint32_t AcquireDeformation(const EntityDesc& desc);
     void AdvanceDeformations();
+    // Gives a deforming entity its Skin and MorphWeights. OFSCENE: D is one of the scene's
+    // entities, whose joints and animator (LoadedScene::entities indices) are resolved; an
+    // interactive spawn's are not (it keeps its rest pose and its given weights).
+    void AttachPose(const EntityDesc& d, ecs::Entity e, bool ofScene);
+    void ExtractPoses();
 
     const LoadedScene& source_;
     RenderScene scene_;

@@ -37,6 +37,21 @@ struct EntityDesc {
     int32_t deformableMesh = -1;
     // Its procedural deformation; `time` is its phase, added to the time since it appeared.
     ProceduralDeform procedural;
+    // A skinned deforming instance: its joints, other entities of the scene (World makes them
+    // the physics::Skin's joints), one per joint of the mesh's skin.
+    struct SkinDesc {
+        std::vector<int32_t> joints;         // LoadedScene::entities indices, each of spawn time 0
+        std::vector<glm::mat4> inverseBind;  // one per joint
+    };
+    std::optional<SkinDesc> skin;
+    // A morphing deforming instance: its weights at the start, one per morph target, and the
+    // entity whose animator's clip (its weights track) plays them (a LoadedScene::entities
+    // index, -1: none; they then stay as given).
+    struct MorphDesc {
+        std::vector<float> weights;
+        int32_t animator = -1;
+    };
+    std::optional<MorphDesc> morph;
 };
 
 // A camera key of the scene's camera_path; the camera moves linearly between keys.
@@ -52,7 +67,8 @@ struct GltfSummary {
     uint32_t nodes = 0, meshes = 0, primitives = 0, vertices = 0, triangles = 0;
     uint32_t materials = 0, textures = 0, cameras = 0, lights = 0, animations = 0;
     uint32_t animatedNodes = 0;
-    float animationSeconds = 0.0f;  // of the animation played (the first)
+    uint32_t skins = 0, deformingPrimitives = 0;  // skinned or morphed primitives, as read
+    float animationSeconds = 0.0f;                // of the animation played (the first)
 };
 
 struct LoadedScene {

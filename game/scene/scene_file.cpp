@@ -158,12 +158,14 @@ class SceneParser {
             JsonFields f(j[i], JsonIndexed("instances", i), file_);
             out.entities.push_back(ParseEntity(f, out.scene));
             out.entities.back().sourceIndex = uint32_t(i);
+            // A glTF instance may start its file's animation this many seconds in.
+            const float phase = gltf_ ? f.Number("phase", 0.0f) : 0.0f;
             f.Finish();
             if (!gltf_) continue;
             // The instance is the root the glTF scene's nodes hang from.
             const std::optional<Camera> camera =
                 InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
-                                physics::ToMatrix(out.entities.back().local));
+                                physics::ToMatrix(out.entities.back().local), phase);
             if (camera && !hasCamera_) {
                 out.scene.camera = *camera;
                 hasCamera_ = true;

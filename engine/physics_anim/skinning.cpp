@@ -1,0 +1,86 @@
+#include "engine/physics_anim/skinning.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "engine/physics_anim/animator.h"
+
+namespace rtrt::physics {
+
+glm::mat4 JointMatrix(const glm::mat4& meshWorld, const glm::mat4& jointWorld,
+                      const glm::mat4& inverseBind) {
+    return glm::affineInverse(meshWorld) * jointWorld * inverseBind;
+}
+
+vec3 SkinnedPosition(vec3 rest, std::span<const uint32_t> joints, std::span<const float> weights,
+                     std::span<const glm::mat4> jointMatrices) {
+    vec3 p(0.0f);
+    for (size_t i = 0; i < joints.size(); ++i)
+        if (weights[i] != 0.0f)
+            p += weights[i] * vec3(jointMatrices[joints[i]] * glm::vec4(rest, 1.0f));
+    return p;
+}
+
+vec3 SkinnedNormal(vec3 rest, std::span<const uint32_t> joints, std::span<const float> weights,
+                   std::span<const glm::mat4> jointMatrices) {
+    vec3 n(0.0f);
+    for (size_t i = 0; i < joints.size(); ++i)
+        if (weights[i] != 0.0f)
+            n += weights[i] * (glm::inverseTranspose(glm::mat3(jointMatrices[joints[i]])) * rest);
+    const float length = glm::length(n);
+    return length > 0.0f ? n / length : rest;
+}
+
+vec3 MorphedPosition(vec3 rest, std::span<const vec3> deltas, std::span<const float> weights) {
+    for (size_t t = 0; t < deltas.size(); ++t) rest += weights[t] * deltas[t];
+    return rest;
+}
+
+uint32_t UpdateSkins(ecs::Registry& registry) {
+    uint32_t updated = 0;
+    registry.View<Skin, const WorldTransform>().Each(
+        [&](ecs::Entity e, Skin& skin, const WorldTransform& mesh) {
+            bool moved = skin.jointMatrices.size() != skin.joints.size() ||
+                         registry.IsChanged<WorldTransform>(e);
+            for (size_t j = 0; j < skin.joints.size() && !moved; ++j)
+                moved = registry.IsChanged<WorldTransform>(skin.joints[j]);
+            if (!moved) return;
+            skin.jointMatrices.resize(skin.joints.size(), glm::mat4(1.0f));
+            for (size_t j = 0; j < skin.joints.size(); ++j)
+                if (const WorldTransform* joint = registry.Get<WorldTransform>(skin.joints[j]))
+                    skin.jointMatrices[j] =
+                        JointMatrix(mesh.objectToWorld, joint->objectToWorld, skin.inverseBind[j]);
+            registry.MarkChanged<Skin>(e);
+            ++updated;
+        });
+    return updated;
+}
+
+uint32_t AnimateMorphWeights(ecs::Registry& registry) {
+    uint32_t changed = 0;
+    std::vector<float> sampled;
+    registry.View<MorphWeights>().Each([&](ecs::Entity e, MorphWeights& morph) {
+        const Animator* animator = registry.Get<Animator>(morph.animator);
+        if (!animator || !animator->playing || !animator->clip) return;
+        const KeyframeClip& clip = *animator->clip;
+        if (clip.weights.Empty() || clip.weights.count != morph.weights.size()) return;
+        sampled.resize(morph.weights.size());
+        SampleTrack(clip.weights, ClipTime(clip, animator->time), sampled);
+        if (sampled == morph.weights) return;
+        morph.weights = sampled;
+        registry.MarkChanged<MorphWeights>(e);
+        ++changed;
+    });
+    return changed;
+}
+
+void AddMorphWeightsSystem(ecs::Scheduler& scheduler) {
+    scheduler.AddSystem("animation", "morph weights",
+                        [](ecs::Registry& registry, float) { AnimateMorphWeights(registry); });
+}
+
+void AddSkinSystem(ecs::Scheduler& scheduler) {
+    scheduler.AddSystem("animation", "skins",
+                        [](ecs::Registry& registry, float) { UpdateSkins(registry); });
+}
+
+}  // namespace rtrt::physics
