@@ -114,6 +114,12 @@ uint32_t World::AcquireDeformation(const EntityDesc& d) {
         if (def.mesh == uint32_t(d.deformableMesh) &&
             scene_.blases[def.blasId] == scene_.blases[d.blasId]) {
             freeDeformations_.erase(freeDeformations_.begin() + k);
+            // The last owner's pose goes: the new entity starts from the mesh's rest pose.
+            Deformation& reused = scene_.deformations[candidate];
+            const DeformableMesh& mesh = *scene_.deformableMeshes[reused.mesh];
+            reused.procedural = {};
+            reused.jointMatrices.assign(mesh.jointCount, Affine::Identity());
+            reused.morphWeights = mesh.defaultWeights;
             return candidate;
         }
     }
@@ -230,6 +236,9 @@ FrameStats World::Advance(float dt) {
     timer.Restart();
     stats.extracted = Extract();
     AdvanceDeformations();
+    // Deformations created by this frame's spawns are new this frame.
+    deformChanged_.insert(deformChanged_.end(), deformPending_.begin(), deformPending_.end());
+    deformPending_.clear();
     ExtractPoses();
     stats.extractMs = timer.Milliseconds();
     topologyChanged_ = topologyPending_;

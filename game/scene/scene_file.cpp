@@ -1,5 +1,6 @@
 #include "game/scene/scene_file.h"
 
+#include <cmath>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -275,9 +276,12 @@ class SceneParser {
         for (size_t i = 0; i < j.size(); ++i) {
             JsonFields f(j[i], JsonIndexed("spawners", i), file_);
             EntityDesc proto = ParseEntity(f, out.scene);
-            if (gltf_)
-                f.Fail("model", "spawners place single models, and this one is a glTF scene");
             proto.spawnTime = f.InRange("time", 0.0f, 1e6f, 0.0f);
+            if (gltf_) {
+                SpawnGltfGrid(f, proto, uint32_t(i), out);
+                f.Finish();
+                continue;
+            }
             const bool grid = f.Has("grid"), rain = f.Has("rain");
             if (grid == rain) f.Fail("", "give exactly one of grid or rain");
             const std::vector<vec3> places =
@@ -296,6 +300,32 @@ class SceneParser {
                 out.entities.push_back(e);
             }
             f.Finish();
+        }
+    }
+
+    // A grid of a glTF scene: each place is a root entity its nodes hang from, playing the file's
+    // animation in a phase of its own — "phase" seconds, plus "phase_spread" x a low-discrepancy
+    // fraction of the place (the golden ratio's multiples), so a crowd does not march in step.
+    void SpawnGltfGrid(JsonFields& f, const EntityDesc& proto, uint32_t index, LoadedScene& out) {
+        if (f.Has("rain")) f.Fail("rain", "a glTF scene is spawned on a grid, not by rain");
+        if (!f.Has("grid")) f.Fail("grid", "a glTF scene is spawned on a grid: give one");
+        if (proto.spawnTime != 0.0f) f.Fail("time", "a glTF grid is placed at time 0");
+        const float phase = f.Number("phase", 0.0f);
+        const float spread = f.InRange("phase_spread", 0.0f, 1e6f, 0.0f);
+        const std::vector<vec3> places = GridPlaces(f, proto);
+        if (places.size() > 100000)
+            f.Fail("grid.count", "at most 100,000 places of a glTF scene");
+        for (size_t k = 0; k < places.size(); ++k) {
+            EntityDesc root = proto;
+            root.sourceArray = "spawners";
+            root.sourceIndex = index;
+            root.local.translation = places[k];
+            if (root.animator) root.animator->base.translation = places[k];
+            out.entities.push_back(root);
+            const double golden = 0.6180339887498949;
+            const double fraction = std::fmod(double(k) * golden, 1.0);
+            InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
+                            physics::ToMatrix(root.local), phase + spread * fraction);
         }
     }
 

@@ -231,7 +231,7 @@ endforeach()
 expect_one_line_failure(render_hostile_gltf_model
     "${HOSTILE_SCENE}/../hostile_gltf/cyclic_nodes.gltf: nodes[2].children[0]: node 1 has two parents"
     render ${HOSTILE_SCENE}/hostile_gltf_model.json -o ${WORK_DIR}/render_hostile_gltf_model${EXT})
-expect_one_line_failure(render_gltf_spawner "${HOSTILE_SCENE}/gltf_spawner.json: spawners[0].model"
+expect_one_line_failure(render_gltf_spawner "${HOSTILE_SCENE}/gltf_spawner.json: spawners[0].rain"
     render ${HOSTILE_SCENE}/gltf_spawner.json -o ${WORK_DIR}/render_gltf_spawner${EXT})
 
 # A valid glTF renders directly, and info describes it.

@@ -285,6 +285,41 @@ TEST_F(GltfDeformTest, WeightsChannelAnimatesEachInstanceInItsOwnPhase) {
     EXPECT_TRUE(world.Changes().deformations.empty());
 }
 
+// A grid spawner of a glTF scene: one deforming instance per place, each in a phase of its own
+// (phase + phase_spread x frac(k x golden ratio)), each with its own Deformation.
+TEST_F(GltfDeformTest, GridSpawnerPlacesEachCopyInItsOwnPhase) {
+    Save("morph.glb", MorphTriangle(true).Glb());
+    const LoadedScene loaded = ParseScene(R"({
+        "models": { "m": { "type": "gltf", "file": "morph.glb" } },
+        "instances": [],
+        "spawners": [ { "model": "m", "grid": { "count": [3, 1, 1], "spacing": 2 },
+                        "phase": 0.5, "phase_spread": 1 } ]
+    })",
+                                          "scene.json", dir_.string());
+    World world(loaded);
+    const RenderScene& scene = world.Scene();
+    ASSERT_EQ(scene.deformations.size(), 3u);
+    // Phases 0.5, 0.5 + 0.618..., 0.5 + 0.236...: weights 0.5 x phase (the channel above).
+    const float phases[3] = {0.5f, 0.5f + 0.6180340f, 0.5f + 0.2360680f};
+    for (uint32_t k = 0; k < 3; ++k) {
+        SCOPED_TRACE("copy " + std::to_string(k));
+        ASSERT_EQ(scene.deformations[k].morphWeights.size(), 2u);
+        EXPECT_NEAR(scene.deformations[k].morphWeights[0], 0.5f * phases[k], 1e-5f);
+    }
+}
+
+TEST_F(GltfDeformTest, GridSpawnerOfAGltfSceneRefusesRainAndLaterTimes) {
+    Save("morph.glb", MorphTriangle(true).Glb());
+    auto load = [&](const std::string& spawner) {
+        ParseScene(R"({ "models": { "m": { "type": "gltf", "file": "morph.glb" } },
+                        "instances": [], "spawners": [ )" + spawner + " ] }",
+                   "scene.json", dir_.string());
+    };
+    EXPECT_THROW(load(R"({ "model": "m", "grid": { "count": [2, 1, 1] }, "time": 1 })"),
+                 InputError);
+    EXPECT_THROW(load(R"({ "model": "m" })"), InputError);
+}
+
 struct BadDeform {
     const char* name;
     void (*edit)(GltfBuilder&);

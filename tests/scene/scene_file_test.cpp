@@ -162,7 +162,7 @@ TEST(SceneFile, HostileSceneFiles) {
          "two parents"},
         {"gltf_with_material.json", "gltf_with_material.json", "instances[0].material",
          "brings its own materials"},
-        {"gltf_spawner.json", "gltf_spawner.json", "spawners[0].model", "glTF scene"},
+        {"gltf_spawner.json", "gltf_spawner.json", "spawners[0].rain", "glTF scene"},
         {"huge_grid.json", "huge_grid.json", "spawners[0].grid.count", "at most 2,000,000"},
         {"keys_out_of_order.json", "keys_out_of_order.json", "instances[0].animate.keyframes",
          "increase"},

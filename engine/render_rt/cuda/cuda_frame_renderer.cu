@@ -230,9 +230,13 @@ class CudaFrameRenderer final : public FrameRenderer {
         const cudaEvent_t* e = f.events;
         // Start, vertices, rebuilt, gathered, refit: a rebuild sits between the two halves of
         // the deformation.
-        f.times.deformMs = Elapsed(e[0], e[1]) + Elapsed(e[2], e[3]);
-        f.times.blasMs = Elapsed(e[1], e[2]) + Elapsed(e[3], e[4]);
-        f.times.uploadMs = Elapsed(e[4], e[5]);
+        if (f.times.deformed > 0) {
+            f.times.deformMs = Elapsed(e[0], e[1]) + Elapsed(e[2], e[3]);
+            f.times.blasMs = Elapsed(e[1], e[2]) + Elapsed(e[3], e[4]);
+            f.times.uploadMs = Elapsed(e[4], e[5]);
+        } else {  // nothing deformed: those stages cost nothing, whatever the events' resolution
+            f.times.uploadMs = Elapsed(e[0], e[5]);
+        }
         f.times.tlasMs = Elapsed(e[5], e[6]);
         f.times.traceMs = Elapsed(e[6], e[7]);
         f.times.rays = f.counted ? *f.raysHost : 0;
