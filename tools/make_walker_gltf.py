@@ -81,12 +81,12 @@ def capsule(a, b, profile, bones, name, squash=1.0):
 def capsule_profile(length, r0, r1, cap_rings=4, body_rings=10):
     """Hemisphere of radius r0 around h = 0, a taper to r1, hemisphere of r1 around h = length:
     caps centred on the joints make ball joints that keep their shape as the limb turns."""
-    prof = [(-r0 * math.cos(math.pi / 2 * i / cap_rings), r0 * math.sin(math.pi / 2 * i / cap_rings))
-            for i in range(cap_rings)]
+    step = math.pi / 2 / cap_rings
+    prof = [(-r0 * math.cos(step * i), r0 * math.sin(step * i)) for i in range(cap_rings)]
     prof += [(length * i / body_rings, r0 + (r1 - r0) * i / body_rings)
              for i in range(body_rings + 1)]
-    prof += [(length + r1 * math.sin(math.pi / 2 * i / cap_rings),
-              r1 * math.cos(math.pi / 2 * i / cap_rings)) for i in range(1, cap_rings + 1)]
+    prof += [(length + r1 * math.sin(step * i), r1 * math.cos(step * i))
+             for i in range(1, cap_rings + 1)]
     return prof
 
 def box(lo, hi, joint, name):
@@ -154,9 +154,9 @@ normals = vertex_normals(positions)
 # NORMAL deltas are the breathed surface's normals less the rest ones, so shading follows.
 breathed = []
 for p, name in zip(positions, part):
-    bump = math.sin(math.pi * min(1, max(0, (p[1] - 1.12) / 0.34))) ** 2 if name == "torso" else 0
-    breathed.append([p[0] * (1 + 0.12 * bump), p[1],
-                     p[2] * (1 + (0.25 if p[2] > 0 else 0.1) * bump)])
+    swell = math.sin(math.pi * min(1, max(0, (p[1] - 1.12) / 0.34))) ** 2 if name == "torso" else 0
+    breathed.append([p[0] * (1 + 0.08 * swell), p[1],
+                     p[2] * (1 + (0.18 if p[2] > 0 else 0.06) * swell)])
 breathe_pos = [sub(b, p) for b, p in zip(breathed, positions)]
 breathe_nrm = [sub(m, n) if name == "torso" else [0, 0, 0]
                for m, n, name in zip(vertex_normals(breathed), normals, part)]
