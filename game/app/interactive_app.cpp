@@ -336,6 +336,10 @@ class App {
         RenderStats stats;
         renderer_->Trace(scene, s, viaHost ? &raw_ : nullptr, &stats);
         const FrameTimes& t = renderer_->Times();
+        model_.times.deform = t.deformMs;
+        model_.times.blas = t.blasMs;
+        model_.times.deformed = t.deformed;
+        model_.times.blasRebuilt = t.blasRebuilt;
         model_.times.upload = t.uploadMs;
         model_.times.tlas = t.tlasMs;
         model_.times.trace = t.traceMs;

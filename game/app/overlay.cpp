@@ -50,6 +50,9 @@ void Overlay::Draw(OverlayModel& m) {
                          ImVec2(320, 70));
         ImGui::Text("simulate %.3f  extract %.3f  upload %.3f", m.times.simulate, m.times.extract,
                     m.times.upload);
+        if (m.times.deformed > 0)
+            ImGui::Text("deform %.3f  BLAS %.3f ms (%u deforming, %u rebuilt)", m.times.deform,
+                        m.times.blas, m.times.deformed, m.times.blasRebuilt);
         ImGui::Text("TLAS %.3f  trace %.3f  display %.3f ms", m.times.tlas, m.times.trace,
                     m.times.display);
         ImGui::Text("instances %llu  triangles %llu", (unsigned long long)m.instances,

@@ -10,7 +10,9 @@ struct GLFWwindow;
 namespace rtrt {
 
 struct StageTimes {
-    double simulate = 0, extract = 0, upload = 0, tlas = 0, trace = 0, display = 0, frame = 0;
+    double simulate = 0, extract = 0, deform = 0, blas = 0, upload = 0, tlas = 0, trace = 0,
+           display = 0, frame = 0;
+    uint32_t deformed = 0, blasRebuilt = 0;  // deforming BLASes updated, of them rebuilt
 };
 
 struct OverlayModel {

@@ -1,11 +1,13 @@
 #include "game/app/spawn_palette.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "game/assets/mesh_io.h"
 #include "game/assets/model_dir.h"
 #include "game/assets/procedural_shapes.h"
 #include "game/assets/teapot.h"
+#include "game/gltf/gltf_import.h"
 
 namespace rtrt {
 namespace {
@@ -63,6 +65,38 @@ SpawnPalette::SpawnPalette(World& world, std::vector<std::string>* notes) {
         world.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(MakeBoxMesh(vec3(1.0f)))));
     kinds_.push_back({"mirror box", box, world.AddMaterial(Colored(vec3(0.1f), 0.9f)),
                       physics::Collider::Box(vec3(0.5f))});
+    AddGltf(world, "walker", AssetDir() + "/models/walker.gltf", notes);
+}
+
+// The glTF file is read into a scene description that starts as a copy of the world's arrays,
+// so the ids it hands out are the ones its models, materials and meshes get in the world.
+void SpawnPalette::AddGltf(World& world, const std::string& name, const std::string& path,
+                           std::vector<std::string>* notes) {
+    if (!std::filesystem::exists(path)) {
+        if (notes) notes->push_back("no " + name + " to spawn: " + path + " is missing");
+        return;
+    }
+    const RenderScene& scene = world.Scene();
+    LoadedScene into;
+    into.scene.blases = scene.blases;
+    into.scene.materials = scene.materials;
+    into.scene.textures = scene.textures;
+    into.scene.texels = scene.texels;
+    into.scene.deformableMeshes = scene.deformableMeshes;
+    auto asset = std::make_shared<GltfAsset>(LoadGltfAsset(path, into));
+    for (size_t i = scene.blases.size(); i < into.scene.blases.size(); ++i)
+        world.AddBlas(into.scene.blases[i]);
+    for (size_t i = scene.materials.size(); i < into.scene.materials.size(); ++i)
+        world.AddMaterial(into.scene.materials[i]);
+    for (size_t i = scene.textures.size(); i < into.scene.textures.size(); ++i)
+        world.AddTexture(into.scene.textures[i],
+                         into.scene.texels.data() + into.scene.textures[i].texelOffset);
+    for (size_t i = scene.deformableMeshes.size(); i < into.scene.deformableMeshes.size(); ++i)
+        world.AddDeformableMesh(into.scene.deformableMeshes[i]);
+    SpawnKind kind;
+    kind.name = name;
+    kind.gltf = std::move(asset);
+    kinds_.push_back(std::move(kind));
 }
 
 const SpawnKind* SpawnPalette::Find(const std::string& name) const {
@@ -74,6 +108,23 @@ const SpawnKind* SpawnPalette::Find(const std::string& name) const {
 ecs::Entity SpawnPalette::SpawnInFront(World& world, const SpawnKind& kind, const Camera& camera,
                                        float distance) const {
     const vec3 forward = glm::normalize(camera.forward);
+    if (kind.gltf) {
+        // Placed on the ground plane under the point ahead (y = 0), turned to face the camera.
+        vec3 at = camera.position + distance * forward;
+        at.y = 0.0f;
+        LoadedScene group;
+        group.scene.deformableMeshes = world.Scene().deformableMeshes;  // what it places reads
+        EntityDesc root;
+        root.renderable = false;
+        root.local.translation = at;
+        const vec3 back = camera.position - at;
+        root.local.rotation = glm::angleAxis(std::atan2(back.x, back.z), vec3(0, 1, 0));
+        group.entities.push_back(root);
+        // Copies walk out of step: phases a golden-ratio fraction of a second apart.
+        const double phase = std::fmod(0.6180339887498949 * double(spawnedGltf_++), 1.0);
+        InstantiateGltf(*kind.gltf, group, 0, physics::ToMatrix(root.local), phase);
+        return world.SpawnGroup(group.entities);
+    }
     EntityDesc desc;
     desc.blasId = kind.blasId;
     desc.materialId = kind.materialId;

@@ -69,7 +69,7 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
             animator.base = node.local;
             animator.time = phase;
             e.animator = animator;
-            if (phase != 0.0) e.local = physics::EvaluateAnimator(animator);  // posed at it
+            e.local = physics::EvaluateAnimator(animator);  // posed at its phase, also at 0
         }
         out.entities.push_back(e);
         for (const GltfPrimitive& prim : node.primitives) {

@@ -40,16 +40,15 @@ void World::SpawnDue() {
         if (d.parent >= 0) physics::SetParent(registry_, created_.back(), created_[d.parent]);
     }
     // Joints may come after the mesh they bend: skins are attached once the batch exists.
-    for (size_t i = first; i < nextSpawn_; ++i) AttachPose(entities[i], created_[i], true);
+    for (size_t i = first; i < nextSpawn_; ++i) AttachPose(entities[i], created_[i], created_);
 }
 
-void World::AttachPose(const EntityDesc& d, ecs::Entity e, bool ofScene) {
+void World::AttachPose(const EntityDesc& d, ecs::Entity e, std::span<const ecs::Entity> batch) {
     if (!d.renderable || d.deformableMesh < 0) return;
     auto entityAt = [&](int32_t index) {
-        return ofScene && index >= 0 && size_t(index) < created_.size() ? created_[size_t(index)]
-                                                                        : ecs::Entity{};
+        return index >= 0 && size_t(index) < batch.size() ? batch[size_t(index)] : ecs::Entity{};
     };
-    if (d.skin && ofScene) {
+    if (d.skin && !batch.empty()) {
         physics::Skin skin;
         for (int32_t joint : d.skin->joints) skin.joints.push_back(entityAt(joint));
         skin.inverseBind = d.skin->inverseBind;
@@ -146,8 +145,27 @@ uint32_t World::AddMaterial(const Material& material) { return scene_.AddMateria
 
 ecs::Entity World::Spawn(const EntityDesc& desc) {
     const ecs::Entity e = Create(desc);
-    AttachPose(desc, e, false);
+    AttachPose(desc, e, {});
     return e;
+}
+
+ecs::Entity World::SpawnGroup(std::span<const EntityDesc> group) {
+    std::vector<ecs::Entity> made;
+    for (const EntityDesc& d : group) {
+        made.push_back(Create(d));
+        if (d.parent >= 0 && size_t(d.parent) < made.size() - 1)
+            physics::SetParent(registry_, made.back(), made[size_t(d.parent)]);
+    }
+    for (size_t i = 0; i < group.size(); ++i) AttachPose(group[i], made[i], made);
+    return made.empty() ? ecs::Entity{} : made.front();
+}
+
+uint32_t World::AddDeformableMesh(std::shared_ptr<const DeformableMesh> mesh) {
+    return scene_.AddDeformableMesh(std::move(mesh));
+}
+
+uint32_t World::AddTexture(const Texture& texture, const uint32_t* rgba) {
+    return scene_.AddTexture(texture, rgba);
 }
 
 bool World::SetPose(ecs::Entity e, vec3 position, glm::quat rotation) {

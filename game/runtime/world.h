@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "engine/ecs/registry.h"
@@ -60,6 +61,11 @@ class World {
     // Creates an entity as a scene file's spawner would (its spawnTime is ignored; a skin's
     // joints are not resolved: a spawned skinned mesh keeps its rest pose).
     ecs::Entity Spawn(const EntityDesc& desc);
+    // Creates a group of entities (a glTF scene's nodes, InstantiateGltf's output) whose parent,
+    // skin joint and morph animator indices point into the group itself; returns the first.
+    ecs::Entity SpawnGroup(std::span<const EntityDesc> group);
+    uint32_t AddDeformableMesh(std::shared_ptr<const DeformableMesh> mesh);
+    uint32_t AddTexture(const Texture& texture, const uint32_t* rgba);
     // Moves an entity; a rigid body is teleported there and stops.
     bool SetPose(ecs::Entity e, vec3 position, glm::quat rotation);
     // Destroys an entity and drops its instance: the last instance record moves into its slot.
@@ -86,7 +92,9 @@ class World {
     // Gives a deforming entity its Skin and MorphWeights. OFSCENE: D is one of the scene's
     // entities, whose joints and animator (LoadedScene::entities indices) are resolved; an
     // interactive spawn's are not (it keeps its rest pose and its given weights).
-    void AttachPose(const EntityDesc& d, ecs::Entity e, bool ofScene);
+    // Skins and morph weights of a deforming entity; their entity indices point into `batch`
+    // (the scene's entities, or a spawned group's).
+    void AttachPose(const EntityDesc& d, ecs::Entity e, std::span<const ecs::Entity> batch);
     void ExtractPoses();
 
     const LoadedScene& source_;

@@ -44,6 +44,35 @@ TEST(SpawnPalette, KindsLandAheadOfTheCamera) {
     EXPECT_EQ(world.Scene().instances.size(), 1 + palette.Kinds().size());
 }
 
+// The walker is spawned whole (its skeleton and skinned mesh) and walks: its joint matrices
+// change from frame to frame and its deformation is handed on each frame.
+TEST(SpawnPalette, SpawnedWalkerWalks) {
+    const LoadedScene loaded = ParseScene(kStatic, "static.json", "");
+    World world(loaded);
+    SpawnPalette palette(world, nullptr);
+    const SpawnKind* walker = palette.Find("walker");
+    ASSERT_NE(walker, nullptr) << "assets/models/walker.gltf is part of the project";
+    palette.SpawnInFront(world, *walker, world.Scene().camera, 4.0f);
+    palette.SpawnInFront(world, *walker, world.Scene().camera, 6.0f);
+    world.Advance(1.0f / 60.0f);
+    ASSERT_EQ(world.Scene().deformations.size(), 2u);
+    const std::vector<Affine> before = world.Scene().deformations[0].jointMatrices;
+    world.Advance(0.25f);
+    EXPECT_EQ(world.Changes().deformations.size(), 2u);
+    const std::vector<Affine> after = world.Scene().deformations[0].jointMatrices;
+    ASSERT_EQ(before.size(), after.size());
+    bool moved = false;
+    for (size_t j = 0; j < after.size(); ++j)
+        for (int r = 0; r < 3; ++r) moved |= before[j].row[r] != after[j].row[r];
+    EXPECT_TRUE(moved);
+    // The two copies walk out of step.
+    bool apart = false;
+    for (size_t j = 0; j < after.size(); ++j)
+        for (int r = 0; r < 3; ++r)
+            apart |= world.Scene().deformations[1].jointMatrices[j].row[r] != after[j].row[r];
+    EXPECT_TRUE(apart);
+}
+
 TEST(SpawnPalette, WithPhysicsSpawnsAreThrown) {
     const LoadedScene loaded = ParseScene(kPhysics, "physics.json", "");
     World world(loaded);
