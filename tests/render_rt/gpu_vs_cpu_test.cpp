@@ -138,6 +138,9 @@ TEST(GpuVsCpu, DeformingDragonRebuiltEveryFrame) {
     ExpectPlayedGpuMatchesCpu("demo_deforming_dragon.json", 20, rebuild);
 }
 
+// A crowd of 1,000 skinned walkers (assets/models/walker.gltf), each in its own phase.
+TEST(GpuVsCpu, DemoCrowdPlayed) { ExpectPlayedGpuMatchesCpu("demo_crowd.json", 20); }
+
 TEST(GpuVsCpu, DemoGlassPlayed) {
     RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
     ExpectPlayedGpuMatchesCpu("demo_glass.json", 30);
