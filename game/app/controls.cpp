@@ -12,6 +12,7 @@ std::span<const Control> Controls() {
         {GLFW_KEY_3, "3", Action::kSpawnDragon, "spawn a dragon"},
         {GLFW_KEY_4, "4", Action::kSpawnGlassSphere, "spawn a glass sphere"},
         {GLFW_KEY_5, "5", Action::kSpawnMirrorBox, "spawn a mirror box"},
+        {GLFW_KEY_6, "6", Action::kSpawnWalker, "spawn a walking character"},
         {GLFW_KEY_DELETE, "Delete", Action::kDeleteSelected, "delete the picked object"},
         {GLFW_KEY_R, "R", Action::kRotateSelected, "rotate the picked object 15 degrees"},
         {GLFW_KEY_SPACE, "Space", Action::kPause, "pause / resume"},

@@ -12,6 +12,7 @@ enum class Action {
     kSpawnDragon,
     kSpawnGlassSphere,
     kSpawnMirrorBox,
+    kSpawnWalker,
     kDeleteSelected,
     kRotateSelected,
     kPause,

@@ -231,6 +231,8 @@ class App {
                 return Spawn("glass sphere");
             case Action::kSpawnMirrorBox:
                 return Spawn("mirror box");
+            case Action::kSpawnWalker:
+                return Spawn("walker");
             case Action::kDeleteSelected:
                 if (!selected_.IsNull() && world_->Remove(selected_))
                     std::printf("rtrt: deleted\n");
