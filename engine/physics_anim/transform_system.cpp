@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <tuple>
 
+#include "engine/core/parallel_for.h"
+
 namespace rtrt::physics {
 
 using ecs::Entity;
@@ -56,35 +58,60 @@ void TransformSystem::Update(Registry& registry) {
     registry.EachChanged<Parent>([&](Entity e, Parent&) { Seed(e); });
     CollectDescendants();
 
-    dirty_.clear();
+    // Parents before children: sorted by depth, then entity index (alive entities have distinct
+    // indices), as packed keys, which sort much faster than the entries themselves.
+    order_.clear();
+    uint32_t cyclic = 0;
     for (const Entity e : set_) {
-        bool cyclic = false;
-        const uint32_t depth = Depth(registry, e, cyclic);
-        if (cyclic) {
-            ++stats_.lastCyclic;
-            dirty_.push_back({0, e, ecs::kNullEntity});
-            continue;
-        }
-        dirty_.push_back(
-            {depth, e, depth > 0 ? registry.Get<Parent>(e)->entity : ecs::kNullEntity});
+        bool loops = false;
+        const uint32_t depth = Depth(registry, e, loops);
+        cyclic += loops;
+        order_.push_back(uint64_t(loops ? 0 : depth) << 32 | e.index);
+        if (e.index >= slot_.size()) slot_.resize(e.index + 1);
+        slot_[e.index] = loops ? UINT32_MAX : 0;  // a loop member is a root: no parent entry
     }
-    std::sort(dirty_.begin(), dirty_.end(), [](const Dirty& a, const Dirty& b) {
-        return a.depth != b.depth ? a.depth < b.depth : EntityLess(a.entity, b.entity);
-    });
+    std::sort(order_.begin(), order_.end());
+    dirty_.clear();
+    dirty_.reserve(order_.size());
+    {
+        // set_ holds each entity once; find it again from its index.
+        std::vector<uint32_t> setAt(slot_.size(), 0);
+        for (uint32_t k = 0; k < set_.size(); ++k) setAt[set_[k].index] = k;
+        for (uint64_t key : order_) {
+            const Entity e = set_[setAt[uint32_t(key)]];
+            const uint32_t depth = uint32_t(key >> 32);
+            const bool root = depth == 0 || slot_[e.index] == UINT32_MAX;
+            const Parent* link = root ? nullptr : registry.Get<Parent>(e);
+            dirty_.push_back({depth, e, link ? link->entity : ecs::kNullEntity});
+        }
+    }
+    for (uint32_t i = 0; i < dirty_.size(); ++i) slot_[dirty_[i].entity.index] = i;
+    stats_.lastCyclic = cyclic;
 
+    // Each depth's matrices in parallel (they read only shallower results and the registry),
+    // then the writes and marks in order, on this thread.
     worlds_.resize(dirty_.size());
+    const Registry& reader = registry;
+    for (size_t begin = 0; begin < dirty_.size();) {
+        size_t end = begin;
+        while (end < dirty_.size() && dirty_[end].depth == dirty_[begin].depth) ++end;
+        ParallelFor(begin, end, 256, [&](size_t i) {
+            const Dirty& d = dirty_[i];
+            glm::mat4 parentWorld(1.0f);
+            if (!d.parent.IsNull()) {
+                if (const glm::mat4* computed = ComputedWorld(d.parent)) {
+                    parentWorld = *computed;
+                } else if (const WorldTransform* stored = reader.Get<WorldTransform>(d.parent)) {
+                    parentWorld = stored->objectToWorld;
+                }
+            }
+            const LocalTransform* local = reader.Get<LocalTransform>(d.entity);
+            worlds_[i] = local != nullptr ? parentWorld * ToMatrix(*local) : parentWorld;
+        });
+        begin = end;
+    }
     for (size_t i = 0; i < dirty_.size(); ++i) {
         const Dirty& d = dirty_[i];
-        glm::mat4 parentWorld(1.0f);
-        if (!d.parent.IsNull()) {
-            if (const glm::mat4* computed = ComputedWorld(d.depth - 1, d.parent)) {
-                parentWorld = *computed;
-            } else if (const WorldTransform* stored = registry.Get<WorldTransform>(d.parent)) {
-                parentWorld = stored->objectToWorld;
-            }
-        }
-        const LocalTransform* local = registry.Get<LocalTransform>(d.entity);
-        worlds_[i] = local != nullptr ? parentWorld * ToMatrix(*local) : parentWorld;
         if (WorldTransform* world = registry.Get<WorldTransform>(d.entity)) {
             world->objectToWorld = worlds_[i];
             registry.MarkChanged<WorldTransform>(d.entity);
@@ -126,6 +153,13 @@ void TransformSystem::RebuildLinks(const Registry& registry) {
     children_.clear();
     for (const auto& [child, parent] : childOf_) children_.emplace_back(parent, child);
     std::sort(children_.begin(), children_.end(), PairLess);
+    // Each parent index's run of children_, found in one step rather than a search.
+    uint32_t maxIndex = 0;
+    for (const auto& [parent, child] : children_) maxIndex = std::max(maxIndex, parent.index);
+    childStart_.assign(children_.empty() ? 1 : maxIndex + 2, 0);
+    for (const auto& [parent, child] : children_) ++childStart_[parent.index + 1];
+    for (size_t i = 1; i < childStart_.size(); ++i) childStart_[i] += childStart_[i - 1];
+    depth_.clear();  // depths follow the links
 }
 
 void TransformSystem::Seed(Entity e) {
@@ -140,35 +174,53 @@ void TransformSystem::CollectDescendants() {
         const Entity e = pending_.back();
         pending_.pop_back();
         set_.push_back(e);
-        auto it = std::lower_bound(
-            children_.begin(), children_.end(), std::pair{e, Entity{0, 0}},
-            [](const auto& a, const auto& b) { return EntityLess(a.first, b.first); });
-        for (; it != children_.end() && it->first == e; ++it) Seed(it->second);
+        if (e.index + 1 >= childStart_.size()) continue;
+        for (uint32_t k = childStart_[e.index]; k < childStart_[e.index + 1]; ++k)
+            if (children_[k].first == e) Seed(children_[k].second);
     }
 }
 
-uint32_t TransformSystem::Depth(const Registry& registry, Entity e, bool& cyclic) const {
+uint32_t TransformSystem::Depth(const Registry& registry, Entity e, bool& cyclic) {
+    if (e.index < depth_.size() && depth_[e.index] != 0) return depth_[e.index] - 1;
+    // Walk up to a root or an entity whose depth is known, then number the way back down.
     const size_t maxHops = registry.Count<Parent>();
-    uint32_t depth = 0;
-    for (const Parent* link = registry.Get<Parent>(e);
-         link != nullptr && registry.Valid(link->entity);
-         link = registry.Get<Parent>(link->entity)) {
-        if (++depth > maxHops) {
+    chain_.clear();
+    uint32_t base = 0;
+    for (Entity at = e;;) {
+        if (at.index < depth_.size() && depth_[at.index] != 0) {
+            base = depth_[at.index] - 1;
+            break;
+        }
+        chain_.push_back(at);
+        const Parent* link = registry.Get<Parent>(at);
+        if (link == nullptr || !registry.Valid(link->entity)) {
+            base = 0;
+            // `at` is a root: depth 0; the rest of the chain counts up from it.
+            if (at.index >= depth_.size()) depth_.resize(at.index + 1, 0);
+            depth_[at.index] = 1;
+            chain_.pop_back();
+            break;
+        }
+        if (chain_.size() > maxHops) {
             cyclic = true;
             return 0;
         }
+        at = link->entity;
     }
-    return depth;
+    for (size_t k = chain_.size(); k-- > 0;) {
+        ++base;
+        const Entity c = chain_[k];
+        if (c.index >= depth_.size()) depth_.resize(c.index + 1, 0);
+        depth_[c.index] = base + 1;
+    }
+    return depth_[e.index] - 1;
 }
 
-const glm::mat4* TransformSystem::ComputedWorld(uint32_t depth, Entity e) const {
-    const auto it = std::lower_bound(
-        dirty_.begin(), dirty_.end(), std::pair{depth, e},
-        [](const Dirty& d, const std::pair<uint32_t, Entity>& key) {
-            return d.depth != key.first ? d.depth < key.first : EntityLess(d.entity, key.second);
-        });
-    if (it == dirty_.end() || it->depth != depth || it->entity != e) return nullptr;
-    return &worlds_[static_cast<size_t>(it - dirty_.begin())];
+const glm::mat4* TransformSystem::ComputedWorld(Entity e) const {
+    if (e.index >= visited_.size() || visited_[e.index] != stamp_) return nullptr;
+    const uint32_t i = slot_[e.index];
+    if (i >= dirty_.size() || dirty_[i].entity != e) return nullptr;
+    return &worlds_[i];
 }
 
 void AddTransformSystem(ecs::Scheduler& scheduler, TransformSystem& system) {

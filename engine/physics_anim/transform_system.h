@@ -50,16 +50,23 @@ class TransformSystem {
     void RebuildLinks(const ecs::Registry& registry);
     void Seed(ecs::Entity e);
     void CollectDescendants();
-    // Hops from e up to its root; cyclic is set when the chain loops.
-    uint32_t Depth(const ecs::Registry& registry, ecs::Entity e, bool& cyclic) const;
-    const glm::mat4* ComputedWorld(uint32_t depth, ecs::Entity e) const;
+    // Hops from e up to its root, remembered until the links change; cyclic is set when the
+    // chain loops.
+    uint32_t Depth(const ecs::Registry& registry, ecs::Entity e, bool& cyclic);
+    // The world matrix computed in this pass for e (a parent of a later entry), or null.
+    const glm::mat4* ComputedWorld(ecs::Entity e) const;
 
     std::vector<std::pair<ecs::Entity, ecs::Entity>> childOf_;   // (child, parent), by child
     std::vector<std::pair<ecs::Entity, ecs::Entity>> children_;  // (parent, child), by parent
-    std::vector<uint32_t> visited_;  // per entity index: stamp_ when in this pass's set
+    std::vector<uint32_t> childStart_;  // per parent index: its first entry in children_
+    std::vector<uint32_t> visited_;     // per entity index: stamp_ when in this pass's set
+    std::vector<uint32_t> slot_;        // per entity index: its entry in dirty_ (this pass)
+    std::vector<uint32_t> depth_;       // per entity index: depth + 1, 0 = not known yet
+    std::vector<ecs::Entity> chain_;    // Depth's walk
     uint32_t stamp_ = 0;
     std::vector<ecs::Entity> pending_;
     std::vector<ecs::Entity> set_;
+    std::vector<uint64_t> order_;  // (depth << 32 | entity index) of the set, sorted
     std::vector<Dirty> dirty_;
     std::vector<glm::mat4> worlds_;  // parallel to dirty_
     TransformStats stats_;
