@@ -155,7 +155,8 @@ void RunDeformBench(const DeformBenchOptions& o) {
         std::vector<uint32_t> all(now.deformations.size());
         for (uint32_t d = 0; d < all.size(); ++d) all[d] = d;
         // The first update takes the deformations in (and deforms them) by itself.
-        refitOnHost.Update(now, f > 0 ? std::span<const uint32_t>(all) : std::span<const uint32_t>(),
+        refitOnHost.Update(now,
+                           f > 0 ? std::span<const uint32_t>(all) : std::span<const uint32_t>(),
                            views, bounds);
         if (f % every != 0 && f != o.frames) continue;
         const Blas refit = refitOnHost.Snapshot(0);
@@ -164,9 +165,10 @@ void RunDeformBench(const DeformBenchOptions& o) {
         sah.nodes4.clear();  // the CPU traces refit trees in the binary layout: so this one too
         const double sahMs = TraceMs(now, blasId, std::move(sah), settings, gpu);
         const double lbvhMs = TraceMs(now, blasId, LbvhOf(refit), settings, gpu);
-        std::printf("  frame %4d: trace of the refit tree %.3f ms, fresh SAH %.3f ms (x%.3f), "
-                    "fresh LBVH %.3f ms (x%.3f)\n",
-                    f, refitMs, sahMs, refitMs / sahMs, lbvhMs, refitMs / lbvhMs);
+        std::printf(
+            "  frame %4d: trace of the refit tree %.3f ms, fresh SAH %.3f ms (x%.3f), "
+            "fresh LBVH %.3f ms (x%.3f)\n",
+            f, refitMs, sahMs, refitMs / sahMs, lbvhMs, refitMs / lbvhMs);
         std::fflush(stdout);
         drift.push_back({{"frame", f},
                          {"refit_trace_ms", refitMs},
@@ -184,24 +186,24 @@ void RunDeformBench(const DeformBenchOptions& o) {
     report["timing"] =
         "medians over the frames after the first; GPU stages by CUDA events, the frame by the CPU "
         "clock from update to finished image; drift samples trace the tree alone (20 launches)";
-    std::printf("%-9s %9s %9s %9s %9s %9s %9s %14s\n", "policy", "deform", "BLAS", "TLAS",
-                "trace", "frame", "rebuilds", "BLAS Mtri/ms");
+    std::printf("%-9s %9s %9s %9s %9s %9s %9s %14s\n", "policy", "deform", "BLAS", "TLAS", "trace",
+                "frame", "rebuilds", "BLAS Mtri/ms");
     for (const PolicyRun& r : runs) {
         const double blasMs = Median(r.blas);
         const double throughput = blasMs > 0.0 ? double(triangles) * 1e-6 / blasMs : 0.0;
         std::printf("%-9s %9.3f %9.3f %9.3f %9.3f %9.3f %9u %14.2f\n", r.name, Median(r.deform),
                     blasMs, Median(r.tlas), Median(r.trace), Median(r.frame), r.rebuilds,
                     throughput);
-        report["policies"].push_back({{"policy", r.name},
-                                      {"deform_ms", Median(r.deform)},
-                                      {"blas_ms", blasMs},
-                                      {"tlas_ms", Median(r.tlas)},
-                                      {"trace_ms", Median(r.trace)},
-                                      {"frame_ms", Median(r.frame)},
-                                      {"rebuilds", r.rebuilds},
-                                      {"blas_mtri_per_ms", throughput},
-                                      {"deform_mtri_per_ms",
-                                       double(triangles) * 1e-6 / Median(r.deform)}});
+        report["policies"].push_back(
+            {{"policy", r.name},
+             {"deform_ms", Median(r.deform)},
+             {"blas_ms", blasMs},
+             {"tlas_ms", Median(r.tlas)},
+             {"trace_ms", Median(r.trace)},
+             {"frame_ms", Median(r.frame)},
+             {"rebuilds", r.rebuilds},
+             {"blas_mtri_per_ms", throughput},
+             {"deform_mtri_per_ms", double(triangles) * 1e-6 / Median(r.deform)}});
     }
     report["drift"] = drift;
     if (!o.output.empty()) {
@@ -215,8 +217,9 @@ void RunDeformBench(const DeformBenchOptions& o) {
 void AddDeformBench(CLI::App& bench, int* exitCode) {
     auto o = std::make_shared<DeformBenchOptions>();
     CLI::App* cmd = bench.add_subcommand(
-        "deform", "A deforming mesh under refit, rebuild and adaptive BLAS policies, and the "
-                  "refit tree's quality drift");
+        "deform",
+        "A deforming mesh under refit, rebuild and adaptive BLAS policies, and the "
+        "refit tree's quality drift");
     cmd->add_option("scene", o->scene, "Scene file with a deforming instance")
         ->required()
         ->check(CLI::ExistingFile);

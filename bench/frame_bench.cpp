@@ -106,9 +106,9 @@ void RunFrameBench(const FrameBenchOptions& o) {
         "image is finished in device memory)";
     std::printf("rtrt bench frame (%s back end), medians over %d frames, ms\n", o.backend.c_str(),
                 o.frames);
-    std::printf("%-26s %9s %9s %8s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene", "size",
-                "instances", "changed", "simulate", "extract", "deform", "BLAS", "upload", "TLAS",
-                "trace", "frame");
+    std::printf("%-26s %9s %9s %8s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene", "size", "instances",
+                "changed", "simulate", "extract", "deform", "BLAS", "upload", "TLAS", "trace",
+                "frame");
     for (const std::string& path : o.scenes) report["rows"].push_back(RunScene(path, o));
     if (!o.output.empty()) {
         std::ofstream(o.output) << report.dump(2) << "\n";

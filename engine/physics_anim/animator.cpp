@@ -1,5 +1,9 @@
 #include "engine/physics_anim/animator.h"
 
+#include <vector>
+
+#include "engine/core/parallel_for.h"
+
 namespace rtrt::physics {
 
 LocalTransform EvaluateAnimator(const Animator& animator) {
@@ -11,16 +15,24 @@ LocalTransform EvaluateAnimator(const Animator& animator) {
 }
 
 uint32_t AnimateEntities(ecs::Registry& registry, float dt) {
-    uint32_t posed = 0;
+    struct Posed {
+        ecs::Entity entity;
+        Animator* animator;
+        LocalTransform* local;
+    };
+    // The poses are independent: sampled in parallel, then marked in the view's order here.
+    std::vector<Posed> posed;
     registry.View<Animator, LocalTransform>().Each(
         [&](ecs::Entity e, Animator& animator, LocalTransform& local) {
-            if (!animator.playing) return;
-            animator.time += static_cast<double>(animator.speed) * dt;
-            local = EvaluateAnimator(animator);
-            registry.MarkChanged<LocalTransform>(e);
-            ++posed;
+            if (animator.playing) posed.push_back({e, &animator, &local});
         });
-    return posed;
+    ParallelFor(0, posed.size(), 64, [&](size_t i) {
+        Animator& animator = *posed[i].animator;
+        animator.time += static_cast<double>(animator.speed) * dt;
+        *posed[i].local = EvaluateAnimator(animator);
+    });
+    for (const Posed& p : posed) registry.MarkChanged<LocalTransform>(p.entity);
+    return uint32_t(posed.size());
 }
 
 void AddAnimationSystem(ecs::Scheduler& scheduler) {

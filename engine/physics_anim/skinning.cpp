@@ -1,7 +1,9 @@
 #include "engine/physics_anim/skinning.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
+#include <vector>
 
+#include "engine/core/parallel_for.h"
 #include "engine/physics_anim/animator.h"
 
 namespace rtrt::physics {
@@ -36,22 +38,40 @@ vec3 MorphedPosition(vec3 rest, std::span<const vec3> deltas, std::span<const fl
 }
 
 uint32_t UpdateSkins(ecs::Registry& registry) {
-    uint32_t updated = 0;
+    struct Candidate {
+        ecs::Entity entity;
+        Skin* skin;
+        const WorldTransform* mesh;
+        bool moved;
+    };
+    std::vector<Candidate> skins;
     registry.View<Skin, const WorldTransform>().Each(
         [&](ecs::Entity e, Skin& skin, const WorldTransform& mesh) {
-            bool moved = skin.jointMatrices.size() != skin.joints.size() ||
-                         registry.IsChanged<WorldTransform>(e);
-            for (size_t j = 0; j < skin.joints.size() && !moved; ++j)
-                moved = registry.IsChanged<WorldTransform>(skin.joints[j]);
-            if (!moved) return;
-            skin.jointMatrices.resize(skin.joints.size(), glm::mat4(1.0f));
-            for (size_t j = 0; j < skin.joints.size(); ++j)
-                if (const WorldTransform* joint = registry.Get<WorldTransform>(skin.joints[j]))
-                    skin.jointMatrices[j] =
-                        JointMatrix(mesh.objectToWorld, joint->objectToWorld, skin.inverseBind[j]);
-            registry.MarkChanged<Skin>(e);
-            ++updated;
+            skins.push_back({e, &skin, &mesh, false});
         });
+    // Skins are independent and only read the registry here: in parallel, marked after.
+    const ecs::Registry& reader = registry;
+    ParallelFor(0, skins.size(), 16, [&](size_t i) {
+        Candidate& c = skins[i];
+        Skin& skin = *c.skin;
+        bool moved = skin.jointMatrices.size() != skin.joints.size() ||
+                     reader.IsChanged<WorldTransform>(c.entity);
+        for (size_t j = 0; j < skin.joints.size() && !moved; ++j)
+            moved = reader.IsChanged<WorldTransform>(skin.joints[j]);
+        if (!moved) return;
+        skin.jointMatrices.resize(skin.joints.size(), glm::mat4(1.0f));
+        for (size_t j = 0; j < skin.joints.size(); ++j)
+            if (const WorldTransform* joint = reader.Get<WorldTransform>(skin.joints[j]))
+                skin.jointMatrices[j] =
+                    JointMatrix(c.mesh->objectToWorld, joint->objectToWorld, skin.inverseBind[j]);
+        c.moved = true;
+    });
+    uint32_t updated = 0;
+    for (const Candidate& c : skins)
+        if (c.moved) {
+            registry.MarkChanged<Skin>(c.entity);
+            ++updated;
+        }
     return updated;
 }
 

@@ -1,5 +1,7 @@
 #include "engine/physics_anim/transform_system.h"
 
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <tuple>
 
@@ -70,7 +72,7 @@ void TransformSystem::Update(Registry& registry) {
         if (e.index >= slot_.size()) slot_.resize(e.index + 1);
         slot_[e.index] = loops ? UINT32_MAX : 0;  // a loop member is a root: no parent entry
     }
-    std::sort(order_.begin(), order_.end());
+    tbb::parallel_sort(order_.begin(), order_.end());
     dirty_.clear();
     dirty_.reserve(order_.size());
     {

@@ -14,8 +14,8 @@ enum class ProceduralDeformKind : uint32_t { kNone = 0, kWave = 1, kTwist = 2 };
 
 // A deformation computed from a formula, in the mesh's own space, after morphing and before
 // skinning.
-//   wave:  p[axis] += amplitude * sin(2 pi ((p[along] - centre[along]) - speed * time) / wavelength)
-//   twist: p turns about the line through centre along `axis` by
+//   wave:  p[axis] += amplitude * sin(2 pi ((p[along] - centre[along]) - speed * time) /
+//   wavelength) twist: p turns about the line through centre along `axis` by
 //          amplitude * sin(speed * time) * (p[axis] - centre[axis]) radians
 // Normals follow by the deformation's Jacobian (the exact derivative of the formula).
 struct ProceduralDeform {

@@ -25,8 +25,8 @@ struct FrameTimes {
     double uploadMs = 0.0;  // changed instance records (and their world boxes) sent
     double tlasMs = 0.0;    // LBVH rebuild or refit, and its SAH cost
     double traceMs = 0.0;
-    uint32_t uploaded = 0;  // instance records sent to the device
-    uint32_t deformed = 0;  // deforming BLASes brought up to date
+    uint32_t uploaded = 0;     // instance records sent to the device
+    uint32_t deformed = 0;     // deforming BLASes brought up to date
     uint32_t blasRebuilt = 0;  // of them rebuilt rather than refit
     bool tlasRebuilt = false;
     float tlasSahCost = 0.0f;  // the cost the rebuild policy last saw
@@ -62,8 +62,8 @@ class FrameRenderer {
 };
 
 // The frame renderer of `backend` over `scene` (its materials, lights and textures are taken
-// now; BLASes and deformations the scene gains later are taken by Update). Throws std::runtime_error when the back end cannot run
-// here, saying why.
+// now; BLASes and deformations the scene gains later are taken by Update). Throws
+// std::runtime_error when the back end cannot run here, saying why.
 std::unique_ptr<FrameRenderer> MakeFrameRenderer(Backend backend, const RenderScene& scene,
                                                  TlasPolicy policy = {},
                                                  BlasRebuildPolicy blasPolicy = {});

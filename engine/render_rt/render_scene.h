@@ -15,8 +15,8 @@ namespace rtrt {
 
 // What changed in a RenderScene since a FrameRenderer last took it (frame_renderer.h).
 struct SceneChanges {
-    std::span<const uint32_t> instances;  // records rewritten or appended (indices)
-    bool topologyChanged = false;         // instances were added or removed
+    std::span<const uint32_t> instances;     // records rewritten or appended (indices)
+    bool topologyChanged = false;            // instances were added or removed
     std::span<const uint32_t> deformations;  // deformation records whose pose changed (indices)
 };
 

@@ -1,8 +1,9 @@
 #pragma once
 // What the window can spawn in front of the camera: a sphere, the teapot, the dragon (res4), a
 // glass sphere, a mirror box and the walking character (assets/models/walker.gltf, skinned and
-// animated: each spawned copy walks in a phase of its own). Their models and materials are added to the World once, before
-// a GPU renderer uploads the scene; models whose files are missing are left out with a note.
+// animated: each spawned copy walks in a phase of its own). Their models and materials are added to
+// the World once, before a GPU renderer uploads the scene; models whose files are missing are left
+// out with a note.
 #include <string>
 #include <vector>
 

@@ -1,7 +1,7 @@
 #include "game/scene/scene_file.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <glm/glm.hpp>
@@ -313,8 +313,7 @@ class SceneParser {
         const float phase = f.Number("phase", 0.0f);
         const float spread = f.InRange("phase_spread", 0.0f, 1e6f, 0.0f);
         const std::vector<vec3> places = GridPlaces(f, proto);
-        if (places.size() > 100000)
-            f.Fail("grid.count", "at most 100,000 places of a glTF scene");
+        if (places.size() > 100000) f.Fail("grid.count", "at most 100,000 places of a glTF scene");
         for (size_t k = 0; k < places.size(); ++k) {
             EntityDesc root = proto;
             root.sourceArray = "spawners";

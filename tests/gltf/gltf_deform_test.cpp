@@ -312,7 +312,8 @@ TEST_F(GltfDeformTest, GridSpawnerOfAGltfSceneRefusesRainAndLaterTimes) {
     Save("morph.glb", MorphTriangle(true).Glb());
     auto load = [&](const std::string& spawner) {
         ParseScene(R"({ "models": { "m": { "type": "gltf", "file": "morph.glb" } },
-                        "instances": [], "spawners": [ )" + spawner + " ] }",
+                        "instances": [], "spawners": [ )" +
+                       spawner + " ] }",
                    "scene.json", dir_.string());
     };
     EXPECT_THROW(load(R"({ "model": "m", "grid": { "count": [2, 1, 1] }, "time": 1 })"),

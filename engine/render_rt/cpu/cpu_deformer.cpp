@@ -35,9 +35,9 @@ void CpuDeformer::Admit(const RenderScene& scene) {
 }
 
 DeformJobs CpuDeformer::Work() {
-    DeformPools pools{positions_.data(),     normals_.data(),     triangles_.data(),
+    DeformPools pools{positions_.data(),       normals_.data(),     triangles_.data(),
                       triangleNormals_.data(), triangleUvs_.data(), slotTriangle_.data(),
-                      nodes_.data(),         parents_.data(),     arrivals_.data()};
+                      nodes_.data(),           parents_.data(),     arrivals_.data()};
     return {plan_.Jobs().data(), uint32_t(plan_.Jobs().size()), meshes_.data(), pools};
 }
 
@@ -108,8 +108,9 @@ DeformStats CpuDeformer::Update(const RenderScene& scene, std::span<const uint32
     for (uint32_t j : plan_.RebuildJobs()) Rebuild(j);
     stats.blasMs = timer.Milliseconds();
     timer.Restart();
-    ParallelFor(0, plan_.SlotBegins().back(), 1024,
-                GatherTrianglesStep{Work(), plan_.SlotBegins().data(), !plan_.RebuildJobs().empty()});
+    ParallelFor(
+        0, plan_.SlotBegins().back(), 1024,
+        GatherTrianglesStep{Work(), plan_.SlotBegins().data(), !plan_.RebuildJobs().empty()});
     stats.deformMs += timer.Milliseconds();
     timer.Restart();
     const DeformJobs work = Work();

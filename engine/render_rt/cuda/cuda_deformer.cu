@@ -10,8 +10,8 @@ template <typename T>
 void UploadAsync(DeviceBuffer<T>& buffer, std::span<const T> host) {
     if (buffer.Size() < host.size()) buffer.Resize(host.size());
     if (!host.empty())
-        RT_CUDA_CHECK(cudaMemcpyAsync(buffer.Data(), host.data(), host.size_bytes(),
-                                      cudaMemcpyHostToDevice));
+        RT_CUDA_CHECK(
+            cudaMemcpyAsync(buffer.Data(), host.data(), host.size_bytes(), cudaMemcpyHostToDevice));
 }
 
 template <typename T>
@@ -125,8 +125,7 @@ void CudaDeformer::Rebuild(uint32_t j) {
     RT_CUDA_CHECK(cudaMemcpyAsync(parents_.Data() + job.nodeOffset, builder_.Parents(),
                                   positions * sizeof(uint32_t), cudaMemcpyDeviceToDevice));
     RT_CUDA_CHECK(cudaMemcpyAsync(slotTriangle_.Data() + job.slotOffset, builder_.PrimOrder(),
-                                  mesh.triangleCount * sizeof(uint32_t),
-                                  cudaMemcpyDeviceToDevice));
+                                  mesh.triangleCount * sizeof(uint32_t), cudaMemcpyDeviceToDevice));
     plan_.SetNodeCount(j, positions);
 }
 
@@ -192,8 +191,8 @@ bool CudaDeformer::Update(const RenderScene& scene, std::span<const uint32_t> ch
         RT_CUDA_CHECK(cudaMallocHost(&costsHost_, jobs * sizeof(float)));
         costsCapacity_ = jobs;
     }
-    RT_CUDA_CHECK(cudaMemcpyAsync(costsHost_, costs_.Data(), jobs * sizeof(float),
-                                  cudaMemcpyDeviceToHost));
+    RT_CUDA_CHECK(
+        cudaMemcpyAsync(costsHost_, costs_.Data(), jobs * sizeof(float), cudaMemcpyDeviceToHost));
     RT_CUDA_CHECK(cudaEventRecord(costsCopied_));
     pendingDeformations_.assign(plan_.JobDeformations().begin(), plan_.JobDeformations().end());
     pendingRebuilt_ = plan_.RebuildFlags();

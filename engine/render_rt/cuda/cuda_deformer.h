@@ -32,8 +32,8 @@ class CudaDeformer {
     // root boxes into deviceBlasBounds (indexed by BLAS id). Returns true when any BLAS view
     // moved (new deformations): the caller then takes Views() again. The events are recorded
     // whether or not there is work.
-    bool Update(const RenderScene& scene, std::span<const uint32_t> changed,
-                Aabb* deviceBlasBounds, const DeformEvents& events);
+    bool Update(const RenderScene& scene, std::span<const uint32_t> changed, Aabb* deviceBlasBounds,
+                const DeformEvents& events);
     // The deformed BLASes' views (device pointers), by deformation; the BLAS id is Plan().Slot(d).
     std::vector<BlasView> Views() const;
     // Of the last Update: deformations updated, rebuilt, their triangles.

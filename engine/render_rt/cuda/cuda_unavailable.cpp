@@ -15,7 +15,8 @@ Image RenderRawCuda(const RenderScene&, const RenderSettings&, RenderStats*) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt; use the CPU back end");
 }
 
-std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene&, TlasPolicy, BlasRebuildPolicy) {
+std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene&, TlasPolicy,
+                                                     BlasRebuildPolicy) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt; use the CPU back end");
 }
 

@@ -104,14 +104,15 @@ void DeformPlan::PlanFrame(const RenderScene& scene, std::span<const uint32_t> c
         slot.fresh = false;
         const Deformation& def = scene.deformations[d];
         const DeformableMesh& mesh = *scene.deformableMeshes[def.mesh];
-        if (def.jointMatrices.size() < mesh.jointCount || def.morphWeights.size() < mesh.targetCount)
-            throw std::invalid_argument("deformation " + std::to_string(d) +
-                                        ": fewer joint matrices or morph weights than its mesh has");
+        if (def.jointMatrices.size() < mesh.jointCount ||
+            def.morphWeights.size() < mesh.targetCount)
+            throw std::invalid_argument(
+                "deformation " + std::to_string(d) +
+                ": fewer joint matrices or morph weights than its mesh has");
         const uint32_t job = uint32_t(jobs_.size());
-        const bool rebuild =
-            policy_.mode == BlasRebuildPolicy::Mode::kAlwaysRebuild ||
-            (policy_.mode == BlasRebuildPolicy::Mode::kAdaptive &&
-             slot.lastCost > (1.0f + policy_.maxSahGrowth) * slot.rebuiltCost);
+        const bool rebuild = policy_.mode == BlasRebuildPolicy::Mode::kAlwaysRebuild ||
+                             (policy_.mode == BlasRebuildPolicy::Mode::kAdaptive &&
+                              slot.lastCost > (1.0f + policy_.maxSahGrowth) * slot.rebuiltCost);
         if (rebuild) rebuildJobs_.push_back(job);
         DeformJob j = slot.place;
         j.pose.procedural = def.procedural;
