@@ -1,4 +1,3 @@
-#include <cstring>
 #include <cub/cub.cuh>
 
 #include "engine/core/parallel_for_cuda.h"
@@ -6,6 +5,14 @@
 
 namespace rtrt {
 namespace {
+
+template <typename T>
+void UploadAsync(DeviceBuffer<T>& buffer, std::span<const T> host) {
+    if (buffer.Size() < host.size()) buffer.Resize(host.size());
+    if (!host.empty())
+        RT_CUDA_CHECK(
+            cudaMemcpyAsync(buffer.Data(), host.data(), host.size_bytes(), cudaMemcpyHostToDevice));
+}
 
 template <typename T>
 void CopyInto(DeviceBuffer<T>& buffer, size_t offset, std::span<const T> host) {
@@ -23,46 +30,12 @@ const T* OrNull(const DeviceBuffer<T>& b) {
 
 CudaDeformer::CudaDeformer(BlasRebuildPolicy policy) : plan_(policy) {
     RT_CUDA_CHECK(cudaEventCreateWithFlags(&costsCopied_, cudaEventDisableTiming));
-    for (Staging& s : staging_)
-        RT_CUDA_CHECK(cudaEventCreateWithFlags(&s.copied, cudaEventDisableTiming));
 }
 
 CudaDeformer::~CudaDeformer() {
     cudaEventDestroy(costsCopied_);
     if (costsHost_) cudaFreeHost(costsHost_);
-    for (Staging& s : staging_) {
-        cudaEventDestroy(s.copied);
-        if (s.host) cudaFreeHost(s.host);
-    }
 }
-
-// The frame's uploads go through pinned memory, so that they are truly asynchronous; two areas
-// take turns, and an area is reused only once its copies of two frames ago have landed.
-void CudaDeformer::BeginStaging(size_t bytes) {
-    current_ = 1 - current_;
-    Staging& s = staging_[current_];
-    RT_CUDA_CHECK(cudaEventSynchronize(s.copied));
-    if (s.capacity < bytes) {
-        if (s.host) RT_CUDA_CHECK(cudaFreeHost(s.host));
-        s.capacity = bytes + bytes / 2;
-        RT_CUDA_CHECK(cudaMallocHost(&s.host, s.capacity));
-    }
-    s.used = 0;
-}
-
-template <typename T>
-void CudaDeformer::Stage(DeviceBuffer<T>& buffer, std::span<const T> host) {
-    if (buffer.Size() < host.size()) buffer.Resize(host.size());
-    if (host.empty()) return;
-    Staging& s = staging_[current_];
-    s.used = (s.used + 15) & ~size_t(15);
-    std::memcpy(s.host + s.used, host.data(), host.size_bytes());
-    RT_CUDA_CHECK(
-        cudaMemcpyAsync(buffer.Data(), s.host + s.used, host.size_bytes(), cudaMemcpyHostToDevice));
-    s.used += host.size_bytes();
-}
-
-void CudaDeformer::EndStaging() { RT_CUDA_CHECK(cudaEventRecord(staging_[current_].copied)); }
 
 void CudaDeformer::Admit(const RenderScene& scene) {
     const std::vector<DeformSlotInit> added = plan_.Admit(scene);
@@ -178,31 +151,27 @@ bool CudaDeformer::Update(const RenderScene& scene, std::span<const uint32_t> ch
         return plan_.DeformationCount() != known;
     }
     // Poses point into the device copies of the flattened joint matrices and weights.
-    const size_t lists = sizeof(uint32_t) * (jobs + 1) * 3 + 2 * sizeof(DeformJob) * jobs;
-    BeginStaging(plan_.JointMatrices().size_bytes() + plan_.MorphWeights().size_bytes() + lists +
-                 16 * 8);
-    Stage(joints_, plan_.JointMatrices());
-    Stage(weights_, plan_.MorphWeights());
+    UploadAsync(joints_, plan_.JointMatrices());
+    UploadAsync(weights_, plan_.MorphWeights());
     for (uint32_t j = 0; j < jobs; ++j) {
         triangleCount_ += plan_.SlotCount(plan_.JobDeformations()[j]);
         DeformJob& job = plan_.MutableJobs()[j];
         job.pose.joints = joints_.Data() + plan_.JointOffset(j);
         job.pose.morphWeights = weights_.Data() + plan_.WeightOffset(j);
     }
-    Stage(vertexBegins_, plan_.VertexBegins());
-    Stage(slotBegins_, plan_.SlotBegins());
-    Stage(jobs_, plan_.Jobs());
+    UploadAsync(vertexBegins_, plan_.VertexBegins());
+    UploadAsync(slotBegins_, plan_.SlotBegins());
+    UploadAsync(jobs_, plan_.Jobs());
     ParallelForCuda(0, plan_.VertexBegins().back(),
                     DeformVerticesStep{Work(), vertexBegins_.Data()});
     RT_CUDA_CHECK(cudaEventRecord(events.vertices));
     for (uint32_t j : plan_.RebuildJobs()) Rebuild(j);
-    if (!plan_.RebuildJobs().empty()) Stage(jobs_, plan_.Jobs());  // new node counts
+    if (!plan_.RebuildJobs().empty()) UploadAsync(jobs_, plan_.Jobs());  // new node counts
     RT_CUDA_CHECK(cudaEventRecord(events.rebuilt));
     ParallelForCuda(0, plan_.SlotBegins().back(),
                     GatherTrianglesStep{Work(), slotBegins_.Data(), !plan_.RebuildJobs().empty()});
     RT_CUDA_CHECK(cudaEventRecord(events.gathered));
-    Stage(nodeBegins_, plan_.NodeBegins());
-    EndStaging();
+    UploadAsync(nodeBegins_, plan_.NodeBegins());
     const uint32_t nodeItems = plan_.NodeBegins().back();
     ParallelForCuda(0, nodeItems, RefitLeavesStep{Work(), nodeBegins_.Data()});
     ParallelForCuda(0, nodeItems, RefitUpStep{Work(), nodeBegins_.Data()});

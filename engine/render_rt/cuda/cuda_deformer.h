@@ -48,10 +48,6 @@ class CudaDeformer {
     void Admit(const RenderScene& scene);
     DeformJobs Work() const;
     void Rebuild(uint32_t job);
-    void BeginStaging(size_t bytes);
-    template <typename T>
-    void Stage(DeviceBuffer<T>& buffer, std::span<const T> host);
-    void EndStaging();
 
     DeformPlan plan_;
     // Per mesh: its arrays on the device.
@@ -86,13 +82,6 @@ class CudaDeformer {
     std::vector<uint32_t> pendingDeformations_;
     std::vector<uint8_t> pendingRebuilt_;
     uint64_t triangleCount_ = 0;
-    struct Staging {
-        char* host = nullptr;  // pinned
-        size_t capacity = 0, used = 0;
-        cudaEvent_t copied;
-    };
-    Staging staging_[2];
-    int current_ = 0;
 };
 
 }  // namespace rtrt
