@@ -108,6 +108,30 @@ if(first STREQUAL last)
     message(FATAL_ERROR "play: the physics demo did not move in 20 frames")
 endif()
 
+# A skinned, animated glTF played headless: every frame differs from the one before (the mesh
+# deforms, it is not frozen in its bind pose) and two runs give byte-identical frames.
+foreach(run c d)
+    file(MAKE_DIRECTORY ${WORK_DIR}/${run})
+    execute_process(COMMAND ${RTRT} play ${SOURCE_DIR}/assets/models/walker.gltf --headless
+        --frames 8 --size 48x64 --backend cpu -o ${WORK_DIR}/${run}/w_%02d.ppm
+        RESULT_VARIABLE status ERROR_VARIABLE stderr)
+    if(NOT status EQUAL 0)
+        message(FATAL_ERROR "play walker run ${run}: status ${status}: ${stderr}")
+    endif()
+endforeach()
+set(previous "")
+foreach(i RANGE 0 7)
+    file(SHA256 ${WORK_DIR}/c/w_0${i}.ppm hash_c)
+    file(SHA256 ${WORK_DIR}/d/w_0${i}.ppm hash_d)
+    if(NOT hash_c STREQUAL hash_d)
+        message(FATAL_ERROR "play walker frame ${i} differs between two runs")
+    endif()
+    if(hash_c STREQUAL previous)
+        message(FATAL_ERROR "play walker frame ${i} equals frame before it: the skin did not move")
+    endif()
+    set(previous ${hash_c})
+endforeach()
+
 # rtrt convert and rtrt info: bad input exits 2 with one "file: field: reason" line and writes
 # nothing; good input converts, describes and renders.
 set(HOSTILE ${SOURCE_DIR}/tests/data/hostile)
