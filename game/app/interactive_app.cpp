@@ -115,6 +115,7 @@ class App {
         renderer_ =
             MakeFrameRenderer(model_.useCuda ? Backend::kCuda : Backend::kCpu, world_->Scene());
         model_.scene = std::filesystem::path(o_.scenes[index]).filename().string();
+        model_.frameMs.clear();  // another scene's frame times would mislead
         model_.maxDepth = int(loaded_->scene.maxDepth);
         // Flying speed: a quarter of the scene's size per second.
         Aabb bounds;
@@ -137,6 +138,7 @@ class App {
         // The new renderer takes the scene as it is now: every record, a fresh TLAS.
         renderer_ = MakeFrameRenderer(backend, world_->Scene());
         interop_.Unregister();
+        model_.frameMs.clear();  // the other back end's frame times would mislead
     }
 
     Ray RayThroughMouse() const {
@@ -181,6 +183,17 @@ class App {
         }
         selected_ = palette_->SpawnInFront(*world_, *kind, world_->Scene().camera, kSpawnDistance);
         model_.selected = std::string("a new ") + name;
+        // A mirror (mostly reflective) shows its reflection only with a bounce to spare, glass
+        // only with two (into the glass and out of it): the depth goes up to what the object
+        // needs, and says so.
+        const Material& m = world_->Scene().materials[kind->materialId];
+        const int needed = m.transmissivity > 0.0f ? 3 : m.reflectivity >= 0.5f ? 2 : 1;
+        if (!kind->gltf && model_.maxDepth < needed) {
+            model_.maxDepth = needed;
+            std::printf(
+                "rtrt: max depth raised to %d so that the %s shows what it %s (- lowers it)\n",
+                needed, name, m.transmissivity > 0.0f ? "refracts" : "reflects");
+        }
     }
 
     void HandleInput(float wallDt) {

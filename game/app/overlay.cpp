@@ -5,6 +5,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <vector>
 
 #include "game/app/controls.h"
@@ -46,8 +47,12 @@ void Overlay::Draw(OverlayModel& m) {
                     history.size(), m.paused ? "  PAUSED" : "");
         const float top =
             history.empty() ? 1.0f : 1.25f * *std::max_element(history.begin(), history.end());
-        ImGui::PlotLines("##frame", history.data(), int(history.size()), 0, "frame ms", 0.0f, top,
-                         ImVec2(320, 70));
+        // The graph takes at most a third of a small window's width, and says its scale.
+        const float width = std::clamp(ImGui::GetIO().DisplaySize.x / 3.0f, 120.0f, 320.0f);
+        char scale[64];
+        std::snprintf(scale, sizeof(scale), "frame ms, 0 to %.1f", top);
+        ImGui::PlotLines("##frame", history.data(), int(history.size()), 0, scale, 0.0f, top,
+                         ImVec2(width, 0.2f * width + 6.0f));
         ImGui::Text("simulate %.3f  extract %.3f  upload %.3f", m.times.simulate, m.times.extract,
                     m.times.upload);
         if (m.times.deformed > 0)

@@ -1,6 +1,8 @@
 // `rtrt play SCENE --headless --frames N [--fps F] -o DIR/frame_%04d.png`: plays a scene on a
 // fixed time step and writes every frame. The window (without --headless) comes with the
 // interactive runtime.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <regex>
@@ -54,6 +56,9 @@ void CheckPattern(const std::string& pattern) {
                              pattern + "\"");
 }
 
+// The most pixels the window opens with on the CPU back end unless --size says otherwise.
+constexpr uint32_t kCpuWindowPixels = 640 * 360;
+
 void RunWindowed(const PlayOptions& o) {
 #if defined(RTRT_HAVE_WINDOW)
     WindowOptions w;
@@ -66,6 +71,20 @@ void RunWindowed(const PlayOptions& o) {
         const LoadedScene first = LoadSceneFile(o.scenes[0]);
         w.width = first.width.value_or(1280);
         w.height = first.height.value_or(720);
+        // The CPU back end traces a 1280x720 frame in a third of a second on a small machine:
+        // the window opens at a quarter of the pixels, which stays interactive, and says so.
+        Backend backend = Backend::kCpu;
+        std::string why;
+        if (ChooseBackend(o.backend, &backend, &why) && backend == Backend::kCpu &&
+            w.width * w.height > kCpuWindowPixels) {
+            const double shrink = std::sqrt(double(kCpuWindowPixels) / (w.width * w.height));
+            w.width = std::max(1u, uint32_t(w.width * shrink));
+            w.height = std::max(1u, uint32_t(w.height * shrink));
+            std::printf(
+                "rtrt: the CPU back end renders the window at %ux%u to stay interactive; "
+                "--size WxH chooses another size\n",
+                w.width, w.height);
+        }
     }
     for (const std::string& scene : o.scenes) LoadSceneFile(scene);
     w.vsync = !o.noVsync;
