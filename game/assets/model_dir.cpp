@@ -5,20 +5,42 @@
 
 namespace rtrt {
 
+std::string InstalledShareDir() {
+    std::error_code error;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (error) return {};
+    const std::filesystem::path share = exe.parent_path().parent_path() / "share/rtrt";
+    return std::filesystem::is_directory(share / "scenes", error) ? share.string() : std::string();
+}
+
 std::string ModelDir() {
     if (const char* env = std::getenv("RTRT_MODEL_DIR"); env && *env) return env;
-    return RTRT_DEFAULT_MODEL_DIR;
+    if (InstalledShareDir().empty()) return RTRT_DEFAULT_MODEL_DIR;
+    if (const char* data = std::getenv("XDG_DATA_HOME"); data && *data)
+        return std::string(data) + "/rtrt/models";
+    const char* home = std::getenv("HOME");
+    return std::string(home && *home ? home : ".") + "/.local/share/rtrt/models";
 }
 
 std::string AssetDir() {
     if (const char* env = std::getenv("RTRT_ASSET_DIR"); env && *env) return env;
+    const std::string installed = InstalledShareDir();
+    return installed.empty() ? std::string(RTRT_DEFAULT_ASSET_DIR) : installed;
+}
+
+std::string FetchModelsScript() {
+    const std::string installed = InstalledShareDir();
+    return installed.empty() ? std::string(RTRT_DEFAULT_ASSET_DIR) + "/../tools/fetch_models.sh"
+                             : installed + "/tools/fetch_models.sh";
+}
+
+std::string MissingModelReason(const std::string& spec) {
+    constexpr std::string_view kPrefix = "@models/";
+    if (!spec.starts_with(kPrefix)) return {};
+    const std::string dir = ModelDir();
     std::error_code error;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) {
-        const std::filesystem::path installed = exe.parent_path().parent_path() / "share/rtrt";
-        if (std::filesystem::is_directory(installed / "models", error)) return installed.string();
-    }
-    return RTRT_DEFAULT_ASSET_DIR;
+    if (std::filesystem::exists(dir + "/" + spec.substr(kPrefix.size()), error)) return {};
+    return spec + " not found in " + dir + " (run rtrt fetch-models, or set RTRT_MODEL_DIR)";
 }
 
 std::string ResolveModelPath(const std::string& spec, const std::string& sceneDir) {

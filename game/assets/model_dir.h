@@ -3,9 +3,21 @@
 
 namespace rtrt {
 
-// Where tools/fetch_models.sh stores the real models: $RTRT_MODEL_DIR, else the build's default
-// (<source>/.cache/models).
+// Where the real models are (tools/fetch_models.sh and `rtrt fetch-models` put them there):
+// $RTRT_MODEL_DIR; else, for an installed rtrt, the user's data folder ($XDG_DATA_HOME/rtrt/models,
+// else ~/.local/share/rtrt/models); else, run from its build tree, <source>/.cache/models.
 std::string ModelDir();
+
+// The installed share/rtrt beside the running program's bin/, or empty when rtrt runs from its
+// build tree.
+std::string InstalledShareDir();
+
+// The script that fetches the models (installed in share/rtrt/tools, or the tree's tools/).
+std::string FetchModelsScript();
+
+// Why SPEC cannot be used when it names a fetched model that is not there ("@models/X not found
+// in DIR (run rtrt fetch-models, or set RTRT_MODEL_DIR)"), else empty.
+std::string MissingModelReason(const std::string& spec);
 
 // Where the project's own scenes and models are (scenes/, models/): $RTRT_ASSET_DIR, else the
 // installed share/rtrt beside the running program's bin/, else the source tree's assets/.

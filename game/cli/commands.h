@@ -11,5 +11,6 @@ void AddRenderCommand(CLI::App& app, int* exitCode);
 void AddPlayCommand(CLI::App& app, int* exitCode);
 void AddConvertCommand(CLI::App& app, int* exitCode);
 void AddInfoCommand(CLI::App& app, int* exitCode);
+void AddFetchModelsCommand(CLI::App& app, int* exitCode);
 
 }  // namespace rtrt

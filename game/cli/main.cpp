@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
     rtrt::AddPlayCommand(app, &exitCode);
     rtrt::AddConvertCommand(app, &exitCode);
     rtrt::AddInfoCommand(app, &exitCode);
+    rtrt::AddFetchModelsCommand(app, &exitCode);
     rtrt::AddBenchCommand(app, &exitCode);
     if (ReportUnknownCommand(app, argc, argv)) return rtrt::kExitBadInput;
     try {

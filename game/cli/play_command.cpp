@@ -154,8 +154,9 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
     CLI::App* cmd =
         app.add_subcommand("play", "Play a scene: animation, physics, spawners, camera path");
     cmd->add_option("scenes", options->scenes,
-                    "Scene files (.json, .gltf, .glb) or \"default\" (the built-in scene, also "
-                    "when none is named); in the window PageDown/PageUp switch between them");
+                    "Scene files (.json, .gltf, .glb), names of rtrt's own scenes (e.g. "
+                    "demo_crowd), or \"default\" (the built-in scene, also when none is named); "
+                    "in the window PageDown/PageUp switch between them");
     cmd->add_flag("--headless", options->headless, "Render to files instead of a window");
     cmd->add_option("--frames", options->frames,
                     "Frames to write (headless), or to show before closing the window")

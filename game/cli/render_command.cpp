@@ -98,7 +98,8 @@ void AddRenderCommand(CLI::App& app, int* exitCode) {
     CLI::App* cmd = app.add_subcommand(
         "render", "Render a scene file (or the built-in default scene) to an image");
     cmd->add_option("scene", options->scene,
-                    "Scene file (.json), or \"default\" for the built-in scene")
+                    "Scene file (.json, .gltf, .glb), the name of one of rtrt's own scenes (e.g. "
+                    "dragon), or \"default\" for the built-in scene")
         ->capture_default_str();
     cmd->add_option("-o,--output", options->output, "Output image (.png, .exr, ...)")->required();
     cmd->add_option("--size", options->size,

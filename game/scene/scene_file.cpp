@@ -9,6 +9,7 @@
 #include <memory>
 #include <random>
 #include <sstream>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "game/assets/model_dir.h"
@@ -135,7 +136,10 @@ class SceneParser {
                 // A glTF scene: its meshes, materials and textures are added once here; every
                 // instance places its node hierarchy again.
                 f.String("type");
-                const std::string path = ResolveModelPath(f.String("file"), baseDir_);
+                const std::string spec = f.String("file");
+                if (const std::string missing = MissingModelReason(spec); !missing.empty())
+                    f.Fail("file", missing);
+                const std::string path = ResolveModelPath(spec, baseDir_);
                 f.Finish();
                 gltfAssets_[name] = std::make_shared<GltfAsset>(LoadGltfAsset(path, *out_));
                 out_->gltfFiles.push_back(gltfAssets_[name]->summary);
@@ -445,11 +449,46 @@ LoadedScene ParseScene(const std::string& text, const std::string& name,
     return SceneParser(name, baseDir).Parse(text);
 }
 
+namespace {
+
+// The scene file a bare NAME (or NAME.json) means in the project's scenes folder, or empty.
+std::string SceneByName(const std::string& name) {
+    if (name.empty() || name.find('/') != std::string::npos) return {};
+    std::error_code ec;
+    const std::filesystem::path dir = std::filesystem::path(AssetDir()) / "scenes";
+    for (const std::string& candidate : {name, name + ".json"})
+        if (std::filesystem::is_regular_file(dir / candidate, ec))
+            return (dir / candidate).string();
+    return {};
+}
+
+// " (scenes by name: a, b, ...)" for a bare name, so that a user sees what exists.
+std::string SceneNamesHint(const std::string& name) {
+    if (name.find('/') != std::string::npos) return {};
+    std::error_code ec;
+    std::vector<std::string> names;
+    for (const auto& entry :
+         std::filesystem::directory_iterator(std::filesystem::path(AssetDir()) / "scenes", ec))
+        if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+    if (names.empty()) return {};
+    std::sort(names.begin(), names.end());
+    std::string hint = " (scenes by name:";
+    for (size_t i = 0; i < names.size(); ++i) hint += (i ? ", " : " ") + names[i];
+    return hint + ")";
+}
+
+}  // namespace
+
 LoadedScene LoadSceneFile(const std::string& path) {
     if (IsGltfPath(path)) return LoadGltfScene(path);
     std::error_code ec;
     if (path == "default" && !std::filesystem::exists(path, ec)) return MakeDefaultLoadedScene();
-    if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "no such file");
+    if (!std::filesystem::exists(path, ec)) {
+        // A bare name is looked for among the project's scenes (installed or in the tree).
+        const std::string known = SceneByName(path);
+        if (known.empty()) throw InputError(path, "", "no such file" + SceneNamesHint(path));
+        return LoadSceneFile(known);
+    }
     if (std::filesystem::is_directory(path, ec))
         throw InputError(path, "", "is a directory, not a scene file");
     std::ifstream in(path, std::ios::binary);

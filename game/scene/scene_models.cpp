@@ -32,6 +32,16 @@ std::vector<Sphere> ParseSphereList(JsonFields& f) {
     return spheres;
 }
 
+// The model file a "file" field names (FALLBACK when absent), resolved; a fetched model that
+// is missing fails here, naming the field and how to get it.
+std::string ModelFile(JsonFields& f, std::optional<std::string> fallback,
+                      const std::string& baseDir) {
+    const std::string spec = f.String("file", fallback);
+    if (const std::string missing = MissingModelReason(spec); !missing.empty())
+        f.Fail("file", missing);
+    return ResolveModelPath(spec, baseDir);
+}
+
 }  // namespace
 
 Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shape) {
@@ -62,12 +72,11 @@ Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shap
         shape = {ModelShape::kPlane, 0.0f, vec3(0.0f)};
     } else if (type == "teapot") {
         const uint32_t resolution = f.Count("resolution", 1, 64, 6);
-        mesh = TessellateTeapot(ResolveModelPath(f.String("file", "@models/teapot.inc"), baseDir),
-                                int(resolution));
+        mesh = TessellateTeapot(ModelFile(f, "@models/teapot.inc", baseDir), int(resolution));
     } else if (type == "mesh") {
         // Meshes come through the BLAS cache; fitting moves the built BLAS exactly as
         // FitMesh would have moved the mesh's vertices.
-        MeshModel model = LoadMeshModel(ResolveModelPath(f.String("file"), baseDir), options);
+        MeshModel model = LoadMeshModel(ModelFile(f, {}, baseDir), options);
         if (f.Has("fit")) FitBlas(model.blas, model.info.sourceBounds, f.Positive("fit"));
         return std::move(model.blas);
     } else {
