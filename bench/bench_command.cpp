@@ -365,6 +365,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     });
     AddFrameBench(*bench, exitCode);
     AddDeformBench(*bench, exitCode);
+    AddSoakBench(*bench, exitCode);
     AddAccuracyBench(*bench, exitCode);
     CLI::App* gpu = bench->add_subcommand(
         "gpu", "Trace time on the GPU (CUDA events) of the paper scene, median of --frames");

@@ -12,6 +12,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode);
 void AddFrameBench(CLI::App& bench, int* exitCode);
 // `rtrt bench deform`, registered by AddBenchCommand.
 void AddDeformBench(CLI::App& bench, int* exitCode);
+// `rtrt bench soak`, registered by AddBenchCommand.
+void AddSoakBench(CLI::App& bench, int* exitCode);
 // `rtrt bench accuracy`, registered by AddBenchCommand.
 void AddAccuracyBench(CLI::App& bench, int* exitCode);
 // `rtrt bench convert`, registered by AddBenchCommand; machineInfo describes the machine for the

@@ -23,4 +23,11 @@ std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings
                              });
 }
 
+bool DeviceMemoryInUse(size_t* bytes) {
+    size_t free = 0, total = 0;
+    if (cudaMemGetInfo(&free, &total) != cudaSuccess) return false;
+    *bytes = total - free;
+    return true;
+}
+
 }  // namespace rtrt

@@ -13,4 +13,7 @@ namespace rtrt {
 std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings& settings,
                                   int warmup, int frames, RenderStats* stats = nullptr);
 
+// Device memory in use on the current GPU (total less free, cudaMemGetInfo); false without one.
+bool DeviceMemoryInUse(size_t* bytes);
+
 }  // namespace rtrt

@@ -10,4 +10,6 @@ std::vector<double> TimeCudaTrace(const RenderScene&, const RenderSettings&, int
     throw std::runtime_error("the CUDA back end is not built into this rtrt");
 }
 
+bool DeviceMemoryInUse(size_t*) { return false; }
+
 }  // namespace rtrt
