@@ -247,7 +247,7 @@ class App {
             case Action::kSpawnWalker:
                 return Spawn("walker");
             case Action::kDeleteSelected:
-                if (!selected_.IsNull() && world_->Remove(selected_))
+                if (!selected_.IsNull() && world_->RemoveObject(selected_))
                     std::printf("rtrt: deleted\n");
                 selected_ = {};
                 model_.selected.clear();

@@ -181,6 +181,30 @@ bool World::SetPose(ecs::Entity e, vec3 position, glm::quat rotation) {
     return true;
 }
 
+bool World::RemoveObject(ecs::Entity e) {
+    if (!registry_.Valid(e)) return false;
+    // Up to the root of its hierarchy, then everything under it.
+    ecs::Entity root = e;
+    for (size_t hops = 0; hops < registry_.Count<physics::Parent>(); ++hops) {
+        const physics::Parent* up = registry_.Get<physics::Parent>(root);
+        if (!up || !registry_.Valid(up->entity)) break;
+        root = up->entity;
+    }
+    std::vector<ecs::Entity> doomed{root};
+    for (size_t i = 0; i < doomed.size(); ++i)  // breadth first over the parent links
+        registry_.View<const physics::Parent>().Each(
+            [&](ecs::Entity child, const physics::Parent& link) {
+                if (link.entity == doomed[i]) doomed.push_back(child);
+            });
+    for (const ecs::Entity d : doomed) {
+        if (!Remove(d) && registry_.Valid(d)) {
+            registry_.Destroy(d);
+            topologyPending_ = true;
+        }
+    }
+    return true;
+}
+
 bool World::Remove(ecs::Entity e) {
     const Renderable* r = registry_.Get<Renderable>(e);
     if (!r) return false;

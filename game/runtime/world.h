@@ -70,6 +70,9 @@ class World {
     bool SetPose(ecs::Entity e, vec3 position, glm::quat rotation);
     // Destroys an entity and drops its instance: the last instance record moves into its slot.
     bool Remove(ecs::Entity e);
+    // Destroys the whole object e belongs to: the root of its hierarchy and everything under it
+    // (a spawned glTF scene's nodes, skeleton and meshes), what the window's Delete means.
+    bool RemoveObject(ecs::Entity e);
     // The entity an instance record belongs to (a null entity for none).
     ecs::Entity EntityOfInstance(uint32_t instance) const;
 

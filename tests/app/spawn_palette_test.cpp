@@ -73,6 +73,32 @@ TEST(SpawnPalette, SpawnedWalkerWalks) {
     EXPECT_TRUE(apart);
 }
 
+// Deleting a picked walker (its mesh entity) removes the whole character: skeleton, mesh and
+// root, and its deformation is free for the next one.
+TEST(SpawnPalette, DeletingAPickedWalkerRemovesAllOfIt) {
+    const LoadedScene loaded = ParseScene(kStatic, "static.json", "");
+    World world(loaded);
+    SpawnPalette palette(world, nullptr);
+    const SpawnKind* walker = palette.Find("walker");
+    ASSERT_NE(walker, nullptr);
+    world.Advance(0.0f);
+    const size_t entities = world.Registry().Count<physics::LocalTransform>();
+    const size_t instances = world.Scene().instances.size();
+    palette.SpawnInFront(world, *walker, world.Scene().camera, 4.0f);
+    world.Advance(1.0f / 60.0f);
+    ASSERT_GT(world.Registry().Count<physics::LocalTransform>(), entities + 10);
+    ASSERT_EQ(world.Scene().instances.size(), instances + 1);
+    const ecs::Entity mesh = world.EntityOfInstance(uint32_t(instances));  // what a pick gives
+    ASSERT_TRUE(world.RemoveObject(mesh));
+    world.Advance(1.0f / 60.0f);
+    EXPECT_EQ(world.Registry().Count<physics::LocalTransform>(), entities);
+    EXPECT_EQ(world.Scene().instances.size(), instances);
+    // The next walker takes the freed deformation rather than a new one.
+    palette.SpawnInFront(world, *walker, world.Scene().camera, 4.0f);
+    world.Advance(1.0f / 60.0f);
+    EXPECT_EQ(world.Scene().deformations.size(), 1u);
+}
+
 TEST(SpawnPalette, WithPhysicsSpawnsAreThrown) {
     const LoadedScene loaded = ParseScene(kPhysics, "physics.json", "");
     World world(loaded);
