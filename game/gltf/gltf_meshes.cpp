@@ -20,10 +20,11 @@ std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
     for (size_t p = 0; p < m.primitives.size(); ++p) {
         const tinygltf::Primitive& prim = m.primitives[p];
         const std::string at = JsonIndexed(JsonIndexed("meshes", mesh) + ".primitives", p);
-        if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
+        if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1) {
             doc_.Warn("mode", at + ".mode: mode " + std::to_string(prim.mode) +
-                                  " (points, lines, strips or fans) is not supported; such "
-                                  "primitives are skipped");
+                                  " (points or lines) has no surface to trace; such primitives "
+                                  "are skipped");
             continue;
         }
         if (prim.targets.size() != m.primitives[0].targets.size())
@@ -69,6 +70,20 @@ void GltfMeshes::ReadDeformation(const tinygltf::Primitive& prim, const std::str
     if (!skinned && !morphed) return;
     out.deformableMesh = int32_t(out_.scene.AddDeformableMesh(std::move(deformable)));
     summary_.deformingPrimitives++;
+}
+
+// The triangles of a strip or a fan as the glTF specification numbers them (3.7.2.1): strip
+// triangle i is (v_i, v_{i+1+i%2}, v_{i+2-i%2}), keeping one winding; fan triangle i is
+// (v_{i+1}, v_{i+2}, v_0). Degenerate ones (repeated vertices, as strips use to restart) are left
+// out: they cover nothing.
+std::vector<glm::uvec3> StripOrFanTriangles(const std::vector<uint32_t>& v, bool fan) {
+    std::vector<glm::uvec3> triangles;
+    for (size_t i = 0; i + 2 < v.size(); ++i) {
+        const glm::uvec3 t = fan ? glm::uvec3(v[i + 1], v[i + 2], v[0])
+                                 : glm::uvec3(v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]);
+        if (t.x != t.y && t.y != t.z && t.x != t.z) triangles.push_back(t);
+    }
+    return triangles;
 }
 
 TriangleMesh GltfMeshes::ReadPrimitive(const tinygltf::Primitive& prim, const std::string& at) {
@@ -117,6 +132,10 @@ TriangleMesh GltfMeshes::ReadPrimitive(const tinygltf::Primitive& prim, const st
     } else {
         indices.resize(vertices);
         for (size_t i = 0; i < vertices; ++i) indices[i] = uint32_t(i);
+    }
+    if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP || prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        mesh.indices = StripOrFanTriangles(indices, prim.mode == TINYGLTF_MODE_TRIANGLE_FAN);
+        return mesh;
     }
     if (indices.size() % 3 != 0)
         doc_.Fail(prim.indices >= 0 ? at + ".indices" : at + ".attributes.POSITION",

@@ -16,6 +16,10 @@
 
 namespace rtrt {
 
+// The triangles of a TRIANGLE_STRIP (fan = false) or TRIANGLE_FAN index list, in the
+// specification's order, degenerate ones left out.
+std::vector<glm::uvec3> StripOrFanTriangles(const std::vector<uint32_t>& indices, bool fan);
+
 class GltfMeshes {
   public:
     // Adds BLASes and materials to OUT and counts what it reads in SUMMARY.

@@ -1,5 +1,6 @@
 #include "game/gltf/gltf_nodes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
 #include <string>
@@ -25,12 +26,32 @@ std::vector<int> Roots(GltfDocument& doc, const std::vector<int>& parentOf) {
                 JsonIndexed(JsonIndexed("scenes", size_t(sceneIndex)) + ".nodes", i);
             if (nodes[i] < 0 || size_t(nodes[i]) >= model.nodes.size())
                 doc.Fail(field, "node " + std::to_string(nodes[i]) + " out of range");
-            if (parentOf[nodes[i]] >= 0)
-                doc.Fail(field, "node " + std::to_string(nodes[i]) +
-                                    " is not a root (its parent is node " +
-                                    std::to_string(parentOf[nodes[i]]) + ")");
             roots.push_back(nodes[i]);
         }
+        // The specification wants roots here, but files list children too and common engines
+        // load them: a child whose tree is shown anyway is shown there, once; one whose tree is
+        // not is shown as a root of its own (its ancestors' transforms are not applied).
+        std::vector<int> kept;
+        for (size_t i = 0; i < roots.size(); ++i) {
+            const int node = roots[i];
+            if (parentOf[node] < 0) {
+                kept.push_back(node);
+                continue;
+            }
+            bool shownAbove = false;  // some ancestor is listed: the node is reached from it
+            for (int up = parentOf[node]; up >= 0 && !shownAbove; up = parentOf[up])
+                shownAbove = std::find(roots.begin(), roots.end(), up) != roots.end();
+            const std::string field =
+                JsonIndexed(JsonIndexed("scenes", size_t(sceneIndex)) + ".nodes", i);
+            doc.Warn("scene-child", field + ": node " + std::to_string(node) +
+                                        " has a parent (node " + std::to_string(parentOf[node]) +
+                                        "); " +
+                                        (shownAbove ? "it is shown under it"
+                                                    : "it is shown as a root, without its "
+                                                      "ancestors' transforms"));
+            if (!shownAbove) kept.push_back(node);
+        }
+        roots = std::move(kept);
         if (model.scenes.size() > 1)
             doc.Warn("scenes", "scenes: " + std::to_string(model.scenes.size()) +
                                    " scenes; rtrt shows scene " + std::to_string(sceneIndex));

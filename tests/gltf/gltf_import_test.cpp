@@ -16,6 +16,7 @@
 
 #include "engine/core/error.h"
 #include "engine/render_rt/renderer.h"
+#include "game/gltf/gltf_meshes.h"
 #include "game/runtime/world.h"
 #include "game/scene/scene_file.h"
 #include "tests/gltf/gltf_builder.h"
@@ -202,6 +203,48 @@ TEST_F(GltfTest, NodeHierarchyGivesWorldTransforms) {
     world.Advance(0.5f);
     const vec3 r = world.Scene().instances[0].objectToWorld.Point(vec3(1, 0, 0));
     EXPECT_NEAR(glm::length(r - vec3(3, 0, -2)), 0.0f, 1e-5f);
+}
+
+// scene.nodes listing a child: shown once under its parent when the parent's tree is shown,
+// as a root of its own when it is not (files that common engines load), with a warning.
+TEST_F(GltfTest, SceneNodesListingAChildShowItOnce) {
+    GltfBuilder both = TwoLevels();
+    both.doc["scenes"] = Json::array({{{"nodes", {0, 1}}}});
+    const LoadedScene shownUnder = LoadSceneFile(Save("both.gltf", both.GltfText()));
+    ASSERT_EQ(shownUnder.scene.instances.size(), 1u);
+    const vec3 p = shownUnder.scene.instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    EXPECT_NEAR(glm::length(p - vec3(3, 0, -2)), 0.0f, 1e-5f);  // under its parent
+
+    GltfBuilder child = TwoLevels();
+    child.doc["scenes"] = Json::array({{{"nodes", {1}}}});
+    const LoadedScene alone = LoadSceneFile(Save("child.gltf", child.GltfText()));
+    ASSERT_EQ(alone.scene.instances.size(), 1u);
+    const vec3 q = alone.scene.instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    EXPECT_NEAR(glm::length(q - vec3(2, 0, 2)), 0.0f, 1e-5f);  // its own transform only
+}
+
+// Strips and fans become the triangles the specification numbers (3.7.2.1), in one winding;
+// the degenerate triangles strips use to restart are left out.
+TEST(GltfPrimitiveModes, StripsAndFansGiveTheSpecificationsTriangles) {
+    EXPECT_EQ(StripOrFanTriangles({0, 1, 2, 3, 4}, false),
+              (std::vector<glm::uvec3>{{0, 1, 2}, {1, 3, 2}, {2, 3, 4}}));
+    EXPECT_EQ(StripOrFanTriangles({0, 1, 2, 3, 4}, true),
+              (std::vector<glm::uvec3>{{1, 2, 0}, {2, 3, 0}, {3, 4, 0}}));
+    // A restart: 0 1 2 2 3 3 4 5 repeats vertices; only the real triangles stay.
+    EXPECT_EQ(StripOrFanTriangles({0, 1, 2, 2, 3, 4}, false),
+              (std::vector<glm::uvec3>{{0, 1, 2}, {2, 4, 3}}));
+    EXPECT_TRUE(StripOrFanTriangles({0, 1}, false).empty());
+}
+
+TEST_F(GltfTest, TriangleStripPrimitiveIsTraced) {
+    GltfBuilder b;
+    const int mesh = b.Mesh(b.Floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, "VEC3", 3));
+    b.doc["meshes"][size_t(mesh)]["primitives"][0]["mode"] = 5;
+    b.Node({{"mesh", mesh}});
+    b.doc["scenes"] = Json::array({{{"nodes", {0}}}});
+    const LoadedScene loaded = LoadSceneFile(Save("strip.gltf", b.GltfText()));
+    ASSERT_EQ(loaded.scene.instances.size(), 1u);
+    EXPECT_EQ(loaded.scene.TriangleCount(), 2u);  // a quad from a 4-vertex strip
 }
 
 TEST_F(GltfTest, MatrixNodesAreDecomposed) {
