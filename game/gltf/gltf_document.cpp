@@ -29,6 +29,7 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     const std::string dir = std::filesystem::path(file_).parent_path().string();
     tinygltf::TinyGLTF loader;
     GltfImageFailure imageFailure;
+    imageFailure.used = &checked.imageUsed;
     InstallGltfImageLoader(loader, &imageFailure);
     std::string err, warn;
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -40,6 +41,18 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     if (imageFailure.index >= 0)
         Fail(JsonIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
     if (!ok || !err.empty()) Fail("", OneLine(err));
+    for (int index : imageFailure.skipped)
+        Warn("image-unused", JsonIndexed("images", size_t(index)) +
+                                 ": no texture's source names it (an extension's image, as "
+                                 "KHR_texture_basisu's KTX2, or none); it is not decoded");
+}
+
+bool DecodeGltfImage(GltfImageFailure* failure, int index) {
+    if (!failure->used || index < 0 || size_t(index) >= failure->used->size() ||
+        (*failure->used)[size_t(index)])
+        return true;
+    failure->skipped.push_back(index);
+    return false;
 }
 
 void GltfDocument::Fail(const std::string& field, const std::string& reason) const {

@@ -3,6 +3,7 @@
 // alike): OpenImageIO in builds with it (gltf_image_oiio.cpp), tinygltf's own stb otherwise
 // (gltf_image_stb.cpp). Either way the image comes back as 8- or 16-bit RGBA.
 #include <string>
+#include <vector>
 
 namespace tinygltf {
 class TinyGLTF;
@@ -15,7 +16,13 @@ namespace rtrt {
 struct GltfImageFailure {
     int index = -1;  // -1 while every image decoded
     std::string reason;
+    const std::vector<bool>* used = nullptr;  // images to decode (null: all of them)
+    std::vector<int> skipped;                 // images left undecoded as unused
 };
+
+// Whether image `index` is to be decoded; an unused one is recorded in failure->skipped and left
+// empty (the decoders call this first).
+bool DecodeGltfImage(GltfImageFailure* failure, int index);
 
 // Installs this build's decoder on `loader`; a failed decode is recorded in `*failure`, which
 // must outlive the load.

@@ -118,6 +118,7 @@ std::string Decode(tinygltf::Image& image, int reqWidth, int reqHeight, const un
 // tinygltf::LoadImageDataFunction.
 bool LoadWithOiio(tinygltf::Image* image, const int index, std::string* err, std::string*,
                   int reqWidth, int reqHeight, const unsigned char* bytes, int size, void* user) {
+    if (!DecodeGltfImage(static_cast<GltfImageFailure*>(user), index)) return true;
     std::string reason;
     try {
         reason = Decode(*image, reqWidth, reqHeight, bytes, size);

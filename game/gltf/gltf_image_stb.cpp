@@ -9,6 +9,7 @@ namespace {
 
 bool LoadWithStb(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
                  int reqWidth, int reqHeight, const unsigned char* bytes, int size, void* user) {
+    if (!DecodeGltfImage(static_cast<GltfImageFailure*>(user), index)) return true;
     // A null option is tinygltf's default: channels expanded to RGBA.
     std::string reason;
     if (tinygltf::LoadImageData(image, index, &reason, warn, reqWidth, reqHeight, bytes, size,

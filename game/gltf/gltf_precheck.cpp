@@ -116,7 +116,22 @@ constexpr FieldKind kFieldKinds[] = {
 // Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
 // that external buffers and images exist, so that the message names the field
 // ("buffers[0].uri") where tinygltf's would not.
-void CheckJson(const std::string& file, const std::string& json, const std::string& dir) {
+// Which images a texture's own source names (the ones rtrt can sample).
+std::vector<bool> UsedImages(const Json& root) {
+    const size_t count =
+        root.contains("images") && root["images"].is_array() ? root["images"].size() : 0;
+    std::vector<bool> used(count, false);
+    if (!root.contains("textures") || !root["textures"].is_array()) return used;
+    for (const Json& t : root["textures"])
+        if (t.is_object() && t.contains("source") && t["source"].is_number_integer()) {
+            const int64_t source = t["source"].get<int64_t>();
+            if (source >= 0 && size_t(source) < count) used[size_t(source)] = true;
+        }
+    return used;
+}
+
+std::vector<bool> CheckJson(const std::string& file, const std::string& json,
+                            const std::string& dir) {
     const Json root = ParseJson(json, file, DuplicateKeys::kLastWins);
     if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
     for (const char* array : {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers",
@@ -131,12 +146,15 @@ void CheckJson(const std::string& file, const std::string& json, const std::stri
                 if (std::strcmp(f.array, array) == 0) element.ExpectKind(f.field, f.kind);
         }
     }
+    const std::vector<bool> used = UsedImages(root);
     for (const char* array : {"buffers", "images"}) {
         if (!root.contains(array) || !root[array].is_array()) continue;
         const Json& list = root[array];
         for (size_t i = 0; i < list.size(); ++i) {
             if (!list[i].is_object() || !list[i].contains("uri") || !list[i]["uri"].is_string())
                 continue;
+            // An image rtrt will not decode may be missing (or a format it cannot read).
+            if (std::strcmp(array, "images") == 0 && !used[i]) continue;
             const std::string uri = list[i]["uri"].get<std::string>();
             if (uri.rfind("data:", 0) == 0) continue;
             std::error_code ec;
@@ -146,6 +164,7 @@ void CheckJson(const std::string& file, const std::string& json, const std::stri
                                  "no such file \"" + path.string() + "\"");
         }
     }
+    return used;
 }
 
 std::string ReadWholeFile(const std::string& path) {
@@ -169,8 +188,8 @@ GltfFileBytes ReadCheckedGltf(const std::string& file) {
     for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
     out.binary = lower == ".glb" || out.bytes.compare(0, 4, "glTF") == 0;
     if (out.binary) CheckGlbHeader(file, out.bytes);
-    CheckJson(file, out.binary ? GlbJson(out.bytes) : out.bytes,
-              fs::path(file).parent_path().string());
+    out.imageUsed = CheckJson(file, out.binary ? GlbJson(out.bytes) : out.bytes,
+                              fs::path(file).parent_path().string());
     return out;
 }
 

@@ -3,12 +3,16 @@
 // the fields rtrt reads (tinygltf drops a mistyped field silently) and that referenced buffer
 // and image files exist, so that each defect gets a message naming its field.
 #include <string>
+#include <vector>
 
 namespace rtrt {
 
 struct GltfFileBytes {
     std::string bytes;  // the whole file
     bool binary;        // GLB (by extension or magic) rather than JSON text
+    // Per image: whether a texture's own `source` names it, so rtrt may sample it. The others
+    // (unused, or only an extension's source, as KHR_texture_basisu's KTX2) are not decoded.
+    std::vector<bool> imageUsed;
 };
 
 // Reads FILE and checks it as above; throws InputError naming the file and field.

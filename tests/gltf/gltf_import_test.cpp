@@ -247,6 +247,28 @@ TEST_F(GltfTest, TriangleStripPrimitiveIsTraced) {
     EXPECT_EQ(loaded.scene.TriangleCount(), 2u);  // a quad from a 4-vertex strip
 }
 
+// An image no texture's own source names — here a KTX2 image that only KHR_texture_basisu's
+// source names, and an unreferenced one — is not decoded: the file loads (with a warning), and
+// the texture samples its core source.
+TEST_F(GltfTest, ImagesOnlyAnExtensionUsesDoNotFailTheFile) {
+    GltfBuilder b = test::TexturedQuadScene(9728, 10497);
+    const std::string bmp = GltfBuilder::Bmp(1, 1, {200, 100, 50});
+    const std::string garbage = "\xabKTX 20\xbb\r\n\x1a\n not really a KTX2 file";
+    auto uri = [](const std::string& mime, const std::string& bytes) {
+        return "data:" + mime + ";base64," +
+               GltfBuilder::Base64(std::vector<uint8_t>(bytes.begin(), bytes.end()));
+    };
+    b.doc["images"] = Json::array({{{"uri", uri("image/bmp", bmp)}},
+                                   {{"uri", uri("image/ktx2", garbage)}},
+                                   {{"uri", uri("image/png", garbage)}}});
+    b.doc["textures"][0]["extensions"] = {{"KHR_texture_basisu", {{"source", 1}}}};
+    b.doc["extensionsUsed"] = Json::array({"KHR_lights_punctual", "KHR_texture_basisu"});
+    const LoadedScene loaded = LoadSceneFile(Save("basisu.gltf", b.GltfText()));
+    ASSERT_EQ(loaded.scene.textures.size(), 1u);
+    const uint32_t texel = loaded.scene.texels[loaded.scene.textures[0].texelOffset];
+    EXPECT_EQ(texel & 0xffu, 200u);  // the BMP's red: the core source was sampled
+}
+
 TEST_F(GltfTest, MatrixNodesAreDecomposed) {
     GltfBuilder b = TwoLevels();
     // The parent as a matrix: columns of a 90-degree turn about y, translation (1, 0, 0).
@@ -446,6 +468,7 @@ std::vector<HostileGltf> MakeHostileGltfCorpus() {
          "buffers[0].uri", "no such file"},
         {"missing_image.gltf", edit([](GltfBuilder& b) {
              b.doc["images"] = Json::array({{{"uri", "no_such.png"}}});
+             b.doc["textures"] = Json::array({{{"source", 0}}});  // used: it must be there
          }),
          "images[0].uri", "no such file"},
         {"wrong_type.gltf", edit([](GltfBuilder& b) { b.doc["nodes"][1]["mesh"] = 7; }),
