@@ -116,6 +116,33 @@ constexpr FieldKind kFieldKinds[] = {
 // Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
 // that external buffers and images exist, so that the message names the field
 // ("buffers[0].uri") where tinygltf's would not.
+// Draco-compressed primitives (KHR_draco_mesh_compression) cannot be read yet: a file that
+// requires the extension is refused, naming the first such primitive and what to do, before
+// tinygltf's own message ("accessor[0] invalid bufferView") would say nothing useful. A file that
+// only uses it keeps uncompressed accessors, which are read.
+void CheckDraco(const std::string& file, const Json& root) {
+    constexpr const char* kDraco = "KHR_draco_mesh_compression";
+    bool required = false;
+    if (root.contains("extensionsRequired") && root["extensionsRequired"].is_array())
+        for (const Json& e : root["extensionsRequired"]) required |= e == kDraco;
+    if (!required || !root.contains("meshes") || !root["meshes"].is_array()) return;
+    const Json& meshes = root["meshes"];
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        if (!meshes[m].contains("primitives") || !meshes[m]["primitives"].is_array()) continue;
+        const Json& primitives = meshes[m]["primitives"];
+        for (size_t p = 0; p < primitives.size(); ++p)
+            if (primitives[p].is_object() && primitives[p].contains("extensions") &&
+                primitives[p]["extensions"].is_object() &&
+                primitives[p]["extensions"].contains(kDraco))
+                throw InputError(
+                    file,
+                    JsonIndexed(JsonIndexed("meshes", m) + ".primitives", p) + ".extensions." +
+                        kDraco,
+                    "Draco-compressed meshes are not supported yet; export the file without "
+                    "Draco or decompress it (e.g. gltf-transform copy IN OUT)");
+    }
+}
+
 // Which images a texture's own source names (the ones rtrt can sample).
 std::vector<bool> UsedImages(const Json& root) {
     const size_t count =
@@ -146,6 +173,7 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                 if (std::strcmp(f.array, array) == 0) element.ExpectKind(f.field, f.kind);
         }
     }
+    CheckDraco(file, root);
     const std::vector<bool> used = UsedImages(root);
     for (const char* array : {"buffers", "images"}) {
         if (!root.contains(array) || !root[array].is_array()) continue;

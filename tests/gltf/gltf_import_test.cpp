@@ -549,6 +549,23 @@ TEST(GltfAssimpModels, BoxTexturedIsTexturedOnEveryContainer) {
     }
 }
 
+// A file that requires Draco is refused naming the compressed primitive and what to do, not
+// with tinygltf's "accessor[0] invalid bufferView".
+TEST(GltfAssimpModels, DracoRequiredIsNamedWithAWayOut) {
+    const std::string path = AssimpModel("draco/2CylinderEngine.gltf");
+    if (path.empty()) GTEST_SKIP() << "assimp-testmodels is not installed";
+    try {
+        LoadSceneFile(path);
+        ADD_FAILURE() << "loaded without an error";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("meshes[0].primitives[0].extensions.KHR_draco_mesh_compression"),
+                  std::string::npos)
+            << what;
+        EXPECT_NE(what.find("without Draco or decompress it"), std::string::npos) << what;
+    }
+}
+
 TEST(GltfAssimpModels, MorphCubeLoadsItsTargetsWithoutWarnings) {
     const std::string path =
         AssimpModel("glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf");
