@@ -33,9 +33,20 @@ struct PlayOptions {
     std::string record, script;
     bool headless = false;
     bool noVsync = false;
-    int frames = 0;
+    std::string frames;  // N, or A:B (headless)
+    uint32_t spp = 1;
     double fps = 60.0;
 };
+
+// --frames: "N" means frames 0 to N-1, "A:B" frames A to B-1 (A < B); false when malformed.
+bool ParseFrames(const std::string& text, int* first, int* end) {
+    static const std::regex kRange("([0-9]{1,7})(:([0-9]{1,7}))?");
+    std::smatch m;
+    if (!std::regex_match(text, m, kRange)) return false;
+    *first = m[2].matched ? std::stoi(m[1].str()) : 0;
+    *end = m[2].matched ? std::stoi(m[3].str()) : std::stoi(m[1].str());
+    return *first < *end && *end <= 10000000;
+}
 
 // The output pattern must hold exactly one printf integer field (%d, %04d, ...).
 std::string FramePath(const std::string& pattern, int frame) {
@@ -90,7 +101,11 @@ void RunWindowed(const PlayOptions& o) {
     w.vsync = !o.noVsync;
     w.record = o.record;
     w.script = o.script;
-    w.frames = o.frames;
+    int first = 0, end = 0;
+    if (!o.frames.empty() && (!ParseFrames(o.frames, &first, &end) || first != 0))
+        throw InputError("--frames", o.frames,
+                         "the window takes a frame count N (A:B ranges are for --headless)");
+    w.frames = end;
     w.fps = float(o.fps);
     RunWindow(w);
 #else
@@ -107,17 +122,21 @@ void RunPlay(PlayOptions o) {
     if (!o.headless) return RunWindowed(o);
     if (o.scenes.size() != 1)
         throw InputError("play", "", "--headless plays one scene; give exactly one");
-    if (o.frames < 1) throw InputError("--frames", "", "give the number of frames to write (>= 1)");
+    int first = 0, end = 0;
+    if (!ParseFrames(o.frames, &first, &end))
+        throw InputError("--frames", o.frames,
+                         "give the frames to write: N (0 to N-1) or A:B (A to B-1), e.g. 0:48");
     if (o.output.empty())
         throw InputError("--output", "", "give where frames go, e.g. out/frame_%04d.png");
     CheckPattern(o.output);
-    CheckImagePath(FramePath(o.output, 0));
+    CheckImagePath(FramePath(o.output, first));
     const LoadedScene loaded = LoadSceneFile(o.scenes[0]);
     RenderSettings settings;
     settings.width = loaded.width.value_or(1280);
     settings.height = loaded.height.value_or(720);
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
     settings.maxDepth = loaded.scene.maxDepth;
+    settings.samplesPerPixel = o.spp;
     Backend backend;
     std::string why;
     if (!ChooseBackend(o.backend, &backend, &why))
@@ -126,9 +145,23 @@ void RunPlay(PlayOptions o) {
     World world(loaded);
     const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(backend, world.Scene());
     const float dt = float(1.0 / o.fps);
+    // Frames before A are played, not traced: the simulation and every update of the frame
+    // renderer (TLAS and BLAS refits, rebuild decisions) happen as in a full run, so frame A on
+    // is byte for byte what a run from frame 0 writes.
+    Stopwatch replay;
+    for (int i = 1; i < first; ++i) {  // frame i is the scene after i steps
+        world.Advance(dt);
+        renderer->Update(world.Scene(), world.Changes());
+    }
+    if (first > 1) {
+        renderer->Finish();
+        const double ms = replay.Milliseconds();
+        std::printf("rtrt: replayed frames 0 to %d untraced in %.1f ms (%.3f ms per frame)\n",
+                    first - 1, ms, ms / (first - 1));
+    }
     Image frame;
     double total = 0.0;
-    for (int i = 0; i < o.frames; ++i) {
+    for (int i = first; i < end; ++i) {
         Stopwatch timer;
         if (i > 0) {
             world.Advance(dt);
@@ -138,12 +171,13 @@ void RunPlay(PlayOptions o) {
         WriteImage(FramePath(o.output, i), frame);
         total += timer.Milliseconds();
         char what[64];
-        std::snprintf(what, sizeof(what), "frames, %.1f ms/frame", total / (i + 1));
-        DrawProgressBar("play", i + 1, o.frames, what);
+        std::snprintf(what, sizeof(what), "frames, %.1f ms/frame", total / (i - first + 1));
+        DrawProgressBar("play", i - first + 1, end - first, what);
     }
     std::printf(
-        "rtrt: wrote %d frames to %s (%ux%u, %.0f fps time step, %zu instances at the end)\n",
-        o.frames, o.output.c_str(), settings.width, settings.height, o.fps,
+        "rtrt: wrote frames %d to %d to %s (%ux%u, %.0f fps time step, %zu instances at the "
+        "end)\n",
+        first, end - 1, o.output.c_str(), settings.width, settings.height, o.fps,
         world.Scene().instances.size());
 }
 
@@ -159,8 +193,12 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
                     "in the window PageDown/PageUp switch between them");
     cmd->add_flag("--headless", options->headless, "Render to files instead of a window");
     cmd->add_option("--frames", options->frames,
-                    "Frames to write (headless), or to show before closing the window")
-        ->check(CLI::Range(1, 1000000));
+                    "Headless: frames to write, N (0 to N-1) or A:B (A to B-1, each exactly as a "
+                    "run from frame 0 writes it); window: frames to show before closing");
+    cmd->add_option("--spp", options->spp,
+                    "Samples per pixel, n x n stratified (1, 4, 9, 16...), for offline quality")
+        ->check(CLI::IsMember({1u, 4u, 9u, 16u, 25u, 36u, 49u, 64u}))
+        ->capture_default_str();
     cmd->add_option("--record", options->record,
                     "Window: write every frame shown to DIR/frame_NNNNN.png (fixed time step)");
     cmd->add_option("--script", options->script,
