@@ -15,4 +15,9 @@ InputError::InputError(std::string file, std::string field, std::string reason)
       field_(std::move(field)),
       reason_(std::move(reason)) {}
 
+OutputError::OutputError(std::string file, std::string reason)
+    : std::runtime_error(file + ": " + reason),
+      file_(std::move(file)),
+      reason_(std::move(reason)) {}
+
 }  // namespace rtrt

@@ -18,4 +18,16 @@ class InputError : public std::runtime_error {
     std::string file_, field_, reason_;
 };
 
+// A failed write of an output: the file the user named and the system's reason. what() reads
+// "FILE: REASON". The CLI exits 1 (the work failed), not 2 (bad input).
+class OutputError : public std::runtime_error {
+  public:
+    OutputError(std::string file, std::string reason);
+    const std::string& File() const { return file_; }
+    const std::string& Reason() const { return reason_; }
+
+  private:
+    std::string file_, reason_;
+};
+
 }  // namespace rtrt

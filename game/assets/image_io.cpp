@@ -8,10 +8,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 
 #if defined(RTRT_WITH_OIIO)
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #endif
 
@@ -29,21 +33,57 @@ bool IsFloatFormat(const std::string& ext) {
     return ext == ".exr" || ext == ".pfm" || ext == ".hdr";
 }
 
-void WritePortable(const std::string& path, const Image& image, const std::string& ext) {
-    std::ofstream out(path, std::ios::binary);
+// PPM or PFM bytes, written without OpenImageIO.
+std::string EncodePortable(const Image& image, const std::string& ext) {
+    std::string bytes;
     if (ext == ".pfm") {
         // PFM rows run bottom to top; a negative scale means little-endian.
-        out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+        bytes =
+            "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
         for (uint32_t y = image.height; y-- > 0;)
-            out.write(reinterpret_cast<const char*>(&image.At(0, y)), sizeof(vec3) * image.width);
+            bytes.append(reinterpret_cast<const char*>(&image.At(0, y)),
+                         sizeof(vec3) * image.width);
     } else {
-        out << "P6\n" << image.width << " " << image.height << "\n255\n";
+        bytes =
+            "P6\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n255\n";
+        bytes.reserve(bytes.size() + image.pixels.size() * 3);
         for (const vec3& p : image.pixels)
             for (int c = 0; c < 3; ++c)
-                out.put(char(uint8_t(std::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f)));
+                bytes += char(uint8_t(std::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f));
     }
-    if (!out) throw InputError(path, "", "write failed");
+    return bytes;
 }
+
+#if defined(RTRT_WITH_OIIO)
+// The image encoded by OpenImageIO into memory, so that rtrt's own checked writes put it on disk:
+// OpenImageIO's file writers (libpng's among them) do not all report a failed write.
+std::vector<unsigned char> EncodeWithOiio(const std::string& path, const Image& image) {
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out || !out->supports("ioproxy"))
+        throw OutputError(path, "OpenImageIO cannot encode this format into memory");
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput proxy(bytes);
+    if (!out->set_ioproxy(&proxy))
+        throw OutputError(path, "OpenImageIO cannot encode this format into memory");
+    const bool isFloat = IsFloatFormat(Extension(path));
+    OIIO::ImageSpec spec(int(image.width), int(image.height), 3,
+                         isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    if (!out->open(path, spec)) throw OutputError(path, "cannot encode: " + out->geterror());
+    bool ok;
+    if (isFloat) {
+        ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+    } else {
+        std::vector<uint8_t> pixels(image.pixels.size() * 3);
+        for (size_t i = 0; i < image.pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                pixels[3 * i + c] =
+                    uint8_t(std::clamp(image.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
+        ok = out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
+    }
+    if (!ok || !out->close()) throw OutputError(path, "cannot encode: " + out->geterror());
+    return bytes;
+}
+#endif
 
 }  // namespace
 
@@ -77,44 +117,23 @@ void CheckImagePath(const std::string& path) {
 void WriteImage(const std::string& path, const Image& image) {
     CheckImagePath(path);
     const std::string ext = Extension(path);
-    // The temporary keeps the extension so the writer picks the same format.
     std::string name = ".";  // appended piecewise: GCC 12 warns falsely on a + chain here
     name += std::filesystem::path(path).stem().string();
     name += ".partial";
     name += ext;
-    const std::string tmp = (std::filesystem::path(path).parent_path() / name).string();
-    try {
-        if (ext == ".ppm" || ext == ".pfm") {
-            WritePortable(tmp, image, ext);
-        } else {
+    OutputFile file(path, (std::filesystem::path(path).parent_path() / name).string());
+    if (ext == ".ppm" || ext == ".pfm") {
+        const std::string bytes = EncodePortable(image, ext);
+        file.Write(bytes.data(), bytes.size());
+    } else {
 #if defined(RTRT_WITH_OIIO)
-            auto out = OIIO::ImageOutput::create(tmp);
-            const bool isFloat = IsFloatFormat(ext);
-            OIIO::ImageSpec spec(int(image.width), int(image.height), 3,
-                                 isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-            if (!out || !out->open(tmp, spec))
-                throw InputError(path, "", "cannot open for writing: " + OIIO::geterror());
-            bool ok;
-            if (isFloat) {
-                ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
-            } else {
-                std::vector<uint8_t> bytes(image.pixels.size() * 3);
-                for (size_t i = 0; i < image.pixels.size(); ++i)
-                    for (int c = 0; c < 3; ++c)
-                        bytes[3 * i + c] =
-                            uint8_t(std::clamp(image.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
-                ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
-            }
-            if (!ok || !out->close())
-                throw InputError(path, "", "write failed: " + out->geterror());
+        const std::vector<unsigned char> bytes = EncodeWithOiio(path, image);
+        file.Write(bytes.data(), bytes.size());
 #endif
-        }
-        std::filesystem::rename(tmp, path);
-    } catch (...) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
-        throw;
     }
+    // Images carry no checksum, so they reach the disk before they take the output's name.
+    file.Finish(/*durable=*/true);
+    file.Commit();
 }
 
 bool CanReadImages() {

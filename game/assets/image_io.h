@@ -10,7 +10,8 @@ namespace rtrt {
 // folder itself. Called before the scene is loaded, so that bad paths fail before any work.
 void CheckImagePath(const std::string& path);
 
-// Writes through a temporary file renamed into place: a failure leaves no partial output.
+// Writes through a temporary file renamed into place, every write checked: a failure throws
+// OutputError naming PATH with the system's reason and leaves no partial output.
 // 8-bit formats store clamp(value) * 255 rounded; float formats store the values.
 void WriteImage(const std::string& path, const Image& image);
 

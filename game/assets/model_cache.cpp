@@ -1,5 +1,6 @@
 #include "game/assets/model_cache.h"
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -44,12 +45,16 @@ bool ReadCacheEntry(const std::string& path, const RtModelKey& key, MeshModel* m
     }
 }
 
+// A cache that cannot be written costs only time: the work goes on, with one warning per process.
 void WriteCacheEntry(const std::string& dir, const MeshModel& model) {
     try {
         fs::create_directories(dir);
         WriteRtModel(model.cachePath, model.blas, model.info);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "rtrt: warning: BLAS cache not written (%s)\n", e.what());
+        static std::atomic<bool> warned{false};
+        if (!warned.exchange(true))
+            std::fprintf(stderr, "rtrt: warning: BLAS cache not written (%s); going on without\n",
+                         e.what());
     }
 }
 

@@ -70,6 +70,9 @@ int main(int argc, char** argv) {
     } catch (const rtrt::InputError& e) {
         std::fprintf(stderr, "rtrt: error: %s\n", e.what());
         return rtrt::kExitBadInput;
+    } catch (const rtrt::OutputError& e) {
+        std::fprintf(stderr, "rtrt: error: %s\n", e.what());
+        return rtrt::kExitFailure;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rtrt: error: %s\n", e.what());
         return rtrt::kExitFailure;

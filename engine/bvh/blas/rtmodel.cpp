@@ -13,12 +13,12 @@
 #include <cstddef>
 #include <cstring>
 #include <filesystem>
-#include <stdexcept>
 
 #include "engine/bvh/blas/blas_check.h"
 #include "engine/bvh/blas/rtmodel_format.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 
 namespace rtrt {
 namespace {
@@ -70,18 +70,6 @@ bool ReadAt(int fd, void* data, uint64_t size, uint64_t offset) {
         out += got;
         size -= uint64_t(got);
         offset += uint64_t(got);
-    }
-    return true;
-}
-
-bool WriteAll(int fd, const void* data, uint64_t size) {
-    const char* in = static_cast<const char*>(data);
-    while (size > 0) {
-        const ssize_t put = ::write(fd, in, size);
-        if (put < 0 && errno == EINTR) continue;
-        if (put <= 0) return false;
-        in += put;
-        size -= uint64_t(put);
     }
     return true;
 }
@@ -252,28 +240,19 @@ void WriteRtModel(const std::string& path, const Blas& blas, const RtModelInfo& 
     h.payloadChecksum = PayloadChecksum(hashes);
     SealHeader(h);
 
-    const std::string temp = path + ".tmp" + std::to_string(::getpid());
-    bool ok = false;
-    {
-        File out(temp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (out.Fd() < 0)
-            throw std::runtime_error(temp + ": cannot create: " + std::strerror(errno));
-        ok = WriteAll(out.Fd(), &h, sizeof(h));
-        for (int s = 0; ok && s < kSectionCount; ++s)
-            ok = WriteAll(out.Fd(), sections[s].data, sections[s].count * kElementBytes[s]) &&
-                 WriteAll(out.Fd(), kZeros, padOf(s));
-        ok = out.Close() && ok;
+    OutputFile out(path, path + ".tmp" + std::to_string(::getpid()));
+    out.Write(&h, sizeof(h));
+    for (int s = 0; s < kSectionCount; ++s) {
+        out.Write(sections[s].data, sections[s].count * kElementBytes[s]);
+        out.Write(kZeros, padOf(s));
     }
-    const int writeErrno = errno;
+    // No fsync: a file torn by a crash fails its checksums when read, and is rebuilt or reported.
+    out.Finish(/*durable=*/false);
     // The old file goes first: ext4 flushes a file renamed over another to disk before the
     // rename returns (auto_da_alloc), which costs a 125 MB model hundreds of milliseconds. Readers
     // in between see no file, never a partial one.
-    if (ok) ::unlink(path.c_str());
-    if (!ok || std::rename(temp.c_str(), path.c_str()) != 0) {
-        const int err = ok ? errno : writeErrno;
-        std::remove(temp.c_str());
-        throw std::runtime_error(path + ": cannot write: " + std::strerror(err));
-    }
+    ::unlink(path.c_str());
+    out.Commit();
 }
 
 Blas ReadRtModel(const std::string& path, RtModelInfo* info) {

@@ -43,8 +43,8 @@ struct RtModelInfo {
 };
 
 // Writes through a temporary file in the same folder and a rename, so that readers never see a
-// partial file. Throws InputError when the folder does not exist, std::runtime_error when
-// writing fails.
+// partial file. Throws InputError when the folder does not exist, OutputError (the system's reason)
+// when a write, flush, close or rename fails; no temporary is left behind.
 void WriteRtModel(const std::string& path, const Blas& blas, const RtModelInfo& info);
 
 // Reads and validates a file: header fields, sizes against the file length, both checksums, then

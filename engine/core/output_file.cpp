@@ -1,0 +1,77 @@
+#include "engine/core/output_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "engine/core/error.h"
+
+namespace rtrt {
+namespace {
+
+// RTRT_TEST_FAIL_WRITE_AFTER=BYTES: writes past the first BYTES of each output fail with ENOSPC,
+// for the disk-full test where no small filesystem can be mounted.
+uint64_t InjectedWriteLimit() {
+    static const uint64_t limit = [] {
+        const char* text = std::getenv("RTRT_TEST_FAIL_WRITE_AFTER");
+        return text && *text ? std::strtoull(text, nullptr, 10) : UINT64_MAX;
+    }();
+    return limit;
+}
+// write(2) with the injected limit applied; DONE is what the file holds so far.
+ssize_t WriteSome(int fd, const void* data, size_t size, uint64_t done) {
+    const uint64_t limit = InjectedWriteLimit();
+    if (limit != UINT64_MAX) {
+        if (done >= limit) {
+            errno = ENOSPC;
+            return -1;
+        }
+        if (size > limit - done) size = size_t(limit - done);
+    }
+    return ::write(fd, data, size);
+}
+
+}  // namespace
+
+OutputFile::OutputFile(std::string target, std::string temp)
+    : target_(std::move(target)), temp_(std::move(temp)) {
+    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw OutputError(target_, std::strerror(errno));
+}
+
+OutputFile::~OutputFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!committed_) ::unlink(temp_.c_str());
+}
+
+void OutputFile::Write(const void* data, size_t size) {
+    const char* in = static_cast<const char*>(data);
+    while (size > 0) {
+        const ssize_t put = WriteSome(fd_, in, size, written_);
+        if (put < 0 && errno == EINTR) continue;
+        if (put <= 0) throw OutputError(target_, std::strerror(put < 0 ? errno : ENOSPC));
+        in += put;
+        size -= size_t(put);
+        written_ += uint64_t(put);
+    }
+}
+
+void OutputFile::Finish(bool durable) {
+    if (durable && ::fsync(fd_) != 0) throw OutputError(target_, std::strerror(errno));
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) throw OutputError(target_, std::strerror(errno));
+}
+
+void OutputFile::Commit() {
+    if (std::rename(temp_.c_str(), target_.c_str()) != 0)
+        throw OutputError(target_, std::strerror(errno));
+    committed_ = true;
+}
+
+}  // namespace rtrt

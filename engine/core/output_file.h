@@ -1,0 +1,31 @@
+#pragma once
+// Output files that appear whole or not at all: a temporary in the output's folder, every write,
+// flush and close checked, renamed over the output only when complete, removed on every failure.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace rtrt {
+
+class OutputFile {
+  public:
+    // Creates TEMP to become TARGET; errors (OutputError) name TARGET, never TEMP.
+    OutputFile(std::string target, std::string temp);
+    ~OutputFile();  // removes the temporary unless committed
+    OutputFile(const OutputFile&) = delete;
+    OutputFile& operator=(const OutputFile&) = delete;
+
+    void Write(const void* data, size_t size);
+    // Flushes to the disk when DURABLE (fsync), then closes; a failure of either is an error.
+    void Finish(bool durable);
+    // Renames the finished temporary over the target.
+    void Commit();
+
+  private:
+    std::string target_, temp_;
+    int fd_ = -1;
+    uint64_t written_ = 0;
+    bool committed_ = false;
+};
+
+}  // namespace rtrt
