@@ -77,10 +77,10 @@ void TransformSystem::Update(Registry& registry) {
     dirty_.reserve(order_.size());
     {
         // set_ holds each entity once; find it again from its index.
-        std::vector<uint32_t> setAt(slot_.size(), 0);
-        for (uint32_t k = 0; k < set_.size(); ++k) setAt[set_[k].index] = k;
+        if (setAt_.size() < slot_.size()) setAt_.resize(slot_.size());
+        for (uint32_t k = 0; k < set_.size(); ++k) setAt_[set_[k].index] = k;
         for (uint64_t key : order_) {
-            const Entity e = set_[setAt[uint32_t(key)]];
+            const Entity e = set_[setAt_[uint32_t(key)]];
             const uint32_t depth = uint32_t(key >> 32);
             const bool root = depth == 0 || slot_[e.index] == UINT32_MAX;
             const Parent* link = root ? nullptr : registry.Get<Parent>(e);

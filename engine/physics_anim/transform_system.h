@@ -61,6 +61,7 @@ class TransformSystem {
     std::vector<uint32_t> childStart_;  // per parent index: its first entry in children_
     std::vector<uint32_t> visited_;     // per entity index: stamp_ when in this pass's set
     std::vector<uint32_t> slot_;        // per entity index: its entry in dirty_ (this pass)
+    std::vector<uint32_t> setAt_;       // per entity index: its position in set_ (this pass)
     std::vector<uint32_t> depth_;       // per entity index: depth + 1, 0 = not known yet
     std::vector<ecs::Entity> chain_;    // Depth's walk
     uint32_t stamp_ = 0;

@@ -266,8 +266,7 @@ uint32_t World::Extract() {
 FrameStats World::Advance(float dt) {
     FrameStats stats;
     changed_.clear();
-    deformChanged_.swap(deformPending_);
-    deformPending_.clear();
+    deformChanged_.clear();
     time_ += dt;
     const size_t before = nextSpawn_;
     SpawnDue();
@@ -278,7 +277,7 @@ FrameStats World::Advance(float dt) {
     timer.Restart();
     stats.extracted = Extract();
     AdvanceDeformations();
-    // Deformations created by this frame's spawns are new this frame.
+    // Deformations created since the last Advance (edits, this frame's spawns) are new now.
     deformChanged_.insert(deformChanged_.end(), deformPending_.begin(), deformPending_.end());
     deformPending_.clear();
     ExtractPoses();

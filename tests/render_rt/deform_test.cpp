@@ -299,16 +299,7 @@ TEST(CpuFrameRenderer, ImageOfADeformedMeshEqualsAStaticBuildOfItsTriangles) {
     std::vector<BlasView> views = Views(s.scene);
     std::vector<Aabb> bounds = Bounds(s.scene);
     deformer.Update(s.scene, {}, views, bounds);
-    const Blas snapshot = deformer.Snapshot(s.deformation);
-    TriangleMesh mesh;
-    for (size_t slot = 0; slot < snapshot.triangles.size(); ++slot) {
-        const Triangle& t = snapshot.triangles[slot];
-        const TriangleNormals& n = snapshot.normals[slot];
-        const uint32_t v = uint32_t(mesh.positions.size());
-        mesh.positions.insert(mesh.positions.end(), {t.v0, t.v1, t.v2});
-        mesh.normals.insert(mesh.normals.end(), {n.n0, n.n1, n.n2});
-        mesh.indices.push_back({v, v + 1, v + 2});
-    }
+    const TriangleMesh mesh = RestMeshOfBlas(deformer.Snapshot(s.deformation)).rest;
     RenderScene still = s.scene;
     still.deformations.clear();
     still.blases[s.scene.deformations[s.deformation].blasId] =

@@ -2,6 +2,7 @@
 #include <vector>
 
 #include "engine/bvh/build/gpu_lbvh.h"
+#include "engine/bvh/build/sah_term.h"
 #include "engine/bvh/tlas/tlas.h"
 #include "engine/render_rt/cuda/cuda_deformer.h"
 #include "engine/render_rt/cuda/cuda_frame_renderer.h"
@@ -33,20 +34,10 @@ __global__ void AllWorldBoundsKernel(const Instance* instances, uint32_t n, cons
     worldBounds[i] = TransformBounds(instances[i].objectToWorld, blasBounds[instances[i].blasId]);
 }
 
-// Each node's term of the SAH cost (ComputeStats on the CPU), relative to the root's area; the
-// unused position 1 and an empty tree add nothing.
+// Each node's term of the SAH cost (sah_term.h, the one the deformers' policy sums too).
 __global__ void SahTermsKernel(const BvhNode* nodes, uint32_t positions, float* terms) {
     const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= positions) return;
-    const float rootArea = nodes[0].Bounds().Area();
-    const BvhNode node = nodes[i];
-    float term = 0.0f;
-    if (i != 1 && rootArea > 0.0f) {
-        const float rel = node.Bounds().Area() / rootArea;
-        term = node.IsLeaf() ? kSahIntersectionCost * float(node.primCount) * rel
-                             : kSahTraversalCost * rel;
-    }
-    terms[i] = term;
+    if (i < positions) terms[i] = SahNodeTerm(nodes, i);
 }
 
 __global__ void PickKernel(TlasView tlas, Ray ray, SceneHit* hit, uint32_t* found) {
