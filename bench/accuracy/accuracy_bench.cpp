@@ -73,6 +73,7 @@ std::vector<Setting> Settings() {
     s.push_back({"Moller-Trumbore + fixed epsilon", "ray offset", "dragon",
                  kAccuracyMollerTrumbore | kAccuracyFixedEpsilon});
     s.push_back({"naive quadratic", "sphere test", "dragon", kAccuracyNaiveSphere});
+    s.push_back({"float only (no double near hits)", "near hits", "dragon", kAccuracyFloatOnly});
     Setting sweep{"sweep SAH", "BLAS builder", "dragon"};
     sweep.builder = BvhBuilder::kSweepSah;
     s.push_back(sweep);
@@ -80,7 +81,7 @@ std::vector<Setting> Settings() {
     centroid.builder = BvhBuilder::kCentroidSplit;
     s.push_back(centroid);
     Setting textbook{"textbook: MT + epsilon + naive, 1 spp, depth 4", "all", "dragon",
-                     kAllAccuracyBits};
+                     kTextbookAccuracy};
     textbook.spp = 1;
     textbook.depth = 4;
     s.push_back(textbook);
@@ -89,6 +90,7 @@ std::vector<Setting> Settings() {
     s.push_back({"base: float", "precision", "spheres"});
     s.push_back({"naive quadratic", "sphere test", "spheres", kAccuracyNaiveSphere});
     s.push_back({"fixed epsilon 1e-4", "ray offset", "spheres", kAccuracyFixedEpsilon});
+    s.push_back({"float only (no double near hits)", "near hits", "spheres", kAccuracyFloatOnly});
     for (int frames : {0, 10, 100, 1000}) {
         Setting lbvh{frames == 0 ? "LBVH rebuilt"
                                  : "LBVH refit " + std::to_string(frames) + " frames after build",
@@ -104,6 +106,7 @@ std::string AccuracyName(uint32_t bits) {
     name += (bits & kAccuracyMollerTrumbore) ? "moller-trumbore" : "watertight";
     name += (bits & kAccuracyFixedEpsilon) ? ", fixed epsilon" : ", error bounds";
     name += (bits & kAccuracyNaiveSphere) ? ", naive sphere" : ", rtg sphere";
+    name += (bits & kAccuracyFloatOnly) ? ", float only" : ", double near hits";
     return name;
 }
 

@@ -14,8 +14,23 @@ enum AccuracyVariant : uint32_t {
     kAccuracyMollerTrumbore = 1u << 0,  // triangles: Moller-Trumbore instead of watertight
     kAccuracyNaiveSphere = 1u << 1,     // spheres: textbook quadratic instead of RTG ch. 7
     kAccuracyFixedEpsilon = 1u << 2,    // ray origins: p + 1e-4 n instead of error bounds
+    // Float only: triangle hits within their error bound of t = 0 rejected, not decided in
+    // double; spheres in float (the forms before docs/robustness.md's "near hits in double").
+    kAccuracyFloatOnly = 1u << 3,
 };
-inline constexpr uint32_t kAllAccuracyBits = 7;
+inline constexpr uint32_t kAllAccuracyBits = 15;
+// The combinations the benchmark and its tests use, each one instantiation of the trace
+// (accuracy_dispatch.h); the "textbook" setting is the first three bits together.
+inline constexpr uint32_t kTextbookAccuracy =
+    kAccuracyMollerTrumbore | kAccuracyNaiveSphere | kAccuracyFixedEpsilon;
+inline constexpr uint32_t kUsedAccuracyVariants[] = {
+    kAccuracyDefault,
+    kAccuracyMollerTrumbore,
+    kAccuracyNaiveSphere,
+    kAccuracyFixedEpsilon,
+    kAccuracyMollerTrumbore | kAccuracyFixedEpsilon,
+    kTextbookAccuracy,
+    kAccuracyFloatOnly};
 
 // kAccuracyFixedEpsilon's offset: the common shortcut, too little far from the origin (acne) and
 // too much beside thin or small geometry (leaks).
@@ -27,13 +42,18 @@ struct AccuracyPolicy {
                                         TriangleHit* hit) {
         if constexpr ((kVariant & kAccuracyMollerTrumbore) != 0)
             return IntersectTriangleMollerTrumbore(tri, r, tMax, hit);
+        else if constexpr ((kVariant & kAccuracyFloatOnly) != 0)
+            return rtrt::IntersectTriangle<false>(tri, r, tMax, hit);
         else
             return TracePolicy::IntersectTriangle(tri, r, tMax, hit);
     }
 
-    static RT_HD bool IntersectSphere(const Sphere& s, const RaySetup& r, float tMax, float* tHit) {
+    static RT_HD bool IntersectSphere(const Sphere& s, const SphereRay& r, float tMax,
+                                      float* tHit) {
         if constexpr ((kVariant & kAccuracyNaiveSphere) != 0)
             return IntersectSphereNaive(s, r, tMax, tHit);
+        else if constexpr ((kVariant & kAccuracyFloatOnly) != 0)
+            return IntersectSphereIn<float>(s, vec3(r.origin), vec3(r.dir), tMax, tHit);
         else
             return TracePolicy::IntersectSphere(s, r, tMax, tHit);
     }

@@ -4,15 +4,17 @@
 // |o - c|^2 |d|^2, so for a sphere small against its distance it loses every digit of r^2 and
 // the silhouette frays (Haines et al. 2019, figure 7-1).
 #include "engine/geometry/primitives.h"
-#include "engine/geometry/ray_setup.h"
+#include "engine/geometry/sphere_intersect.h"
 
 namespace rtrt {
 
-RT_HD inline bool IntersectSphereNaive(const Sphere& s, const RaySetup& r, float tMax,
+// In float, as the textbook has it (the object-space ray rounded to float).
+RT_HD inline bool IntersectSphereNaive(const Sphere& s, const SphereRay& r, float tMax,
                                        float* tHit) {
-    const vec3 f = r.origin - s.center;
-    const float a = glm::dot(r.dir, r.dir);
-    const float b = glm::dot(f, r.dir);
+    const vec3 dir(r.dir);
+    const vec3 f = vec3(r.origin) - s.center;
+    const float a = glm::dot(dir, dir);
+    const float b = glm::dot(f, dir);
     const float c = glm::dot(f, f) - s.radius * s.radius;
     const float disc = b * b - a * c;
     if (disc < 0.0f) return false;

@@ -13,6 +13,12 @@ RT_HD inline constexpr float Gamma(int n) {
     return (n * kMachineEpsilon) / (1 - n * kMachineEpsilon);
 }
 
+// The same for double arithmetic (unit roundoff 2^-53).
+RT_HD inline constexpr double GammaDouble(int n) {
+    constexpr double kDoubleEpsilon = 1.1102230246251565e-16;
+    return (n * kDoubleEpsilon) / (1 - n * kDoubleEpsilon);
+}
+
 RT_HD inline uint32_t FloatToBits(float f) {
 #if defined(__CUDA_ARCH__)
     return __float_as_uint(f);

@@ -13,7 +13,8 @@ struct PrimitiveTests {
                                         TriangleHit* hit) {
         return rtrt::IntersectTriangle(tri, r, tMax, hit);
     }
-    static RT_HD bool IntersectSphere(const Sphere& s, const RaySetup& r, float tMax, float* tHit) {
+    static RT_HD bool IntersectSphere(const Sphere& s, const SphereRay& r, float tMax,
+                                      float* tHit) {
         return rtrt::IntersectSphere(s, r, tMax, tHit);
     }
 };

@@ -1,7 +1,8 @@
 #pragma once
 // Watertight ray/triangle intersection: Woop, Benthin, Wald 2013, "Watertight Ray/Triangle
 // Intersection", JCGT 2(1). Edge functions that round to exactly zero are redone in double, so
-// rays through shared edges and vertices hit exactly one of the neighbours.
+// rays through shared edges and vertices hit exactly one of the neighbours. Hits whose t is within
+// its float error bound of 0 are decided in double (NearHitInDouble).
 #include "engine/geometry/primitives.h"
 #include "engine/geometry/ray_setup.h"
 
@@ -22,6 +23,37 @@ RT_HD inline float CrossDiffNoContract(float a, float b, float c, float d) {
 #endif
 }
 
+// A hit whose float t lies within its error bound of 0: in front of the origin, or behind it and
+// moved forward by rounding (a ray leaving this very triangle, or a coplanar neighbour)? The
+// plane's distance in double answers it for any gap above ~1e-15 of the triangle's size. t =
+// n.(v0 - o) / n.d, n = (v1 - v0) x (v2 - v0): each input difference of floats and each product
+// errs by one rounding, so numerator and denominator err by at most gamma_d(10) times the same
+// sums taken over absolute values; a sign that the error could flip is no hit (the origin lies
+// in the plane to double precision).
+RT_HD inline bool NearHitInDouble(const Triangle& tri, const RaySetup& r, float* t) {
+    using glm::dvec3;
+    const dvec3 v0(tri.v0);
+    const dvec3 e1 = dvec3(tri.v1) - v0, e2 = dvec3(tri.v2) - v0;
+    const dvec3 toV0 = v0 - dvec3(r.origin);
+    const dvec3 dir(r.dir);
+    const dvec3 n = glm::cross(e1, e2);
+    const dvec3 a1 = glm::abs(e1), a2 = glm::abs(e2);
+    const dvec3 nAbs(a1.y * a2.z + a1.z * a2.y, a1.z * a2.x + a1.x * a2.z,
+                     a1.x * a2.y + a1.y * a2.x);
+    const double num = glm::dot(n, toV0), den = glm::dot(n, dir);
+    const double numError = GammaDouble(10) * glm::dot(nAbs, glm::abs(toV0));
+    const double denError = GammaDouble(10) * glm::dot(nAbs, glm::abs(dir));
+    if (fabs(num) <= numError || fabs(den) <= denError) return false;
+    const double tDouble = num / den;
+    if (!(tDouble > 0.0)) return false;
+    *t = float(tDouble);
+    return *t > 0.0f;
+}
+
+// kRefineNearHits = false rejects every hit within the error bound, as pbrt-v4 does: no
+// self-hits either, but real hits nearer than the bound (1e-5 for a unit triangle) are lost, so a
+// contact shadow 1e-5 under an occluder is lit (the accuracy benchmark's float-only variant).
+template <bool kRefineNearHits = true>
 RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, float tMax,
                                     TriangleHit* hit) {
     // Vertices relative to the origin, read in the ray's permuted axis order.
@@ -51,18 +83,16 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     const float bz = r.shearZ * bKz;
     const float cz = r.shearZ * cKz;
     const float t = u * az + v * bz + w * cz;
-    // t and det share a sign for hits in front of the origin.
-    if (det < 0.0f ? t >= 0.0f : t <= 0.0f) return false;
-    // Beyond tMax, compared without dividing. The slack covers the rounding of both sides, so
-    // that this early out never rejects a hit whose divided t rounds to <= tMax (the exact test
-    // is the last line): without it a hit one ulp nearer than tMax could be rejected or not
-    // depending on rounding, and the closest of several hits at nearly equal t depended on the
-    // order the triangles were tested in (tests/robust, overlapping TLAS instances).
-    if (fabsf(t) > tMax * fabsf(det) * (1.0f + 2.0f * Gamma(3))) return false;
+    // t and det share a sign for hits in front of the origin. Without the double refinement a t of
+    // the wrong sign is no hit at once; with it only once it is beyond its error bound (below).
+    if (!kRefineNearHits && (det < 0.0f ? t >= 0.0f : t <= 0.0f)) return false;
     const float invDet = 1.0f / det;
-    // Reject t that rounding alone could have made positive: a ray leaving a surface must not hit
-    // that surface again (pbrt-v4, "Ensure that computed triangle t is conservatively greater
-    // than zero": bounds on the error of the sheared coordinates, edge functions and t).
+    // The bound on the rounding error of t (pbrt-v4, "Ensure that computed triangle t is
+    // conservatively greater than zero": bounds on the error of the sheared coordinates, edge
+    // functions and t). A t within it of 0 may be a ray leaving this very surface, which must not
+    // hit it again, or a real hit just in front of the origin: 1e-5 for a unit triangle seen by a
+    // ray whose dominant axis is not the normal's, so a contact shadow under an occluder 1e-5
+    // above was lit and a ray starting 1e-5 from a surface missed it. The double test decides.
     const float maxZt = MaxOrKeep(fabsf(az), MaxOrKeep(fabsf(bz), fabsf(cz)));
     const float maxXt = MaxOrKeep(fabsf(ax), MaxOrKeep(fabsf(bx), fabsf(cx)));
     const float maxYt = MaxOrKeep(fabsf(ay), MaxOrKeep(fabsf(by), fabsf(cy)));
@@ -79,8 +109,17 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     const float maxE = MaxOrKeep(fabsf(u), MaxOrKeep(fabsf(v), fabsf(w)));
     const float deltaT =
         3.0f * (Gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * fabsf(invDet);
-    if (t * invDet <= deltaT) return false;
-    hit->t = t * invDet;
+    const float tDivided = t * invDet;
+    // tMax is applied to the final t only (the last line), never to a float t that the double
+    // test would replace: otherwise whether a near hit is kept would depend on the tMax it was
+    // tested with, and the closest of several hits on the order the triangles were tested in.
+    if (tDivided > deltaT) {
+        hit->t = tDivided;
+    } else {
+        // (Written so that NaN is no hit.)
+        if (!kRefineNearHits || !(tDivided >= -deltaT)) return false;
+        if (!NearHitInDouble(tri, r, &hit->t)) return false;
+    }
     hit->b1 = v * invDet;
     hit->b2 = w * invDet;
     return hit->t <= tMax;

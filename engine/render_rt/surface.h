@@ -14,36 +14,64 @@ struct Surface {
     uint32_t materialId;
 };
 
+// A sphere's hit point and its error bound, in double from the world ray: the root again in the
+// exact object space (ToObjectSpaceExact), the point o + t d along the world ray, and the bound
+// from how far that point is from the sphere (measured, in double) scaled to world units by the
+// instance's largest stretch, plus the rounding to float. The float form (pbrt-v4's reprojection,
+// error gamma(5) |p| in object space) put points on a ground sphere of radius 1e6 0.3 off its
+// surface, and shadow rays started 0.66 above it. Sets point, pointError and an object-space
+// geomNormal.
+RT_HD inline void SphereSurfacePoint(const Sphere& sphere, const Ray& ray, const Instance& inst,
+                                     float tHit, Surface* surface) {
+    using glm::dvec3;
+    const SphereRay r = ToObjectSpaceExact(ray, inst);
+    double t0, t1, t = tHit;
+    if (SphereRoots<double>(sphere, r.origin, r.dir, &t0, &t1))
+        t = fabs(t0 - double(tHit)) <= fabs(t1 - double(tHit)) ? t0 : t1;
+    const dvec3 fromCentre = r.origin + t * r.dir - dvec3(sphere.center);
+    const double distance = glm::length(fromCentre);
+    const double offSphere = fabs(distance - double(sphere.radius)) +
+                             GammaDouble(16) * (distance + double(sphere.radius));
+    double stretch = 0.0;  // the linear part's Frobenius norm: at least its largest stretch
+    for (const vec4& row : inst.objectToWorld.row) {
+        const dvec3 linear(row.x, row.y, row.z);
+        stretch += glm::dot(linear, linear);
+    }
+    stretch = sqrt(stretch);
+    const dvec3 worldPoint = dvec3(ray.origin) + t * dvec3(ray.dir);
+    const double alongRay =
+        GammaDouble(8) * (glm::length(dvec3(ray.origin)) + fabs(t) * glm::length(dvec3(ray.dir)));
+    surface->point = vec3(worldPoint);
+    surface->pointError =
+        Gamma(1) * Abs(surface->point) + vec3(float(stretch * offSphere + alongRay));
+    surface->geomNormal = vec3(fromCentre);
+}
+
 RT_HD inline Surface MakeSurface(const RenderSceneView& scene, const Ray& ray,
                                  const SceneHit& hit) {
     const Instance& inst = scene.tlas.instances[hit.instance];
     const BlasView& blas = scene.tlas.blases[inst.blasId];
-    vec3 p, pError, ng, ns;
+    Surface surface;
+    vec3 ng, ns;
     if (blas.kind == GeometryKind::kTriangles) {
         const Triangle& tri = blas.triangles[hit.prim];
         const float b0 = 1.0f - hit.b1 - hit.b2;
-        p = b0 * tri.v0 + hit.b1 * tri.v1 + hit.b2 * tri.v2;
-        pError = Gamma(7) * (Abs(b0 * tri.v0) + Abs(hit.b1 * tri.v1) + Abs(hit.b2 * tri.v2));
+        const vec3 p = b0 * tri.v0 + hit.b1 * tri.v1 + hit.b2 * tri.v2;
+        const vec3 pError =
+            Gamma(7) * (Abs(b0 * tri.v0) + Abs(hit.b1 * tri.v1) + Abs(hit.b2 * tri.v2));
         ng = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
         ns = ng;
         if (blas.normals) {
             const TriangleNormals& n = blas.normals[hit.prim];
             ns = b0 * n.n0 + hit.b1 * n.n1 + hit.b2 * n.n2;
         }
+        surface.pointError = inst.objectToWorld.PointError(p, pError);
+        surface.point = inst.objectToWorld.Point(p);
     } else {
-        const Sphere& s = blas.spheres[hit.prim];
-        const Ray objectRay = ToObjectSpace(ray, inst);
-        p = objectRay.origin + hit.t * objectRay.dir;
-        // Reproject onto the sphere: the error then depends on |p| only (pbrt-v4, Sphere).
-        vec3 fromCentre = p - s.center;
-        p = s.center + fromCentre * (s.radius / glm::length(fromCentre));
-        pError = Gamma(5) * Abs(p);
-        ng = p - s.center;
+        SphereSurfacePoint(blas.spheres[hit.prim], ray, inst, hit.t, &surface);
+        ng = surface.geomNormal;
         ns = ng;
     }
-    Surface surface;
-    surface.pointError = inst.objectToWorld.PointError(p, pError);
-    surface.point = inst.objectToWorld.Point(p);
     surface.geomNormal = glm::normalize(inst.worldToObject.NormalFromInverse(ng));
     surface.shadingNormal = glm::normalize(inst.worldToObject.NormalFromInverse(ns));
     surface.frontFace = glm::dot(surface.geomNormal, ray.dir) < 0.0f;

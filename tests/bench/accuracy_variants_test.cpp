@@ -78,8 +78,8 @@ int FarSphereFailures() {
         const double a = glm::dot(d, d), b = glm::dot(c, d);
         const double expected = (b - std::sqrt(b * b - a * (glm::dot(c, c) - 1.0))) / a;
         float t;
-        const bool hit =
-            AccuracyPolicy<kVariant>::IntersectSphere(s, MakeBoxRaySetup(ray), kInfinity, &t);
+        const bool hit = AccuracyPolicy<kVariant>::IntersectSphere(
+            s, MakeSphereRay(ray.origin, ray.dir), kInfinity, &t);
         failures += !hit || std::abs(t - expected) > 0.01;
     }
     return failures;
@@ -128,10 +128,12 @@ TEST(AccuracyVariants, FixedEpsilonShowsAcneOnAFarSphereErrorBoundsDoNot) {
     EXPECT_GT(SelfHits<kAccuracyFixedEpsilon>(scene, eye, centre, spread, light), 100);
 }
 
-TEST(AccuracyVariants, FixedEpsilonWithMollerTrumboreShowsAcneOnAFarTiltedPlane) {
-    // Two triangles with corners 10^5 from the origin, tilted (as the benchmark's ground): the
-    // watertight test's conservative t rejects the self-hits a fixed offset lets through, so
-    // acne needs Moller-Trumbore's t > 0 as well.
+TEST(AccuracyVariants, FixedEpsilonShowsAcneOnAFarTiltedPlane) {
+    // Two triangles with corners 10^5 from the origin, tilted (as the benchmark's ground): a
+    // fixed offset of 1e-4 leaves the origin below the surface (its points err by ~6e-3), and the
+    // watertight test, deciding near hits in double, finds the surface there. The float-only
+    // form rejects every hit within its error bound and so hides this acne (as it hides real
+    // contact hits, docs/robustness.md); Moller-Trumbore's t > 0 shows it.
     TriangleMesh ground;
     const float h = 1e5f;
     for (vec2 c : {vec2(-h, -h), vec2(h, -h), vec2(h, h), vec2(-h, h)})
@@ -144,8 +146,11 @@ TEST(AccuracyVariants, FixedEpsilonWithMollerTrumboreShowsAcneOnAFarTiltedPlane)
     const vec3 eye(0.0f, 10.0f, 10.0f), aim(0.0f, 0.0f, -10.0f), spread(8.0f, 0.0f, 8.0f);
     const vec3 light = glm::normalize(vec3(1.0f));
     constexpr uint32_t kTextbook = kAccuracyMollerTrumbore | kAccuracyFixedEpsilon;
+    constexpr uint32_t kFloatEpsilon = kAccuracyFloatOnly | kAccuracyFixedEpsilon;
     EXPECT_EQ(SelfHits<kAccuracyDefault>(scene, eye, aim, spread, light), 0);
-    EXPECT_EQ(SelfHits<kAccuracyFixedEpsilon>(scene, eye, aim, spread, light), 0);
+    EXPECT_EQ(SelfHits<kAccuracyFloatOnly>(scene, eye, aim, spread, light), 0);
+    EXPECT_GT(SelfHits<kAccuracyFixedEpsilon>(scene, eye, aim, spread, light), 100);
+    EXPECT_EQ(SelfHits<kFloatEpsilon>(scene, eye, aim, spread, light), 0);
     EXPECT_GT(SelfHits<kTextbook>(scene, eye, aim, spread, light), 100);
 }
 

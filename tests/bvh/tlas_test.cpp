@@ -46,8 +46,7 @@ bool BruteForce(const TlasView& scene, uint32_t count, const Ray& ray, SceneHit*
         const Instance& inst = scene.instances[i];
         SceneHit h;
         float t = tMax;
-        if (IntersectBlas(scene.blases[inst.blasId], ToObjectSpace(ray, inst), t, &h, nullptr) &&
-            h.t < tMax) {
+        if (IntersectBlas(scene.blases[inst.blasId], inst, ray, t, &h, nullptr) && h.t < tMax) {
             tMax = h.t;
             *hit = h;
             hit->instance = i;

@@ -67,18 +67,19 @@ struct SceneResult {
     uint32_t instance, prim;
 };
 
-// Tests one primitive of a BLAS in object space; kInfinity when missed.
-RT_HD inline float PrimitiveT(const BlasView& blas, uint32_t slot, const Ray& objectRay,
-                              float tMax) {
+// Tests one primitive of an instance's BLAS, as the traversals do; kInfinity when missed.
+RT_HD inline float PrimitiveT(const BlasView& blas, uint32_t slot, const Instance& inst,
+                              const Ray& ray, float tMax) {
     if (blas.kind == GeometryKind::kTriangles) {
         TriangleHit h;
-        return IntersectTriangle(blas.triangles[slot], MakeRaySetup(objectRay), tMax, &h)
+        return IntersectTriangle(blas.triangles[slot], MakeRaySetup(ToObjectSpace(ray, inst)), tMax,
+                                 &h)
                    ? h.t
                    : kInfinity;
     }
     float t;
-    return IntersectSphere(blas.spheres[slot], MakeBoxRaySetup(objectRay), tMax, &t) ? t
-                                                                                     : kInfinity;
+    return IntersectSphere(blas.spheres[slot], ToObjectSpaceExact(ray, inst), tMax, &t) ? t
+                                                                                        : kInfinity;
 }
 
 struct SceneEvaluator {
@@ -95,8 +96,7 @@ struct SceneEvaluator {
             r.instance = hit.instance;
             r.prim = hit.prim;
             const Instance& inst = scene.instances[hit.instance];
-            r.recheckT =
-                PrimitiveT(scene.blases[inst.blasId], hit.prim, ToObjectSpace(ray, inst), ray.tMax);
+            r.recheckT = PrimitiveT(scene.blases[inst.blasId], hit.prim, inst, ray, ray.tMax);
         }
         TraversalStats stats;  // asking for stats selects the binary BVH on the CPU too
         SceneHit binary;
@@ -108,10 +108,9 @@ struct SceneEvaluator {
             for (uint32_t i = 0; i < instanceCount; ++i) {
                 const Instance& inst = scene.instances[i];
                 const BlasView& blas = scene.blases[inst.blasId];
-                const Ray objectRay = ToObjectSpace(ray, inst);
                 for (uint32_t slot = 0; slot < blas.primCount; ++slot) {
                     const float tMax = r.bruteHit ? r.bruteT : ray.tMax;
-                    const float t = PrimitiveT(blas, slot, objectRay, tMax);
+                    const float t = PrimitiveT(blas, slot, inst, ray, tMax);
                     if (t < tMax) {
                         r.bruteHit = 1u;
                         r.bruteT = t;

@@ -2,6 +2,7 @@
 // kernels compiled by nvcc with default contraction (gpu_runner.cu) and must meet the same
 // expected values as on the CPU. Skipped where no CUDA device is usable.
 #include "engine/render_rt/renderer.h"
+#include "tests/robust/contact_checks.h"
 #include "tests/robust/gpu_runner.h"
 #include "tests/robust/slab_checks.h"
 #include "tests/robust/spawn_checks.h"
@@ -33,6 +34,9 @@ TEST_F(GpuRobust, BadRays) { CheckBadRays(run_); }
 TEST_F(GpuRobust, SpawnFromFarSurfaces) { CheckSpawnFromFarPlanes(run_); }
 TEST_F(GpuRobust, SpawnIntoFarObjects) { CheckSpawnIntoFarObjects(run_); }
 TEST_F(GpuRobust, TlasDegenerateInputs) { CheckTlasDegenerateInputs(run_); }
+TEST_F(GpuRobust, RaysStartingNearASurfaceFindIt) { CheckRaysStartingNearASurfaceFindIt(run_); }
+TEST_F(GpuRobust, ContactShadowsAreDarkFromEveryLight) { CheckContactShadowsAreDark(run_); }
+TEST_F(GpuRobust, HugeGroundSpheresCastTheShadowsOfAPlane) { CheckSmallBoxShadowsOnGrounds(run_); }
 
 }  // namespace
 }  // namespace rtrt::robust

@@ -18,10 +18,12 @@
 
 namespace rtrt {
 
-// Tests supplies the primitive tests (primitive_tests.h).
+// The world-space ray against one instance's BLAS. Tests supplies the primitive tests
+// (primitive_tests.h); spheres are tested on the exact object-space ray (ToObjectSpaceExact).
 template <class Tests = PrimitiveTests>
-RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, float& tMax,
-                                SceneHit* hit, TraversalStats* stats) {
+RT_HD inline bool IntersectBlas(const BlasView& blas, const Instance& inst, const Ray& ray,
+                                float& tMax, SceneHit* hit, TraversalStats* stats) {
+    const Ray objectRay = ToObjectSpace(ray, inst);
     if (blas.kind == GeometryKind::kTriangles) {
         const RaySetup setup = MakeRaySetup(objectRay);
         auto intersect = [&](uint32_t slot, float& tBest) {
@@ -41,11 +43,12 @@ RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, floa
         return Traverse<Query::kIntersect>(blas.nodes, setup, tMax, intersect, stats);
     }
     const RaySetup setup = MakeBoxRaySetup(objectRay);
+    const SphereRay sphereRay = ToObjectSpaceExact(ray, inst);
     return Traverse<Query::kIntersect>(
         blas.nodes, setup, tMax,
         [&](uint32_t slot, float& tBest) {
             float t;
-            if (!Tests::IntersectSphere(blas.spheres[slot], setup, tBest, &t)) return false;
+            if (!Tests::IntersectSphere(blas.spheres[slot], sphereRay, tBest, &t)) return false;
             tBest = t;
             hit->t = t;
             hit->prim = slot;
@@ -56,8 +59,9 @@ RT_HD inline bool IntersectBlas(const BlasView& blas, const Ray& objectRay, floa
 }
 
 template <class Tests = PrimitiveTests>
-RT_HD inline bool OccludedBlas(const BlasView& blas, const Ray& objectRay, float tMax,
-                               TraversalStats* stats) {
+RT_HD inline bool OccludedBlas(const BlasView& blas, const Instance& inst, const Ray& ray,
+                               float tMax, TraversalStats* stats) {
+    const Ray objectRay = ToObjectSpace(ray, inst);
     if (blas.kind == GeometryKind::kTriangles) {
         const RaySetup setup = MakeRaySetup(objectRay);
         auto occludes = [&](uint32_t slot, float tLimit) {
@@ -71,11 +75,12 @@ RT_HD inline bool OccludedBlas(const BlasView& blas, const Ray& objectRay, float
         return Traverse<Query::kOccluded>(blas.nodes, setup, tMax, occludes, stats);
     }
     const RaySetup setup = MakeBoxRaySetup(objectRay);
+    const SphereRay sphereRay = ToObjectSpaceExact(ray, inst);
     return Traverse<Query::kOccluded>(
         blas.nodes, setup, tMax,
         [&](uint32_t slot, float tLimit) {
             float t;
-            return Tests::IntersectSphere(blas.spheres[slot], setup, tLimit, &t);
+            return Tests::IntersectSphere(blas.spheres[slot], sphereRay, tLimit, &t);
         },
         stats);
 }
@@ -92,9 +97,8 @@ RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit
         [&](uint32_t slot, float& tBest) {
             const uint32_t id = scene.instanceOrder[slot];
             const Instance& inst = scene.instances[id];
-            if (!IntersectBlas<Tests>(scene.blases[inst.blasId], ToObjectSpace(ray, inst), tBest,
-                                      hit, stats))
-                return false;
+            const BlasView& blas = scene.blases[inst.blasId];
+            if (!IntersectBlas<Tests>(blas, inst, ray, tBest, hit, stats)) return false;
             hit->instance = id;
             return true;
         },
@@ -112,8 +116,8 @@ RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
         scene.nodes, setup, tMax,
         [&](uint32_t slot, float tLimit) {
             const Instance& inst = scene.instances[scene.instanceOrder[slot]];
-            Ray objectRay = ToObjectSpace(ray, inst);
-            return OccludedBlas<Tests>(scene.blases[inst.blasId], objectRay, tLimit, stats);
+            const BlasView& blas = scene.blases[inst.blasId];
+            return OccludedBlas<Tests>(blas, inst, ray, tLimit, stats);
         },
         stats);
 }

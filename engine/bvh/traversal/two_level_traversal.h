@@ -46,6 +46,24 @@ RT_HD inline Ray ToObjectSpace(const Ray& ray, const Instance& inst) {
     return r;
 }
 
+// The same in double, for the sphere test (sphere_intersect.h): the float transform's entries
+// taken as exact, so that a huge sphere's space keeps the ray's position to far below its own
+// float spacing. Evaluated only at sphere leaves.
+RT_HD inline SphereRay ToObjectSpaceExact(const Ray& ray, const Instance& inst) {
+    const Affine& m = inst.worldToObject;
+    const glm::dvec3 local = glm::dvec3(ray.origin) - glm::dvec3(inst.objectToWorld.row[0].w,
+                                                                 inst.objectToWorld.row[1].w,
+                                                                 inst.objectToWorld.row[2].w);
+    const glm::dvec3 dir(ray.dir);
+    SphereRay r;
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec3 row(m.row[i].x, m.row[i].y, m.row[i].z);
+        r.origin[i] = glm::dot(row, local);
+        r.dir[i] = glm::dot(row, dir);
+    }
+    return r;
+}
+
 // Stack entries: a node index of the level in use, or one of these two.
 inline constexpr uint32_t kReturnToWorld = 0xffffffffu;
 inline constexpr uint32_t kInstanceEntry = 0x80000000u;  // | TLAS leaf slot
@@ -176,7 +194,8 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                     hit->b1 = h.b1;
                     hit->b2 = h.b2;
                 } else {
-                    if (!Tests::IntersectSphere(blas->spheres[slot], setup, tMax, &t)) continue;
+                    const SphereRay exact = ToObjectSpaceExact(ray, scene.instances[instanceId]);
+                    if (!Tests::IntersectSphere(blas->spheres[slot], exact, tMax, &t)) continue;
                     if constexpr (kQuery == Query::kOccluded) return true;
                     hit->b1 = hit->b2 = 0.0f;
                 }
