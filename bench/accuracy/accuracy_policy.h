@@ -53,7 +53,7 @@ struct AccuracyPolicy {
         if constexpr ((kVariant & kAccuracyNaiveSphere) != 0)
             return IntersectSphereNaive(s, r, tMax, tHit);
         else if constexpr ((kVariant & kAccuracyFloatOnly) != 0)
-            return IntersectSphereIn<float>(s, vec3(r.origin), vec3(r.dir), tMax, tHit);
+            return IntersectSphereIn<float>(s, vec3(r.origin), r.dir, tMax, tHit);
         else
             return TracePolicy::IntersectSphere(s, r, tMax, tHit);
     }

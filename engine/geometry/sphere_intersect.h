@@ -3,26 +3,26 @@
 // "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems (2019), chapter 7: the
 // discriminant from the closest point on the line, the roots from the non-cancelling quadratic.
 //
-// Production evaluates it in double on a ray brought into the sphere's space in double
-// (SphereRay): in float, a ground sphere of radius 1e6 knows its own surface only to the float
-// spacing of 1e6 (0.06), both in the object-space ray origin and in c = |o - c|^2 - r^2, so rays
-// leaving it had to start far above it and small objects on it cast no shadow. In double the same
-// errors are 2^29 times smaller. Spheres are few, so the cost is small (`rtrt bench accuracy`).
+// Production takes the two quantities that cancel in double: the ray origin relative to the
+// centre, f = o - c, from an origin brought into the sphere's space in double (SphereRay), and
+// c = |f|^2 - r^2, which sets the near root. In float, a ground sphere of radius 1e6 knows both
+// only to the float spacing of 1e6 (0.06), so a ray leaving it could not tell whether it started
+// inside, rays had to start far above it and small objects on it cast no shadow. The rest (b, the
+// discriminant, q) is relative-error safe in float. `rtrt bench accuracy` shows the cost.
 #include "engine/geometry/primitives.h"
 #include "engine/geometry/ray_setup.h"
 
 namespace rtrt {
 
-// A ray in a sphere BLAS's object space, in double (ToObjectSpaceExact, two_level_traversal.h).
+// A ray in a sphere BLAS's object space, its origin in double (ToObjectSpaceExact,
+// two_level_traversal.h).
 struct SphereRay {
     glm::dvec3 origin;
-    glm::dvec3 dir;
+    vec3 dir;
 };
 
 // The float ray as it is, exactly.
-RT_HD inline SphereRay MakeSphereRay(vec3 origin, vec3 dir) {
-    return {glm::dvec3(origin), glm::dvec3(dir)};
-}
+RT_HD inline SphereRay MakeSphereRay(vec3 origin, vec3 dir) { return {glm::dvec3(origin), dir}; }
 
 RT_HD inline float SqrtIn(float v) { return sqrtf(v); }
 RT_HD inline double SqrtIn(double v) { return sqrt(v); }
@@ -76,7 +76,32 @@ RT_HD inline bool IntersectSphereIn(const Sphere& s, const glm::vec<3, Real>& o,
 }
 
 RT_HD inline bool IntersectSphere(const Sphere& s, const SphereRay& r, float tMax, float* tHit) {
-    return IntersectSphereIn<double>(s, r.origin, r.dir, tMax, tHit);
+    const glm::dvec3 fDouble = r.origin - glm::dvec3(s.center);
+    const double radius = s.radius;
+    const double c = glm::dot(fDouble, fDouble) - radius * radius;
+    const vec3 f(fDouble);
+    const float a = glm::dot(r.dir, r.dir);
+    const float bPrime = -glm::dot(f, r.dir);
+    const vec3 l = f + (bPrime / a) * r.dir;  // from the centre to the line's closest point
+    const float disc = a * (s.radius * s.radius - glm::dot(l, l));
+    if (disc < 0.0f) return false;
+    const float q = bPrime + copysignf(sqrtf(disc), bPrime);
+    float t0 = q != 0.0f ? float(c / double(q)) : 0.0f;
+    float t1 = q / a;
+    if (t0 > t1) {
+        const float t = t0;
+        t0 = t1;
+        t1 = t;
+    }
+    if (t0 > 0.0f && t0 <= tMax) {
+        *tHit = t0;
+        return true;
+    }
+    if (t1 > 0.0f && t1 <= tMax) {
+        *tHit = t1;
+        return true;
+    }
+    return false;
 }
 
 // For a ray already in object space in float (a single BLAS, tests).

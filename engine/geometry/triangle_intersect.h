@@ -30,7 +30,7 @@ RT_HD inline float CrossDiffNoContract(float a, float b, float c, float d) {
 // errs by one rounding, so numerator and denominator err by at most gamma_d(10) times the same
 // sums taken over absolute values; a sign that the error could flip is no hit (the origin lies
 // in the plane to double precision).
-RT_HD inline bool NearHitInDouble(const Triangle& tri, const RaySetup& r, float* t) {
+RT_HD RT_COLD inline bool NearHitInDouble(const Triangle& tri, const RaySetup& r, float* t) {
     using glm::dvec3;
     const dvec3 v0(tri.v0);
     const dvec3 e1 = dvec3(tri.v1) - v0, e2 = dvec3(tri.v2) - v0;
@@ -83,16 +83,13 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     const float bz = r.shearZ * bKz;
     const float cz = r.shearZ * cKz;
     const float t = u * az + v * bz + w * cz;
-    // t and det share a sign for hits in front of the origin. Without the double refinement a t of
-    // the wrong sign is no hit at once; with it only once it is beyond its error bound (below).
-    if (!kRefineNearHits && (det < 0.0f ? t >= 0.0f : t <= 0.0f)) return false;
-    const float invDet = 1.0f / det;
     // The bound on the rounding error of t (pbrt-v4, "Ensure that computed triangle t is
     // conservatively greater than zero": bounds on the error of the sheared coordinates, edge
-    // functions and t). A t within it of 0 may be a ray leaving this very surface, which must not
-    // hit it again, or a real hit just in front of the origin: 1e-5 for a unit triangle seen by a
-    // ray whose dominant axis is not the normal's, so a contact shadow under an occluder 1e-5
-    // above was lit and a ray starting 1e-5 from a surface missed it. The double test decides.
+    // functions and t), here still multiplied by |det|. A t within it of 0 may be a ray leaving
+    // this very surface, which must not hit it again, or a real hit just in front of the origin:
+    // 1e-5 for a unit triangle seen by a ray whose dominant axis is not the normal's, so a
+    // contact shadow under an occluder 1e-5 above was lit and a ray starting 1e-5 from a surface
+    // missed it. The double test decides those (kRefineNearHits).
     const float maxZt = MaxOrKeep(fabsf(az), MaxOrKeep(fabsf(bz), fabsf(cz)));
     const float maxXt = MaxOrKeep(fabsf(ax), MaxOrKeep(fabsf(bx), fabsf(cx)));
     const float maxYt = MaxOrKeep(fabsf(ay), MaxOrKeep(fabsf(by), fabsf(cy)));
@@ -107,17 +104,24 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     const float deltaY = Gamma(5) * (maxYt + maxZ);
     const float deltaE = 2.0f * (Gamma(2) * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
     const float maxE = MaxOrKeep(fabsf(u), MaxOrKeep(fabsf(v), fabsf(w)));
-    const float deltaT =
-        3.0f * (Gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * fabsf(invDet);
-    const float tDivided = t * invDet;
-    // tMax is applied to the final t only (the last line), never to a float t that the double
-    // test would replace: otherwise whether a near hit is kept would depend on the tMax it was
-    // tested with, and the closest of several hits on the order the triangles were tested in.
-    if (tDivided > deltaT) {
-        hit->t = tDivided;
+    const float deltaTimesDet = 3.0f * (Gamma(3) * maxE * maxZt + deltaE * maxZt + deltaZ * maxE);
+    // t with the sign of t / det, so that both comparisons below need no division.
+    const float tSigned = det < 0.0f ? -t : t;
+    const float absDet = fabsf(det);
+    const float invDet = 1.0f / det;
+    if (tSigned > deltaTimesDet) {
+        // Beyond tMax, compared without dividing. The slack covers the rounding of both sides,
+        // so that this early out never rejects a hit whose divided t rounds to <= tMax (the
+        // exact test is the last line): without it a hit one ulp nearer than tMax could be
+        // rejected or not depending on rounding, and the closest of several hits at nearly
+        // equal t depended on the order the triangles were tested in (tests/robust, overlapping
+        // TLAS instances). It applies only outside the band of the double test, whose answer
+        // must not depend on the tMax it is asked with, for the same reason.
+        if (tSigned > tMax * absDet * (1.0f + 2.0f * Gamma(3))) return false;
+        hit->t = t * invDet;
     } else {
-        // (Written so that NaN is no hit.)
-        if (!kRefineNearHits || !(tDivided >= -deltaT)) return false;
+        // Behind the origin beyond the bound, or no double test: no hit (NaN included).
+        if (!kRefineNearHits || !(tSigned >= -deltaTimesDet)) return false;
         if (!NearHitInDouble(tri, r, &hit->t)) return false;
     }
     hit->b1 = v * invDet;

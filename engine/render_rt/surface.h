@@ -26,9 +26,10 @@ RT_HD inline void SphereSurfacePoint(const Sphere& sphere, const Ray& ray, const
     using glm::dvec3;
     const SphereRay r = ToObjectSpaceExact(ray, inst);
     double t0, t1, t = tHit;
-    if (SphereRoots<double>(sphere, r.origin, r.dir, &t0, &t1))
+    const dvec3 dir(r.dir);
+    if (SphereRoots<double>(sphere, r.origin, dir, &t0, &t1))
         t = fabs(t0 - double(tHit)) <= fabs(t1 - double(tHit)) ? t0 : t1;
-    const dvec3 fromCentre = r.origin + t * r.dir - dvec3(sphere.center);
+    const dvec3 fromCentre = r.origin + t * dir - dvec3(sphere.center);
     const double distance = glm::length(fromCentre);
     const double offSphere = fabs(distance - double(sphere.radius)) +
                              GammaDouble(16) * (distance + double(sphere.radius));

@@ -46,21 +46,18 @@ RT_HD inline Ray ToObjectSpace(const Ray& ray, const Instance& inst) {
     return r;
 }
 
-// The same in double, for the sphere test (sphere_intersect.h): the float transform's entries
-// taken as exact, so that a huge sphere's space keeps the ray's position to far below its own
-// float spacing. Evaluated only at sphere leaves.
+// The same with the origin in double, for the sphere test (sphere_intersect.h): the float
+// transform's entries taken as exact, so that a huge sphere's space keeps the ray's position to
+// far below its own float spacing. Evaluated only for sphere BLASes.
 RT_HD inline SphereRay ToObjectSpaceExact(const Ray& ray, const Instance& inst) {
     const Affine& m = inst.worldToObject;
     const glm::dvec3 local = glm::dvec3(ray.origin) - glm::dvec3(inst.objectToWorld.row[0].w,
                                                                  inst.objectToWorld.row[1].w,
                                                                  inst.objectToWorld.row[2].w);
-    const glm::dvec3 dir(ray.dir);
     SphereRay r;
-    for (int i = 0; i < 3; ++i) {
-        const glm::dvec3 row(m.row[i].x, m.row[i].y, m.row[i].z);
-        r.origin[i] = glm::dot(row, local);
-        r.dir[i] = glm::dot(row, dir);
-    }
+    for (int i = 0; i < 3; ++i)
+        r.origin[i] = glm::dot(glm::dvec3(m.row[i].x, m.row[i].y, m.row[i].z), local);
+    r.dir = m.Vector(ray.dir);
     return r;
 }
 
