@@ -13,6 +13,7 @@
 #include "bench/bench_commands.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/interrupt.h"
 #include "engine/core/timer.h"
 #include "game/assets/model_cache.h"
 #include "game/assets/model_dir.h"
@@ -35,6 +36,28 @@ std::string ModelPath(const std::string& name) {
     return ModelDir() + "/dragon_vrip" + suffix + ".ply.gz";
 }
 
+// The bench's scratch folder, removed at the end, on an error and on an interrupt.
+class ScratchFolder {
+  public:
+    explicit ScratchFolder(fs::path path) : path_(std::move(path)) {
+        TemporariesLock lock;
+        fs::create_directories(path_);
+        lock.Register(path_.string());
+    }
+    ~ScratchFolder() {
+        TemporariesLock lock;
+        std::error_code ignored;
+        fs::remove_all(path_, ignored);
+        lock.Unregister(path_.string());
+    }
+    ScratchFolder(const ScratchFolder&) = delete;
+    ScratchFolder& operator=(const ScratchFolder&) = delete;
+    const fs::path& Path() const { return path_; }
+
+  private:
+    fs::path path_;
+};
+
 struct Run {
     double hashMs, parseMs, buildMs, writeMs, loadMs, totalMs;
 };
@@ -43,9 +66,9 @@ void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine
     KeepLargeAllocationsInHeap();  // as rtrt convert does
     BvhBuildOptions options;
     ParseBuilder(o.builder, &options.builder);
-    const fs::path dir =
-        fs::temp_directory_path() / ("rtrt_bench_convert_" + std::to_string(getpid()));
-    fs::create_directories(dir);
+    const ScratchFolder scratch(fs::temp_directory_path() /
+                                ("rtrt_bench_convert_" + std::to_string(getpid())));
+    const fs::path& dir = scratch.Path();
     nlohmann::json report;
     report["machine"] = machine;
     report["builder"] = o.builder;
@@ -100,7 +123,6 @@ void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine
              {"file_bytes", fs::file_size(out)},
              {"runs", o.runs}});
     }
-    fs::remove_all(dir);
     if (!o.output.empty()) {
         std::ofstream(o.output) << report.dump(2) << "\n";
         std::printf("rtrt: wrote %s\n", o.output.c_str());

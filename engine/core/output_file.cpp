@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "engine/core/error.h"
+#include "engine/core/interrupt.h"
 
 namespace rtrt {
 namespace {
@@ -40,13 +41,18 @@ ssize_t WriteSome(int fd, const void* data, size_t size, uint64_t done) {
 
 OutputFile::OutputFile(std::string target, std::string temp)
     : target_(std::move(target)), temp_(std::move(temp)) {
+    TemporariesLock lock;
     fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd_ < 0) throw OutputError(target_, std::strerror(errno));
+    lock.Register(temp_);
 }
 
 OutputFile::~OutputFile() {
     if (fd_ >= 0) ::close(fd_);
-    if (!committed_) ::unlink(temp_.c_str());
+    if (committed_) return;
+    TemporariesLock lock;
+    ::unlink(temp_.c_str());
+    lock.Unregister(temp_);
 }
 
 void OutputFile::Write(const void* data, size_t size) {
@@ -69,9 +75,11 @@ void OutputFile::Finish(bool durable) {
 }
 
 void OutputFile::Commit() {
+    TemporariesLock lock;  // an interrupt comes before the rename or after the unregistering
     if (std::rename(temp_.c_str(), target_.c_str()) != 0)
         throw OutputError(target_, std::strerror(errno));
     committed_ = true;
+    lock.Unregister(temp_);
 }
 
 }  // namespace rtrt

@@ -1,6 +1,7 @@
 #pragma once
 // Output files that appear whole or not at all: a temporary in the output's folder, every write,
-// flush and close checked, renamed over the output only when complete, removed on every failure.
+// flush and close checked, renamed over the output only when complete, removed on every failure
+// and on an interrupt (engine/core/interrupt.h).
 #include <cstddef>
 #include <cstdint>
 #include <string>

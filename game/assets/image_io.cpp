@@ -120,6 +120,7 @@ void WriteImage(const std::string& path, const Image& image) {
     std::string name = ".";  // appended piecewise: GCC 12 warns falsely on a + chain here
     name += std::filesystem::path(path).stem().string();
     name += ".partial";
+    name += std::to_string(::getpid());  // its own per process: an interrupt removes only ours
     name += ext;
     OutputFile file(path, (std::filesystem::path(path).parent_path() / name).string());
     if (ext == ".ppm" || ext == ".pfm") {

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "engine/core/error.h"
+#include "engine/core/interrupt.h"
 #include "game/assets/model_dir.h"
 #include "game/cli/commands.h"
 
@@ -28,6 +29,7 @@ int RunScript(const std::string& script, const std::string& dir) {
     const pid_t child = fork();
     if (child < 0) return -1;
     if (child == 0) {
+        ResetInterruptHandlingInChild();  // the script's own Ctrl-C handling
         setenv("RTRT_MODEL_DIR", dir.c_str(), 1);
         execl("/bin/bash", "bash", script.c_str(), static_cast<char*>(nullptr));
         std::fprintf(stderr, "rtrt: error: %s: cannot run: %s\n", script.c_str(),

@@ -6,6 +6,7 @@
 
 #include "bench/bench_commands.h"
 #include "engine/core/error.h"
+#include "engine/core/interrupt.h"
 #include "game/cli/commands.h"
 
 namespace {
@@ -51,6 +52,7 @@ bool ReportUnknownCommand(const CLI::App& app, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    rtrt::InstallInterruptHandler();  // before any thread starts
     CLI::App app{"rtrt: a real-time ray tracer (CUDA and CPU back ends)", "rtrt"};
     app.set_version_flag("--version", "rtrt 0.1.0");
     app.require_subcommand(1);

@@ -1,0 +1,108 @@
+#include "engine/core/interrupt.h"
+
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <filesystem>
+#include <iterator>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+namespace rtrt {
+namespace {
+
+struct Temporaries {
+    std::mutex mutex;
+    std::vector<std::string> paths;  // a path twice when two writers share it, once per writer
+};
+
+// Never destroyed: the interrupt thread may clean up while main returns and statics die.
+Temporaries& Registry() {
+    static Temporaries* registry = new Temporaries;
+    return *registry;
+}
+
+sigset_t InterruptSignals() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    return set;
+}
+
+[[noreturn]] void CleanUpAndExit(int signo) {
+    Temporaries& registry = Registry();
+    registry.mutex.lock();  // kept: no thread makes or renames a temporary from here on
+    // Newest first, so that a file inside a registered folder goes before the folder.
+    for (auto path = registry.paths.rbegin(); path != registry.paths.rend(); ++path) {
+        std::error_code ignored;  // nothing more can be done about a failure on the way out
+        std::filesystem::remove_all(*path, ignored);
+    }
+    // A progress bar on a terminal leaves its line open.
+    char line[160];
+    const int size =
+        std::snprintf(line, sizeof(line),
+                      "%srtrt: interrupted (%s): finished outputs are kept, "
+                      "unfinished ones removed\n",
+                      isatty(STDERR_FILENO) ? "\n" : "", signo == SIGINT ? "SIGINT" : "SIGTERM");
+    // write(2), not stdio: a thread stuck in stdio holds its lock, and the exit must not wait.
+    [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, line, size_t(size));
+    ::_exit(128 + signo);
+}
+
+pthread_t interruptThread;  // set before the forwarding handler is installed
+
+// Threads that libraries start before main (log4cplus, loaded with OpenImageIO, starts a pool in
+// its static initialiser) do not block the two signals: one delivered to them is handed on.
+void ForwardToInterruptThread(int signo) {
+    const int savedErrno = errno;
+    pthread_kill(interruptThread, signo);
+    errno = savedErrno;
+}
+
+void WaitForInterrupt() {
+    const sigset_t set = InterruptSignals();
+    int signo = 0;
+    while (sigwait(&set, &signo) != 0) continue;  // fails only for a bad set
+    CleanUpAndExit(signo);
+}
+
+}  // namespace
+
+void InstallInterruptHandler() {
+    const sigset_t set = InterruptSignals();
+    pthread_sigmask(SIG_BLOCK, &set, nullptr);
+    std::thread waiter(WaitForInterrupt);
+    interruptThread = waiter.native_handle();  // valid for good: the thread never returns
+    waiter.detach();
+    struct sigaction forward = {};
+    forward.sa_handler = ForwardToInterruptThread;
+    forward.sa_mask = set;
+    forward.sa_flags = SA_RESTART;
+    sigaction(SIGINT, &forward, nullptr);
+    sigaction(SIGTERM, &forward, nullptr);
+}
+
+void ResetInterruptHandlingInChild() {
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    const sigset_t set = InterruptSignals();
+    pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+}
+
+TemporariesLock::TemporariesLock() : lock_(Registry().mutex) {}
+
+void TemporariesLock::Register(const std::string& path) { Registry().paths.push_back(path); }
+
+void TemporariesLock::Unregister(const std::string& path) {
+    std::vector<std::string>& paths = Registry().paths;
+    const auto found = std::find(paths.rbegin(), paths.rend(), path);
+    if (found != paths.rend()) paths.erase(std::next(found).base());
+}
+
+}  // namespace rtrt

@@ -1,0 +1,35 @@
+#pragma once
+// SIGINT and SIGTERM stop rtrt at once, at any point of its work: the registered temporaries are
+// removed, a line says so, and the process exits 128 + the signal's number (130, 143). Outputs
+// take their name only when complete (OutputFile), so what was finished stays whole.
+#include <mutex>
+#include <string>
+
+namespace rtrt {
+
+// Blocks SIGINT and SIGTERM and waits for them on a thread of their own, which does the cleanup
+// with ordinary (not async-signal-safe) calls; a handler hands the signals on from threads that
+// were started before. Call once, first thing in main: rtrt's own threads inherit the mask.
+void InstallInterruptHandler();
+
+// Child processes: SIGINT and SIGTERM back to their default action and unblocked, as the mask
+// survives exec. Async-signal-safe, for use between fork and exec.
+void ResetInterruptHandlingInChild();
+
+// The temporaries an interrupt removes (files, or folders with what they hold). While a lock is
+// alive the interrupt waits for it, so a temporary made and registered, or renamed (removed) and
+// unregistered, under one lock is never half done when the cleanup runs.
+class TemporariesLock {
+  public:
+    TemporariesLock();
+    TemporariesLock(const TemporariesLock&) = delete;
+    TemporariesLock& operator=(const TemporariesLock&) = delete;
+
+    void Register(const std::string& path);
+    void Unregister(const std::string& path);
+
+  private:
+    std::unique_lock<std::mutex> lock_;
+};
+
+}  // namespace rtrt

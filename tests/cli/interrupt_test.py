@@ -1,0 +1,176 @@
+#!/usr/bin/env python3
+"""SIGINT and SIGTERM at random moments under convert, render and play --headless.
+
+Each command runs once uninterrupted (the reference), then TRIALS times, each in a fresh folder,
+with SIGINT or SIGTERM sent at a random moment of the reference's run time. Every trial must exit
+130 (SIGINT) or 143 (SIGTERM) with rtrt's one line, or 0 if it finished first, promptly, and leave
+in its folder only files byte-identical to the reference's: finished frames and a complete target,
+or no target; no temporary, no partial frame, no half-written BLAS cache entry.
+
+A moment counts from when rtrt has installed its handler (SigCgt in /proc/PID/status): before
+that the loader is still running rtrt, and no program can clean up.
+
+usage: interrupt_test.py RTRT WORK_DIR EXT [SEED]   (SEED: else RTRT_TEST_SEED, else random)
+"""
+import filecmp
+import os
+import random
+import shutil
+import signal
+import struct
+import subprocess
+import sys
+import time
+
+RTRT, WORK, EXT = sys.argv[1], sys.argv[2], sys.argv[3]
+SEED = int(sys.argv[4] if len(sys.argv) > 4 else os.environ.get("RTRT_TEST_SEED")
+           or random.SystemRandom().randrange(1 << 31))
+TRIALS = 9
+EXIT_STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}
+HANDLED = (1 << (signal.SIGINT - 1)) | (1 << (signal.SIGTERM - 1))
+PROMPT_S = 2.0  # from the signal to the exit, on a loaded two-core machine
+
+
+def write_wavy_grid_ply(path, n):
+    """A binary PLY of an n x n grid with ripples: 2 n^2 triangles that no builder finds trivial."""
+    with open(path, "wb") as f:
+        f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {(n + 1) ** 2}\n"
+                 "property float x\nproperty float y\nproperty float z\n"
+                 f"element face {2 * n * n}\nproperty list uchar int vertex_indices\n"
+                 "end_header\n").encode())
+        rng = random.Random(1)
+        f.write(b"".join(struct.pack("<3f", x / n - 0.5, y / n - 0.5, 0.05 * rng.random())
+                         for y in range(n + 1) for x in range(n + 1)))
+        faces = []
+        for y in range(n):
+            for x in range(n):
+                a = y * (n + 1) + x
+                faces.append(struct.pack("<B3iB3i", 3, a, a + 1, a + n + 2, 3, a, a + n + 2,
+                                         a + n + 1))
+        f.write(b"".join(faces))
+
+
+def wait_until_handled(proc):
+    """Waits until rtrt catches SIGINT and SIGTERM; False if it exited first."""
+    while proc.poll() is None:
+        try:
+            with open(f"/proc/{proc.pid}/status") as f:
+                mask = next(int(line.split()[1], 16) for line in f if line.startswith("SigCgt:"))
+            if mask & HANDLED == HANDLED:
+                return True
+        except (OSError, StopIteration):
+            pass
+        time.sleep(0.001)
+    return False
+
+
+def run(args, folder, delay=None, signo=None):
+    """Runs rtrt with outputs in FOLDER; SIGNO DELAY seconds after it is ready, if given.
+    Returns (status, stderr, seconds from ready to exit, seconds from the signal to exit)."""
+    os.makedirs(folder)
+    env = dict(os.environ, RTRT_CACHE_DIR=os.path.join(folder, "cache"))
+    proc = subprocess.Popen([RTRT] + args(folder), stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, env=env, text=True)
+    if not wait_until_handled(proc):
+        sys.exit(f"{args(folder)}: exited ({proc.wait()}) before it caught SIGINT and SIGTERM")
+    ready = time.monotonic()
+    sent = None
+    if signo is not None:
+        try:
+            proc.wait(timeout=delay)
+        except subprocess.TimeoutExpired:
+            proc.send_signal(signo)
+            sent = time.monotonic()
+    _, stderr = proc.communicate(timeout=120)
+    end = time.monotonic()
+    return proc.returncode, stderr, end - ready, (end - sent) if sent else 0.0
+
+
+def files_under(folder):
+    return sorted(os.path.relpath(os.path.join(d, name), folder)
+                  for d, _, names in os.walk(folder) for name in names)
+
+
+def check_reference(name, args, expected):
+    folder = os.path.join(WORK, name, "reference")
+    status, stderr, seconds, _ = run(args, folder)
+    files = files_under(folder)
+    if status != 0 or not set(expected) <= set(files):
+        sys.exit(f"{name} reference: status {status}, files {files}:\n{stderr}")
+    stray = [f for f in files if os.path.basename(f).startswith(".") or "tmp" in f
+             or "partial" in f]
+    if stray:
+        sys.exit(f"{name} reference: left {stray}")
+    print(f"{name} reference: {seconds:.2f} s, {len(files)} files")
+    return folder, seconds
+
+
+def check_trial(name, trial, status, stderr, signo, folder, reference):
+    if status not in (0, EXIT_STATUS[signo]):
+        sys.exit(f"{name} trial {trial}: status {status}, expected {EXIT_STATUS[signo]} for "
+                 f"{signal.Signals(signo).name} (or 0):\n{stderr}")
+    if status and f"rtrt: interrupted ({signal.Signals(signo).name})" not in stderr:
+        sys.exit(f"{name} trial {trial}: no interruption message:\n{stderr}")
+    files, kept = files_under(folder), files_under(reference)
+    foreign = [f for f in files if f not in kept]
+    if foreign:
+        sys.exit(f"{name} trial {trial}: left {foreign} in {folder}")
+    _, differ, errors = filecmp.cmpfiles(reference, folder, files, shallow=False)
+    if differ or errors:
+        sys.exit(f"{name} trial {trial}: {differ + errors} differ from the reference")
+    if status == 0 and files != kept:
+        sys.exit(f"{name} trial {trial}: finished without {sorted(set(kept) - set(files))}")
+    return len(files)
+
+
+def interrupt_many(rng, name, args, expected):
+    reference, seconds = check_reference(name, args, expected)
+    interrupted, slowest = 0, 0.0
+    for trial in range(TRIALS):
+        signo = rng.choice(list(EXIT_STATUS))
+        delay = rng.uniform(0.0, 0.9 * seconds)
+        folder = os.path.join(WORK, name, f"trial_{trial}")
+        status, stderr, _, latency = run(args, folder, delay, signo)
+        kept = check_trial(name, trial, status, stderr, signo, folder, reference)
+        if latency > PROMPT_S:
+            sys.exit(f"{name} trial {trial}: exited {latency:.2f} s after the signal")
+        interrupted += status != 0
+        slowest = max(slowest, latency)
+        print(f"{name} trial {trial}: {signal.Signals(signo).name} after {delay:.3f} s -> "
+              f"status {status}, {kept} files kept, exit {latency * 1000:.0f} ms after")
+        shutil.rmtree(folder)
+    if interrupted < TRIALS // 2:
+        sys.exit(f"{name}: only {interrupted} of {TRIALS} trials were interrupted")
+    print(f"{name}: ok, {interrupted} of {TRIALS} interrupted, slowest exit {slowest * 1000:.0f} ms")
+
+
+def main():
+    print(f"seed {SEED} (rerun: RTRT_TEST_SEED={SEED})")
+    rng = random.Random(SEED)
+    shutil.rmtree(WORK, ignore_errors=True)
+    os.makedirs(WORK)
+    big, small = os.path.join(WORK, "big.ply"), os.path.join(WORK, "small.ply")
+    write_wavy_grid_ply(big, 500)
+    write_wavy_grid_ply(small, 200)
+    scene = os.path.join(WORK, "mesh.json")
+    with open(scene, "w") as f:
+        f.write('{ "camera": { "position": [0, 0, 1.2], "look_at": [0, 0, 0] },'
+                ' "models": { "m": { "type": "mesh", "file": "small.ply" } },'
+                ' "instances": [ { "model": "m", "rotation": [-30, 0, 0] } ] }')
+    physics = os.path.join(os.path.dirname(__file__), "..", "..", "assets", "scenes",
+                           "demo_physics.json")
+    frames = 24
+    interrupt_many(rng, "convert", lambda d: ["convert", big, "-o", os.path.join(d, "m.rtmodel")],
+                   ["m.rtmodel"])
+    interrupt_many(rng, "render",
+                   lambda d: ["render", scene, "--backend", "cpu", "--size", "960x720", "--spp",
+                              "4", "-o", os.path.join(d, "out" + EXT)], ["out" + EXT])
+    interrupt_many(rng, "play",
+                   lambda d: ["play", physics, "--headless", "--backend", "cpu", "--frames",
+                              str(frames), "--size", "320x180", "-o",
+                              os.path.join(d, "f_%04d" + EXT)],
+                   [f"f_{i:04d}{EXT}" for i in range(frames)])
+    shutil.rmtree(WORK)
+
+
+main()
