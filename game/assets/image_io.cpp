@@ -15,8 +15,7 @@
 #include "engine/core/output_file.h"
 
 #if defined(RTRT_WITH_OIIO)
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include "game/image_library/image_library.h"
 #endif
 
 namespace rtrt {
@@ -33,6 +32,15 @@ bool IsFloatFormat(const std::string& ext) {
     return ext == ".exr" || ext == ".pfm" || ext == ".hdr";
 }
 
+// clamp(value) * 255 rounded, RGB, row 0 the top.
+std::vector<uint8_t> EightBit(const Image& image) {
+    std::vector<uint8_t> bytes(image.pixels.size() * 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            bytes[3 * i + c] = uint8_t(std::clamp(image.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
+    return bytes;
+}
+
 // PPM or PFM bytes, written without OpenImageIO.
 std::string EncodePortable(const Image& image, const std::string& ext) {
     std::string bytes;
@@ -46,42 +54,20 @@ std::string EncodePortable(const Image& image, const std::string& ext) {
     } else {
         bytes =
             "P6\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n255\n";
-        bytes.reserve(bytes.size() + image.pixels.size() * 3);
-        for (const vec3& p : image.pixels)
-            for (int c = 0; c < 3; ++c)
-                bytes += char(uint8_t(std::clamp(p[c], 0.0f, 1.0f) * 255.0f + 0.5f));
+        const std::vector<uint8_t> pixels = EightBit(image);
+        bytes.append(pixels.begin(), pixels.end());
     }
     return bytes;
 }
 
 #if defined(RTRT_WITH_OIIO)
-// The image encoded by OpenImageIO into memory, so that rtrt's own checked writes put it on disk:
-// OpenImageIO's file writers (libpng's among them) do not all report a failed write.
-std::vector<unsigned char> EncodeWithOiio(const std::string& path, const Image& image) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out || !out->supports("ioproxy"))
-        throw OutputError(path, "OpenImageIO cannot encode this format into memory");
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput proxy(bytes);
-    if (!out->set_ioproxy(&proxy))
-        throw OutputError(path, "OpenImageIO cannot encode this format into memory");
-    const bool isFloat = IsFloatFormat(Extension(path));
-    OIIO::ImageSpec spec(int(image.width), int(image.height), 3,
-                         isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-    if (!out->open(path, spec)) throw OutputError(path, "cannot encode: " + out->geterror());
-    bool ok;
-    if (isFloat) {
-        ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
-    } else {
-        std::vector<uint8_t> pixels(image.pixels.size() * 3);
-        for (size_t i = 0; i < image.pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c)
-                pixels[3 * i + c] =
-                    uint8_t(std::clamp(image.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
-        ok = out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
-    }
-    if (!ok || !out->close()) throw OutputError(path, "cannot encode: " + out->geterror());
-    return bytes;
+// The image encoded by the image library (OpenImageIO) into memory, so that rtrt's own checked
+// writes put it on disk: OpenImageIO's file writers (libpng's among them) do not all report a
+// failed write.
+std::vector<unsigned char> EncodeWithLibrary(const std::string& path, const Image& image) {
+    if (IsFloatFormat(Extension(path)))
+        return EncodeImage(path, image.width, image.height, true, image.pixels.data());
+    return EncodeImage(path, image.width, image.height, false, EightBit(image).data());
 }
 #endif
 
@@ -98,8 +84,8 @@ void CheckImagePath(const std::string& path) {
         throw InputError(path, "", "the output needs an extension such as .png or .exr");
 #if defined(RTRT_WITH_OIIO)
     if (ext != ".ppm" && ext != ".pfm") {
-        auto out = OIIO::ImageOutput::create(path);
-        if (!out) throw InputError(path, "", "no image format is known for extension " + ext);
+        if (!CanWriteImageFormat(path))
+            throw InputError(path, "", "no image format is known for extension " + ext);
     }
 #else
     if (ext != ".ppm" && ext != ".pfm")
@@ -128,7 +114,7 @@ void WriteImage(const std::string& path, const Image& image) {
         file.Write(bytes.data(), bytes.size());
     } else {
 #if defined(RTRT_WITH_OIIO)
-        const std::vector<unsigned char> bytes = EncodeWithOiio(path, image);
+        const std::vector<unsigned char> bytes = EncodeWithLibrary(path, image);
         file.Write(bytes.data(), bytes.size());
 #endif
     }
@@ -168,21 +154,32 @@ Image ReadPpm(const std::string& path) {
     return image;
 }
 
+#if defined(RTRT_WITH_OIIO)
+// 2^28 texels is 16384 x 16384; more channels than 64 is no image rtrt reads.
+std::string CheckReadShape(const ImageShape& shape) {
+    if (shape.width >= 1 && shape.height >= 1 && shape.channels >= 1 && shape.channels <= 64 &&
+        uint64_t(shape.width) * uint64_t(shape.height) <= (uint64_t(1) << 28))
+        return "";
+    return std::to_string(shape.width) + " x " + std::to_string(shape.height) + " texels of " +
+           std::to_string(shape.channels) + " channels is not an image rtrt reads";
+}
+#endif
+
 }  // namespace
 
 Image ReadImage(const std::string& path) {
     if (std::filesystem::path(path).extension() == ".ppm") return ReadPpm(path);
 #if defined(RTRT_WITH_OIIO)
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw InputError(path, "", "cannot read image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
-        throw InputError(path, "", "cannot read image: " + in->geterror());
-    Image image(uint32_t(spec.width), uint32_t(spec.height));
+    DecodedImage decoded;
+    const std::string reason = ReadImageFile(path, &CheckReadShape, &decoded);
+    if (!reason.empty()) throw InputError(path, "", reason);
+    const int channels = decoded.shape.channels;
+    std::vector<float> samples(decoded.samples.size() / sizeof(float));
+    std::memcpy(samples.data(), decoded.samples.data(), samples.size() * sizeof(float));
+    Image image(uint32_t(decoded.shape.width), uint32_t(decoded.shape.height));
     for (size_t i = 0; i < image.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c)
-            image.pixels[i][c] = data[i * spec.nchannels + std::min(c, spec.nchannels - 1)];
+            image.pixels[i][c] = samples[i * channels + std::min(c, channels - 1)];
     return image;
 #else
     throw InputError(path, "", "this rtrt reads only .ppm images (built without OpenImageIO)");

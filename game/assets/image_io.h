@@ -15,8 +15,11 @@ void CheckImagePath(const std::string& path);
 // 8-bit formats store clamp(value) * 255 rounded; float formats store the values.
 void WriteImage(const std::string& path, const Image& image);
 
-// Reading needs OpenImageIO, except binary 8-bit .ppm, which every build reads. CanReadImages:
-// whether other formats can be read (false in builds without OpenImageIO, the GPU machine's).
+// Formats other than PPM and PFM go through the image library (OpenImageIO in the module
+// rtrt_image_oiio, game/image_library), loaded at the first such image: an ImageLibraryError
+// when it cannot be. Reading needs it too, except binary 8-bit .ppm, which every build reads.
+// CanReadImages: whether other formats can be read (false in builds without OpenImageIO, the
+// GPU machine's).
 bool CanReadImages();
 Image ReadImage(const std::string& path);
 

@@ -1,6 +1,7 @@
 #include "game/gltf/gltf_document.h"
 
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 
 #include "engine/core/error.h"
@@ -30,6 +31,7 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     tinygltf::TinyGLTF loader;
     GltfImageFailure imageFailure;
     imageFailure.used = &checked.imageUsed;
+    imageFailure.file = file_;
     InstallGltfImageLoader(loader, &imageFailure);
     std::string err, warn;
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -38,6 +40,7 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
                                              dir.empty() ? "." : dir)
                : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
                                             unsigned(bytes.size()), dir.empty() ? "." : dir);
+    if (imageFailure.fatal) std::rethrow_exception(imageFailure.fatal);
     if (imageFailure.index >= 0)
         Fail(JsonIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
     if (!ok || !err.empty()) Fail("", OneLine(err));

@@ -1,7 +1,9 @@
 #pragma once
 // The decoder tinygltf hands glTF images to (a .glb buffer view, a data: URI or an external file
-// alike): OpenImageIO in builds with it (gltf_image_oiio.cpp), tinygltf's own stb otherwise
-// (gltf_image_stb.cpp). Either way the image comes back as 8- or 16-bit RGBA.
+// alike): OpenImageIO in builds with it (gltf_image_oiio.cpp, through the image library),
+// tinygltf's own stb otherwise (gltf_image_stb.cpp). Either way the image comes back as 8- or
+// 16-bit RGBA.
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,9 @@ struct GltfImageFailure {
     std::string reason;
     const std::vector<bool>* used = nullptr;  // images to decode (null: all of them)
     std::vector<int> skipped;                 // images left undecoded as unused
+    std::string file;                         // the glTF file, for errors that are not an image's
+    // An error of rtrt's own (its image library missing), to rethrow after the load.
+    std::exception_ptr fatal;
 };
 
 // Whether image `index` is to be decoded; an unused one is recorded in failure->skipped and left

@@ -1,15 +1,14 @@
-// glTF images decoded by OpenImageIO 2.4, from memory: tinygltf has already read the bytes from
-// the .glb buffer view, the data: URI or the external file.
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+// glTF images decoded by OpenImageIO 2.4 (through the image library, game/image_library), from
+// memory: tinygltf has already read the bytes from the .glb buffer view, the data: URI or the
+// external file.
 #include <tiny_gltf.h>
 
-#include <algorithm>
 #include <cstring>
 #include <exception>
 #include <vector>
 
 #include "game/gltf/gltf_image_loader.h"
+#include "game/image_library/image_library.h"
 
 namespace rtrt {
 namespace {
@@ -30,13 +29,6 @@ const char* SniffFormat(const unsigned char* bytes, size_t size) {
     if (startsWith("BM", 2)) return "bmp";
     if (startsWith("GIF87a", 6) || startsWith("GIF89a", 6)) return "gif";
     return nullptr;
-}
-
-// OIIO's messages can span lines; the importer's error is one line.
-std::string OneLine(std::string text, const char* otherwise) {
-    std::replace(text.begin(), text.end(), '\n', ' ');
-    while (!text.empty() && text.back() == ' ') text.pop_back();
-    return text.empty() ? otherwise : text;
 }
 
 // Expands 1 to 4 channels of `wide` (16-bit) or 8-bit samples to RGBA in place of `image`'s,
@@ -71,62 +63,55 @@ void ExpandToRgba(tinygltf::Image& image, const std::vector<unsigned char>& samp
         wide ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
 }
 
-// Fills `image` from the encoded bytes; returns why not, or "" on success.
+// What the importer reads: 1 to 4 channels, at most kMaxTexels, the size the image says it has.
+std::string CheckShape(const ImageShape& shape, int reqWidth, int reqHeight) {
+    if (shape.width < 1 || shape.height < 1 || shape.channels < 1 || shape.channels > 4)
+        return std::to_string(shape.width) + " x " + std::to_string(shape.height) + " texels of " +
+               std::to_string(shape.channels) + " channels; rtrt reads 1 to 4 channels";
+    if (uint64_t(shape.width) * uint64_t(shape.height) > kMaxTexels)
+        return std::to_string(shape.width) + " x " + std::to_string(shape.height) +
+               " texels is more than rtrt reads (2^28)";
+    if ((reqWidth > 0 && reqWidth != shape.width) || (reqHeight > 0 && reqHeight != shape.height))
+        return "the image is " + std::to_string(shape.width) + " x " +
+               std::to_string(shape.height) + ", its width and height say " +
+               std::to_string(reqWidth) + " x " + std::to_string(reqHeight);
+    return "";
+}
+
+// Fills `image` from the encoded bytes; returns why not, or "" on success. FILE: the glTF file.
 std::string Decode(tinygltf::Image& image, int reqWidth, int reqHeight, const unsigned char* bytes,
-                   int size) {
+                   int size, const std::string& file) {
     if (bytes == nullptr || size <= 0) return "the image has no bytes";
     const char* format = SniffFormat(bytes, size_t(size));
     if (!format)
         return "not a PNG, JPEG, BMP or GIF image" +
                (image.mimeType.empty() ? "" : " (mimeType \"" + image.mimeType + "\")");
-    // Declared before the reader, which closes through it when destroyed.
-    OIIO::Filesystem::IOMemReader memory(bytes, size_t(size));
-    auto input = OIIO::ImageInput::create(format);
-    if (!input)
-        return OneLine(OIIO::geterror(), "OpenImageIO has no reader for this format") + " (" +
-               format + ")";
-    // The proxy must be set before open(), which would otherwise look for a file by that name.
-    input->set_ioproxy(&memory);
-    // glTF's alpha is straight, as stb returns it; OIIO's PNG reader would premultiply it.
-    OIIO::ImageSpec config, spec;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    if (!input->open(std::string("image.") + format, spec, config))
-        return OneLine(input->geterror(), "OpenImageIO could not open it") + " (" + format + ")";
-    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1 || spec.nchannels > 4)
-        return std::to_string(spec.width) + " x " + std::to_string(spec.height) + " texels of " +
-               std::to_string(spec.nchannels) + " channels; rtrt reads 1 to 4 channels";
-    if (uint64_t(spec.width) * uint64_t(spec.height) > kMaxTexels)
-        return std::to_string(spec.width) + " x " + std::to_string(spec.height) +
-               " texels is more than rtrt reads (2^28)";
-    if ((reqWidth > 0 && reqWidth != spec.width) || (reqHeight > 0 && reqHeight != spec.height))
-        return "the image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
-               ", its width and height say " + std::to_string(reqWidth) + " x " +
-               std::to_string(reqHeight);
-    // 16-bit PNGs stay 16-bit, as stb keeps them; everything else is read as 8-bit.
-    const bool wide = spec.format == OIIO::TypeDesc::UINT16;
-    std::vector<unsigned char> samples(size_t(spec.width) * size_t(spec.height) *
-                                       size_t(spec.nchannels) * (wide ? 2 : 1));
-    if (!input->read_image(0, 0, 0, spec.nchannels,
-                           wide ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8, samples.data()))
-        return OneLine(input->geterror(), "OpenImageIO could not read it") + " (" + format + ")";
-    image.width = spec.width;
-    image.height = spec.height;
-    ExpandToRgba(image, samples, spec.nchannels, wide);
+    DecodedImage decoded;
+    const std::string reason = DecodeImage(
+        bytes, size_t(size), format, file,
+        [&](const ImageShape& shape) { return CheckShape(shape, reqWidth, reqHeight); }, &decoded);
+    if (!reason.empty()) return reason;
+    image.width = decoded.shape.width;
+    image.height = decoded.shape.height;
+    ExpandToRgba(image, decoded.samples, decoded.shape.channels, decoded.shape.sampleBytes == 2);
     return "";
 }
 
 // tinygltf::LoadImageDataFunction.
 bool LoadWithOiio(tinygltf::Image* image, const int index, std::string* err, std::string*,
                   int reqWidth, int reqHeight, const unsigned char* bytes, int size, void* user) {
-    if (!DecodeGltfImage(static_cast<GltfImageFailure*>(user), index)) return true;
+    auto* failure = static_cast<GltfImageFailure*>(user);
+    if (!DecodeGltfImage(failure, index)) return true;
     std::string reason;
     try {
-        reason = Decode(*image, reqWidth, reqHeight, bytes, size);
-    } catch (const std::exception& e) {  // std::bad_alloc, or anything OIIO lets through
+        reason = Decode(*image, reqWidth, reqHeight, bytes, size, failure->file);
+    } catch (const ImageLibraryError&) {  // rtrt's installation, not the file: rethrown whole
+        failure->fatal = std::current_exception();
+        return false;
+    } catch (const std::exception& e) {  // std::bad_alloc
         reason = std::string("decoding failed: ") + e.what();
     }
     if (reason.empty()) return true;
-    auto* failure = static_cast<GltfImageFailure*>(user);
     failure->index = index;
     failure->reason = reason;
     if (err) *err += "image[" + std::to_string(index) + "]: " + reason + "\n";

@@ -3,8 +3,10 @@
 # scenes by name; a missing model is named with its scene file, field, folder and the way to get
 # it; `rtrt fetch-models` is there. The build tree stays on disk, but the installed program must
 # not look at it: its scenes come from share/rtrt and its models from $XDG_DATA_HOME/rtrt/models.
+# Built with OpenImageIO, it writes a PNG through its installed image library (lib/rtrt), which the
+# program does not link; without that library only the images that need it fail, and say why.
 # -DBUILD_DIR= -DWORK_DIR= -DMODEL_DIR= (the fetched models; the half that needs them skips
-# without).
+# without) -DWITH_OIIO=ON|OFF.
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR}/elsewhere ${WORK_DIR}/data/rtrt)
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix
@@ -55,3 +57,42 @@ if(EXISTS ${MODEL_DIR}/teapot.inc)
 else()
     message(STATUS "the half with models skipped: no fetched teapot.inc in ${MODEL_DIR}")
 endif()
+
+if(NOT WITH_OIIO)
+    return()
+endif()
+# The image library is the installed one, loaded when an image needs it: the program does not
+# link OpenImageIO.
+execute_process(COMMAND ldd ${RTRT} RESULT_VARIABLE status OUTPUT_VARIABLE libraries
+    ERROR_VARIABLE libraries)
+if(NOT status EQUAL 0 OR libraries MATCHES "OpenImageIO")
+    message(FATAL_ERROR "ldd ${RTRT}: status ${status}; it must not link OpenImageIO:\n${libraries}")
+endif()
+run(0 render reflective_sphere -o sphere.png --size 32x18 --backend cpu)
+file(READ ${WORK_DIR}/elsewhere/sphere.png signature LIMIT 8 HEX)
+if(NOT signature STREQUAL "89504e470d0a1a0a")
+    message(FATAL_ERROR "render reflective_sphere -o sphere.png wrote no PNG (${signature})")
+endif()
+# An installation without its image library: exit 1, naming the image that needed it and the
+# loader's reason, no output; whatever needs no such image still runs.
+set(library ${WORK_DIR}/prefix/lib/rtrt/rtrt_image_oiio.so)
+if(NOT EXISTS ${library})
+    message(FATAL_ERROR "cmake --install put no image library at ${library}")
+endif()
+file(RENAME ${library} ${library}.away)
+run(1 render reflective_sphere -o broken.png --size 32x18 --backend cpu)
+if(NOT stderr MATCHES "^rtrt: error: broken.png: cannot load the image library \\([^\n]*rtrt_image_oiio.so: cannot open shared object file: No such file or directory\\); reinstall rtrt\n$")
+    message(FATAL_ERROR "unexpected message without the image library: ${stderr}")
+endif()
+if(EXISTS ${WORK_DIR}/elsewhere/broken.png)
+    message(FATAL_ERROR "render wrote broken.png without the image library")
+endif()
+set(scenes ${WORK_DIR}/prefix/share/rtrt/scenes)
+run(1 info ${scenes}/gltf_demo.json)
+if(NOT stderr MATCHES "textured_quads.gltf: cannot load the image library \\(")
+    message(FATAL_ERROR "unexpected message for glTF textures without the image library: ${stderr}")
+endif()
+run(0 --version)
+run(0 info ${scenes}/demo_glass.json)
+run(0 render reflective_sphere -o sphere2.ppm --size 32x18 --backend cpu)
+file(RENAME ${library}.away ${library})

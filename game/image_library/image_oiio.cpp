@@ -1,0 +1,130 @@
+// rtrt_image_oiio: the image library (image_library_abi.h) on OpenImageIO 2.4, the one part of rtrt
+// that links it. Built as a module and loaded by rtrt at the first image that needs it.
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "game/image_library/image_library_abi.h"
+
+namespace rtrt {
+namespace {
+
+// OIIO's messages can span lines; rtrt's errors are one line.
+std::string OneLine(std::string text, const char* otherwise) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text.empty() ? otherwise : text;
+}
+
+int Fail(ImageSink* sink, const std::string& reason) {
+    sink->fail(sink->context, reason.c_str());
+    return 0;
+}
+
+// Storage from the sink for the samples of SPEC read as TYPE; null (the sink told why) if refused.
+void* SampleStorage(const OIIO::ImageSpec& spec, OIIO::TypeDesc type, ImageSink* sink) {
+    const ImageShape shape{spec.width, spec.height, spec.nchannels, int32_t(type.size())};
+    // rtrt checks the shape before it allocates; a refused shape is never multiplied out here.
+    const size_t bytes =
+        spec.width > 0 && spec.height > 0 && spec.nchannels > 0
+            ? size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels) * type.size()
+            : 0;
+    void* samples = sink->allocate(sink->context, &shape, bytes);
+    if (!samples) Fail(sink, "cannot hold the image's " + std::to_string(bytes) + " bytes");
+    return samples;
+}
+
+int CanWrite(const char* path) noexcept {
+    try {
+        return OIIO::ImageOutput::create(path) ? 1 : 0;
+    } catch (const std::exception&) {
+        return 0;
+    }
+}
+
+int Encode(const char* path, int32_t width, int32_t height, int32_t isFloat, const void* rgb,
+           ImageSink* sink) noexcept {
+    try {
+        // The bytes and the proxy outlive the writer, which may write through them as it closes.
+        std::vector<unsigned char> bytes;
+        OIIO::Filesystem::IOVecOutput proxy(bytes);
+        auto out = OIIO::ImageOutput::create(path);
+        if (!out || !out->supports("ioproxy") || !out->set_ioproxy(&proxy))
+            return Fail(sink, "OpenImageIO cannot encode this format into memory");
+        const OIIO::TypeDesc type = isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+        if (!out->open(path, OIIO::ImageSpec(width, height, 3, type)))
+            return Fail(sink, "cannot encode: " + OneLine(out->geterror(), "OpenImageIO failed"));
+        if (!out->write_image(type, rgb) || !out->close())
+            return Fail(sink, "cannot encode: " + OneLine(out->geterror(), "OpenImageIO failed"));
+        if (bytes.empty()) return Fail(sink, "cannot encode: OpenImageIO wrote no bytes");
+        void* copy = sink->allocate(sink->context, nullptr, bytes.size());
+        if (!copy) return Fail(sink, "cannot hold " + std::to_string(bytes.size()) + " bytes");
+        std::memcpy(copy, bytes.data(), bytes.size());
+        return 1;
+    } catch (const std::exception& e) {
+        return Fail(sink, std::string("cannot encode: ") + e.what());
+    }
+}
+
+int ReadFile(const char* path, ImageSink* sink) noexcept {
+    try {
+        auto in = OIIO::ImageInput::open(path);
+        if (!in)
+            return Fail(sink, "cannot read image: " +
+                                  OneLine(OIIO::geterror(), "OpenImageIO cannot open it"));
+        const OIIO::ImageSpec& spec = in->spec();
+        void* samples = SampleStorage(spec, OIIO::TypeDesc::FLOAT, sink);
+        if (!samples) return 0;
+        if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, samples))
+            return Fail(sink, "cannot read image: " +
+                                  OneLine(in->geterror(), "OpenImageIO cannot read it"));
+        return 1;
+    } catch (const std::exception& e) {
+        return Fail(sink, std::string("cannot read image: ") + e.what());
+    }
+}
+
+int Decode(const unsigned char* bytes, size_t size, const char* format, ImageSink* sink) noexcept {
+    try {
+        const std::string named = std::string(" (") + format + ")";
+        // Declared before the reader, which closes through it when destroyed.
+        OIIO::Filesystem::IOMemReader memory(bytes, size);
+        auto input = OIIO::ImageInput::create(format);
+        if (!input)
+            return Fail(
+                sink,
+                OneLine(OIIO::geterror(), "OpenImageIO has no reader for this format") + named);
+        // The proxy must be set before open(), which would otherwise look for a file by that name.
+        input->set_ioproxy(&memory);
+        // glTF's alpha is straight, as stb returns it; OIIO's PNG reader would premultiply it.
+        OIIO::ImageSpec config, spec;
+        config.attribute("oiio:UnassociatedAlpha", 1);
+        if (!input->open(std::string("image.") + format, spec, config))
+            return Fail(sink, OneLine(input->geterror(), "OpenImageIO could not open it") + named);
+        // 16-bit PNGs stay 16-bit, as stb keeps them; everything else is read as 8-bit.
+        const OIIO::TypeDesc type =
+            spec.format == OIIO::TypeDesc::UINT16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
+        void* samples = SampleStorage(spec, type, sink);
+        if (!samples) return 0;
+        if (!input->read_image(0, 0, 0, spec.nchannels, type, samples))
+            return Fail(sink, OneLine(input->geterror(), "OpenImageIO could not read it") + named);
+        return 1;
+    } catch (const std::exception& e) {  // std::bad_alloc, or anything OIIO lets through
+        return Fail(sink, std::string("decoding failed: ") + e.what());
+    }
+}
+
+constexpr ImageLibraryTable kTable = {&CanWrite, &Encode, &ReadFile, &Decode};
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) const ImageLibraryTable* rtrt_image_library_v1() {
+    return &kTable;
+}
+
+}  // namespace rtrt
