@@ -17,7 +17,9 @@ struct Surface {
 // A sphere's hit point and its error bound, in double from the world ray: the root again in the
 // exact object space (ToObjectSpaceExact), the point o + t d along the world ray, and the bound
 // from how far that point is from the sphere (measured, in double) scaled to world units by the
-// instance's largest stretch, plus the rounding to float. The float form (pbrt-v4's reprojection,
+// instance's largest stretch, plus what the object-space direction's rounding to float moves the
+// world point at that t (the root is of the rounded ray, the point is on the world ray), plus
+// the rounding to float. The float form (pbrt-v4's reprojection,
 // error gamma(5) |p| in object space) put points on a ground sphere of radius 1e6 0.3 off its
 // surface, and shadow rays started 0.66 above it. Sets point, pointError and an object-space
 // geomNormal.
@@ -33,18 +35,24 @@ RT_HD inline void SphereSurfacePoint(const Sphere& sphere, const Ray& ray, const
     const double distance = glm::length(fromCentre);
     const double offSphere = fabs(distance - double(sphere.radius)) +
                              GammaDouble(16) * (distance + double(sphere.radius));
-    double stretch = 0.0;  // the linear part's Frobenius norm: at least its largest stretch
-    for (const vec4& row : inst.objectToWorld.row) {
-        const dvec3 linear(row.x, row.y, row.z);
-        stretch += glm::dot(linear, linear);
+    // Frobenius norms of the linear parts: at least their largest stretches.
+    double stretch = 0.0, inverseStretch = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const vec4& l = inst.objectToWorld.row[i];
+        const vec4& w = inst.worldToObject.row[i];
+        stretch += double(l.x) * l.x + double(l.y) * l.y + double(l.z) * l.z;
+        inverseStretch += double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z;
     }
     stretch = sqrt(stretch);
+    inverseStretch = sqrt(inverseStretch);
+    const double worldDirLength = glm::length(dvec3(ray.dir));
+    const double roundedDir = double(Gamma(3)) * fabs(t) * inverseStretch * worldDirLength;
     const dvec3 worldPoint = dvec3(ray.origin) + t * dvec3(ray.dir);
     const double alongRay =
-        GammaDouble(8) * (glm::length(dvec3(ray.origin)) + fabs(t) * glm::length(dvec3(ray.dir)));
+        GammaDouble(8) * (glm::length(dvec3(ray.origin)) + fabs(t) * worldDirLength);
     surface->point = vec3(worldPoint);
     surface->pointError =
-        Gamma(1) * Abs(surface->point) + vec3(float(stretch * offSphere + alongRay));
+        Gamma(1) * Abs(surface->point) + vec3(float(stretch * (offSphere + roundedDir) + alongRay));
     surface->geomNormal = vec3(fromCentre);
 }
 
