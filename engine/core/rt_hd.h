@@ -11,11 +11,3 @@
 #if defined(__CUDA_ARCH__)
 #define RT_ON_GPU 1
 #endif
-
-// A rarely taken path kept out of line, so that its registers do not count against the hot
-// loop it is called from (on the GPU every register of an inlined path does, taken or not).
-#if defined(__CUDACC__)
-#define RT_COLD __noinline__
-#else
-#define RT_COLD __attribute__((noinline, cold))
-#endif

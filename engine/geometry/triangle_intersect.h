@@ -2,7 +2,7 @@
 // Watertight ray/triangle intersection: Woop, Benthin, Wald 2013, "Watertight Ray/Triangle
 // Intersection", JCGT 2(1). Edge functions that round to exactly zero are redone in double, so
 // rays through shared edges and vertices hit exactly one of the neighbours. Hits whose t is within
-// its float error bound of 0 are decided in double (NearHitInDouble).
+// its error bound of 0 are decided again on the triangle's plane (NearHitOnPlane).
 #include "engine/geometry/primitives.h"
 #include "engine/geometry/ray_setup.h"
 
@@ -23,36 +23,34 @@ RT_HD inline float CrossDiffNoContract(float a, float b, float c, float d) {
 #endif
 }
 
-// A hit whose float t lies within its error bound of 0: in front of the origin, or behind it and
-// moved forward by rounding (a ray leaving this very triangle, or a coplanar neighbour)? The
-// plane's distance in double answers it for any gap above ~1e-15 of the triangle's size. t =
-// n.(v0 - o) / n.d, n = (v1 - v0) x (v2 - v0): each input difference of floats and each product
-// errs by one rounding, so numerator and denominator err by at most gamma_d(10) times the same
-// sums taken over absolute values; a sign that the error could flip is no hit (the origin lies
-// in the plane to double precision).
-RT_HD RT_COLD inline bool NearHitInDouble(const Triangle& tri, const RaySetup& r, float* t) {
-    using glm::dvec3;
-    const dvec3 v0(tri.v0);
-    const dvec3 e1 = dvec3(tri.v1) - v0, e2 = dvec3(tri.v2) - v0;
-    const dvec3 toV0 = v0 - dvec3(r.origin);
-    const dvec3 dir(r.dir);
-    const dvec3 n = glm::cross(e1, e2);
-    const dvec3 a1 = glm::abs(e1), a2 = glm::abs(e2);
-    const dvec3 nAbs(a1.y * a2.z + a1.z * a2.y, a1.z * a2.x + a1.x * a2.z,
-                     a1.x * a2.y + a1.y * a2.x);
-    const double num = glm::dot(n, toV0), den = glm::dot(n, dir);
-    const double numError = GammaDouble(10) * glm::dot(nAbs, glm::abs(toV0));
-    const double denError = GammaDouble(10) * glm::dot(nAbs, glm::abs(dir));
-    if (fabs(num) <= numError || fabs(den) <= denError) return false;
-    const double tDouble = num / den;
-    if (!(tDouble > 0.0)) return false;
-    *t = float(tDouble);
+// A hit whose t from the watertight test lies within that test's error bound of 0: in front of
+// the origin, or behind it and moved forward by rounding (a ray leaving this very triangle, or a
+// coplanar neighbour)? The plane's distance decides it with a much smaller bound: t =
+// n.(v0 - o) / n.d, n = (v1 - v0) x (v2 - v0), where each difference and product errs by one
+// rounding, so numerator and denominator err by at most gamma(8) times the same sums over
+// absolute values: ~1e-6 of the triangle's size, against the sheared test's ~1e-5 (its bound
+// multiplies the errors of the edge functions and of the sheared depths). A sign that the error
+// could flip is no hit: the origin lies in the plane as far as float can tell. Float, not double:
+// a double path in the triangle test, even one rarely taken, slowed the whole GPU trace
+// (bench/results/numerics-h200-2026-12-02.txt).
+RT_HD inline bool NearHitOnPlane(const Triangle& tri, const RaySetup& r, float* t) {
+    const vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
+    const vec3 toV0 = tri.v0 - r.origin;
+    const vec3 n = glm::cross(e1, e2);
+    const vec3 a1 = Abs(e1), a2 = Abs(e2);
+    const vec3 nAbs(a1.y * a2.z + a1.z * a2.y, a1.z * a2.x + a1.x * a2.z,
+                    a1.x * a2.y + a1.y * a2.x);
+    const float num = glm::dot(n, toV0), den = glm::dot(n, r.dir);
+    const float numError = Gamma(8) * glm::dot(nAbs, Abs(toV0));
+    const float denError = Gamma(8) * glm::dot(nAbs, Abs(r.dir));
+    if (!(fabsf(num) > numError) || !(fabsf(den) > denError)) return false;
+    *t = num / den;
     return *t > 0.0f;
 }
 
 // kRefineNearHits = false rejects every hit within the error bound, as pbrt-v4 does: no
 // self-hits either, but real hits nearer than the bound (1e-5 for a unit triangle) are lost, so a
-// contact shadow 1e-5 under an occluder is lit (the accuracy benchmark's float-only variant).
+// contact shadow 1e-5 under an occluder is lit (the accuracy benchmark's "no plane test").
 template <bool kRefineNearHits = true>
 RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, float tMax,
                                     TriangleHit* hit) {
@@ -89,7 +87,7 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
     // this very surface, which must not hit it again, or a real hit just in front of the origin:
     // 1e-5 for a unit triangle seen by a ray whose dominant axis is not the normal's, so a
     // contact shadow under an occluder 1e-5 above was lit and a ray starting 1e-5 from a surface
-    // missed it. The double test decides those (kRefineNearHits).
+    // missed it. The plane test decides those (kRefineNearHits).
     const float maxZt = MaxOrKeep(fabsf(az), MaxOrKeep(fabsf(bz), fabsf(cz)));
     const float maxXt = MaxOrKeep(fabsf(ax), MaxOrKeep(fabsf(bx), fabsf(cx)));
     const float maxYt = MaxOrKeep(fabsf(ay), MaxOrKeep(fabsf(by), fabsf(cy)));
@@ -115,14 +113,14 @@ RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r, floa
         // exact test is the last line): without it a hit one ulp nearer than tMax could be
         // rejected or not depending on rounding, and the closest of several hits at nearly
         // equal t depended on the order the triangles were tested in (tests/robust, overlapping
-        // TLAS instances). It applies only outside the band of the double test, whose answer
+        // TLAS instances). It applies only outside the band of the plane test, whose answer
         // must not depend on the tMax it is asked with, for the same reason.
         if (tSigned > tMax * absDet * (1.0f + 2.0f * Gamma(3))) return false;
         hit->t = t * invDet;
     } else {
-        // Behind the origin beyond the bound, or no double test: no hit (NaN included).
+        // Behind the origin beyond the bound, or no plane test: no hit (NaN included).
         if (!kRefineNearHits || !(tSigned >= -deltaTimesDet)) return false;
-        if (!NearHitInDouble(tri, r, &hit->t)) return false;
+        if (!NearHitOnPlane(tri, r, &hit->t)) return false;
     }
     hit->b1 = v * invDet;
     hit->b2 = w * invDet;

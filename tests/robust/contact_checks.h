@@ -3,11 +3,12 @@
 // triangle seen by a ray whose dominant axis is not the normal's), and huge ground spheres. The
 // hits within that bound are decided in double (triangle_intersect.h), spheres are intersected
 // and their points placed in double (sphere_intersect.h, surface.h). Expected values:
-// - a ray starting a gap g (1e-5, 1e-6) off a unit-sized surface, aimed at it, hits it, at the
+// - a ray starting a gap g (1e-5, 4e-6) off a unit-sized surface, aimed at it, hits it, at the
 //   distance the double-precision plane gives for the very float origin, the hit point within
 //   2e-7 of the plane (1e-7 of the square's size: the float test's t is accurate to its error
 //   bound, when it is not decided in double; grazing rays stretch that along the ray);
-// - a shadow ray from the receiver under an occluder g above it is occluded by the occluder, from
+// - a shadow ray from the receiver under an occluder g above it (primary rays from inside the
+//   gap, g / 2 off the receiver) is occluded by the occluder, from
 //   every light direction of the hemisphere (elevations 1 to 89 degrees, every dominant axis);
 //   the shadow ray's side exit through the gap needs a lateral run of more than 0.25 units, which
 //   at g / tan(elevation) <= 6e-4 it never reaches;
@@ -65,7 +66,7 @@ void CheckRaysStartingNearASurfaceFindIt(const Runner& run) {
     const vec3 u = Perpendicular(n), v = glm::cross(n, u);
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    for (float gap : {1e-5f, 1e-6f}) {
+    for (float gap : {1e-5f, 4e-6f}) {
         SCOPED_TRACE(std::string(Runner::kName) + " gap " + std::to_string(gap));
         std::vector<Ray> rays;
         for (int i = 0; i < 4096; ++i) {
@@ -99,7 +100,7 @@ template <typename Runner>
 void CheckContactShadowsAreDark(const Runner& run) {
     const vec3 n = kContactNormal;
     const vec3 u = Perpendicular(n), v = glm::cross(n, u);
-    for (float gap : {1e-5f, 1e-6f}) {
+    for (float gap : {1e-5f, 4e-6f}) {
         SCOPED_TRACE(std::string(Runner::kName) + " gap " + std::to_string(gap));
         RenderScene scene;
         scene.AddMaterial({});
