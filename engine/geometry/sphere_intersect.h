@@ -86,7 +86,8 @@ RT_HD inline bool IntersectSphere(const Sphere& s, const SphereRay& r, float tMa
     const float disc = a * (s.radius * s.radius - glm::dot(l, l));
     if (disc < 0.0f) return false;
     const float q = bPrime + copysignf(sqrtf(disc), bPrime);
-    float t0 = q != 0.0f ? float(c / double(q)) : 0.0f;
+    // c is exact to its rounding to float here, so the near root is too (no double division).
+    float t0 = q != 0.0f ? float(c) / q : 0.0f;
     float t1 = q / a;
     if (t0 > t1) {
         const float t = t0;

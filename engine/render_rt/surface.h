@@ -14,42 +14,38 @@ struct Surface {
     uint32_t materialId;
 };
 
-// A sphere's hit point and its error bound, in double from the world ray: the root again in the
-// exact object space (ToObjectSpaceExact), the point o + t d along the world ray, and the bound
-// from how far that point is from the sphere (measured, in double) scaled to world units by the
-// instance's largest stretch, plus what the object-space direction's rounding to float moves the
-// world point at that t (the root is of the rounded ray, the point is on the world ray), plus
-// the rounding to float. The float form (pbrt-v4's reprojection,
-// error gamma(5) |p| in object space) put points on a ground sphere of radius 1e6 0.3 off its
-// surface, and shadow rays started 0.66 above it. Sets point, pointError and an object-space
-// geomNormal.
+// A sphere's hit point and its error bound, in double from the world ray: the point o + t d along
+// the world ray at the trace's t; the bound is how far that point is from the sphere (measured in
+// double in the exact object space) and what the object-space direction's rounding to float
+// moves it at that t (the root is of the rounded ray, the point on the world ray), both scaled to
+// world units by the instance's largest stretch, plus the rounding to float. The float form
+// (pbrt-v4's reprojection, error gamma(5) |p| in object space) put points on a ground sphere of
+// radius 1e6 0.3 off its surface, and shadow rays started 0.66 above it. Sets point, pointError
+// and an object-space geomNormal.
 RT_HD inline void SphereSurfacePoint(const Sphere& sphere, const Ray& ray, const Instance& inst,
                                      float tHit, Surface* surface) {
     using glm::dvec3;
     const SphereRay r = ToObjectSpaceExact(ray, inst);
-    double t0, t1, t = tHit;
-    const dvec3 dir(r.dir);
-    if (SphereRoots<double>(sphere, r.origin, dir, &t0, &t1))
-        t = fabs(t0 - double(tHit)) <= fabs(t1 - double(tHit)) ? t0 : t1;
-    const dvec3 fromCentre = r.origin + t * dir - dvec3(sphere.center);
+    // The trace's own t: how far its point is from the sphere is measured below, so its rounding
+    // is in the bound without solving again.
+    const double t = tHit;
+    const dvec3 fromCentre = r.origin + t * dvec3(r.dir) - dvec3(sphere.center);
     const double distance = glm::length(fromCentre);
     const double offSphere = fabs(distance - double(sphere.radius)) +
                              GammaDouble(16) * (distance + double(sphere.radius));
     // Frobenius norms of the linear parts: at least their largest stretches.
-    double stretch = 0.0, inverseStretch = 0.0;
+    float stretch = 0.0f, inverseStretch = 0.0f;
     for (int i = 0; i < 3; ++i) {
-        const vec4& l = inst.objectToWorld.row[i];
-        const vec4& w = inst.worldToObject.row[i];
-        stretch += double(l.x) * l.x + double(l.y) * l.y + double(l.z) * l.z;
-        inverseStretch += double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z;
+        const vec3 l(inst.objectToWorld.row[i]), w(inst.worldToObject.row[i]);
+        stretch += glm::dot(l, l);
+        inverseStretch += glm::dot(w, w);
     }
-    stretch = sqrt(stretch);
-    inverseStretch = sqrt(inverseStretch);
-    const double worldDirLength = glm::length(dvec3(ray.dir));
+    stretch = (1.0f + Gamma(3)) * sqrtf(stretch);
+    inverseStretch = (1.0f + Gamma(3)) * sqrtf(inverseStretch);
+    const float worldDirLength = glm::length(ray.dir);
     const double roundedDir = double(Gamma(3)) * fabs(t) * inverseStretch * worldDirLength;
     const dvec3 worldPoint = dvec3(ray.origin) + t * dvec3(ray.dir);
-    const double alongRay =
-        GammaDouble(8) * (glm::length(dvec3(ray.origin)) + fabs(t) * worldDirLength);
+    const double alongRay = GammaDouble(8) * (glm::length(ray.origin) + fabs(t) * worldDirLength);
     surface->point = vec3(worldPoint);
     surface->pointError =
         Gamma(1) * Abs(surface->point) + vec3(float(stretch * (offSphere + roundedDir) + alongRay));
