@@ -1,5 +1,7 @@
 // `rtrt bench cpu`: BLAS build time and SAH cost per builder, and CPU frame time and rays per
 // second on the paper scene (paper_scene.h), for the cube, the teapot and the dragons.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +20,7 @@
 #include "bench/gpu_trace_timing.h"
 #include "bench/instance_grid_bench.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
@@ -151,7 +154,7 @@ void RunBench(const BenchOptions& o) {
         report["models"].push_back(row);
     }
     if (!o.output.empty()) {
-        std::ofstream(o.output) << report.dump(2) << "\n";
+        WriteReport(o.output, report);
         std::printf("rtrt: wrote %s\n", o.output.c_str());
     }
 }
@@ -198,7 +201,7 @@ void RunGpuBench(const BenchOptions& o) {
                                     {"bytes_per_triangle", bytesPerTri}});
     }
     if (!o.output.empty()) {
-        std::ofstream(o.output) << report.dump(2) << "\n";
+        WriteReport(o.output, report);
         std::printf("rtrt: wrote %s\n", o.output.c_str());
     }
 }
@@ -237,7 +240,7 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
                                   {"frames", frames}});
     }
     if (!output.empty()) {
-        std::ofstream(output) << report.dump(2) << "\n";
+        WriteReport(output, report);
         std::printf("rtrt: wrote %s\n", output.c_str());
     }
 }
@@ -385,6 +388,18 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         RunGpuBench(*options);
         *exitCode = kExitOk;
     });
+}
+
+void WriteReportFile(const std::string& path, const std::string& text) {
+    const std::filesystem::path target(path);
+    std::string name = ".";  // appended piecewise, as image_io does
+    name += target.filename().string();
+    name += ".partial";
+    name += std::to_string(::getpid());  // its own per process: an interrupt removes only ours
+    OutputFile file(path, (target.parent_path() / name).string());
+    file.Write(text.data(), text.size());
+    file.Finish(/*durable=*/false);
+    file.Commit();
 }
 
 nlohmann::json BenchMachine(bool gpu) {

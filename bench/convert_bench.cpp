@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bench/bench_commands.h"
+#include "bench/bench_report.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
 #include "engine/core/interrupt.h"
@@ -124,7 +125,7 @@ void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine
              {"runs", o.runs}});
     }
     if (!o.output.empty()) {
-        std::ofstream(o.output) << report.dump(2) << "\n";
+        WriteReport(o.output, report);
         std::printf("rtrt: wrote %s\n", o.output.c_str());
     }
 }

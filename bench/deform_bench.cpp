@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -111,9 +111,9 @@ void RunDeformBench(const DeformBenchOptions& o) {
                 o.backend.c_str(), std::filesystem::path(o.scene).filename().string().c_str(),
                 (unsigned long long)triangles, settings.width, settings.height, o.frames);
     nlohmann::json drift = nlohmann::json::array();
-    std::ofstream csv;
-    if (!o.csv.empty()) {
-        csv.open(o.csv);
+    std::ostringstream csv;  // written whole at the end, as the JSON
+    const bool writeCsv = !o.csv.empty();
+    if (writeCsv) {
         csv << "frame";
         for (const PolicyRun& r : runs)
             csv << "," << r.name << "_deform_ms," << r.name << "_blas_ms," << r.name << "_trace_ms";
@@ -121,7 +121,7 @@ void RunDeformBench(const DeformBenchOptions& o) {
     }
     const int every = std::max(1, o.frames / std::max(1, o.samples - 1));
     for (int f = 0; f <= o.frames; ++f) {
-        if (csv.is_open()) csv << f;
+        if (writeCsv) csv << f;
         for (PolicyRun& r : runs) {
             Stopwatch frameTimer;
             if (f > 0) r.world->Advance(1.0f / 60.0f);
@@ -138,9 +138,9 @@ void RunDeformBench(const DeformBenchOptions& o) {
                 r.frame.push_back(frameMs);
                 r.rebuilds += t.blasRebuilt;
             }
-            if (csv.is_open()) csv << "," << t.deformMs << "," << t.blasMs << "," << t.traceMs;
+            if (writeCsv) csv << "," << t.deformMs << "," << t.blasMs << "," << t.traceMs;
         }
-        if (csv.is_open()) csv << "," << runs[2].renderer->Times().blasRebuilt << "\n";
+        if (writeCsv) csv << "," << runs[2].renderer->Times().blasRebuilt << "\n";
         const RenderScene& now = runs[0].world->Scene();
         std::vector<uint32_t> all(now.deformations.size());
         for (uint32_t d = 0; d < all.size(); ++d) all[d] = d;
@@ -199,8 +199,12 @@ void RunDeformBench(const DeformBenchOptions& o) {
     }
     report["drift"] = drift;
     if (!o.output.empty()) {
-        std::ofstream(o.output) << report.dump(2) << "\n";
+        WriteReport(o.output, report);
         std::printf("rtrt: wrote %s\n", o.output.c_str());
+    }
+    if (writeCsv) {
+        WriteReportFile(o.csv, csv.str());
+        std::printf("rtrt: wrote %s\n", o.csv.c_str());
     }
 }
 

@@ -111,7 +111,7 @@ void RunFrameBench(const FrameBenchOptions& o) {
                 "frame");
     for (const std::string& path : o.scenes) report["rows"].push_back(RunScene(path, o));
     if (!o.output.empty()) {
-        std::ofstream(o.output) << report.dump(2) << "\n";
+        WriteReport(o.output, report);
         std::printf("rtrt: wrote %s\n", o.output.c_str());
     }
 }

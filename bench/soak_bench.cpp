@@ -135,7 +135,7 @@ void RunSoak(const SoakOptions& o) {
                                  {"host_spread", Spread(host)},
                                  {"gpu_spread", Spread(device)},
                                  {"flat_within_5_percent", flat}};
-        std::ofstream(o.output) << report.dump(2) << "\n";
+        WriteReport(o.output, report);
         std::printf("rtrt: wrote %s\n", o.output.c_str());
     }
 }

@@ -280,7 +280,7 @@ void RunAccuracyBench(const AccuracyOptions& o) {
         report["rows"].push_back(row);
     }
     if (!o.output.empty()) {
-        std::ofstream(o.output) << report.dump(2) << "\n";
+        WriteReport(o.output, report);
         std::printf("rtrt: wrote %s\n", o.output.c_str());
     }
 }
