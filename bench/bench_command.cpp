@@ -391,15 +391,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
 }
 
 void WriteReportFile(const std::string& path, const std::string& text) {
-    const std::filesystem::path target(path);
-    std::string name = ".";  // appended piecewise, as image_io does
-    name += target.filename().string();
-    name += ".partial";
-    name += std::to_string(::getpid());  // its own per process: an interrupt removes only ours
-    OutputFile file(path, (target.parent_path() / name).string());
-    file.Write(text.data(), text.size());
-    file.Finish(/*durable=*/false);
-    file.Commit();
+    WriteWholeFile(path, text, /*durable=*/false);
 }
 
 nlohmann::json BenchMachine(bool gpu) {

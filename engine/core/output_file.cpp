@@ -82,4 +82,22 @@ void OutputFile::Commit() {
     lock.Unregister(temp_);
 }
 
+std::string TemporaryPathFor(const std::string& target) {
+    const size_t slash = target.rfind('/');
+    const std::string folder = slash == std::string::npos ? "" : target.substr(0, slash + 1);
+    const std::string name = slash == std::string::npos ? target : target.substr(slash + 1);
+    const size_t dot = name.rfind('.');
+    const std::string stem = dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+    const std::string ext = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
+    // The extension stays last, for tools that go by it.
+    return folder + "." + stem + ".partial" + std::to_string(::getpid()) + ext;
+}
+
+void WriteWholeFile(const std::string& path, const std::string& text, bool durable) {
+    OutputFile file(path, TemporaryPathFor(path));
+    file.Write(text.data(), text.size());
+    file.Finish(durable);
+    file.Commit();
+}
+
 }  // namespace rtrt

@@ -29,4 +29,13 @@ class OutputFile {
     bool committed_ = false;
 };
 
+// The temporary an output is written to before it takes TARGET's name: a hidden file in the same
+// folder (so the rename stays on one filesystem) that carries the process id, so that an
+// interrupt removes only this process's temporaries.
+std::string TemporaryPathFor(const std::string& target);
+
+// TEXT written whole to PATH through its temporary, every write checked (OutputError otherwise);
+// DURABLE flushes it to the disk before the rename.
+void WriteWholeFile(const std::string& path, const std::string& text, bool durable);
+
 }  // namespace rtrt

@@ -19,6 +19,7 @@
 #include "game/app/spawn_palette.h"
 #include "game/app/window.h"
 #include "game/assets/image_io.h"
+#include "game/assets/video_writer.h"
 #include "game/scene/scene_file.h"
 
 #define GLFW_INCLUDE_NONE
@@ -44,7 +45,8 @@ class App {
         model_.useCuda = backend == Backend::kCuda;
         model_.glRenderer = window_.Renderer();
         if (!o.script.empty()) script_ = InputScript::Load(o.script);
-        if (!o.record.empty()) std::filesystem::create_directories(o.record);
+        if (!o.record.empty() && !IsVideoPath(o.record))
+            std::filesystem::create_directories(o.record);
         LoadScene(0);
     }
 
@@ -84,7 +86,13 @@ class App {
                     std::printf("rtrt: wrote %s\n", path.c_str());
                     screenshotKey_ = false;
                 }
-                if (!o_.record.empty()) {
+                if (IsVideoPath(o_.record)) {
+                    // The video keeps the first frame's size; a resized window is fitted to it.
+                    if (!video_)
+                        video_ = std::make_unique<VideoWriter>(o_.record, shown.width, shown.height,
+                                                               o_.fps);
+                    video_->AddFrame(shown);
+                } else if (!o_.record.empty()) {
                     char name[32];
                     std::snprintf(name, sizeof(name), "/frame_%05d.png", recorded_++);
                     WriteImage(o_.record + name, shown);
@@ -99,6 +107,10 @@ class App {
         }
         std::printf("rtrt: %d frames, %zu instances at the end, display: %s\n", frame_,
                     world_->Scene().instances.size(), model_.display.c_str());
+        if (video_) {
+            video_->Finish();
+            std::printf("rtrt: recorded %d frames to %s\n", video_->Frames(), o_.record.c_str());
+        }
         return 0;
     }
 
@@ -393,6 +405,7 @@ class App {
     vec3 grabOffset_{0.0f};
     size_t sceneIndex_ = 0;
     int frame_ = 0, recorded_ = 0, screenshotCount_ = 0;
+    std::unique_ptr<VideoWriter> video_;  // --record to a video file
     bool stepOnce_ = false, screenshotKey_ = false;
 };
 

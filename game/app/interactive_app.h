@@ -12,7 +12,7 @@ struct WindowOptions {
     std::string backend = "auto";     // auto (CUDA when usable), cpu, cuda
     uint32_t width = 1280, height = 720;
     bool vsync = true;
-    std::string record;  // folder: each frame shown is written there as frame_NNNNN.png
+    std::string record;  // a video (.mp4...), or a folder for each frame shown as frame_NNNNN.png
     std::string script;  // scripted input (input_script.h), for tests
     int frames = 0;      // stop after this many frames (0: when the window closes)
     float fps = 60.0f;   // the fixed time step with --record or --script; else the wall clock

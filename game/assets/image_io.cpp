@@ -32,7 +32,8 @@ bool IsFloatFormat(const std::string& ext) {
     return ext == ".exr" || ext == ".pfm" || ext == ".hdr";
 }
 
-// clamp(value) * 255 rounded, RGB, row 0 the top.
+}  // namespace
+
 std::vector<uint8_t> EightBit(const Image& image) {
     std::vector<uint8_t> bytes(image.pixels.size() * 3);
     for (size_t i = 0; i < image.pixels.size(); ++i)
@@ -40,6 +41,8 @@ std::vector<uint8_t> EightBit(const Image& image) {
             bytes[3 * i + c] = uint8_t(std::clamp(image.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
     return bytes;
 }
+
+namespace {
 
 // PPM or PFM bytes, written without OpenImageIO.
 std::string EncodePortable(const Image& image, const std::string& ext) {
@@ -103,12 +106,7 @@ void CheckImagePath(const std::string& path) {
 void WriteImage(const std::string& path, const Image& image) {
     CheckImagePath(path);
     const std::string ext = Extension(path);
-    std::string name = ".";  // appended piecewise: GCC 12 warns falsely on a + chain here
-    name += std::filesystem::path(path).stem().string();
-    name += ".partial";
-    name += std::to_string(::getpid());  // its own per process: an interrupt removes only ours
-    name += ext;
-    OutputFile file(path, (std::filesystem::path(path).parent_path() / name).string());
+    OutputFile file(path, TemporaryPathFor(path));
     if (ext == ".ppm" || ext == ".pfm") {
         const std::string bytes = EncodePortable(image, ext);
         file.Write(bytes.data(), bytes.size());

@@ -1,5 +1,7 @@
 #pragma once
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/render_rt/image.h"
 
@@ -14,6 +16,9 @@ void CheckImagePath(const std::string& path);
 // OutputError naming PATH with the system's reason and leaves no partial output.
 // 8-bit formats store clamp(value) * 255 rounded; float formats store the values.
 void WriteImage(const std::string& path, const Image& image);
+
+// The bytes 8-bit outputs store: clamp(value) * 255 rounded, RGB, row 0 the top.
+std::vector<uint8_t> EightBit(const Image& image);
 
 // Formats other than PPM and PFM go through the image library (OpenImageIO in the module
 // rtrt_image_oiio, game/image_library), loaded at the first such image: an ImageLibraryError

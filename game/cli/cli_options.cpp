@@ -1,5 +1,6 @@
 #include "game/cli/cli_options.h"
 
+#include <regex>
 #include <stdexcept>
 
 #include "engine/core/error.h"
@@ -24,6 +25,15 @@ void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
         throw InputError("--size", "", "width and height must be between 1 and 16384, got " + text);
     *width = uint32_t(w);
     *height = uint32_t(h);
+}
+
+bool ParseFrames(const std::string& text, int* first, int* end) {
+    static const std::regex kRange("([0-9]{1,8})(:([0-9]{1,8}))?");
+    std::smatch m;
+    if (!std::regex_match(text, m, kRange)) return false;
+    *first = m[2].matched ? std::stoi(m[1].str()) : 0;
+    *end = m[2].matched ? std::stoi(m[3].str()) : std::stoi(m[1].str());
+    return *first < *end && *end <= 10000000;
 }
 
 }  // namespace rtrt

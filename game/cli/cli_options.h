@@ -13,4 +13,8 @@ inline constexpr int kExitBadInput = 2;  // bad command line, scene, model or ou
 // Parses WIDTHxHEIGHT (1..16384 each); InputError naming --size otherwise.
 void ParseSize(const std::string& text, uint32_t* width, uint32_t* height);
 
+// --frames: "N" means frames 0 to N-1, "A:B" frames A to B-1 (A < B <= 10,000,000); false when
+// malformed.
+bool ParseFrames(const std::string& text, int* first, int* end);
+
 }  // namespace rtrt

@@ -12,5 +12,6 @@ void AddPlayCommand(CLI::App& app, int* exitCode);
 void AddConvertCommand(CLI::App& app, int* exitCode);
 void AddInfoCommand(CLI::App& app, int* exitCode);
 void AddFetchModelsCommand(CLI::App& app, int* exitCode);
+void AddFarmCommand(CLI::App& app, int* exitCode);
 
 }  // namespace rtrt

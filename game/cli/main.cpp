@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
     rtrt::AddConvertCommand(app, &exitCode);
     rtrt::AddInfoCommand(app, &exitCode);
     rtrt::AddFetchModelsCommand(app, &exitCode);
+    rtrt::AddFarmCommand(app, &exitCode);
     rtrt::AddBenchCommand(app, &exitCode);
     if (ReportUnknownCommand(app, argc, argv)) return rtrt::kExitBadInput;
     try {

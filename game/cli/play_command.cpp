@@ -14,8 +14,10 @@
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
 #include "game/assets/image_io.h"
+#include "game/assets/video_writer.h"
 #include "game/cli/commands.h"
 #include "game/cli/progress_bar.h"
+#include "game/farm/frame_manifest.h"
 #include "game/runtime/world.h"
 #include "game/scene/scene_file.h"
 #if defined(RTRT_HAVE_WINDOW)
@@ -31,22 +33,13 @@ struct PlayOptions {
     std::string size;
     std::string backend = "auto";
     std::string record, script;
+    std::string manifest;  // headless: a line per finished frame, with its checksum
     bool headless = false;
     bool noVsync = false;
     std::string frames;  // N, or A:B (headless)
     uint32_t spp = 1;
     double fps = 60.0;
 };
-
-// --frames: "N" means frames 0 to N-1, "A:B" frames A to B-1 (A < B); false when malformed.
-bool ParseFrames(const std::string& text, int* first, int* end) {
-    static const std::regex kRange("([0-9]{1,7})(:([0-9]{1,7}))?");
-    std::smatch m;
-    if (!std::regex_match(text, m, kRange)) return false;
-    *first = m[2].matched ? std::stoi(m[1].str()) : 0;
-    *end = m[2].matched ? std::stoi(m[3].str()) : std::stoi(m[1].str());
-    return *first < *end && *end <= 10000000;
-}
 
 // The output pattern must hold exactly one printf integer field (%d, %04d, ...).
 std::string FramePath(const std::string& pattern, int frame) {
@@ -100,6 +93,7 @@ void RunWindowed(const PlayOptions& o) {
     for (const std::string& scene : o.scenes) LoadSceneFile(scene);
     w.vsync = !o.noVsync;
     w.record = o.record;
+    if (IsVideoPath(o.record)) CheckVideoPath(o.record);
     w.script = o.script;
     int first = 0, end = 0;
     if (!o.frames.empty() && (!ParseFrames(o.frames, &first, &end) || first != 0))
@@ -130,6 +124,7 @@ void RunPlay(PlayOptions o) {
         throw InputError("--output", "", "give where frames go, e.g. out/frame_%04d.png");
     CheckPattern(o.output);
     CheckImagePath(FramePath(o.output, first));
+    if (!o.manifest.empty()) CheckManifestPath(o.manifest);
     const LoadedScene loaded = LoadSceneFile(o.scenes[0]);
     RenderSettings settings;
     settings.width = loaded.width.value_or(1280);
@@ -169,6 +164,7 @@ void RunPlay(PlayOptions o) {
         }
         renderer->Trace(world.Scene(), settings, &frame);
         WriteImage(FramePath(o.output, i), frame);
+        if (!o.manifest.empty()) AppendToManifest(o.manifest, i, FramePath(o.output, i));
         total += timer.Milliseconds();
         char what[64];
         std::snprintf(what, sizeof(what), "frames, %.1f ms/frame", total / (i - first + 1));
@@ -199,8 +195,12 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
                     "Samples per pixel, n x n stratified (1, 4, 9, 16...), for offline quality")
         ->check(CLI::IsMember({1u, 4u, 9u, 16u, 25u, 36u, 49u, 64u}))
         ->capture_default_str();
+    cmd->add_option("--manifest", options->manifest,
+                    "Headless: append a line per finished frame to this file (frame, file, "
+                    "bytes, XXH3-64 checksum), as rtrt farm's tasks do");
     cmd->add_option("--record", options->record,
-                    "Window: write every frame shown to DIR/frame_NNNNN.png (fixed time step)");
+                    "Window: record every frame shown (fixed time step) to a video (.mp4, .mkv, "
+                    ".mov: H.264 through ffmpeg) or to DIR/frame_NNNNN.png");
     cmd->add_option("--script", options->script,
                     "Window: scripted input, for tests (see game/app/input_script.h)")
         ->check(CLI::ExistingFile);

@@ -479,6 +479,13 @@ std::string SceneNamesHint(const std::string& name) {
 
 }  // namespace
 
+std::string ScenePathFor(const std::string& argument) {
+    std::error_code ec;
+    if (std::filesystem::exists(argument, ec)) return argument;
+    const std::string known = SceneByName(argument);
+    return known.empty() ? argument : known;
+}
+
 LoadedScene LoadSceneFile(const std::string& path) {
     if (IsGltfPath(path)) return LoadGltfScene(path);
     std::error_code ec;

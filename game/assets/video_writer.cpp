@@ -1,0 +1,92 @@
+#include "game/assets/video_writer.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "game/assets/image_io.h"
+
+namespace rtrt {
+
+bool IsVideoPath(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    return ext == ".mp4" || ext == ".mkv" || ext == ".mov";
+}
+
+void CheckVideoPath(const std::string& path) {
+    if (!ProgramOnPath("ffmpeg"))
+        throw InputError("--record", path,
+                         "recording a video needs ffmpeg (Debian: apt-get install ffmpeg); "
+                         "or give a folder for PNG frames");
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    std::error_code ec;
+    if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
+        throw InputError("--record", path, "the folder " + dir.string() + " does not exist");
+}
+
+VideoWriter::VideoWriter(std::string path, uint32_t width, uint32_t height, double fps)
+    : path_(std::move(path)), width_(width), height_(height) {
+    const std::string temp = TemporaryPathFor(path_);
+    output_ = std::make_unique<OutputFile>(path_, temp);  // made and registered for an interrupt
+    char rate[32];
+    std::snprintf(rate, sizeof(rate), "%.17g", fps);
+    ChildOptions o;
+    o.pipeStdin = true;
+    ffmpeg_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{
+            "ffmpeg",     "-nostdin", "-hide_banner",
+            "-loglevel",  "error",    "-y",
+            "-f",         "rawvideo", "-pix_fmt",
+            "rgb24",      "-s",       std::to_string(width) + "x" + std::to_string(height),
+            "-framerate", rate,       "-i",
+            "pipe:0",     "-vf",      "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+            "-c:v",       "libx264",  "-preset",
+            "veryfast",   "-crf",     "18",
+            "-pix_fmt",   "yuv420p",  "-movflags",
+            "+faststart", temp},
+        o);
+    if (!ffmpeg_->Started()) throw OutputError(path_, "cannot run ffmpeg: " + ffmpeg_->Error());
+}
+
+VideoWriter::~VideoWriter() {
+    if (ffmpeg_) {
+        ffmpeg_->CloseInput();
+        ffmpeg_->Wait();
+    }
+}
+
+void VideoWriter::AddFrame(const Image& frame) {
+    Image fitted = frame;
+    if (frame.width != width_ || frame.height != height_) {
+        fitted = Image(width_, height_);
+        const int dx = (int(frame.width) - int(width_)) / 2;
+        const int dy = (int(frame.height) - int(height_)) / 2;
+        for (uint32_t y = 0; y < height_; ++y)
+            for (uint32_t x = 0; x < width_; ++x) {
+                const int sx = int(x) + dx, sy = int(y) + dy;
+                if (sx >= 0 && sy >= 0 && sx < int(frame.width) && sy < int(frame.height))
+                    fitted.At(x, y) = frame.At(uint32_t(sx), uint32_t(sy));
+            }
+    }
+    const std::vector<uint8_t> bytes = EightBit(fitted);
+    if (!ffmpeg_->WriteInput(bytes.data(), bytes.size()))
+        throw OutputError(path_, "ffmpeg stopped taking frames (exit " +
+                                     std::to_string(ffmpeg_->Wait()) + "; its messages are above)");
+    ++frames_;
+}
+
+void VideoWriter::Finish() {
+    ffmpeg_->CloseInput();
+    const int status = ffmpeg_->Wait();
+    if (status != 0)
+        throw OutputError(
+            path_, "ffmpeg failed (exit " + std::to_string(status) + "; its messages are above)");
+    output_->Finish(/*durable=*/true);
+    output_->Commit();
+}
+
+}  // namespace rtrt

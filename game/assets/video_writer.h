@@ -1,0 +1,46 @@
+#pragma once
+// A video written frame by frame through ffmpeg (H.264 in yuv420p; the container from the file's
+// extension: .mp4, .mkv, .mov), as `rtrt play --record out.mp4` records the window. The frames
+// are piped to ffmpeg raw; the file takes its name only when ffmpeg has finished it, and an
+// interrupt or a failure removes it, so the video is whole or absent.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "engine/core/child_process.h"
+#include "engine/core/output_file.h"
+#include "engine/render_rt/image.h"
+
+namespace rtrt {
+
+// Whether PATH names a video rtrt records (.mp4, .mkv, .mov), not a folder of frames.
+bool IsVideoPath(const std::string& path);
+
+// InputError(--record, PATH, reason) unless ffmpeg is installed and PATH's folder can be
+// written: called before a window opens.
+void CheckVideoPath(const std::string& path);
+
+class VideoWriter {
+  public:
+    // A video of WIDTH x HEIGHT at FPS frames per second (odd sizes are padded to even ones).
+    VideoWriter(std::string path, uint32_t width, uint32_t height, double fps);
+    ~VideoWriter();  // unfinished: ffmpeg is stopped and the temporary removed
+    VideoWriter(const VideoWriter&) = delete;
+    VideoWriter& operator=(const VideoWriter&) = delete;
+
+    // Adds a frame; one of another size (a resized window) is centred, cropped or padded black.
+    // OutputError when ffmpeg has stopped.
+    void AddFrame(const Image& frame);
+    // Ends the video and gives it its name; OutputError when ffmpeg failed.
+    void Finish();
+    int Frames() const { return frames_; }
+
+  private:
+    std::string path_;
+    uint32_t width_, height_;
+    std::unique_ptr<OutputFile> output_;
+    std::unique_ptr<ChildProcess> ffmpeg_;
+    int frames_ = 0;
+};
+
+}  // namespace rtrt

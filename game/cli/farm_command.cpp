@@ -1,0 +1,392 @@
+// `rtrt farm SCENE --frames A:B --shards K -o DIR`: a frame sequence rendered on a Slurm cluster as
+// a job array (each element a share of the frames, `rtrt play --frames` on its node) and a job
+// after it that assembles the video. Resumable: the folder's manifest says which frames are
+// finished, and a rerun renders only what is missing or corrupt. `--status DIR` says what is done,
+// `--assemble DIR` is the assembly job's own command, `--local` runs the same tasks here.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/core/child_process.h"
+#include "engine/core/error.h"
+#include "engine/core/output_file.h"
+#include "game/assets/image_io.h"
+#include "game/cli/commands.h"
+#include "game/cli/progress_bar.h"
+#include "game/farm/farm_commands.h"
+#include "game/farm/farm_job.h"
+#include "game/farm/frame_manifest.h"
+#include "game/farm/shard_plan.h"
+#include "game/farm/video_assembly.h"
+#include "game/scene/scene_file.h"
+
+namespace rtrt {
+namespace {
+namespace fs = std::filesystem;
+
+// `rtrt farm --status` while frames, the video or the contact sheet are still missing.
+constexpr int kExitIncomplete = 3;
+
+struct FarmOptions {
+    std::string scene, output, frames, size, backend, format, partition, timeLimit;
+    std::string status, assemble;
+    int shards = 1, cpusPerTask = 1;
+    uint32_t spp = 1;
+    double fps = 60.0;
+    bool gpu = false, dryRun = false, local = false;
+};
+
+std::string RtrtPath() {
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string("rtrt") : self.string();
+}
+
+// The command that submits (or resumes) JOB, for messages.
+std::string FarmCommandLine(const FarmJob& job, const std::string& extra = "") {
+    const FarmFrames& f = job.frames;
+    std::string line = "rtrt farm " + ShellQuote(f.scene) + " --frames " + RangeText(f.frames) +
+                       " --size " + std::to_string(f.width) + "x" + std::to_string(f.height) +
+                       " --spp " + std::to_string(f.spp) + " --backend " + f.backend +
+                       " --shards " + std::to_string(job.scheduling.shards);
+    if (f.fps != 60.0) line += " --fps " + std::to_string(f.fps);
+    if (job.scheduling.gpu) line += " --gpu";
+    return line + " -o " + ShellQuote(job.folder) + extra;
+}
+
+void DrawCheckProgress(int done, int total) {
+    DrawProgressBar("farm", done, total, "frames checked");
+}
+
+FrameCheck CheckAndReport(const FarmJob& job) {
+    const int total = job.frames.frames.Count();
+    const FrameCheck check = CheckFrames(job, total >= 1000 ? DrawCheckProgress : nullptr);
+    std::printf("rtrt farm: %s: %zu of %d frames done", job.folder.c_str(), check.done.size(),
+                total);
+    if (!check.missing.empty())
+        std::printf(", %zu missing (%s)", check.missing.size(), FramesText(check.missing).c_str());
+    if (!check.corrupt.empty())
+        std::printf(", %zu corrupt (%s: not the checksum the manifest holds)", check.corrupt.size(),
+                    FramesText(check.corrupt).c_str());
+    std::printf("\n");
+    return check;
+}
+
+// The job the options describe, checked: the scene loads, the folder can hold it.
+FarmJob JobFromOptions(const FarmOptions& o) {
+    if (o.scene.empty()) throw InputError("farm", "", "give a scene (or --status/--assemble DIR)");
+    if (o.output.empty())
+        throw InputError("--output", "", "give the job's folder, e.g. -o out/farm");
+    FarmJob job;
+    job.folder = fs::absolute(o.output).lexically_normal().string();
+    while (job.folder.size() > 1 && job.folder.back() == '/') job.folder.pop_back();
+    if (job.folder.find_first_of("%\"\n") != std::string::npos)
+        throw InputError("--output", job.folder,
+                         "a folder for Slurm's scripts cannot hold %, \" or a newline");
+    FarmFrames& f = job.frames;
+    if (!ParseFrames(o.frames, &f.frames.first, &f.frames.end))
+        throw InputError("--frames", o.frames,
+                         "give the frames to render: N (0 to N-1) or A:B (A to B-1), e.g. 0:480");
+    std::string scene = ScenePathFor(o.scene);
+    std::error_code ec;
+    if (fs::exists(scene, ec)) scene = fs::absolute(scene).lexically_normal().string();
+    const LoadedScene loaded = LoadSceneFile(scene);  // bad scenes fail here, not on the nodes
+    f.scene = scene;
+    f.width = loaded.width.value_or(1280);
+    f.height = loaded.height.value_or(720);
+    if (!o.size.empty()) ParseSize(o.size, &f.width, &f.height);
+    f.spp = o.spp;
+    f.fps = o.fps;
+    f.backend = o.backend.empty() ? (o.gpu ? "cuda" : "cpu") : o.backend;
+    f.format = o.format.empty() ? (CanReadImages() ? "png" : "ppm") : o.format;
+    if (f.format == "png" && !CanReadImages())
+        throw InputError(
+            "--format", "png",
+            "this rtrt cannot write PNG (built without OpenImageIO); use --format ppm");
+    FarmScheduling& s = job.scheduling;
+    s.shards = o.shards;
+    s.gpu = o.gpu;
+    s.partition = o.partition;
+    s.timeLimit = o.timeLimit;
+    s.cpusPerTask = o.cpusPerTask;
+    return job;
+}
+
+// The job as the folder already holds it, or as new; InputError when the folder holds other frames.
+FarmJob ResumeOrStart(FarmJob job) {
+    if (HasFarmJob(job.folder)) {
+        const FarmJob there = ReadFarmJob(job.folder);
+        const std::string difference = FramesDifference(there.frames, job.frames);
+        if (!difference.empty())
+            throw InputError(job.folder, "",
+                             "holds frames of other settings (" + difference +
+                                 "); give another -o, or remove the folder to start again");
+        job.submissions = there.submissions;
+        return job;
+    }
+    std::error_code ec;
+    if (fs::exists(job.folder, ec) && !fs::is_directory(job.folder, ec))
+        throw InputError("--output", job.folder, "is a file, not a folder");
+    if (fs::is_directory(job.folder, ec) && !fs::is_empty(job.folder, ec))
+        throw InputError("--output", job.folder,
+                         "is not empty and holds no farm job (farm.json); give an empty or new "
+                         "folder");
+    return job;
+}
+
+void MakeFolders(const FarmJob& job) {
+    for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder),
+                                   job.folder + "/slurm", job.folder + "/logs"}) {
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        if (ec) throw OutputError(dir, ec.message());
+    }
+}
+
+std::vector<int> FramesToRender(const FrameCheck& check) {
+    std::vector<int> frames = check.missing;
+    frames.insert(frames.end(), check.corrupt.begin(), check.corrupt.end());
+    std::sort(frames.begin(), frames.end());
+    return frames;
+}
+
+bool Assembled(const FarmJob& job) {
+    std::error_code ec;
+    return fs::is_regular_file(VideoFile(job.folder), ec) &&
+           fs::is_regular_file(ContactSheetFile(job.folder), ec);
+}
+
+// The tasks run one after another on this machine, then the assembly.
+int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks) {
+    MakeFolders(job);
+    WriteFarmJob(job);
+    const std::string manifest =
+        ManifestFolder(job.folder) + "/local-" + std::to_string(::getpid()) + ".tsv";
+    for (size_t t = 0; t < tasks.size(); ++t)
+        for (const FrameRange& range : tasks[t]) {
+            std::printf("rtrt farm: task %zu of %zu: frames %s\n", t + 1, tasks.size(),
+                        RangeText(range).c_str());
+            std::fflush(stdout);
+            const int status = RunProgram(PlayCommand(job, RtrtPath(), range, manifest));
+            if (status != 0) {
+                std::fprintf(stderr,
+                             "rtrt: error: the task for frames %s failed (exit %d); the frames "
+                             "finished are kept, and rerunning the command renders the rest\n",
+                             RangeText(range).c_str(), status);
+                return status == kExitBadInput ? kExitBadInput : kExitFailure;
+            }
+        }
+    AssembleVideo(job);
+    std::printf("rtrt farm: %s and %s are ready\n", VideoFile(job.folder).c_str(),
+                ContactSheetFile(job.folder).c_str());
+    return kExitOk;
+}
+
+// Submits a script with sbatch --parsable: the job id.
+std::string Submit(const std::vector<std::string>& command) {
+    std::string output;
+    const int status = RunProgram(command, &output);
+    const std::string id = output.substr(0, output.find_first_of(";\n"));
+    if (status != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+        throw OutputError(command.back(), "sbatch failed (exit " + std::to_string(status) +
+                                              "; its message is above)");
+    return id;
+}
+
+int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks) {
+    MakeFolders(job);
+    WriteFarmJob(job);
+    const std::string n = std::to_string(job.submissions.size() + 1);
+    const std::string renderScript = job.folder + "/slurm/render-" + n + ".sbatch";
+    const std::string assembleScript = job.folder + "/slurm/assemble-" + n + ".sbatch";
+    std::string renderJob;
+    if (!tasks.empty()) {
+        WriteWholeFile(renderScript, RenderScript(job, tasks, RtrtPath()), /*durable=*/true);
+        renderJob = Submit(SubmitRender(renderScript));
+    }
+    WriteWholeFile(assembleScript, AssembleScript(job, RtrtPath()), /*durable=*/true);
+    const std::string assembleJob = Submit(SubmitAssembly(assembleScript, renderJob));
+    job.submissions.push_back("render " + (renderJob.empty() ? "-" : renderJob) + " assemble " +
+                              assembleJob);
+    WriteFarmJob(job);
+    if (!renderJob.empty())
+        std::printf("rtrt farm: submitted render job %s (%zu tasks) and assemble job %s after it\n",
+                    renderJob.c_str(), tasks.size(), assembleJob.c_str());
+    else
+        std::printf("rtrt farm: every frame is done; submitted assemble job %s\n",
+                    assembleJob.c_str());
+    std::printf("rtrt farm: follow it with: rtrt farm --status %s\n",
+                ShellQuote(job.folder).c_str());
+    return kExitOk;
+}
+
+void PrintDryRun(const FarmJob& job, const std::vector<std::vector<FrameRange>>& tasks) {
+    const std::string n = std::to_string(job.submissions.size() + 1);
+    if (!tasks.empty()) {
+        const std::string script = job.folder + "/slurm/render-" + n + ".sbatch";
+        std::printf("# %s, submitted as: %s\n%s\n", script.c_str(),
+                    ShellLine(SubmitRender(script)).c_str(),
+                    RenderScript(job, tasks, RtrtPath()).c_str());
+    }
+    const std::string script = job.folder + "/slurm/assemble-" + n + ".sbatch";
+    std::printf("# %s, submitted as: %s\n%s", script.c_str(),
+                ShellLine(SubmitAssembly(script, tasks.empty() ? "" : "RENDER_JOB_ID")).c_str(),
+                AssembleScript(job, RtrtPath()).c_str());
+    std::printf("# (dry run: nothing was written or submitted)\n");
+}
+
+int RunFarm(const FarmOptions& o) {
+    const FarmJob job = ResumeOrStart(JobFromOptions(o));
+    const bool resumed = HasFarmJob(job.folder);
+    const FrameCheck check = resumed ? CheckAndReport(job) : FrameCheck{};
+    std::vector<int> frames = FramesToRender(check);
+    if (!resumed)
+        for (int i = job.frames.frames.first; i < job.frames.frames.end; ++i) frames.push_back(i);
+    if (frames.empty() && Assembled(job)) {
+        std::printf("rtrt farm: nothing to do: every frame, %s and %s are there\n",
+                    VideoFile(job.folder).c_str(), ContactSheetFile(job.folder).c_str());
+        return kExitOk;
+    }
+    const std::vector<std::vector<FrameRange>> tasks = PlanShards(frames, job.scheduling.shards);
+    if (o.dryRun) {
+        PrintDryRun(job, tasks);
+        return kExitOk;
+    }
+    if (o.local) return RunLocally(job, tasks);
+    if (!ProgramOnPath("sbatch")) {
+        std::fprintf(stderr,
+                     "rtrt: error: Slurm is not installed here (no sbatch on PATH), so nothing was "
+                     "submitted.\nThe same frames rendered on this machine, one task after "
+                     "another:\n  %s\n",
+                     FarmCommandLine(job, " --local").c_str());
+        return kExitFailure;
+    }
+    return SubmitToSlurm(job, tasks);
+}
+
+// Counts of the job's Slurm jobs by state ("2 RUNNING, 1 PENDING"), or "" when none is queued.
+std::string QueueState(const FarmJob& job) {
+    if (job.submissions.empty() || !ProgramOnPath("squeue")) return {};
+    std::string ids;
+    for (const std::string& s : job.submissions) {
+        char render[32] = "", assemble[32] = "";
+        if (std::sscanf(s.c_str(), "render %31s assemble %31s", render, assemble) != 2) continue;
+        for (const char* id : {render, assemble})
+            if (std::string(id) != "-") ids += (ids.empty() ? "" : ",") + std::string(id);
+    }
+    std::string output;
+    ChildOptions quiet;
+    quiet.quietStderr = true;
+    if (ids.empty() || RunProgram({"squeue", "-h", "-j", ids, "-o", "%j %T"}, &output, quiet) != 0)
+        return {};
+    std::map<std::string, int> states;
+    size_t start = 0;
+    for (size_t end; (end = output.find('\n', start)) != std::string::npos; start = end + 1) {
+        const std::string line = output.substr(start, end - start);
+        const size_t space = line.rfind(' ');
+        if (space != std::string::npos)
+            ++states[line.substr(0, space) + " " + line.substr(space + 1)];
+    }
+    std::string text;
+    for (const auto& [state, count] : states)
+        text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + state;
+    return text;
+}
+
+int RunStatus(const std::string& folder) {
+    const FarmJob job = ReadFarmJob(fs::absolute(folder).lexically_normal().string());
+    const FarmFrames& f = job.frames;
+    std::printf("rtrt farm: %s: %s, frames %s, %ux%u, %u spp, %s back end\n", job.folder.c_str(),
+                f.scene.c_str(), RangeText(f.frames).c_str(), f.width, f.height, f.spp,
+                f.backend.c_str());
+    const FrameCheck check = CheckAndReport(job);
+    const std::string queue = QueueState(job);
+    std::printf("rtrt farm: Slurm: %s\n",
+                job.submissions.empty() ? "nothing submitted (rendered with --local)"
+                : queue.empty() ? ("no job queued (last: " + job.submissions.back() + ")").c_str()
+                                : (queue + " (" + job.submissions.back() + ")").c_str());
+    const bool assembled = Assembled(job);
+    std::printf("rtrt farm: video: %s\n",
+                assembled ? (VideoFile(job.folder) + " and " + ContactSheetFile(job.folder)).c_str()
+                          : "not made yet");
+    if (check.done.size() == size_t(f.frames.Count()) && assembled) return kExitOk;
+    if (queue.empty()) std::printf("rtrt farm: to finish it: %s\n", FarmCommandLine(job).c_str());
+    return kExitIncomplete;
+}
+
+int RunAssemble(const std::string& folder) {
+    const FarmJob job = ReadFarmJob(fs::absolute(folder).lexically_normal().string());
+    const FrameCheck check = CheckAndReport(job);
+    if (check.done.size() != size_t(job.frames.frames.Count())) {
+        std::fprintf(stderr,
+                     "rtrt: error: %s: frames are missing or corrupt, so no video was made; "
+                     "render them with: %s\n",
+                     job.folder.c_str(), FarmCommandLine(job).c_str());
+        return kExitFailure;
+    }
+    AssembleVideo(job);
+    std::printf("rtrt farm: wrote %s and %s\n", VideoFile(job.folder).c_str(),
+                ContactSheetFile(job.folder).c_str());
+    return kExitOk;
+}
+
+}  // namespace
+
+void AddFarmCommand(CLI::App& app, int* exitCode) {
+    auto o = std::make_shared<FarmOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "farm",
+        "Render a frame sequence on a Slurm cluster (a job array, then a job that makes the MP4 "
+        "and a contact sheet with ffmpeg); rerun to resume");
+    cmd->footer(
+        "The job's folder must be on a filesystem every node sees, and rtrt at the same path on "
+        "each. Exit status: 0 done (submitted), 1 a failure (Slurm or ffmpeg missing or failing), "
+        "2 bad input; --status: 0 complete, 3 not yet.");
+    cmd->add_option("scene", o->scene, "Scene file (.json, .gltf, .glb) or a scene name");
+    cmd->add_option("--frames", o->frames, "Frames to render: N (0 to N-1) or A:B (A to B-1)");
+    cmd->add_option("-o,--output", o->output, "The job's folder (frames, manifest, video)");
+    cmd->add_option("--shards", o->shards, "Tasks of the job array")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
+    cmd->add_option("--spp", o->spp, "Samples per pixel, n x n stratified")
+        ->check(CLI::IsMember({1u, 4u, 9u, 16u, 25u, 36u, 49u, 64u}))
+        ->capture_default_str();
+    cmd->add_option("--fps", o->fps, "Frames per second of scene time and of the video")
+        ->check(CLI::Range(1.0, 1000.0))
+        ->capture_default_str();
+    cmd->add_option("--backend", o->backend,
+                    "cpu or cuda for every task (default: cuda with --gpu, else cpu)")
+        ->check(CLI::IsMember({"cpu", "cuda"}));
+    cmd->add_option("--format", o->format, "Frame files: png (default) or ppm")
+        ->check(CLI::IsMember({"png", "ppm"}));
+    cmd->add_flag("--gpu", o->gpu, "Each task asks Slurm for one GPU (--gres=gpu:1)");
+    cmd->add_option("--partition", o->partition, "Slurm partition for the jobs");
+    cmd->add_option("--time", o->timeLimit, "Slurm time limit of each task, e.g. 1:00:00");
+    cmd->add_option("--cpus-per-task", o->cpusPerTask, "CPUs each task asks for")
+        ->check(CLI::Range(1, 4096))
+        ->capture_default_str();
+    cmd->add_flag("--dry-run", o->dryRun, "Print the batch scripts; write and submit nothing");
+    cmd->add_flag("--local", o->local, "Run the tasks here, one after another, without Slurm");
+    cmd->add_option("--status", o->status, "Say what the job in this folder has done")
+        ->excludes("scene");
+    cmd->add_option("--assemble", o->assemble,
+                    "Check every frame and make the video and contact sheet (the assembly job)")
+        ->excludes("scene");
+    cmd->callback([o, exitCode] {
+        if (!o->status.empty())
+            *exitCode = RunStatus(o->status);
+        else if (!o->assemble.empty())
+            *exitCode = RunAssemble(o->assemble);
+        else
+            *exitCode = RunFarm(*o);
+    });
+}
+
+}  // namespace rtrt

@@ -1,0 +1,136 @@
+#include "game/farm/farm_job.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "engine/core/error.h"
+#include "engine/core/output_file.h"
+#include "game/scene/json_fields.h"
+
+namespace rtrt {
+
+std::string FarmFile(const std::string& folder) { return folder + "/farm.json"; }
+std::string FramesFolder(const std::string& folder) { return folder + "/frames"; }
+std::string FramePattern(const FarmJob& job) {
+    return FramesFolder(job.folder) + "/frame_%06d." + job.frames.format;
+}
+std::string FrameFile(const FarmJob& job, int frame) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "/frame_%06d.", frame);
+    return FramesFolder(job.folder) + name + job.frames.format;
+}
+std::string ManifestFolder(const std::string& folder) { return folder + "/manifest"; }
+std::string VideoFile(const std::string& folder) { return folder + "/video.mp4"; }
+std::string ContactSheetFile(const std::string& folder) { return folder + "/contact_sheet.png"; }
+
+std::string RangeText(const FrameRange& range) {
+    return std::to_string(range.first) + ":" + std::to_string(range.end);
+}
+
+bool HasFarmJob(const std::string& folder) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(FarmFile(folder), ec);
+}
+
+FarmJob ReadFarmJob(const std::string& folder) {
+    const std::string file = FarmFile(folder);
+    std::ifstream in(file, std::ios::binary);
+    if (!in)
+        throw InputError(file, "",
+                         "cannot be read; is " + folder + " a folder made by `rtrt farm`?");
+    std::stringstream text;
+    text << in.rdbuf();
+    const Json j = ParseJson(text.str(), file);
+    if (!j.is_object()) throw InputError(file, "", "expected a JSON object");
+    JsonFields f(j, "", file);
+    FarmJob job;
+    job.folder = folder;
+    if (f.Count("version", 1, 1, 0) != 1) f.Fail("version", "missing required field");
+    FarmFrames& fr = job.frames;
+    fr.scene = f.String("scene");
+    f.ExpectKind("frames", JsonKind::kInts);
+    const Json& frames = f.Get("frames");
+    if (frames.size() != 2 || frames[0].get<int64_t>() < 0 ||
+        frames[1].get<int64_t>() <= frames[0].get<int64_t>() || frames[1].get<int64_t>() > 1e7)
+        f.Fail("frames", "expected [first, end] with 0 <= first < end <= 10000000");
+    fr.frames = {int(frames[0].get<int64_t>()), int(frames[1].get<int64_t>())};
+    fr.width = f.Count("width", 1, 16384, 0);
+    fr.height = f.Count("height", 1, 16384, 0);
+    if (fr.width == 0 || fr.height == 0) f.Fail("width", "missing required field");
+    fr.spp = f.Count("spp", 1, 64, 1);
+    if (f.Has("fps")) {  // a double, as the command line gives it, so that it compares equal
+        const Json& fps = f.Get("fps");
+        if (!fps.is_number() || !(fps.get<double>() >= 1.0 && fps.get<double>() <= 1000.0))
+            f.Fail("fps", "expected a number from 1 to 1000");
+        fr.fps = fps.get<double>();
+    }
+    fr.backend = f.String("backend", "cpu");
+    if (fr.backend != "cpu" && fr.backend != "cuda")
+        f.Fail("backend", "expected cpu or cuda, got \"" + fr.backend + "\"");
+    fr.format = f.String("format", "png");
+    if (fr.format != "png" && fr.format != "ppm")
+        f.Fail("format", "expected png or ppm, got \"" + fr.format + "\"");
+    FarmScheduling& s = job.scheduling;
+    s.shards = int(f.Count("shards", 1, 100000, 1));
+    f.ExpectKind("gpu", JsonKind::kBool);
+    s.gpu = f.Has("gpu") && f.Get("gpu").get<bool>();
+    s.partition = f.String("partition", "");
+    s.timeLimit = f.String("time_limit", "");
+    s.cpusPerTask = int(f.Count("cpus_per_task", 1, 4096, 1));
+    if (f.Has("submissions")) {
+        const Json& list = f.Get("submissions");
+        if (!list.is_array()) f.Fail("submissions", "expected an array of strings");
+        for (const Json& entry : list) {
+            if (!entry.is_string()) f.Fail("submissions", "expected an array of strings");
+            job.submissions.push_back(entry.get<std::string>());
+        }
+    }
+    f.Finish();
+    return job;
+}
+
+void WriteFarmJob(const FarmJob& job) {
+    const FarmFrames& fr = job.frames;
+    const FarmScheduling& s = job.scheduling;
+    Json j = {{"version", 1},
+              {"scene", fr.scene},
+              {"frames", {fr.frames.first, fr.frames.end}},
+              {"width", fr.width},
+              {"height", fr.height},
+              {"spp", fr.spp},
+              {"fps", fr.fps},
+              {"backend", fr.backend},
+              {"format", fr.format},
+              {"shards", s.shards},
+              {"gpu", s.gpu},
+              {"partition", s.partition},
+              {"time_limit", s.timeLimit},
+              {"cpus_per_task", s.cpusPerTask},
+              {"submissions", job.submissions}};
+    WriteWholeFile(FarmFile(job.folder), j.dump(2) + "\n", /*durable=*/true);
+}
+
+std::string FramesDifference(const FarmFrames& there, const FarmFrames& here) {
+    std::vector<std::string> differences;
+    auto differ = [&](const std::string& what, const std::string& a, const std::string& b) {
+        if (a != b) differences.push_back(what + " " + a + " there, " + b + " here");
+    };
+    differ("scene", there.scene, here.scene);
+    differ("frames", RangeText(there.frames), RangeText(here.frames));
+    differ("size", std::to_string(there.width) + "x" + std::to_string(there.height),
+           std::to_string(here.width) + "x" + std::to_string(here.height));
+    differ("spp", std::to_string(there.spp), std::to_string(here.spp));
+    char a[32], b[32];
+    std::snprintf(a, sizeof(a), "%g", there.fps);
+    std::snprintf(b, sizeof(b), "%g", here.fps);
+    differ("fps", a, b);
+    differ("backend", there.backend, here.backend);
+    differ("format", there.format, here.format);
+    std::string text;
+    for (const std::string& d : differences) text += (text.empty() ? "" : "; ") + d;
+    return text;
+}
+
+}  // namespace rtrt

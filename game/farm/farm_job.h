@@ -1,0 +1,70 @@
+#pragma once
+// One farm job: a frame sequence of a scene rendered into an output folder by many tasks
+// (Slurm array elements, or local processes), resumable. The folder holds
+//   farm.json                 this description, written when the job is first submitted
+//   frames/frame_NNNNNN.png   the frames, each written whole (OutputFile)
+//   manifest/*.tsv            one per task run: a line per finished frame, with its checksum
+//   slurm/                    the batch scripts as submitted; logs/ their output
+//   video.mp4, contact_sheet.png   the assembly, made when every frame is there
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rtrt {
+
+// Frames FIRST to END-1.
+struct FrameRange {
+    int first = 0, end = 0;
+    int Count() const { return end - first; }
+    bool operator==(const FrameRange&) const = default;
+};
+
+// What the frames are: a change of any of these makes other frames, so a folder holds one.
+struct FarmFrames {
+    std::string scene;  // absolute path of the scene file, or "default"
+    FrameRange frames;
+    uint32_t width = 0, height = 0;
+    uint32_t spp = 1;
+    double fps = 60.0;
+    // cpu or cuda: one back end for every task (never auto), so that no frame depends on the node
+    std::string backend = "cpu";
+    std::string format = "png";  // the frames' files: png, or ppm (every build writes it)
+    bool operator==(const FarmFrames&) const = default;
+};
+
+// How the tasks are scheduled: these may change between submissions of one job.
+struct FarmScheduling {
+    int shards = 1;
+    bool gpu = false;  // each task asks for one GPU (--gres=gpu:1)
+    std::string partition, timeLimit;
+    int cpusPerTask = 1;
+};
+
+struct FarmJob {
+    std::string folder;  // absolute
+    FarmFrames frames;
+    FarmScheduling scheduling;
+    std::vector<std::string> submissions;  // "render JOBID assemble JOBID", oldest first
+};
+
+std::string FarmFile(const std::string& folder);      // FOLDER/farm.json
+std::string FramesFolder(const std::string& folder);  // FOLDER/frames
+std::string FramePattern(const FarmJob& job);         // FOLDER/frames/frame_%06d.png
+std::string FrameFile(const FarmJob& job, int frame);
+std::string ManifestFolder(const std::string& folder);    // FOLDER/manifest
+std::string VideoFile(const std::string& folder);         // FOLDER/video.mp4
+std::string ContactSheetFile(const std::string& folder);  // FOLDER/contact_sheet.png
+
+// Reads FOLDER/farm.json; InputError(file, field, reason) when it is missing or malformed.
+FarmJob ReadFarmJob(const std::string& folder);
+bool HasFarmJob(const std::string& folder);
+// Writes FOLDER/farm.json whole (OutputError on a failed write).
+void WriteFarmJob(const FarmJob& job);
+
+// "" when A and B make the same frames, else what differs, e.g. "size 640x360 there, 320x180 here".
+std::string FramesDifference(const FarmFrames& there, const FarmFrames& here);
+
+// "A:B".
+std::string RangeText(const FrameRange& range);
+
+}  // namespace rtrt

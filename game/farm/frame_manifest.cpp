@@ -1,0 +1,138 @@
+#include "game/farm/frame_manifest.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "engine/core/content_hash.h"
+#include "engine/core/error.h"
+
+namespace rtrt {
+namespace fs = std::filesystem;
+
+void AppendToManifest(const std::string& manifest, int frame, const std::string& path) {
+    std::error_code ec;
+    const uint64_t bytes = fs::file_size(path, ec);
+    if (ec) throw OutputError(path, ec.message());
+    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on a + chain of strings here.
+    std::string line = std::to_string(frame);
+    line += '\t';
+    line += fs::path(path).filename().string();
+    line += '\t';
+    line += std::to_string(bytes);
+    line += '\t';
+    line += HexDigest(HashFile(path));
+    line += '\n';
+    const int fd = ::open(manifest.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) throw OutputError(manifest, std::strerror(errno));
+    // One write of a short line: an appended line is whole or, after a crash, cut (and ignored).
+    size_t done = 0;
+    while (done < line.size()) {
+        const ssize_t put = ::write(fd, line.data() + done, line.size() - done);
+        if (put < 0 && errno == EINTR) continue;
+        if (put <= 0) {
+            const int error = put < 0 ? errno : ENOSPC;
+            ::close(fd);
+            throw OutputError(manifest, std::strerror(error));
+        }
+        done += size_t(put);
+    }
+    if (::fdatasync(fd) != 0 || ::close(fd) != 0) throw OutputError(manifest, std::strerror(errno));
+}
+
+void CheckManifestPath(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) throw InputError("--manifest", path, std::strerror(errno));
+    ::close(fd);
+}
+
+namespace {
+
+bool ParseLine(const std::string& line, ManifestEntry* e) {
+    char file[256];
+    unsigned long long bytes = 0, hash = 0;
+    int frame = 0, used = 0;
+    if (std::sscanf(line.c_str(), "%d\t%255[^\t]\t%llu\t%16llx%n", &frame, file, &bytes, &hash,
+                    &used) != 4 ||
+        size_t(used) != line.size() || frame < 0)
+        return false;
+    *e = {frame, file, bytes, hash};
+    return true;
+}
+
+}  // namespace
+
+std::map<int, ManifestEntry> ReadManifests(const std::string& folder) {
+    std::vector<std::pair<fs::file_time_type, std::string>> files;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec))
+        if (entry.path().extension() == ".tsv" && entry.is_regular_file(ec))
+            files.emplace_back(entry.last_write_time(ec), entry.path().string());
+    std::sort(files.begin(), files.end());
+    std::map<int, ManifestEntry> entries;
+    for (const auto& [time, path] : files) {
+        std::ifstream in(path, std::ios::binary);
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        size_t start = 0;
+        for (size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
+            ManifestEntry e;
+            if (ParseLine(text.substr(start, end - start), &e)) entries[e.frame] = e;
+        }
+    }
+    return entries;
+}
+
+FrameCheck CheckFrames(const FarmJob& job, void (*progress)(int done, int total)) {
+    const std::map<int, ManifestEntry> entries = ReadManifests(ManifestFolder(job.folder));
+    FrameCheck check;
+    const FrameRange range = job.frames.frames;
+    for (int frame = range.first; frame < range.end; ++frame) {
+        if (progress) progress(frame - range.first, range.Count());
+        const auto it = entries.find(frame);
+        const std::string path = FrameFile(job, frame);
+        std::error_code ec;
+        const uint64_t bytes = fs::file_size(path, ec);
+        if (it == entries.end() || ec) {
+            check.missing.push_back(frame);
+            continue;
+        }
+        const ManifestEntry& e = it->second;
+        bool whole = e.file == fs::path(path).filename().string() && e.bytes == bytes;
+        if (whole) {
+            try {
+                whole = HashFile(path) == e.hash;
+            } catch (const InputError&) {
+                whole = false;
+            }
+        }
+        (whole ? check.done : check.corrupt).push_back(frame);
+    }
+    if (progress) progress(range.Count(), range.Count());
+    return check;
+}
+
+std::string FramesText(const std::vector<int>& frames, size_t most) {
+    std::string text;
+    size_t shown = 0, i = 0;
+    for (; i < frames.size() && shown < most; ++shown) {
+        size_t j = i;
+        while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
+        if (!text.empty()) text += ", ";
+        text += std::to_string(frames[i]);
+        if (j > i) {
+            text += '-';
+            text += std::to_string(frames[j]);
+        }
+        i = j + 1;
+    }
+    if (i < frames.size()) text += ", ...";
+    return text;
+}
+
+}  // namespace rtrt

@@ -1,0 +1,107 @@
+#include "game/farm/video_assembly.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "engine/core/child_process.h"
+#include "engine/core/error.h"
+#include "engine/core/output_file.h"
+
+namespace rtrt {
+namespace {
+
+constexpr int kSheetFrames = 24, kSheetColumns = 6, kThumbWidth = 320;
+
+std::string Number(double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.17g", value);
+    return text;
+}
+
+// Runs ffmpeg to write TARGET: the output's temporary is made (and registered for an interrupt)
+// first, ffmpeg writes into it, and it takes TARGET's name only when ffmpeg succeeded.
+void RunFfmpeg(std::vector<std::string> arguments, const std::string& target) {
+    OutputFile output(target, TemporaryPathFor(target));
+    std::vector<std::string> argv = {"ffmpeg",    "-nostdin", "-hide_banner",
+                                     "-loglevel", "error",    "-y"};
+    argv.insert(argv.end(), arguments.begin(), arguments.end());
+    argv.push_back(TemporaryPathFor(target));
+    const int status = RunProgram(argv);
+    if (status != 0)
+        throw OutputError(target, "ffmpeg failed (exit " + std::to_string(status) +
+                                      "; its messages are above); the frames are kept");
+    output.Finish(/*durable=*/true);
+    output.Commit();
+}
+
+}  // namespace
+
+ContactSheetLayout PlanContactSheet(const FarmJob& job) {
+    const FrameRange range = job.frames.frames;
+    ContactSheetLayout sheet;
+    const int shown = std::min(range.Count(), kSheetFrames);
+    for (int k = 0; k < shown; ++k)
+        sheet.frames.push_back(
+            range.first +
+            (shown > 1 ? int(std::lround(double(k) * (range.Count() - 1) / (shown - 1))) : 0));
+    sheet.columns = std::min(shown, kSheetColumns);
+    sheet.rows = (shown + sheet.columns - 1) / sheet.columns;
+    const double aspect = double(job.frames.height) / job.frames.width;
+    sheet.thumbWidth = std::max(2, std::min(int(job.frames.width), kThumbWidth) / 2 * 2);
+    sheet.thumbHeight = std::max(2, int(std::lround(sheet.thumbWidth * aspect / 2.0)) * 2);
+    return sheet;
+}
+
+void AssembleVideo(const FarmJob& job) {
+    const std::string video = VideoFile(job.folder), sheetFile = ContactSheetFile(job.folder);
+    if (!ProgramOnPath("ffmpeg"))
+        throw OutputError(video,
+                          "ffmpeg is not installed (Debian: apt-get install ffmpeg); the frames "
+                          "are kept, and rtrt farm --assemble makes the video once it is");
+    const FrameRange range = job.frames.frames;
+    // H.264 in yuv420p (what players take) wants even sizes: odd ones get a row or column of
+    // padding.
+    RunFfmpeg({"-framerate",
+               Number(job.frames.fps),
+               "-start_number",
+               std::to_string(range.first),
+               "-i",
+               FramePattern(job),
+               "-frames:v",
+               std::to_string(range.Count()),
+               "-vf",
+               "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+               "-c:v",
+               "libx264",
+               "-preset",
+               "medium",
+               "-crf",
+               "18",
+               "-pix_fmt",
+               "yuv420p",
+               "-movflags",
+               "+faststart"},
+              video);
+
+    const ContactSheetLayout sheet = PlanContactSheet(job);
+    const std::string listFile = job.folder + "/contact_sheet.ffconcat";
+    OutputFile list(listFile, TemporaryPathFor(listFile));  // never committed: removed after
+    std::string text = "ffconcat version 1.0\n";
+    for (int frame : sheet.frames)
+        text += "file 'frames/" + std::filesystem::path(FrameFile(job, frame)).filename().string() +
+                "'\n";
+    list.Write(text.data(), text.size());
+    list.Finish(/*durable=*/false);
+    // The list lies in the job's folder: ffmpeg takes its entries as relative to it.
+    RunFfmpeg({"-f", "concat", "-safe", "0", "-i", TemporaryPathFor(listFile), "-vf",
+               "scale=" + std::to_string(sheet.thumbWidth) + ":" +
+                   std::to_string(sheet.thumbHeight) + ",tile=" + std::to_string(sheet.columns) +
+                   "x" + std::to_string(sheet.rows) + ":padding=4:margin=4:color=0x202020",
+               "-frames:v", "1", "-update", "1"},
+              sheetFile);
+}
+
+}  // namespace rtrt

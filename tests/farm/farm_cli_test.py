@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""`rtrt farm` without a cluster: the dry run's scripts, the message where Slurm is missing,
+--local renders that equal `rtrt play --headless` byte for byte, a resume that renders only the
+missing and corrupt frames, --status's exit statuses, and a folder of other settings refused.
+
+usage: farm_cli_test.py RTRT WORK_DIR FORMAT   (FORMAT: png, or ppm where rtrt has no PNG)
+"""
+import filecmp
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+RTRT, WORK, FORMAT = sys.argv[1], sys.argv[2], sys.argv[3]
+SCENE = "demo_physics"
+SIZE = "96x54"
+FRAMES = 12
+
+
+def run(*args, env=None, expect=0):
+    p = subprocess.run([RTRT, *args], capture_output=True, text=True, env=env, timeout=300)
+    if p.returncode != expect:
+        sys.exit(f"FAIL: rtrt {' '.join(args)}: exit {p.returncode}, expected {expect}\n"
+                 f"stdout:\n{p.stdout}\nstderr:\n{p.stderr}")
+    return p.stdout + p.stderr
+
+
+def check(condition, what):
+    if not condition:
+        sys.exit("FAIL: " + what)
+    print("ok:", what)
+
+
+def frame(folder, i):
+    return os.path.join(folder, "frames", f"frame_{i:06d}.{FORMAT}")
+
+
+def main():
+    shutil.rmtree(WORK, ignore_errors=True)
+    os.makedirs(WORK)
+    ref = os.path.join(WORK, "ref")
+    os.makedirs(ref)
+    run("play", SCENE, "--headless", "--frames", str(FRAMES), "--size", SIZE, "--backend", "cpu",
+        "-o", os.path.join(ref, f"frame_%06d.{FORMAT}"))
+    job = os.path.join(WORK, "job")
+    farm = ["farm", SCENE, "--frames", f"0:{FRAMES}", "--shards", "3", "--size", SIZE,
+            "--format", FORMAT, "-o", job]
+
+    # A dry run prints both scripts and writes nothing.
+    out = run(*farm, "--dry-run")
+    check("#SBATCH --array=0-2" in out and "0) ranges=\"0:4\"" in out and
+          "2) ranges=\"8:12\"" in out and "--dependency=afterok:RENDER_JOB_ID" in out,
+          "dry run prints the render array and the assembly after it")
+    check(not os.path.exists(job), "dry run writes nothing")
+
+    # Without Slurm: said so, with the local command, and nothing written.
+    no_slurm = dict(os.environ, PATH="/nonexistent")
+    out = run(*farm, env=no_slurm, expect=1)
+    check("Slurm is not installed here (no sbatch on PATH)" in out and "--local" in out,
+          "without sbatch rtrt says so and shows the local command")
+    check(not os.path.exists(job), "nothing written when Slurm is missing")
+
+    # --local: the same frames as play --headless, the manifest, the video.
+    out = run(*farm, "--local")
+    for i in range(FRAMES):
+        if not filecmp.cmp(frame(job, i), os.path.join(ref, f"frame_{i:06d}.{FORMAT}"),
+                           shallow=False):
+            sys.exit(f"FAIL: farm frame {i} differs from play --headless's")
+    check(True, f"--local's {FRAMES} frames equal play --headless's byte for byte")
+    probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0",
+                            "-show_entries", "stream=codec_name,width,height,nb_read_frames",
+                            "-of", "csv=p=0", os.path.join(job, "video.mp4")],
+                           capture_output=True, text=True)
+    check(probe.stdout.strip() == f"h264,96,54,{FRAMES}",
+          f"video.mp4 is H.264 96x54 with {FRAMES} frames ({probe.stdout.strip()})")
+    check(os.path.getsize(os.path.join(job, "contact_sheet.png")) > 0, "contact sheet written")
+    status = run("farm", "--status", job)
+    check(f"{FRAMES} of {FRAMES} frames done" in status, "status: every frame done, exit 0")
+    check(not [f for f in os.listdir(job) if "partial" in f or f.endswith(".ffconcat")],
+          "no temporary left in the job's folder")
+
+    # Resume: a deleted frame, a corrupted one and the video gone; only those two are rendered.
+    os.remove(frame(job, 5))
+    with open(frame(job, 9), "r+b") as f:
+        f.seek(20)
+        f.write(b"\xff\x00\xff")
+    os.remove(os.path.join(job, "video.mp4"))
+    status = run("farm", "--status", job, expect=3)
+    check("1 missing (5)" in status and "1 corrupt (9" in status and "not made yet" in status,
+          "status names the missing and the corrupt frame, exit 3")
+    out = run(*farm, "--local")
+    tasks = re.findall(r"task \d+ of \d+: frames (\d+:\d+)", out)
+    check(tasks == ["5:6", "9:10"], f"the resume renders only frames 5 and 9 ({tasks})")
+    check(filecmp.cmp(frame(job, 5), os.path.join(ref, f"frame_{5:06d}.{FORMAT}"), shallow=False)
+          and filecmp.cmp(frame(job, 9), os.path.join(ref, f"frame_{9:06d}.{FORMAT}"),
+                          shallow=False), "the rerendered frames equal the reference")
+    out = run(*farm, "--local")
+    check("nothing to do" in out, "a third run has nothing to do")
+
+    # Another size into the same folder is refused, naming the difference.
+    other = list(farm)
+    other[other.index(SIZE)] = "64x36"
+    out = run(*other, "--local", expect=2)
+    check("holds frames of other settings (size 96x54 there, 64x36 here)" in out,
+          "a folder of other settings is refused with exit 2")
+    out = run("farm", "--status", os.path.join(WORK, "nowhere"), expect=2)
+    check("a folder made by `rtrt farm`" in out, "status of a folder that is no job: exit 2")
+    out = run("play", SCENE, "--headless", "--frames", "2", "--size", SIZE, "-o",
+              os.path.join(WORK, f"m_%d.{FORMAT}"), "--manifest",
+              os.path.join(WORK, "nowhere", "m.tsv"), expect=2)
+    check("--manifest" in out and not os.path.exists(os.path.join(WORK, f"m_0.{FORMAT}")),
+          "an unwritable --manifest fails before any frame")
+    print("farm_cli: all checks passed")
+
+
+if __name__ == "__main__":
+    main()

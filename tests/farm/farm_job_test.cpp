@@ -1,0 +1,93 @@
+#include "game/farm/farm_job.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "engine/core/error.h"
+
+namespace rtrt {
+namespace {
+namespace fs = std::filesystem;
+
+class FarmJobTest : public testing::Test {
+  protected:
+    void SetUp() override {
+        folder_ = (fs::temp_directory_path() / ("rtrt_farm_job_test_" + std::to_string(::getpid())))
+                      .string();
+        fs::remove_all(folder_);
+        fs::create_directories(folder_);
+    }
+    void TearDown() override { fs::remove_all(folder_); }
+
+    void WriteText(const std::string& text) { std::ofstream(FarmFile(folder_)) << text; }
+    std::string ReadError() {
+        try {
+            ReadFarmJob(folder_);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "no error";
+    }
+
+    std::string folder_;
+};
+
+TEST_F(FarmJobTest, WrittenJobReadsBackEqual) {
+    FarmJob job;
+    job.folder = folder_;
+    job.frames = {"/scenes/demo physics.json", {12, 480}, 3840, 2160, 16, 29.97, "cuda", "ppm"};
+    job.scheduling = {8, true, "gpu", "2:00:00", 4};
+    job.submissions = {"render 17 assemble 18", "render - assemble 21"};
+    WriteFarmJob(job);
+    const FarmJob back = ReadFarmJob(folder_);
+    EXPECT_EQ(back.frames, job.frames);  // fps 29.97 exactly, as the command line gave it
+    EXPECT_EQ(back.scheduling.shards, 8);
+    EXPECT_TRUE(back.scheduling.gpu);
+    EXPECT_EQ(back.scheduling.partition, "gpu");
+    EXPECT_EQ(back.scheduling.timeLimit, "2:00:00");
+    EXPECT_EQ(back.scheduling.cpusPerTask, 4);
+    EXPECT_EQ(back.submissions, job.submissions);
+    EXPECT_FALSE(fs::exists(folder_ + "/.farm.partial" + std::to_string(::getpid()) + ".json"));
+}
+
+TEST_F(FarmJobTest, DifferencesAreNamed) {
+    FarmFrames a{"/s.json", {0, 48}, 320, 180, 1, 60.0, "cpu", "png"};
+    FarmFrames b = a;
+    EXPECT_EQ(FramesDifference(a, b), "");
+    b.width = 640;
+    b.spp = 4;
+    EXPECT_EQ(FramesDifference(a, b), "size 320x180 there, 640x180 here; spp 1 there, 4 here");
+}
+
+TEST_F(FarmJobTest, MalformedFilesNameTheFieldAndReason) {
+    EXPECT_NE(ReadError().find("cannot be read; is " + folder_ + " a folder made by `rtrt farm`?"),
+              std::string::npos);
+    WriteText(
+        "{\"version\": 1, \"scene\": \"s\", \"frames\": [5, 5], \"width\": 2, \"height\": 2}");
+    EXPECT_NE(ReadError().find("farm.json: frames: expected [first, end]"), std::string::npos)
+        << ReadError();
+    WriteText(
+        "{\"version\": 1, \"scene\": \"s\", \"frames\": [0, 5], \"width\": 2, \"height\": 2, "
+        "\"backend\": \"auto\"}");
+    EXPECT_NE(ReadError().find("backend: expected cpu or cuda"), std::string::npos) << ReadError();
+    WriteText(
+        "{\"version\": 1, \"scene\": \"s\", \"frames\": [0, 5], \"width\": 2, \"height\": 2, "
+        "\"colour\": 1}");
+    EXPECT_NE(ReadError().find("colour"), std::string::npos) << ReadError();
+    WriteText("[1, 2");
+    EXPECT_NE(ReadError().find("malformed JSON"), std::string::npos) << ReadError();
+}
+
+TEST_F(FarmJobTest, FrameFilesHaveSixDigits) {
+    FarmJob job;
+    job.folder = "/out";
+    job.frames.format = "png";
+    EXPECT_EQ(FrameFile(job, 42), "/out/frames/frame_000042.png");
+    EXPECT_EQ(FramePattern(job), "/out/frames/frame_%06d.png");
+}
+
+}  // namespace
+}  // namespace rtrt

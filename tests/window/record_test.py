@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""`rtrt play --record out.mp4` in a real window (under Xvfb): the video has every frame shown,
+at the window's size, and each decoded frame matches the frame that `--record DIR` writes for the
+same fixed-step run (H.264 at CRF 18 is lossy: mean absolute error under 2 of 255 per channel).
+
+usage: record_test.py LAUNCHER... -- RTRT WORK_DIR SCENE BACKEND
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+split = sys.argv.index("--")
+LAUNCHER = sys.argv[1:split]
+RTRT, WORK, SCENE, BACKEND = sys.argv[split + 1:split + 5]
+FRAMES, W, H = 24, 160, 90
+
+
+def fail(what):
+    sys.exit("FAIL: " + what)
+
+
+def play(record):
+    p = subprocess.run([*LAUNCHER, RTRT, "play", SCENE, "--backend", BACKEND, "--size", f"{W}x{H}",
+                        "--frames", str(FRAMES), "--no-vsync", "--record", record],
+                       capture_output=True, text=True, timeout=300)
+    if p.returncode != 0:
+        fail(f"play --record {record}: exit {p.returncode}\n{p.stdout}\n{p.stderr}")
+    return p.stdout
+
+
+def raw_frames(args):
+    """rgb24 bytes of every frame ffmpeg decodes from ARGS' input."""
+    p = subprocess.run(["ffmpeg", "-nostdin", "-v", "error", *args, "-f", "rawvideo",
+                        "-pix_fmt", "rgb24", "-"], capture_output=True, timeout=120)
+    if p.returncode != 0:
+        fail("ffmpeg could not decode: " + p.stderr.decode())
+    return p.stdout
+
+
+def main():
+    shutil.rmtree(WORK, ignore_errors=True)
+    os.makedirs(WORK)
+    video = os.path.join(WORK, "session.mp4")
+    out = play(video)
+    if f"recorded {FRAMES} frames to {video}" not in out:
+        fail("no 'recorded' line: " + out)
+    probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0",
+                            "-show_entries", "stream=codec_name,width,height,nb_read_frames",
+                            "-of", "csv=p=0", video], capture_output=True, text=True).stdout
+    if probe.strip() != f"h264,{W},{H},{FRAMES}":
+        fail(f"expected h264,{W},{H},{FRAMES}, ffprobe says {probe.strip()}")
+    print(f"ok: {video}: H.264, {W}x{H}, {FRAMES} frames")
+    if [f for f in os.listdir(WORK) if "partial" in f]:
+        fail("a temporary was left: " + str(os.listdir(WORK)))
+
+    frames_dir = os.path.join(WORK, "frames")
+    play(frames_dir)
+    pngs = raw_frames(["-i", os.path.join(frames_dir, "frame_%05d.png")])
+    decoded = raw_frames(["-i", video])
+    if len(pngs) != len(decoded) or len(pngs) != FRAMES * W * H * 3:
+        fail(f"sizes differ: {len(pngs)} bytes of frames, {len(decoded)} decoded")
+    size = W * H * 3
+    worst = 0.0
+    for i in range(FRAMES):
+        a, b = pngs[i * size:(i + 1) * size], decoded[i * size:(i + 1) * size]
+        worst = max(worst, sum(abs(x - y) for x, y in zip(a, b)) / size)
+    if worst >= 2.0:
+        fail(f"a decoded frame differs from its PNG by {worst:.2f}/255 on average")
+    print(f"ok: every decoded frame matches its PNG (worst mean error {worst:.2f}/255)")
+
+
+if __name__ == "__main__":
+    main()
