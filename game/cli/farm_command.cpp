@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -133,10 +134,15 @@ FarmJob ResumeOrStart(FarmJob job) {
     std::error_code ec;
     if (fs::exists(job.folder, ec) && !fs::is_directory(job.folder, ec))
         throw InputError("--output", job.folder, "is a file, not a folder");
-    if (fs::is_directory(job.folder, ec) && !fs::is_empty(job.folder, ec))
-        throw InputError("--output", job.folder,
-                         "is not empty and holds no farm job (farm.json); give an empty or new "
-                         "folder");
+    // Frames and manifests written by tasks that ran elsewhere (a Kubernetes Indexed Job, say)
+    // are taken up by the first `rtrt farm` into their folder: anything else is refused.
+    for (const auto& entry : fs::directory_iterator(job.folder, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name != "frames" && name != "manifest" && name != "logs" && name != "slurm")
+            throw InputError(
+                "--output", job.folder,
+                "holds " + name + " but no farm job (farm.json); give an empty or new folder");
+    }
     return job;
 }
 
@@ -243,7 +249,8 @@ void PrintDryRun(const FarmJob& job, const std::vector<std::vector<FrameRange>>&
 
 int RunFarm(const FarmOptions& o) {
     const FarmJob job = ResumeOrStart(JobFromOptions(o));
-    const bool resumed = HasFarmJob(job.folder);
+    std::error_code ec;
+    const bool resumed = fs::is_directory(ManifestFolder(job.folder), ec);
     const FrameCheck check = resumed ? CheckAndReport(job) : FrameCheck{};
     std::vector<int> frames = FramesToRender(check);
     if (!resumed)
@@ -289,9 +296,12 @@ std::string QueueState(const FarmJob& job) {
     size_t start = 0;
     for (size_t end; (end = output.find('\n', start)) != std::string::npos; start = end + 1) {
         const std::string line = output.substr(start, end - start);
+        // "rtrt-render-NAME RUNNING" counts as "render running".
         const size_t space = line.rfind(' ');
-        if (space != std::string::npos)
-            ++states[line.substr(0, space) + " " + line.substr(space + 1)];
+        if (space == std::string::npos) continue;
+        std::string state = line.substr(space + 1);
+        for (char& c : state) c = char(std::tolower(static_cast<unsigned char>(c)));
+        ++states[(line.rfind("rtrt-render", 0) == 0 ? "render " : "assemble ") + state];
     }
     std::string text;
     for (const auto& [state, count] : states)

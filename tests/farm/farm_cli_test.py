@@ -98,6 +98,22 @@ def main():
     out = run(*farm, "--local")
     check("nothing to do" in out, "a third run has nothing to do")
 
+    # Tasks run elsewhere (a Kubernetes Indexed Job): play --manifest into a new folder, then the
+    # farm command takes their frames up and only assembles.
+    k8s = os.path.join(WORK, "k8s")
+    os.makedirs(os.path.join(k8s, "frames"))
+    os.makedirs(os.path.join(k8s, "manifest"))
+    for index, (a, b) in enumerate([(0, 7), (7, FRAMES)]):
+        run("play", SCENE, "--headless", "--frames", f"{a}:{b}", "--size", SIZE, "--backend", "cpu",
+            "-o", os.path.join(k8s, "frames", f"frame_%06d.{FORMAT}"), "--manifest",
+            os.path.join(k8s, "manifest", f"k8s-{index}.tsv"))
+    k8s_farm = list(farm)
+    k8s_farm[k8s_farm.index(job)] = k8s
+    out = run(*k8s_farm, "--local")
+    check(f"{FRAMES} of {FRAMES} frames done" in out and "task" not in out and
+          os.path.exists(os.path.join(k8s, "video.mp4")),
+          "frames rendered elsewhere with --manifest are taken up: the farm only assembles")
+
     # Another size into the same folder is refused, naming the difference.
     other = list(farm)
     other[other.index(SIZE)] = "64x36"
