@@ -139,19 +139,27 @@ int ChildProcess::Wait(std::string* output) {
         CloseIfOpen(&stdout_);
     }
     int status = 0;
-    while (::waitpid(pid_, &status, 0) < 0)
-        if (errno != EINTR) break;
+    pid_t waited;
+    while ((waited = ::waitpid(pid_, &status, 0)) < 0 && errno == EINTR) {
+    }
     pid_ = 0;
-    status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (waited < 0) {  // the child is not ours to wait for (SIGCHLD ignored): no status to trust
+        error_ = std::strerror(errno);
+        status_ = 127;
+    } else {
+        status_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    }
     return status_;
 }
 
 int RunProgram(const std::vector<std::string>& argv, std::string* output,
-               const ChildOptions& options) {
+               const ChildOptions& options, std::string* error) {
     ChildOptions o = options;
     o.pipeStdout = o.pipeStdout || output != nullptr;
     ChildProcess child(argv, o);
-    return child.Wait(output);
+    const int status = child.Wait(output);
+    if (error) *error = child.Error();
+    return status;
 }
 
 bool ProgramOnPath(const std::string& program) {

@@ -19,7 +19,7 @@ struct ChildOptions {
 
 class ChildProcess {
   public:
-    // Starts ARGV[0], looked up on PATH. OutputError-free: Started() says whether it ran, and
+    // Starts ARGV[0], looked up on PATH. Throws nothing: Started() says whether it ran, and
     // Error() why not (e.g. "No such file or directory" for a program that is not installed).
     ChildProcess(const std::vector<std::string>& argv, const ChildOptions& options = {});
     ~ChildProcess();  // closes the pipes and waits, so that no child is left behind
@@ -44,9 +44,10 @@ class ChildProcess {
     std::string error_;
 };
 
-// Runs ARGV to its end: its status (as Wait), and what it printed on standard output.
+// Runs ARGV to its end: its status (as Wait), and what it printed on standard output. When it
+// could not be started (127), *ERROR, if given, says why.
 int RunProgram(const std::vector<std::string>& argv, std::string* output = nullptr,
-               const ChildOptions& options = {});
+               const ChildOptions& options = {}, std::string* error = nullptr);
 
 // Whether PROGRAM is on PATH (an executable file), as a shell would find it.
 bool ProgramOnPath(const std::string& program);

@@ -88,13 +88,6 @@ void InstallInterruptHandler() {
     sigaction(SIGTERM, &forward, nullptr);
 }
 
-void ResetInterruptHandlingInChild() {
-    signal(SIGINT, SIG_DFL);
-    signal(SIGTERM, SIG_DFL);
-    const sigset_t set = InterruptSignals();
-    pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
-}
-
 TemporariesLock::TemporariesLock() : lock_(Registry().mutex) {}
 
 void TemporariesLock::Register(const std::string& path) { Registry().paths.push_back(path); }

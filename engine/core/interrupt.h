@@ -12,10 +12,6 @@ namespace rtrt {
 // were started before. Call once, first thing in main: rtrt's own threads inherit the mask.
 void InstallInterruptHandler();
 
-// Child processes: SIGINT and SIGTERM back to their default action and unblocked, as the mask
-// survives exec. Async-signal-safe, for use between fork and exec.
-void ResetInterruptHandlingInChild();
-
 // The temporaries an interrupt removes (files, or folders with what they hold). While a lock is
 // alive the interrupt waits for it, so a temporary made and registered, or renamed (removed) and
 // unregistered, under one lock is never half done when the cleanup runs.

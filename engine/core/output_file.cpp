@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -89,8 +90,24 @@ std::string TemporaryPathFor(const std::string& target) {
     const size_t dot = name.rfind('.');
     const std::string stem = dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
     const std::string ext = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
-    // The extension stays last, for tools that go by it.
-    return folder + "." + stem + ".partial" + std::to_string(::getpid()) + ext;
+    // The host too: processes of several machines writing into one shared folder (a farm's
+    // tasks) may have the same id. The extension stays last, for tools that go by it.
+    static const std::string host = [] {
+        char name[256] = "";
+        ::gethostname(name, sizeof(name) - 1);
+        std::string text = name;
+        for (char& c : text)
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '-';
+        return text;
+    }();
+    std::string path = folder;  // appended piecewise, as GCC 12 warns falsely on a + chain
+    path += '.';
+    path += stem;
+    path += ".partial";
+    path += std::to_string(::getpid());
+    if (!host.empty()) path += "-" + host;
+    path += ext;
+    return path;
 }
 
 void WriteWholeFile(const std::string& path, const std::string& text, bool durable) {

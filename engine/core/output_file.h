@@ -30,8 +30,8 @@ class OutputFile {
 };
 
 // The temporary an output is written to before it takes TARGET's name: a hidden file in the same
-// folder (so the rename stays on one filesystem) that carries the process id, so that an
-// interrupt removes only this process's temporaries.
+// folder (so the rename stays on one filesystem) that carries the process id and the host name,
+// so that an interrupt removes only this process's temporaries and two machines never share one.
 std::string TemporaryPathFor(const std::string& target);
 
 // TEXT written whole to PATH through its temporary, every write checked (OutputError otherwise);

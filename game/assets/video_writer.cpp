@@ -38,16 +38,16 @@ VideoWriter::VideoWriter(std::string path, uint32_t width, uint32_t height, doub
     o.pipeStdin = true;
     ffmpeg_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{
-            "ffmpeg",     "-nostdin", "-hide_banner",
-            "-loglevel",  "error",    "-y",
-            "-f",         "rawvideo", "-pix_fmt",
-            "rgb24",      "-s",       std::to_string(width) + "x" + std::to_string(height),
-            "-framerate", rate,       "-i",
-            "pipe:0",     "-vf",      "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-            "-c:v",       "libx264",  "-preset",
-            "veryfast",   "-crf",     "18",
-            "-pix_fmt",   "yuv420p",  "-movflags",
-            "+faststart", temp},
+            "ffmpeg",     "-nostdin",    "-hide_banner",
+            "-loglevel",  "error",       "-y",
+            "-f",         "rawvideo",    "-pix_fmt",
+            "rgb24",      "-s",          std::to_string(width) + "x" + std::to_string(height),
+            "-framerate", rate,          "-i",
+            "pipe:0",     "-vf",         "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+            "-c:v",       "libx264",     "-preset",
+            "veryfast",   "-crf",        "18",
+            "-pix_fmt",   "yuv420p",     "-movflags",
+            "+faststart", "file:" + temp},  // file: so that a name with a colon is no protocol
         o);
     if (!ffmpeg_->Started()) throw OutputError(path_, "cannot run ffmpeg: " + ffmpeg_->Error());
 }

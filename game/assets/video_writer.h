@@ -24,7 +24,7 @@ class VideoWriter {
   public:
     // A video of WIDTH x HEIGHT at FPS frames per second (odd sizes are padded to even ones).
     VideoWriter(std::string path, uint32_t width, uint32_t height, double fps);
-    ~VideoWriter();  // unfinished: ffmpeg is stopped and the temporary removed
+    ~VideoWriter();  // unfinished: ffmpeg's input is closed, it is waited for, the file removed
     VideoWriter(const VideoWriter&) = delete;
     VideoWriter& operator=(const VideoWriter&) = delete;
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/core/child_process.h"
+#include "engine/core/content_hash.h"
 #include "engine/core/error.h"
 #include "engine/core/output_file.h"
 #include "game/assets/image_io.h"
@@ -43,6 +44,8 @@ struct FarmOptions {
     bool gpu = false, dryRun = false, local = false;
 };
 
+std::string QueueState(const FarmJob& job);
+
 std::string RtrtPath() {
     std::error_code ec;
     const fs::path self = fs::read_symlink("/proc/self/exe", ec);
@@ -56,8 +59,13 @@ std::string FarmCommandLine(const FarmJob& job, const std::string& extra = "") {
                        " --size " + std::to_string(f.width) + "x" + std::to_string(f.height) +
                        " --spp " + std::to_string(f.spp) + " --backend " + f.backend +
                        " --shards " + std::to_string(job.scheduling.shards);
-    if (f.fps != 60.0) line += " --fps " + std::to_string(f.fps);
-    if (job.scheduling.gpu) line += " --gpu";
+    if (f.fps != 60.0) line += " --fps " + FpsText(f.fps);
+    line += " --format " + f.format;
+    const FarmScheduling& s = job.scheduling;
+    if (s.gpu) line += " --gpu";
+    if (!s.partition.empty()) line += " --partition " + s.partition;
+    if (!s.timeLimit.empty()) line += " --time " + s.timeLimit;
+    if (s.cpusPerTask != 1) line += " --cpus-per-task " + std::to_string(s.cpusPerTask);
     return line + " -o " + ShellQuote(job.folder) + extra;
 }
 
@@ -87,9 +95,21 @@ FarmJob JobFromOptions(const FarmOptions& o) {
     FarmJob job;
     job.folder = fs::absolute(o.output).lexically_normal().string();
     while (job.folder.size() > 1 && job.folder.back() == '/') job.folder.pop_back();
-    if (job.folder.find_first_of("%\"\n") != std::string::npos)
-        throw InputError("--output", job.folder,
-                         "a folder for Slurm's scripts cannot hold %, \" or a newline");
+    // sbatch reads #SBATCH lines by its own rules (whitespace splits, quotes, # and % mean
+    // something), so the folder that appears in them is kept to plain characters.
+    for (char c : job.folder)
+        if (std::isspace(static_cast<unsigned char>(c)) ||
+            std::string("%\"'\\#").find(c) != std::string::npos)
+            throw InputError("--output", job.folder,
+                             "Slurm's batch scripts cannot name a folder with spaces or any of "
+                             "% \" ' \\ #; give another");
+    for (const auto& [option, value] :
+         {std::pair{"--partition", o.partition}, {"--time", o.timeLimit}})
+        for (char c : value)
+            if (!std::isalnum(static_cast<unsigned char>(c)) &&
+                std::string("_-:,.").find(c) == std::string::npos)
+                throw InputError(option, value,
+                                 "expected a Slurm name or time, e.g. gpu or 2:00:00");
     FarmFrames& f = job.frames;
     if (!ParseFrames(o.frames, &f.frames.first, &f.frames.end))
         throw InputError("--frames", o.frames,
@@ -99,6 +119,7 @@ FarmJob JobFromOptions(const FarmOptions& o) {
     if (fs::exists(scene, ec)) scene = fs::absolute(scene).lexically_normal().string();
     const LoadedScene loaded = LoadSceneFile(scene);  // bad scenes fail here, not on the nodes
     f.scene = scene;
+    if (fs::is_regular_file(scene, ec)) f.sceneChecksum = HexDigest(HashFile(scene));
     f.width = loaded.width.value_or(1280);
     f.height = loaded.height.value_or(720);
     if (!o.size.empty()) ParseSize(o.size, &f.width, &f.height);
@@ -196,12 +217,13 @@ int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks) {
 
 // Submits a script with sbatch --parsable: the job id.
 std::string Submit(const std::vector<std::string>& command) {
-    std::string output;
-    const int status = RunProgram(command, &output);
+    std::string output, error;
+    const int status = RunProgram(command, &output, {}, &error);
     const std::string id = output.substr(0, output.find_first_of(";\n"));
     if (status != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
-        throw OutputError(command.back(), "sbatch failed (exit " + std::to_string(status) +
-                                              "; its message is above)");
+        throw OutputError(command.back(), "sbatch failed (exit " + std::to_string(status) + "; " +
+                                              (error.empty() ? "its message is above" : error) +
+                                              ")");
     return id;
 }
 
@@ -211,17 +233,21 @@ int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks
     const std::string n = std::to_string(job.submissions.size() + 1);
     const std::string renderScript = job.folder + "/slurm/render-" + n + ".sbatch";
     const std::string assembleScript = job.folder + "/slurm/assemble-" + n + ".sbatch";
-    std::string renderJob;
+    std::string renderJob = "-";
     if (!tasks.empty()) {
         WriteWholeFile(renderScript, RenderScript(job, tasks, RtrtPath()), /*durable=*/true);
         renderJob = Submit(SubmitRender(renderScript));
+        // Recorded at once: --status and the queue check see it even if the assembly fails.
+        job.submissions.push_back("render " + renderJob + " assemble -");
+        WriteFarmJob(job);
+        job.submissions.pop_back();
     }
     WriteWholeFile(assembleScript, AssembleScript(job, RtrtPath()), /*durable=*/true);
-    const std::string assembleJob = Submit(SubmitAssembly(assembleScript, renderJob));
-    job.submissions.push_back("render " + (renderJob.empty() ? "-" : renderJob) + " assemble " +
-                              assembleJob);
+    const std::string assembleJob =
+        Submit(SubmitAssembly(assembleScript, renderJob == "-" ? "" : renderJob));
+    job.submissions.push_back("render " + renderJob + " assemble " + assembleJob);
     WriteFarmJob(job);
-    if (!renderJob.empty())
+    if (renderJob != "-")
         std::printf("rtrt farm: submitted render job %s (%zu tasks) and assemble job %s after it\n",
                     renderJob.c_str(), tasks.size(), assembleJob.c_str());
     else
@@ -247,8 +273,31 @@ void PrintDryRun(const FarmJob& job, const std::vector<std::vector<FrameRange>>&
     std::printf("# (dry run: nothing was written or submitted)\n");
 }
 
+// Slurm's MaxArraySize (array indices run below it), or 0 when scontrol does not say.
+int SlurmMaxArraySize() {
+    std::string config;
+    ChildOptions quiet;
+    quiet.quietStderr = true;
+    if (RunProgram({"scontrol", "show", "config"}, &config, quiet) != 0) return 0;
+    const size_t at = config.find("MaxArraySize");
+    int size = 0;
+    if (at == std::string::npos ||
+        std::sscanf(config.c_str() + at, "MaxArraySize = %d", &size) != 1)
+        return 0;
+    return size;
+}
+
 int RunFarm(const FarmOptions& o) {
     const FarmJob job = ResumeOrStart(JobFromOptions(o));
+    // Frames of queued tasks are not missing, only unfinished: a second job would render them
+    // again and race the first one's assembly.
+    if (const std::string queue = QueueState(job); !queue.empty() && !o.dryRun) {
+        std::fprintf(stderr,
+                     "rtrt: error: %s: its Slurm jobs are still queued (%s); follow them with rtrt "
+                     "farm --status %s, or scancel them, then rerun this command\n",
+                     job.folder.c_str(), queue.c_str(), ShellQuote(job.folder).c_str());
+        return kExitFailure;
+    }
     std::error_code ec;
     const bool resumed = fs::is_directory(ManifestFolder(job.folder), ec);
     const FrameCheck check = resumed ? CheckAndReport(job) : FrameCheck{};
@@ -260,7 +309,15 @@ int RunFarm(const FarmOptions& o) {
                     VideoFile(job.folder).c_str(), ContactSheetFile(job.folder).c_str());
         return kExitOk;
     }
-    const std::vector<std::vector<FrameRange>> tasks = PlanShards(frames, job.scheduling.shards);
+    std::vector<std::vector<FrameRange>> tasks = PlanShards(frames, job.scheduling.shards);
+    if (!o.dryRun && !o.local && ProgramOnPath("scontrol"))
+        if (const int most = SlurmMaxArraySize(); most > 0 && tasks.size() > size_t(most)) {
+            std::printf(
+                "rtrt farm: the cluster takes arrays of at most %d tasks (MaxArraySize): "
+                "%d tasks instead of %zu\n",
+                most, most, tasks.size());
+            tasks = PlanShards(frames, most);
+        }
     if (o.dryRun) {
         PrintDryRun(job, tasks);
         return kExitOk;
@@ -290,7 +347,8 @@ std::string QueueState(const FarmJob& job) {
     std::string output;
     ChildOptions quiet;
     quiet.quietStderr = true;
-    if (ids.empty() || RunProgram({"squeue", "-h", "-j", ids, "-o", "%j %T"}, &output, quiet) != 0)
+    if (ids.empty() ||
+        RunProgram({"squeue", "-h", "-r", "-j", ids, "-o", "%j %T"}, &output, quiet) != 0)
         return {};
     std::map<std::string, int> states;
     size_t start = 0;

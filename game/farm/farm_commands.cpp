@@ -24,12 +24,6 @@ std::string CommonOptions(const FarmJob& job) {
     return text;
 }
 
-std::string FpsText(double fps) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.17g", fps);
-    return text;
-}
-
 }  // namespace
 
 std::string ShellQuote(const std::string& text) {
@@ -67,11 +61,13 @@ std::vector<std::string> PlayCommand(const FarmJob& job, const std::string& rtrt
             "--manifest", manifest};
 }
 
-std::string RenderScript(const FarmJob& job, const std::vector<std::vector<FrameRange>>& tasks,
-                         const std::string& rtrt) {
+namespace {
+
+// The #SBATCH lines and the comment of the render array.
+std::string RenderHeader(const FarmJob& job, size_t tasks) {
     std::string s = "#!/bin/bash\n";
     s += "#SBATCH --job-name=rtrt-render-" + JobName(job) + "\n";
-    s += "#SBATCH --array=0-" + std::to_string(tasks.size() - 1) + "\n";
+    s += "#SBATCH --array=0-" + std::to_string(tasks - 1) + "\n";
     s += "#SBATCH --output=" + job.folder + "/logs/render-%A_%a.log\n";
     s += "#SBATCH --requeue\n";
     if (job.scheduling.gpu) s += "#SBATCH --gres=gpu:1\n";
@@ -82,7 +78,12 @@ std::string RenderScript(const FarmJob& job, const std::vector<std::vector<Frame
          "# An element that fails for another reason than bad input (exit 2) is requeued, up to " +
          std::to_string(kTaskRequeues) +
          "\n# times; rerunning rtrt farm renders what is still missing.\n";
-    s += "set -u\ncase \"$SLURM_ARRAY_TASK_ID\" in\n";
+    return s + "set -u\n";
+}
+
+// case "$SLURM_ARRAY_TASK_ID" in I) ranges="A:B C:D" ;; ... esac
+std::string RangeTable(const std::vector<std::vector<FrameRange>>& tasks) {
+    std::string s = "case \"$SLURM_ARRAY_TASK_ID\" in\n";
     for (size_t i = 0; i < tasks.size(); ++i) {
         std::string ranges;
         for (const FrameRange& r : tasks[i]) {
@@ -91,25 +92,44 @@ std::string RenderScript(const FarmJob& job, const std::vector<std::vector<Frame
         }
         s += "    " + std::to_string(i) + ") ranges=\"" + ranges + "\" ;;\n";
     }
-    s += "    *) echo \"rtrt farm: no frames for array element $SLURM_ARRAY_TASK_ID\" >&2; exit 2 "
-         ";;\nesac\n";
-    s += "manifest=" + ShellQuote(ManifestFolder(job.folder) + "/render-") +
-         "\"${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}.tsv\"\n";
-    // The play command with the range and the manifest left to the shell's variables.
+    return s +
+           "    *) echo \"rtrt farm: no frames for array element $SLURM_ARRAY_TASK_ID\" >&2; exit "
+           "2 "
+           ";;\nesac\n";
+}
+
+// The play command with the range and the manifest left to the shell's variables, continued
+// over lines so that the script reads well where --dry-run prints it.
+std::string PlayLine(const FarmJob& job, const std::string& rtrt) {
     const std::vector<std::string> play = PlayCommand(job, rtrt, {}, "");
     std::string line;
+    size_t lineStart = 0;
     for (size_t i = 0; i < play.size(); ++i) {
         const std::string option = i > 0 ? play[i - 1] : "";
         const std::string word = option == "--frames"     ? "\"$range\""
                                  : option == "--manifest" ? "\"$manifest\""
                                                           : ShellQuote(play[i]);
-        // Continued lines keep the script readable where --dry-run prints it.
-        const size_t lineStart = line.rfind('\n') == std::string::npos ? 0 : line.rfind('\n');
-        if (i > 0 && word[0] == '-' && line.size() - lineStart + word.size() > 72)
+        if (i > 0 && word[0] == '-' && line.size() - lineStart + word.size() > 72) {
             line += " \\\n       ";
-        line += (i ? " " : "") + word;
+            lineStart = line.size();
+        }
+        if (i > 0) line += ' ';
+        line += word;
     }
-    s += "status=0\nfor range in $ranges; do\n    " + line +
+    return line;
+}
+
+}  // namespace
+
+std::string RenderScript(const FarmJob& job, const std::vector<std::vector<FrameRange>>& tasks,
+                         const std::string& rtrt) {
+    std::string s = RenderHeader(job, tasks.size()) + RangeTable(tasks);
+    // A node that does not see rtrt (no shared install) would fail every requeue alike.
+    s += "[ -x " + ShellQuote(rtrt) + " ] || { echo \"rtrt farm: \"" + ShellQuote(rtrt) +
+         "\" is not on $(hostname); install rtrt at the same path on every node\" >&2; exit 2; }\n";
+    s += "manifest=" + ShellQuote(ManifestFolder(job.folder) + "/render-") +
+         "\"${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}.tsv\"\n";
+    s += "status=0\nfor range in $ranges; do\n    " + PlayLine(job, rtrt) +
          " || {\n        status=$?\n        break\n    }\ndone\n";
     s += "if [ \"$status\" -ne 0 ] && [ \"$status\" -ne 2 ] && [ \"${SLURM_RESTART_COUNT:-0}\" "
          "-lt " +

@@ -25,6 +25,12 @@ std::string ManifestFolder(const std::string& folder) { return folder + "/manife
 std::string VideoFile(const std::string& folder) { return folder + "/video.mp4"; }
 std::string ContactSheetFile(const std::string& folder) { return folder + "/contact_sheet.png"; }
 
+std::string FpsText(double fps) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.17g", fps);
+    return text;
+}
+
 std::string RangeText(const FrameRange& range) {
     return std::to_string(range.first) + ":" + std::to_string(range.end);
 }
@@ -50,6 +56,7 @@ FarmJob ReadFarmJob(const std::string& folder) {
     if (f.Count("version", 1, 1, 0) != 1) f.Fail("version", "missing required field");
     FarmFrames& fr = job.frames;
     fr.scene = f.String("scene");
+    fr.sceneChecksum = f.String("scene_checksum", "");
     f.ExpectKind("frames", JsonKind::kInts);
     const Json& frames = f.Get("frames");
     if (frames.size() != 2 || frames[0].get<int64_t>() < 0 ||
@@ -96,6 +103,7 @@ void WriteFarmJob(const FarmJob& job) {
     const FarmScheduling& s = job.scheduling;
     Json j = {{"version", 1},
               {"scene", fr.scene},
+              {"scene_checksum", fr.sceneChecksum},
               {"frames", {fr.frames.first, fr.frames.end}},
               {"width", fr.width},
               {"height", fr.height},
@@ -118,14 +126,14 @@ std::string FramesDifference(const FarmFrames& there, const FarmFrames& here) {
         if (a != b) differences.push_back(what + " " + a + " there, " + b + " here");
     };
     differ("scene", there.scene, here.scene);
+    if (there.scene == here.scene && there.sceneChecksum != here.sceneChecksum)
+        differences.push_back("the scene file changed since the job started (checksum " +
+                              there.sceneChecksum + " there, " + here.sceneChecksum + " here)");
     differ("frames", RangeText(there.frames), RangeText(here.frames));
     differ("size", std::to_string(there.width) + "x" + std::to_string(there.height),
            std::to_string(here.width) + "x" + std::to_string(here.height));
     differ("spp", std::to_string(there.spp), std::to_string(here.spp));
-    char a[32], b[32];
-    std::snprintf(a, sizeof(a), "%g", there.fps);
-    std::snprintf(b, sizeof(b), "%g", here.fps);
-    differ("fps", a, b);
+    differ("fps", FpsText(there.fps), FpsText(here.fps));
     differ("backend", there.backend, here.backend);
     differ("format", there.format, here.format);
     std::string text;

@@ -21,7 +21,8 @@ struct FrameRange {
 
 // What the frames are: a change of any of these makes other frames, so a folder holds one.
 struct FarmFrames {
-    std::string scene;  // absolute path of the scene file, or "default"
+    std::string scene;          // absolute path of the scene file, or "default"
+    std::string sceneChecksum;  // XXH3-64 of the scene file's bytes: an edited scene is another
     FrameRange frames;
     uint32_t width = 0, height = 0;
     uint32_t spp = 1;
@@ -66,5 +67,7 @@ std::string FramesDifference(const FarmFrames& there, const FarmFrames& here);
 
 // "A:B".
 std::string RangeText(const FrameRange& range);
+// The frame rate as the command line takes it back exactly ("%.17g": 29.97, 23.976023976023978).
+std::string FpsText(double fps);
 
 }  // namespace rtrt

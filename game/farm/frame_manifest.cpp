@@ -29,8 +29,13 @@ void AppendToManifest(const std::string& manifest, int frame, const std::string&
     line += '\t';
     line += HexDigest(HashFile(path));
     line += '\n';
-    const int fd = ::open(manifest.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    const int fd = ::open(manifest.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0) throw OutputError(manifest, std::strerror(errno));
+    // A line cut short by a crash of an earlier run (a requeued task appends to its file again)
+    // is ended first, so that it does not swallow this one.
+    const off_t size = ::lseek(fd, 0, SEEK_END);
+    char last = '\n';
+    if (size > 0 && ::pread(fd, &last, 1, size - 1) == 1 && last != '\n') line = '\n' + line;
     // One write of a short line: an appended line is whole or, after a crash, cut (and ignored).
     size_t done = 0;
     while (done < line.size()) {
@@ -43,7 +48,9 @@ void AppendToManifest(const std::string& manifest, int frame, const std::string&
         }
         done += size_t(put);
     }
-    if (::fdatasync(fd) != 0 || ::close(fd) != 0) throw OutputError(manifest, std::strerror(errno));
+    const int synced = ::fdatasync(fd) == 0 ? 0 : errno;
+    const int closed = ::close(fd) == 0 ? 0 : errno;
+    if (synced || closed) throw OutputError(manifest, std::strerror(synced ? synced : closed));
 }
 
 void CheckManifestPath(const std::string& path) {
@@ -68,28 +75,29 @@ bool ParseLine(const std::string& line, ManifestEntry* e) {
 
 }  // namespace
 
-std::map<int, ManifestEntry> ReadManifests(const std::string& folder) {
+std::map<int, std::vector<ManifestEntry>> ReadManifests(const std::string& folder) {
     std::vector<std::pair<fs::file_time_type, std::string>> files;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(folder, ec))
         if (entry.path().extension() == ".tsv" && entry.is_regular_file(ec))
             files.emplace_back(entry.last_write_time(ec), entry.path().string());
     std::sort(files.begin(), files.end());
-    std::map<int, ManifestEntry> entries;
+    std::map<int, std::vector<ManifestEntry>> entries;
     for (const auto& [time, path] : files) {
         std::ifstream in(path, std::ios::binary);
         std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         size_t start = 0;
         for (size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
             ManifestEntry e;
-            if (ParseLine(text.substr(start, end - start), &e)) entries[e.frame] = e;
+            if (ParseLine(text.substr(start, end - start), &e)) entries[e.frame].push_back(e);
         }
     }
     return entries;
 }
 
 FrameCheck CheckFrames(const FarmJob& job, void (*progress)(int done, int total)) {
-    const std::map<int, ManifestEntry> entries = ReadManifests(ManifestFolder(job.folder));
+    const std::map<int, std::vector<ManifestEntry>> entries =
+        ReadManifests(ManifestFolder(job.folder));
     FrameCheck check;
     const FrameRange range = job.frames.frames;
     for (int frame = range.first; frame < range.end; ++frame) {
@@ -102,14 +110,21 @@ FrameCheck CheckFrames(const FarmJob& job, void (*progress)(int done, int total)
             check.missing.push_back(frame);
             continue;
         }
-        const ManifestEntry& e = it->second;
-        bool whole = e.file == fs::path(path).filename().string() && e.bytes == bytes;
-        if (whole) {
-            try {
-                whole = HashFile(path) == e.hash;
-            } catch (const InputError&) {
-                whole = false;
+        // Done when any line vouches for the file as it is: two runs may both have written it.
+        const std::string name = fs::path(path).filename().string();
+        uint64_t hash = 0;
+        bool hashed = false, whole = false;
+        for (const ManifestEntry& e : it->second) {
+            if (e.file != name || e.bytes != bytes) continue;
+            if (!hashed) {
+                try {
+                    hash = HashFile(path);
+                } catch (const InputError&) {
+                    break;
+                }
+                hashed = true;
             }
+            if (e.hash == hash) whole = true;
         }
         (whole ? check.done : check.corrupt).push_back(frame);
     }

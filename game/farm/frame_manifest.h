@@ -28,13 +28,12 @@ void AppendToManifest(const std::string& manifest, int frame, const std::string&
 // so that a bad path fails before any frame is rendered.
 void CheckManifestPath(const std::string& path);
 
-// Every entry of every *.tsv in FOLDER, by frame (a later line of one file wins; across files,
-// the one of the newer file).
-std::map<int, ManifestEntry> ReadManifests(const std::string& folder);
+// Every entry of every *.tsv in FOLDER, by frame, in the order written (oldest file first).
+std::map<int, std::vector<ManifestEntry>> ReadManifests(const std::string& folder);
 
 // What a job's folder holds against what it should.
 struct FrameCheck {
-    std::vector<int> done;     // listed in the manifest, the file there with that checksum
+    std::vector<int> done;     // a manifest line vouches for the file: its size and checksum
     std::vector<int> missing;  // no manifest line, or no file
     std::vector<int> corrupt;  // a file whose size or checksum is not the manifest's
 };

@@ -24,15 +24,18 @@ std::string Number(double value) {
 // Runs ffmpeg to write TARGET: the output's temporary is made (and registered for an interrupt)
 // first, ffmpeg writes into it, and it takes TARGET's name only when ffmpeg succeeded.
 void RunFfmpeg(std::vector<std::string> arguments, const std::string& target) {
-    OutputFile output(target, TemporaryPathFor(target));
+    const std::string temp = TemporaryPathFor(target);
+    OutputFile output(target, temp);
     std::vector<std::string> argv = {"ffmpeg",    "-nostdin", "-hide_banner",
                                      "-loglevel", "error",    "-y"};
     argv.insert(argv.end(), arguments.begin(), arguments.end());
-    argv.push_back(TemporaryPathFor(target));
-    const int status = RunProgram(argv);
+    argv.push_back("file:" + temp);  // file: so that a name with a colon is no protocol
+    std::string error;
+    const int status = RunProgram(argv, nullptr, {}, &error);
     if (status != 0)
-        throw OutputError(target, "ffmpeg failed (exit " + std::to_string(status) +
-                                      "; its messages are above); the frames are kept");
+        throw OutputError(target, "ffmpeg failed (exit " + std::to_string(status) + "; " +
+                                      (error.empty() ? "its messages are above" : error) +
+                                      "); the frames are kept");
     output.Finish(/*durable=*/true);
     output.Commit();
 }
@@ -68,8 +71,10 @@ void AssembleVideo(const FarmJob& job) {
                Number(job.frames.fps),
                "-start_number",
                std::to_string(range.first),
+               "-pattern_type",  // a folder name with [ or * is no glob
+               "sequence",
                "-i",
-               FramePattern(job),
+               "file:" + FramePattern(job),
                "-frames:v",
                std::to_string(range.Count()),
                "-vf",
@@ -96,7 +101,7 @@ void AssembleVideo(const FarmJob& job) {
     list.Write(text.data(), text.size());
     list.Finish(/*durable=*/false);
     // The list lies in the job's folder: ffmpeg takes its entries as relative to it.
-    RunFfmpeg({"-f", "concat", "-safe", "0", "-i", TemporaryPathFor(listFile), "-vf",
+    RunFfmpeg({"-f", "concat", "-safe", "0", "-i", "file:" + TemporaryPathFor(listFile), "-vf",
                "scale=" + std::to_string(sheet.thumbWidth) + ":" +
                    std::to_string(sheet.thumbHeight) + ",tile=" + std::to_string(sheet.columns) +
                    "x" + std::to_string(sheet.rows) + ":padding=4:margin=4:color=0x202020",

@@ -24,7 +24,7 @@ class FarmScriptTest : public testing::Test {
         fs::remove_all(dir_);
         fs::create_directories(dir_ + "/bin");
         job_.folder = dir_ + "/out dir";  // a space, as users' folders have
-        job_.frames = {"/scenes/it's.json", {0, 48}, 320, 180, 4, 30.0, "cpu", "png"};
+        job_.frames = {"/scenes/it's.json", "", {0, 48}, 320, 180, 4, 30.0, "cpu", "png"};
         job_.scheduling.shards = 2;
         // The stand-in rtrt logs its arguments, one per line, and exits with $FAKE_STATUS.
         Executable("rtrt", "printf '%s\\n' \"$@\" >> \"$FAKE_LOG\"; exit ${FAKE_STATUS:-0}\n");

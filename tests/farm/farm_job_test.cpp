@@ -38,7 +38,15 @@ class FarmJobTest : public testing::Test {
 TEST_F(FarmJobTest, WrittenJobReadsBackEqual) {
     FarmJob job;
     job.folder = folder_;
-    job.frames = {"/scenes/demo physics.json", {12, 480}, 3840, 2160, 16, 29.97, "cuda", "ppm"};
+    job.frames = {"/scenes/demo physics.json",
+                  "0123456789abcdef",
+                  {12, 480},
+                  3840,
+                  2160,
+                  16,
+                  29.97,
+                  "cuda",
+                  "ppm"};
     job.scheduling = {8, true, "gpu", "2:00:00", 4};
     job.submissions = {"render 17 assemble 18", "render - assemble 21"};
     WriteFarmJob(job);
@@ -54,12 +62,18 @@ TEST_F(FarmJobTest, WrittenJobReadsBackEqual) {
 }
 
 TEST_F(FarmJobTest, DifferencesAreNamed) {
-    FarmFrames a{"/s.json", {0, 48}, 320, 180, 1, 60.0, "cpu", "png"};
+    FarmFrames a{"/s.json", "00000000000000aa", {0, 48}, 320, 180, 1, 60.0, "cpu", "png"};
     FarmFrames b = a;
     EXPECT_EQ(FramesDifference(a, b), "");
     b.width = 640;
     b.spp = 4;
     EXPECT_EQ(FramesDifference(a, b), "size 320x180 there, 640x180 here; spp 1 there, 4 here");
+    b = a;
+    b.sceneChecksum = "00000000000000bb";
+    b.fps = 24000.0 / 1001.0;
+    EXPECT_EQ(FramesDifference(a, b),
+              "the scene file changed since the job started (checksum 00000000000000aa there, "
+              "00000000000000bb here); fps 60 there, 23.976023976023978 here");
 }
 
 TEST_F(FarmJobTest, MalformedFilesNameTheFieldAndReason) {

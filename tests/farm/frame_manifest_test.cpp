@@ -44,8 +44,9 @@ TEST_F(FrameManifestTest, LineHoldsFrameFileBytesAndChecksum) {
     EXPECT_EQ(line, "12\tframe_000012.ppm\t6\t" + HexDigest(HashBytes("twelve", 6)));
     const auto entries = ReadManifests(ManifestFolder(job_.folder));
     ASSERT_EQ(entries.size(), 1u);
-    EXPECT_EQ(entries.at(12).bytes, 6u);
-    EXPECT_EQ(entries.at(12).hash, HashBytes("twelve", 6));
+    ASSERT_EQ(entries.at(12).size(), 1u);
+    EXPECT_EQ(entries.at(12)[0].bytes, 6u);
+    EXPECT_EQ(entries.at(12)[0].hash, HashBytes("twelve", 6));
 }
 
 TEST_F(FrameManifestTest, CheckSortsFramesIntoDoneMissingAndCorrupt) {
@@ -72,10 +73,22 @@ TEST_F(FrameManifestTest, TornAndMalformedLinesAreIgnored) {
     EXPECT_EQ(entries.count(10), 1u);
 }
 
-TEST_F(FrameManifestTest, ARerenderedFrameIsDoneByItsNewerLine) {
+TEST_F(FrameManifestTest, AFrameIsDoneWhenAnyOfItsLinesVouchesForIt) {
     Finish(10, "first render");
-    Finish(10, "second render, other bytes");
+    Finish(10, "second render, other bytes", "b.tsv");
     EXPECT_EQ(CheckFrames(job_).done, (std::vector<int>{10}));
+    // The older line's bytes back again (a task that ran twice): still done.
+    std::ofstream(FrameFile(job_, 10), std::ios::binary) << "first render";
+    EXPECT_EQ(CheckFrames(job_).done, (std::vector<int>{10}));
+}
+
+TEST_F(FrameManifestTest, ALineAppendedAfterACutOneIsKept) {
+    const std::string path = ManifestFolder(job_.folder) + "/a.tsv";
+    std::ofstream(path) << "10\tframe_000010.ppm\t3";  // a crash cut this line
+    Finish(11, "eleven");
+    const auto entries = ReadManifests(ManifestFolder(job_.folder));
+    ASSERT_EQ(entries.size(), 1u);
+    EXPECT_EQ(entries.count(11), 1u);
 }
 
 TEST_F(FrameManifestTest, AppendToAFolderThatIsMissingFailsWithTheManifestsName) {
