@@ -6,6 +6,7 @@
 
 #include "engine/geometry/primitives.h"
 #include "engine/render_rt/material.h"
+#include "engine/render_rt/srgb.h"
 
 namespace rtrt {
 
@@ -19,7 +20,9 @@ struct Texture {
     uint32_t width = 0, height = 0;
     TextureWrap wrapS = TextureWrap::kRepeat, wrapT = TextureWrap::kRepeat;
     TextureFilter filter = TextureFilter::kLinear;
-    uint32_t pad = 0;
+    // 1: the texels are sRGB-encoded colours (glTF's base colour in a scene of linear colours),
+    // decoded per texel before filtering; 0: used as they are.
+    uint32_t srgb = 0;
 };
 static_assert(sizeof(Texture) == 32);
 
@@ -42,8 +45,10 @@ RT_HD inline uint32_t WrapTexel(int i, int n, TextureWrap wrap) {
 
 RT_HD inline vec3 TexelColor(const Texture& t, const uint32_t* texels, uint32_t x, uint32_t y) {
     const uint32_t rgba = texels[t.texelOffset + uint64_t(y) * t.width + x];
-    return vec3(float(rgba & 0xffu), float((rgba >> 8) & 0xffu), float((rgba >> 16) & 0xffu)) *
-           (1.0f / 255.0f);
+    const vec3 c =
+        vec3(float(rgba & 0xffu), float((rgba >> 8) & 0xffu), float((rgba >> 16) & 0xffu)) *
+        (1.0f / 255.0f);
+    return t.srgb ? vec3(SrgbDecode(c.x), SrgbDecode(c.y), SrgbDecode(c.z)) : c;
 }
 
 // The colour at texture coordinate uv: the texel under it (nearest), or the bilinear blend of the

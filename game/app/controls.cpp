@@ -33,6 +33,8 @@ std::span<const Control> Controls() {
         {GLFW_KEY_F8, "F8", Action::kNextView, "view: shaded, normals, depth, heatmap"},
         {GLFW_KEY_EQUAL, "=", Action::kDepthUp, "max depth + 1"},
         {GLFW_KEY_MINUS, "-", Action::kDepthDown, "max depth - 1"},
+        {GLFW_KEY_PERIOD, ".", Action::kExposureUp, "exposure + 1/2 EV"},
+        {GLFW_KEY_COMMA, ",", Action::kExposureDown, "exposure - 1/2 EV"},
         {GLFW_KEY_B, "B", Action::kBackend, "CPU / CUDA back end"},
         {GLFW_KEY_ESCAPE, "Escape", Action::kQuit, "quit"},
     };

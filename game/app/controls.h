@@ -33,6 +33,8 @@ enum class Action {
     kNextView,
     kDepthUp,
     kDepthDown,
+    kExposureUp,
+    kExposureDown,
     kBackend,
     kQuit,
 };

@@ -11,19 +11,16 @@
 namespace rtrt {
 namespace {
 
-__device__ unsigned char ToByte(float v) {
-    return (unsigned char)(fminf(fmaxf(v, 0.0f), 1.0f) * 255.0f + 0.5f);
-}
-
 __global__ void PresentKernel(const vec3* frame, uint32_t width, uint32_t height,
-                              cudaSurfaceObject_t surface) {
+                              OutputTransform transform, cudaSurfaceObject_t surface) {
     const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
     const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
     if (x >= width || y >= height) return;
-    const vec3 c = frame[size_t(y) * width + x];
+    // The same output transform as image files and the CPU upload.
+    const vec3 c = ApplyOutputTransform(frame[size_t(y) * width + x], transform);
     // Texture row 0 holds the image's top row, as the CPU upload leaves it.
-    surf2Dwrite(make_uchar4(ToByte(c.x), ToByte(c.y), ToByte(c.z), 255), surface, int(x * 4),
-                int(y));
+    surf2Dwrite(make_uchar4(DisplayByte(c.x), DisplayByte(c.y), DisplayByte(c.z), 255), surface,
+                int(x * 4), int(y));
 }
 
 }  // namespace
@@ -57,7 +54,8 @@ void CudaGlFrame::Unregister() {
     resource_ = nullptr;
 }
 
-void CudaGlFrame::Present(const vec3* deviceFrame, uint32_t width, uint32_t height) {
+void CudaGlFrame::Present(const vec3* deviceFrame, uint32_t width, uint32_t height,
+                          const OutputTransform& transform) {
     auto resource = static_cast<cudaGraphicsResource_t>(resource_);
     RT_CUDA_CHECK(cudaGraphicsMapResources(1, &resource));
     cudaArray_t array = nullptr;
@@ -69,7 +67,7 @@ void CudaGlFrame::Present(const vec3* deviceFrame, uint32_t width, uint32_t heig
     RT_CUDA_CHECK(cudaCreateSurfaceObject(&surface, &desc));
     const dim3 block(16, 16);
     const dim3 grid((width + 15) / 16, (height + 15) / 16);
-    PresentKernel<<<grid, block>>>(deviceFrame, width, height, surface);
+    PresentKernel<<<grid, block>>>(deviceFrame, width, height, transform, surface);
     RT_CUDA_CHECK_LAUNCH();
     RT_CUDA_CHECK(cudaDestroySurfaceObject(surface));
     RT_CUDA_CHECK(cudaGraphicsUnmapResources(1, &resource));

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "engine/core/math.h"
+#include "engine/render_rt/output_transform.h"
 
 namespace rtrt {
 
@@ -22,9 +23,10 @@ class CudaGlFrame {
     bool Register(uint32_t texture, std::string* why);
     void Unregister();
     bool Registered() const { return resource_ != nullptr; }
-    // Writes a device frame of linear RGB (width x height, rows top to bottom) into the texture,
-    // clamped to [0, 1] and rounded to 8 bits as image files are written.
-    void Present(const vec3* deviceFrame, uint32_t width, uint32_t height);
+    // Writes a device frame of linear RGB (width x height, rows top to bottom) into the texture
+    // through the output transform, rounded to 8 bits as image files are written.
+    void Present(const vec3* deviceFrame, uint32_t width, uint32_t height,
+                 const OutputTransform& transform);
 
   private:
     void* resource_ = nullptr;  // cudaGraphicsResource_t

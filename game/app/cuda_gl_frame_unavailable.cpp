@@ -9,6 +9,6 @@ bool CudaGlFrame::Register(uint32_t, std::string* why) {
     return false;
 }
 void CudaGlFrame::Unregister() {}
-void CudaGlFrame::Present(const vec3*, uint32_t, uint32_t) {}
+void CudaGlFrame::Present(const vec3*, uint32_t, uint32_t, const OutputTransform&) {}
 
 }  // namespace rtrt

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "game/app/gl.h"
+#include "game/assets/image_io.h"
 
 namespace rtrt {
 namespace {
@@ -77,13 +78,22 @@ bool FrameDisplay::Resize(uint32_t width, uint32_t height) {
     return true;
 }
 
-void FrameDisplay::Upload(const Image& image) {
+void FrameDisplay::Upload(const Image& image, const OutputTransform& transform) {
     Resize(image.width, image.height);
     glBindTexture(GL_TEXTURE_2D, texture_);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    // GL clamps float components to [0, 1] when it converts them to the 8-bit texture.
+    if (transform.exposureEv == 0.0f && transform.toneMap == ToneMap::kClamp &&
+        !transform.srgbEncode) {
+        // Display values: GL clamps float components to [0, 1] when it converts them to the
+        // 8-bit texture.
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, GLsizei(image.width), GLsizei(image.height), GL_RGB,
+                        GL_FLOAT, image.pixels.data());
+        return;
+    }
+    const std::vector<uint8_t> bytes = EightBit(image, transform);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, GLsizei(image.width), GLsizei(image.height), GL_RGB,
-                    GL_FLOAT, image.pixels.data());
+                    GL_UNSIGNED_BYTE, bytes.data());
 }
 
 void FrameDisplay::Draw(int framebufferWidth, int framebufferHeight) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "engine/render_rt/image.h"
+#include "engine/render_rt/output_transform.h"
 
 namespace rtrt {
 
@@ -21,8 +22,8 @@ class FrameDisplay {
     uint32_t Texture() const { return texture_; }
     uint32_t Width() const { return width_; }
     uint32_t Height() const { return height_; }
-    // Values are clamped to [0, 1] and stored as 8 bits, as image files are written.
-    void Upload(const Image& image);
+    // The output transform's display values stored as 8 bits, as image files are written.
+    void Upload(const Image& image, const OutputTransform& transform);
     void Draw(int framebufferWidth, int framebufferHeight);
     // What the framebuffer shows now (call after Draw, before the overlay): what screenshots
     // and tests see, through whichever path the frame took (CPU upload or CUDA-GL interop).

@@ -129,6 +129,12 @@ class App {
         model_.scene = std::filesystem::path(o_.scenes[index]).filename().string();
         model_.frameMs.clear();  // another scene's frame times would mislead
         model_.maxDepth = int(loaded_->scene.maxDepth);
+        OutputTransform output = loaded_->output;
+        if (o_.exposureEv) output.exposureEv = *o_.exposureEv;
+        if (!o_.toneMap.empty()) ParseToneMap(o_.toneMap.c_str(), &output.toneMap);
+        model_.exposureEv = output.exposureEv;
+        model_.toneMap = int(output.toneMap);
+        model_.srgb = output.srgbEncode != 0;
         // Flying speed: a quarter of the scene's size per second.
         Aabb bounds;
         std::vector<Aabb> blasBounds;
@@ -317,6 +323,12 @@ class App {
             case Action::kDepthDown:
                 model_.maxDepth = std::max(model_.maxDepth - 1, 1);
                 return;
+            case Action::kExposureUp:
+                model_.exposureEv = std::min(model_.exposureEv + 0.5f, 20.0f);
+                return;
+            case Action::kExposureDown:
+                model_.exposureEv = std::max(model_.exposureEv - 0.5f, -20.0f);
+                return;
             case Action::kBackend:
                 if (model_.cudaAvailable) model_.useCuda = !model_.useCuda;
                 return;
@@ -371,12 +383,17 @@ class App {
         model_.times.tlas = t.tlasMs;
         model_.times.trace = t.traceMs;
         model_.rays = t.rays;
+        // Only the shaded view is radiance; the others are display values already.
+        const OutputTransform output =
+            s.view == ViewMode::kShaded
+                ? OutputTransform{model_.exposureEv, ToneMap(model_.toneMap), model_.srgb ? 1u : 0u}
+                : kDisplayValues;
         if (viaHost) {
             shown_ = FinishView(raw_, s.view);
-            display_.Upload(shown_);
+            display_.Upload(shown_, output);
             model_.display = gpu ? "frames through host memory" : "CPU upload";
         } else {
-            interop_.Present(renderer_->DeviceFrame(), s.width, s.height);
+            interop_.Present(renderer_->DeviceFrame(), s.width, s.height, output);
             model_.display = "CUDA-GL interop";
         }
         model_.backend = gpu ? "CUDA" : "CPU";

@@ -2,6 +2,7 @@
 // `rtrt play SCENE...` in a window: the scene plays on its timeline while the user flies around,
 // spawns, picks, drags and deletes objects, toggles effects and watches the overlay.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,8 @@ struct WindowOptions {
     std::string script;  // scripted input (input_script.h), for tests
     int frames = 0;      // stop after this many frames (0: when the window closes)
     float fps = 60.0f;   // the fixed time step with --record or --script; else the wall clock
+    std::optional<float> exposureEv;  // over each scene's own (, and . change it)
+    std::string toneMap;              // over each scene's own
 };
 
 // Runs until the window closes (or the script or frame count ends); returns the exit status.

@@ -75,6 +75,10 @@ void Overlay::Draw(OverlayModel& m) {
         ImGui::SliderInt("max depth", &m.maxDepth, 1, 8);
         const char* views[] = {"shaded", "normals", "depth", "heatmap"};
         ImGui::Combo("view", &m.view, views, 4);
+        ImGui::SliderFloat("exposure (EV)", &m.exposureEv, -10.0f, 10.0f, "%.1f");
+        const char* toneMaps[] = {"clamp", "PBR Neutral", "ACES"};
+        ImGui::Combo("tone map", &m.toneMap, toneMaps, 3);
+        ImGui::Checkbox("sRGB output (linear scene colours)", &m.srgb);
         int backend = m.useCuda ? 1 : 0;
         ImGui::RadioButton("CPU", &backend, 0);
         if (m.cudaAvailable) {

@@ -28,6 +28,11 @@ struct OverlayModel {
     bool shadows = true, reflection = true, refraction = true;
     int maxDepth = 2;
     int view = 0;  // ViewMode
+    // The output transform (the scene's, over which --exposure/--tone-map, the keys , and .
+    // and these controls go).
+    float exposureEv = 0.0f;
+    int toneMap = 0;  // ToneMap
+    bool srgb = false;
     bool useCuda = false;
     bool cudaAvailable = false;
     bool showHelp = false;

@@ -34,18 +34,20 @@ bool IsFloatFormat(const std::string& ext) {
 
 }  // namespace
 
-std::vector<uint8_t> EightBit(const Image& image) {
+std::vector<uint8_t> EightBit(const Image& image, const OutputTransform& transform) {
     std::vector<uint8_t> bytes(image.pixels.size() * 3);
-    for (size_t i = 0; i < image.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c)
-            bytes[3 * i + c] = uint8_t(std::clamp(image.pixels[i][c], 0.0f, 1.0f) * 255.0f + 0.5f);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        const vec3 c = ApplyOutputTransform(image.pixels[i], transform);
+        for (int k = 0; k < 3; ++k) bytes[3 * i + k] = DisplayByte(c[k]);
+    }
     return bytes;
 }
 
 namespace {
 
 // PPM or PFM bytes, written without OpenImageIO.
-std::string EncodePortable(const Image& image, const std::string& ext) {
+std::string EncodePortable(const Image& image, const std::string& ext,
+                           const OutputTransform& transform) {
     std::string bytes;
     if (ext == ".pfm") {
         // PFM rows run bottom to top; a negative scale means little-endian.
@@ -57,7 +59,7 @@ std::string EncodePortable(const Image& image, const std::string& ext) {
     } else {
         bytes =
             "P6\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n255\n";
-        const std::vector<uint8_t> pixels = EightBit(image);
+        const std::vector<uint8_t> pixels = EightBit(image, transform);
         bytes.append(pixels.begin(), pixels.end());
     }
     return bytes;
@@ -67,10 +69,11 @@ std::string EncodePortable(const Image& image, const std::string& ext) {
 // The image encoded by the image library (OpenImageIO) into memory, so that rtrt's own checked
 // writes put it on disk: OpenImageIO's file writers (libpng's among them) do not all report a
 // failed write.
-std::vector<unsigned char> EncodeWithLibrary(const std::string& path, const Image& image) {
+std::vector<unsigned char> EncodeWithLibrary(const std::string& path, const Image& image,
+                                             const OutputTransform& transform) {
     if (IsFloatFormat(Extension(path)))
         return EncodeImage(path, image.width, image.height, true, image.pixels.data());
-    return EncodeImage(path, image.width, image.height, false, EightBit(image).data());
+    return EncodeImage(path, image.width, image.height, false, EightBit(image, transform).data());
 }
 #endif
 
@@ -103,16 +106,16 @@ void CheckImagePath(const std::string& path) {
                          "cannot write into the folder " + folder + ": " + std::strerror(errno));
 }
 
-void WriteImage(const std::string& path, const Image& image) {
+void WriteImage(const std::string& path, const Image& image, const OutputTransform& transform) {
     CheckImagePath(path);
     const std::string ext = Extension(path);
     OutputFile file(path, TemporaryPathFor(path));
     if (ext == ".ppm" || ext == ".pfm") {
-        const std::string bytes = EncodePortable(image, ext);
+        const std::string bytes = EncodePortable(image, ext, transform);
         file.Write(bytes.data(), bytes.size());
     } else {
 #if defined(RTRT_WITH_OIIO)
-        const std::vector<unsigned char> bytes = EncodeWithLibrary(path, image);
+        const std::vector<unsigned char> bytes = EncodeWithLibrary(path, image, transform);
         file.Write(bytes.data(), bytes.size());
 #endif
     }

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "engine/render_rt/image.h"
+#include "engine/render_rt/output_transform.h"
 
 namespace rtrt {
 
@@ -14,11 +15,14 @@ void CheckImagePath(const std::string& path);
 
 // Writes through a temporary file renamed into place, every write checked: a failure throws
 // OutputError naming PATH with the system's reason and leaves no partial output.
-// 8-bit formats store clamp(value) * 255 rounded; float formats store the values.
-void WriteImage(const std::string& path, const Image& image);
+// 8-bit formats store the output transform's display values * 255 rounded (kDisplayValues:
+// clamp(value)); float formats store the linear values, untransformed.
+void WriteImage(const std::string& path, const Image& image,
+                const OutputTransform& transform = kDisplayValues);
 
-// The bytes 8-bit outputs store: clamp(value) * 255 rounded, RGB, row 0 the top.
-std::vector<uint8_t> EightBit(const Image& image);
+// The bytes 8-bit outputs store: the display value * 255 rounded, RGB, row 0 the top.
+std::vector<uint8_t> EightBit(const Image& image,
+                              const OutputTransform& transform = kDisplayValues);
 
 // Formats other than PPM and PFM go through the image library (OpenImageIO in the module
 // rtrt_image_oiio, game/image_library), loaded at the first such image: an ImageLibraryError

@@ -1,5 +1,6 @@
 #include "game/cli/cli_options.h"
 
+#include <CLI/CLI.hpp>
 #include <regex>
 #include <stdexcept>
 
@@ -34,6 +35,24 @@ bool ParseFrames(const std::string& text, int* first, int* end) {
     *first = m[2].matched ? std::stoi(m[1].str()) : 0;
     *end = m[2].matched ? std::stoi(m[3].str()) : std::stoi(m[1].str());
     return *first < *end && *end <= 10000000;
+}
+
+void AddOutputOptions(CLI::App* command, OutputOptions* options) {
+    command
+        ->add_option("--exposure", options->exposureEv,
+                     "Exposure in EV (stops) over the scene's own, before the tone map")
+        ->check(CLI::Range(-20.0f, 20.0f));
+    command
+        ->add_option("--tone-map", options->toneMap,
+                     "pbr_neutral (Khronos PBR Neutral), aces or clamp (default: the scene's; "
+                     "8-bit outputs, EXR and PFM stay linear)")
+        ->check(CLI::IsMember({"pbr_neutral", "aces", "clamp"}));
+}
+
+OutputTransform ResolveOutput(OutputTransform scene, const OutputOptions& options) {
+    if (options.exposureEv) scene.exposureEv = *options.exposureEv;
+    if (!options.toneMap.empty()) ParseToneMap(options.toneMap.c_str(), &scene.toneMap);
+    return scene;
 }
 
 }  // namespace rtrt

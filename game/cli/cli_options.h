@@ -1,7 +1,14 @@
 #pragma once
 // What every rtrt command shares, the benchmarks included: exit statuses and option parsers.
 #include <cstdint>
+#include <optional>
 #include <string>
+
+#include "engine/render_rt/output_transform.h"
+
+namespace CLI {
+class App;
+}
 
 namespace rtrt {
 
@@ -16,5 +23,14 @@ void ParseSize(const std::string& text, uint32_t* width, uint32_t* height);
 // --frames: "N" means frames 0 to N-1, "A:B" frames A to B-1 (A < B <= 10,000,000); false when
 // malformed.
 bool ParseFrames(const std::string& text, int* first, int* end);
+
+// --exposure EV and --tone-map NAME, over what the scene says (its "colours", "exposure" and
+// "tone_map"); absent, the scene's own.
+struct OutputOptions {
+    std::optional<float> exposureEv;
+    std::string toneMap;
+};
+void AddOutputOptions(CLI::App* command, OutputOptions* options);
+OutputTransform ResolveOutput(OutputTransform scene, const OutputOptions& options);
 
 }  // namespace rtrt

@@ -39,6 +39,7 @@ struct PlayOptions {
     std::string frames;  // N, or A:B (headless)
     uint32_t spp = 1;
     double fps = 60.0;
+    OutputOptions display;  // exposure and tone map
 };
 
 // The output pattern must hold exactly one printf integer field (%d, %04d, ...).
@@ -101,6 +102,8 @@ void RunWindowed(const PlayOptions& o) {
                          "the window takes a frame count N (A:B ranges are for --headless)");
     w.frames = end;
     w.fps = float(o.fps);
+    w.exposureEv = o.display.exposureEv;
+    w.toneMap = o.display.toneMap;
     RunWindow(w);
 #else
     (void)o;
@@ -137,6 +140,7 @@ void RunPlay(PlayOptions o) {
     if (!ChooseBackend(o.backend, &backend, &why))
         throw InputError("--backend", o.backend, why + "; use --backend cpu");
 
+    const OutputTransform transform = ResolveOutput(loaded.output, o.display);
     World world(loaded);
     const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(backend, world.Scene());
     const float dt = float(1.0 / o.fps);
@@ -163,7 +167,7 @@ void RunPlay(PlayOptions o) {
             renderer->Update(world.Scene(), world.Changes());
         }
         renderer->Trace(world.Scene(), settings, &frame);
-        WriteImage(FramePath(o.output, i), frame);
+        WriteImage(FramePath(o.output, i), frame, transform);
         if (!o.manifest.empty()) AppendToManifest(o.manifest, i, FramePath(o.output, i));
         total += timer.Milliseconds();
         char what[64];
@@ -214,6 +218,7 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--backend", options->backend, "auto (CUDA when usable), cpu or cuda")
         ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
         ->capture_default_str();
+    AddOutputOptions(cmd, &options->display);
     cmd->callback([options, exitCode] {
         RunPlay(*options);
         *exitCode = kExitOk;

@@ -23,6 +23,7 @@ struct RenderOptions {
     std::string view = "shaded";
     int maxDepth = 0;  // 0: the scene's own
     uint32_t spp = 1;
+    OutputOptions display;  // exposure and tone map
 };
 
 }  // namespace
@@ -78,7 +79,11 @@ void RunRender(const RenderOptions& o) {
     }
     const double renderMs = renderTimer.Milliseconds();
     HeatmapScale heat;
-    WriteImage(o.output, FinishView(raw, settings.view, &heat));
+    // Only the shaded view is radiance; normals, depth and heatmaps are display values.
+    const OutputTransform transform = settings.view == ViewMode::kShaded
+                                          ? ResolveOutput(loaded.output, o.display)
+                                          : kDisplayValues;
+    WriteImage(o.output, FinishView(raw, settings.view, &heat), transform);
     std::printf(
         "rtrt: wrote %s (%ux%u, %s back end, %s view): scene %.1f ms, render %.1f ms, %.2f M "
         "rays\n",
@@ -117,6 +122,7 @@ void AddRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--view", options->view, "shaded, normals, depth or heatmap")
         ->check(CLI::IsMember({"shaded", "normals", "depth", "heatmap"}))
         ->capture_default_str();
+    AddOutputOptions(cmd, &options->display);
     cmd->callback([options, exitCode] {
         RunRender(*options);
         *exitCode = kExitOk;

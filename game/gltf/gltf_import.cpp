@@ -88,6 +88,7 @@ GltfAsset LoadGltfAsset(const std::string& path, LoadedScene& out) {
 
 LoadedScene LoadGltfScene(const std::string& path) {
     LoadedScene out;
+    out.output = kLinearToSrgb;  // glTF's colours are linear light (its specification)
     const GltfAsset asset = LoadGltfAsset(path, out);
     out.gltfFiles.push_back(asset.summary);
     const std::optional<Camera> camera = InstantiateGltf(asset, out, -1, glm::mat4(1.0f));

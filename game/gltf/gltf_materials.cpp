@@ -172,6 +172,7 @@ uint32_t GltfMaterials::BaseColorTexture(const tinygltf::TextureInfo& info,
     Texture texture;
     texture.width = uint32_t(image.width);
     texture.height = uint32_t(image.height);
+    texture.srgb = 1;  // base colour textures are sRGB-encoded (glTF); scene files may say not
     if (t.sampler >= 0) {
         if (size_t(t.sampler) >= model_.samplers.size())
             doc_.Fail(textureAt + ".sampler",

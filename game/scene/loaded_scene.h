@@ -9,6 +9,7 @@
 #include "engine/physics_anim/animator.h"
 #include "engine/physics_anim/collider.h"
 #include "engine/physics_anim/rigid_body.h"
+#include "engine/render_rt/output_transform.h"
 #include "engine/render_rt/render_scene.h"
 
 namespace rtrt {
@@ -81,6 +82,8 @@ struct LoadedScene {
     std::vector<std::string> modelNames;     // by BLAS id
     std::vector<std::string> materialNames;  // by material id (a grey default, if used, comes last)
     std::vector<GltfSummary> gltfFiles;      // the glTF files loaded or included
+    // From linear radiance to the image: the scene's colour convention, exposure and tone map.
+    OutputTransform output = kDisplayValues;
 };
 
 // The camera of a scene at time t (its camera_path if it has one).

@@ -38,6 +38,7 @@ class SceneParser {
         if (hasCamera_) scene.camera = ParseCamera(top.Get("camera"));
         scene.background = top.Colour("background", scene.background);
         scene.maxDepth = top.Count("max_depth", 1, 16, scene.maxDepth);
+        out.output = ParseOutputTransform(top);
         if (top.Has("image")) {
             JsonFields image(top.Get("image"), "image", file_);
             out.width = image.Count("width", 1, 16384, 1280);
@@ -51,11 +52,34 @@ class SceneParser {
         if (top.Has("spawners")) ParseSpawners(top.Get("spawners"), out);
         if (top.Has("camera_path")) ParseCameraPath(top.Get("camera_path"), out);
         top.Finish();
+        // A scene of display colours uses its glTF models' textures as they are, as it always has.
+        if (!out.output.srgbEncode)
+            for (Texture& t : scene.textures) t.srgb = 0;
         FinishLoadedScene(out, file_);
         return out;
     }
 
   private:
+    // "colours": "display" (the default: colours are what the image shows, clamped) or "linear"
+    // (linear light, with "exposure" in EV and a "tone_map", then sRGB for 8-bit outputs).
+    OutputTransform ParseOutputTransform(JsonFields& top) {
+        const std::string colours = top.String("colours", "display");
+        if (colours != "display" && colours != "linear")
+            top.Fail("colours", "expected \"display\" or \"linear\", got \"" + colours + "\"");
+        if (colours == "display") {
+            for (const char* key : {"exposure", "tone_map"})
+                if (top.Has(key))
+                    top.Fail(key, "applies to linear colours: add \"colours\": \"linear\"");
+            return kDisplayValues;
+        }
+        OutputTransform t = kLinearToSrgb;
+        t.exposureEv = top.InRange("exposure", -20.0f, 20.0f, 0.0f);
+        const std::string toneMap = top.String("tone_map", "pbr_neutral");
+        if (!ParseToneMap(toneMap.c_str(), &t.toneMap))
+            top.Fail("tone_map", "expected pbr_neutral, aces or clamp, got \"" + toneMap + "\"");
+        return t;
+    }
+
     Camera ParseCamera(const Json& j) {
         JsonFields f(j, "camera", file_);
         Camera c;

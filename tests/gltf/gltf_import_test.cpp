@@ -55,6 +55,18 @@ Image RenderScene8(const LoadedScene& loaded, uint32_t size) {
     return RenderRaw(loaded.scene, settings);
 }
 
+// Each pixel of an 8x8 image of a 4x4 texture shows its texel, sRGB-decoded or as it is.
+void ExpectTexels(const Image& image, const std::vector<uint8_t>& rgb, bool decoded) {
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 8; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const uint8_t byte = rgb[3 * size_t((y / 2) * 4 + x / 2) + size_t(c)];
+                const float v = float(byte) * (1.0f / 255.0f);  // as the sampler computes it
+                EXPECT_FLOAT_EQ(image.At(x, y)[c], decoded ? SrgbDecode(v) : v)
+                    << x << "," << y << " channel " << c;
+            }
+}
+
 TEST_F(GltfTest, NearestTexturedQuadShowsItsTexels) {
     std::vector<uint8_t> rgb;
     for (int i = 0; i < 16; ++i)
@@ -63,16 +75,13 @@ TEST_F(GltfTest, NearestTexturedQuadShowsItsTexels) {
     const LoadedScene loaded = LoadSceneFile(path);
     EXPECT_NE(loaded.scene.Features() & kFeatureTextures, 0u);
     ASSERT_EQ(loaded.scene.textures.size(), 1u);
-    EXPECT_EQ(loaded.width, 1280u);
-    EXPECT_EQ(loaded.height, 1280u);
-    const Image image = RenderScene8(loaded, 8);
-    for (uint32_t y = 0; y < 8; ++y)
-        for (uint32_t x = 0; x < 8; ++x) {
-            const size_t texel = size_t((y / 2) * 4 + x / 2);
-            for (int c = 0; c < 3; ++c)
-                EXPECT_FLOAT_EQ(image.At(x, y)[c], rgb[3 * texel + size_t(c)] / 255.0f)
-                    << x << "," << y << " channel " << c;
-        }
+    EXPECT_TRUE(loaded.width == 1280u && loaded.height == 1280u);
+    EXPECT_EQ(loaded.output.srgbEncode, 1u);  // a glTF file alone has linear colours
+    ExpectTexels(RenderScene8(loaded, 8), rgb, true);
+    // In a scene file of display colours the texels are used as they are, as they always were.
+    std::ofstream(dir_ / "display.json") << R"({"models": {"q": {"type": "gltf", "file":
+        "quad.gltf"}}, "instances": [{"model": "q"}]})";
+    ExpectTexels(RenderScene8(LoadSceneFile((dir_ / "display.json").string()), 8), rgb, false);
 }
 
 TEST_F(GltfTest, BilinearTexturedQuadBlendsNeighbours) {
@@ -101,32 +110,6 @@ TEST_F(GltfTest, UndecodableImageIsNamed) {
         EXPECT_EQ(e.Field(), "images[0]") << e.what();
         EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
     }
-}
-
-TEST(TextureSampling, WrapModes) {
-    // A 4x1 texture of grey levels 0, 1, 2, 3 (x 10), sampled at texel centres beyond [0, 1).
-    const uint32_t texels[4] = {0, 10, 20, 30};
-    Texture t;
-    t.width = 4;
-    t.height = 1;
-    t.filter = TextureFilter::kNearest;
-    auto at = [&](float u, TextureWrap wrap) {
-        t.wrapS = wrap;
-        return SampleTexture(t, texels, vec2(u, 0.5f)).x * 255.0f;
-    };
-    EXPECT_FLOAT_EQ(at(1.125f, TextureWrap::kRepeat), 0.0f);
-    EXPECT_FLOAT_EQ(at(-0.125f, TextureWrap::kRepeat), 30.0f);
-    EXPECT_FLOAT_EQ(at(1.125f, TextureWrap::kMirroredRepeat), 30.0f);
-    EXPECT_FLOAT_EQ(at(1.375f, TextureWrap::kMirroredRepeat), 20.0f);
-    EXPECT_FLOAT_EQ(at(-0.125f, TextureWrap::kMirroredRepeat), 0.0f);
-    EXPECT_FLOAT_EQ(at(7.0f, TextureWrap::kClampToEdge), 30.0f);
-    EXPECT_FLOAT_EQ(at(-3.0f, TextureWrap::kClampToEdge), 0.0f);
-    EXPECT_FLOAT_EQ(at(1e38f, TextureWrap::kRepeat), at(0.0f, TextureWrap::kRepeat));
-    t.filter = TextureFilter::kLinear;
-    // Half way between the centres of texels 1 and 2; and across the repeat seam.
-    EXPECT_NEAR(at(0.5f, TextureWrap::kRepeat), 15.0f, 1e-4f);
-    EXPECT_NEAR(at(0.0f, TextureWrap::kRepeat), 15.0f, 1e-4f);  // texels 3 and 0
-    EXPECT_NEAR(at(0.0f, TextureWrap::kClampToEdge), 0.0f, 1e-4f);
 }
 
 // The same quad with each index type, and without indices.
