@@ -215,6 +215,12 @@ int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks) {
     return kExitOk;
 }
 
+// FOLDER/slurm/KIND-N.sbatch: the batch script of the job's next submission.
+std::string NextScript(const FarmJob& job, const char* kind) {
+    return job.folder + "/slurm/" + kind + "-" + std::to_string(job.submissions.size() + 1) +
+           ".sbatch";
+}
+
 // Submits a script with sbatch --parsable: the job id.
 std::string Submit(const std::vector<std::string>& command) {
     std::string output, error;
@@ -230,43 +236,37 @@ std::string Submit(const std::vector<std::string>& command) {
 int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks) {
     MakeFolders(job);
     WriteFarmJob(job);
-    const std::string n = std::to_string(job.submissions.size() + 1);
-    const std::string renderScript = job.folder + "/slurm/render-" + n + ".sbatch";
-    const std::string assembleScript = job.folder + "/slurm/assemble-" + n + ".sbatch";
-    std::string renderJob = "-";
+    const std::string renderScript = NextScript(job, "render");
+    const std::string assembleScript = NextScript(job, "assemble");
+    FarmSubmission& submission = job.submissions.emplace_back();
     if (!tasks.empty()) {
         WriteWholeFile(renderScript, RenderScript(job, tasks, RtrtPath()), /*durable=*/true);
-        renderJob = Submit(SubmitRender(renderScript));
+        submission.renderJob = Submit(SubmitRender(renderScript));
         // Recorded at once: --status and the queue check see it even if the assembly fails.
-        job.submissions.push_back("render " + renderJob + " assemble -");
         WriteFarmJob(job);
-        job.submissions.pop_back();
     }
     WriteWholeFile(assembleScript, AssembleScript(job, RtrtPath()), /*durable=*/true);
-    const std::string assembleJob =
-        Submit(SubmitAssembly(assembleScript, renderJob == "-" ? "" : renderJob));
-    job.submissions.push_back("render " + renderJob + " assemble " + assembleJob);
+    submission.assembleJob = Submit(SubmitAssembly(assembleScript, submission.renderJob));
     WriteFarmJob(job);
-    if (renderJob != "-")
+    if (!submission.renderJob.empty())
         std::printf("rtrt farm: submitted render job %s (%zu tasks) and assemble job %s after it\n",
-                    renderJob.c_str(), tasks.size(), assembleJob.c_str());
+                    submission.renderJob.c_str(), tasks.size(), submission.assembleJob.c_str());
     else
         std::printf("rtrt farm: every frame is done; submitted assemble job %s\n",
-                    assembleJob.c_str());
+                    submission.assembleJob.c_str());
     std::printf("rtrt farm: follow it with: rtrt farm --status %s\n",
                 ShellQuote(job.folder).c_str());
     return kExitOk;
 }
 
 void PrintDryRun(const FarmJob& job, const std::vector<std::vector<FrameRange>>& tasks) {
-    const std::string n = std::to_string(job.submissions.size() + 1);
     if (!tasks.empty()) {
-        const std::string script = job.folder + "/slurm/render-" + n + ".sbatch";
+        const std::string script = NextScript(job, "render");
         std::printf("# %s, submitted as: %s\n%s\n", script.c_str(),
                     ShellLine(SubmitRender(script)).c_str(),
                     RenderScript(job, tasks, RtrtPath()).c_str());
     }
-    const std::string script = job.folder + "/slurm/assemble-" + n + ".sbatch";
+    const std::string script = NextScript(job, "assemble");
     std::printf("# %s, submitted as: %s\n%s", script.c_str(),
                 ShellLine(SubmitAssembly(script, tasks.empty() ? "" : "RENDER_JOB_ID")).c_str(),
                 AssembleScript(job, RtrtPath()).c_str());
@@ -298,12 +298,11 @@ int RunFarm(const FarmOptions& o) {
                      job.folder.c_str(), queue.c_str(), ShellQuote(job.folder).c_str());
         return kExitFailure;
     }
+    // A new folder has no manifest: every frame is missing, and there is nothing to report.
     std::error_code ec;
     const bool resumed = fs::is_directory(ManifestFolder(job.folder), ec);
-    const FrameCheck check = resumed ? CheckAndReport(job) : FrameCheck{};
-    std::vector<int> frames = FramesToRender(check);
-    if (!resumed)
-        for (int i = job.frames.frames.first; i < job.frames.frames.end; ++i) frames.push_back(i);
+    const std::vector<int> frames =
+        FramesToRender(resumed ? CheckAndReport(job) : CheckFrames(job));
     if (frames.empty() && Assembled(job)) {
         std::printf("rtrt farm: nothing to do: every frame, %s and %s are there\n",
                     VideoFile(job.folder).c_str(), ContactSheetFile(job.folder).c_str());
@@ -338,12 +337,9 @@ int RunFarm(const FarmOptions& o) {
 std::string QueueState(const FarmJob& job) {
     if (job.submissions.empty() || !ProgramOnPath("squeue")) return {};
     std::string ids;
-    for (const std::string& s : job.submissions) {
-        char render[32] = "", assemble[32] = "";
-        if (std::sscanf(s.c_str(), "render %31s assemble %31s", render, assemble) != 2) continue;
-        for (const char* id : {render, assemble})
-            if (std::string(id) != "-") ids += (ids.empty() ? "" : ",") + std::string(id);
-    }
+    for (const FarmSubmission& s : job.submissions)
+        for (const std::string& id : {s.renderJob, s.assembleJob})
+            if (!id.empty()) ids += (ids.empty() ? "" : ",") + id;
     std::string output;
     ChildOptions quiet;
     quiet.quietStderr = true;
@@ -375,10 +371,12 @@ int RunStatus(const std::string& folder) {
                 f.backend.c_str());
     const FrameCheck check = CheckAndReport(job);
     const std::string queue = QueueState(job);
-    std::printf("rtrt farm: Slurm: %s\n",
-                job.submissions.empty() ? "nothing submitted (rendered with --local)"
-                : queue.empty() ? ("no job queued (last: " + job.submissions.back() + ")").c_str()
-                                : (queue + " (" + job.submissions.back() + ")").c_str());
+    std::printf(
+        "rtrt farm: Slurm: %s\n",
+        job.submissions.empty() ? "nothing submitted (rendered with --local)"
+        : queue.empty()
+            ? ("no job queued (last: " + SubmissionText(job.submissions.back()) + ")").c_str()
+            : (queue + " (" + SubmissionText(job.submissions.back()) + ")").c_str());
     const bool assembled = Assembled(job);
     std::printf("rtrt farm: video: %s\n",
                 assembled ? (VideoFile(job.folder) + " and " + ContactSheetFile(job.folder)).c_str()

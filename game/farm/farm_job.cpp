@@ -31,6 +31,11 @@ std::string FpsText(double fps) {
     return text;
 }
 
+std::string SubmissionText(const FarmSubmission& s) {
+    return "render " + (s.renderJob.empty() ? "-" : s.renderJob) + " assemble " +
+           (s.assembleJob.empty() ? "-" : s.assembleJob);
+}
+
 std::string RangeText(const FrameRange& range) {
     return std::to_string(range.first) + ":" + std::to_string(range.end);
 }
@@ -87,11 +92,12 @@ FarmJob ReadFarmJob(const std::string& folder) {
     s.timeLimit = f.String("time_limit", "");
     s.cpusPerTask = int(f.Count("cpus_per_task", 1, 4096, 1));
     if (f.Has("submissions")) {
+        f.ExpectKind("submissions", JsonKind::kObjects);
         const Json& list = f.Get("submissions");
-        if (!list.is_array()) f.Fail("submissions", "expected an array of strings");
-        for (const Json& entry : list) {
-            if (!entry.is_string()) f.Fail("submissions", "expected an array of strings");
-            job.submissions.push_back(entry.get<std::string>());
+        for (size_t i = 0; i < list.size(); ++i) {
+            JsonFields s(list[i], JsonIndexed("submissions", i), file);
+            job.submissions.push_back({s.String("render", ""), s.String("assemble", "")});
+            s.Finish();
         }
     }
     f.Finish();
@@ -116,7 +122,9 @@ void WriteFarmJob(const FarmJob& job) {
               {"partition", s.partition},
               {"time_limit", s.timeLimit},
               {"cpus_per_task", s.cpusPerTask},
-              {"submissions", job.submissions}};
+              {"submissions", Json::array()}};
+    for (const FarmSubmission& s : job.submissions)
+        j["submissions"].push_back({{"render", s.renderJob}, {"assemble", s.assembleJob}});
     WriteWholeFile(FarmFile(job.folder), j.dump(2) + "\n", /*durable=*/true);
 }
 

@@ -41,11 +41,20 @@ struct FarmScheduling {
     int cpusPerTask = 1;
 };
 
+// The Slurm jobs of one submission ("" for none: a resubmission with every frame done has no
+// render job, and a render job is recorded before its assembly is submitted).
+struct FarmSubmission {
+    std::string renderJob, assembleJob;
+    bool operator==(const FarmSubmission&) const = default;
+};
+// "render 12 assemble 13", for messages.
+std::string SubmissionText(const FarmSubmission& s);
+
 struct FarmJob {
     std::string folder;  // absolute
     FarmFrames frames;
     FarmScheduling scheduling;
-    std::vector<std::string> submissions;  // "render JOBID assemble JOBID", oldest first
+    std::vector<FarmSubmission> submissions;  // oldest first
 };
 
 std::string FarmFile(const std::string& folder);      // FOLDER/farm.json

@@ -15,12 +15,6 @@ namespace {
 
 constexpr int kSheetFrames = 24, kSheetColumns = 6, kThumbWidth = 320;
 
-std::string Number(double value) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.17g", value);
-    return text;
-}
-
 // Runs ffmpeg to write TARGET: the output's temporary is made (and registered for an interrupt)
 // first, ffmpeg writes into it, and it takes TARGET's name only when ffmpeg succeeded.
 void RunFfmpeg(std::vector<std::string> arguments, const std::string& target) {
@@ -68,7 +62,7 @@ void AssembleVideo(const FarmJob& job) {
     // H.264 in yuv420p (what players take) wants even sizes: odd ones get a row or column of
     // padding.
     RunFfmpeg({"-framerate",
-               Number(job.frames.fps),
+               FpsText(job.frames.fps),
                "-start_number",
                std::to_string(range.first),
                "-pattern_type",  // a folder name with [ or * is no glob

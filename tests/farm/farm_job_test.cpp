@@ -48,7 +48,7 @@ TEST_F(FarmJobTest, WrittenJobReadsBackEqual) {
                   "cuda",
                   "ppm"};
     job.scheduling = {8, true, "gpu", "2:00:00", 4};
-    job.submissions = {"render 17 assemble 18", "render - assemble 21"};
+    job.submissions = {{"17", "18"}, {"", "21"}};
     WriteFarmJob(job);
     const FarmJob back = ReadFarmJob(folder_);
     EXPECT_EQ(back.frames, job.frames);  // fps 29.97 exactly, as the command line gave it
