@@ -4,6 +4,7 @@
 namespace rtrt {
 
 inline constexpr uint32_t kNoTexture = 0xffffffffu;
+inline constexpr uint32_t kNoPbrMaterial = 0xffffffffu;
 
 // Blinn-Phong with mirror reflection and Fresnel-weighted refraction, 48 bytes.
 // Radiance leaving a hit: (1 - reflectivity - transmissivity) * local
@@ -22,20 +23,11 @@ struct Material {
     float transmissivity = 0.0f;
     float ior = 1.5f;
     uint32_t baseColorTexture = kNoTexture;
-    float pad[2] = {};
-};
-static_assert(sizeof(Material) == 64);
-
-enum class LightType : uint32_t { kDirectional = 0, kPoint = 1 };
-
-// A directional light (vector = unit direction toward the light) or a point light
-// (vector = position); both cast hard shadows.
-struct Light {
-    vec3 vector{1, 1, 1};
-    LightType type = LightType::kDirectional;
-    vec3 color{1.0f};
+    // kNoPbrMaterial: Blinn-Phong as above; else an index into the scene's PbrMaterial table, and
+    // the hit is shaded by the glTF metallic-roughness BRDF instead (pbr_material.h).
+    uint32_t pbrMaterial = kNoPbrMaterial;
     float pad = 0.0f;
 };
-static_assert(sizeof(Light) == 32);
+static_assert(sizeof(Material) == 64);
 
 }  // namespace rtrt

@@ -62,7 +62,16 @@ RT_HD inline vec3 RawPixel(const RenderSceneView& scene, ViewMode view, uint32_t
 inline uint32_t EffectiveFeatures(uint32_t sceneFeatures, uint32_t enabled, ViewMode view) {
     const uint32_t shape = sceneFeatures & kFeatureManyInstances;
     if (view != ViewMode::kShaded) return shape;
-    return (sceneFeatures & enabled & kAllFeatures) | shape;
+    uint32_t features = (sceneFeatures & enabled & kAllFeatures) | shape;
+    // PBR kernels always sample textures (IsKernelFeatureSet); with textures turned off, PBR
+    // materials fall back to their Blinn-Phong approximation.
+    if ((features & kFeatureTextures) == 0) features &= ~kFeaturePbr;
+    return features;
+}
+
+// The feature sets that have a kernel: PBR only with textures, which halves PBR's instantiations.
+constexpr bool IsKernelFeatureSet(uint32_t features) {
+    return (features & kFeaturePbr) == 0 || (features & kFeatureTextures) != 0;
 }
 
 // Calls fn with std::integral_constant<uint32_t, features>: one instantiation per combination.
@@ -71,8 +80,10 @@ decltype(auto) DispatchFeatures(uint32_t features, Fn&& fn) {
     if constexpr (kCandidate == kAllFeatureBits) {
         return fn(std::integral_constant<uint32_t, kCandidate>{});
     } else {
-        if ((features & kAllFeatureBits) == kCandidate)
-            return fn(std::integral_constant<uint32_t, kCandidate>{});
+        if constexpr (IsKernelFeatureSet(kCandidate)) {
+            if ((features & kAllFeatureBits) == kCandidate)
+                return fn(std::integral_constant<uint32_t, kCandidate>{});
+        }
         return DispatchFeatures<kCandidate + 1>(features, std::forward<Fn>(fn));
     }
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "engine/render_rt/pbr_brdf.h"
+
 namespace rtrt {
 
 uint32_t RenderScene::AddBlas(std::shared_ptr<const Blas> blas) {
@@ -15,9 +17,25 @@ uint32_t RenderScene::AddMaterial(const Material& material) {
     return uint32_t(materials.size() - 1);
 }
 
+uint32_t RenderScene::AddPbrMaterial(Material approximation, const PbrMaterial& pbr) {
+    pbrMaterials.push_back(pbr);
+    approximation.pbrMaterial = uint32_t(pbrMaterials.size() - 1);
+    return AddMaterial(approximation);
+}
+
+uint32_t RenderScene::AddTextureView(const Texture& texture) {
+    textures.push_back(texture);
+    return uint32_t(textures.size() - 1);
+}
+
+uint64_t RenderScene::AddTexels(const uint32_t* rgba, size_t count) {
+    const uint64_t offset = texels.size();
+    texels.insert(texels.end(), rgba, rgba + count);
+    return offset;
+}
+
 uint32_t RenderScene::AddTexture(Texture texture, const uint32_t* rgba) {
-    texture.texelOffset = texels.size();
-    texels.insert(texels.end(), rgba, rgba + size_t(texture.width) * texture.height);
+    texture.texelOffset = AddTexels(rgba, size_t(texture.width) * texture.height);
     textures.push_back(texture);
     return uint32_t(textures.size() - 1);
 }
@@ -72,6 +90,12 @@ uint32_t RenderScene::Features() const {
         if (m.reflectivity > 0.0f) features |= kFeatureReflection;
         if (m.transmissivity > 0.0f) features |= kFeatureRefraction | kFeatureReflection;
         if (m.baseColorTexture != kNoTexture) features |= kFeatureTextures;
+        if (m.pbrMaterial == kNoPbrMaterial) continue;
+        const PbrMaterial& p = pbrMaterials[m.pbrMaterial];
+        features |= kFeaturePbr | kFeatureTextures;  // IsKernelFeatureSet
+        if (MirrorShare(p.roughness) > 0.0f) features |= kFeatureReflection;
+        if (p.transmission > 0.0f && p.metallic < 1.0f)
+            features |= kFeatureRefraction | kFeatureReflection;
     }
     return features;
 }
@@ -90,6 +114,7 @@ RenderSceneView RenderScene::HostView(uint32_t width, uint32_t height, uint32_t 
     view.tlas = {tlas_.nodes.data(), tlas_.instanceOrder.data(), instances.data(),
                  blasViews_.data()};
     view.materials = materials.data();
+    view.pbrMaterials = pbrMaterials.data();
     view.lights = lights.data();
     view.textures = textures.data();
     view.texels = texels.data();

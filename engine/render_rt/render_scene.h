@@ -24,6 +24,7 @@ struct RenderScene {
     std::vector<std::shared_ptr<const Blas>> blases;
     std::vector<Instance> instances;
     std::vector<Material> materials;
+    std::vector<PbrMaterial> pbrMaterials;
     std::vector<Light> lights;
     std::vector<Texture> textures;
     std::vector<uint32_t> texels;  // RGBA8 of every texture, one after another
@@ -37,8 +38,15 @@ struct RenderScene {
 
     uint32_t AddBlas(std::shared_ptr<const Blas> blas);
     uint32_t AddMaterial(const Material& material);
+    // A glTF metallic-roughness material; approximation is what kernels without kFeaturePbr
+    // (textures turned off) shade instead.
+    uint32_t AddPbrMaterial(Material approximation, const PbrMaterial& pbr);
     // Appends width x height RGBA8 texels (row 0 the top) as a texture; texelOffset is set here.
     uint32_t AddTexture(Texture texture, const uint32_t* rgba);
+    // Appends texels for records to point at (AddTextureView); returns their offset.
+    uint64_t AddTexels(const uint32_t* rgba, size_t count);
+    // Another record over texels already added (the same image under another transform).
+    uint32_t AddTextureView(const Texture& texture);
     uint32_t AddInstance(uint32_t blasId, uint32_t materialId, const glm::mat4& objectToWorld);
     uint32_t AddDeformableMesh(std::shared_ptr<const DeformableMesh> mesh);
     // A deformation of mesh `meshId` whose rest tree is BLAS `restBlasId` (built from the mesh,

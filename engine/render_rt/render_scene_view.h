@@ -2,7 +2,8 @@
 // Everything a trace kernel reads, as plain pointers into host or device memory.
 #include "engine/bvh/traversal/scene_traversal.h"
 #include "engine/render_rt/camera.h"
-#include "engine/render_rt/material.h"
+#include "engine/render_rt/light.h"
+#include "engine/render_rt/pbr_material.h"
 #include "engine/render_rt/scene_features.h"
 #include "engine/render_rt/texture.h"
 
@@ -11,8 +12,9 @@ namespace rtrt {
 struct RenderSceneView {
     TlasView tlas;
     const Material* materials;
+    const PbrMaterial* pbrMaterials;  // indexed by Material::pbrMaterial
     const Light* lights;
-    const Texture* textures;  // indexed by Material::baseColorTexture
+    const Texture* textures;  // indexed by the materials' texture slots
     const uint32_t* texels;   // RGBA8, the Texture records' texelOffset counts in these
     uint32_t lightCount;
     uint32_t maxDepth;  // rays per path: 1 = primary only, 2 = primary plus one bounce

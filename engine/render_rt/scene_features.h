@@ -19,9 +19,11 @@ enum SceneFeature : uint32_t {
     kFeatureManyInstances = 1u << 3,
     // Materials with a base-colour texture: only these kernels interpolate uvs and sample.
     kFeatureTextures = 1u << 4,
+    // glTF's metallic-roughness materials (pbr_material.h): only these kernels hold the BRDF.
+    kFeaturePbr = 1u << 5,
 };
 inline constexpr uint32_t kAllFeatures =
-    kFeatureShadows | kFeatureReflection | kFeatureRefraction | kFeatureTextures;
+    kFeatureShadows | kFeatureReflection | kFeatureRefraction | kFeatureTextures | kFeaturePbr;
 inline constexpr uint32_t kAllFeatureBits = kAllFeatures | kFeatureManyInstances;
 inline constexpr uint32_t kManyInstances = 64;
 

@@ -13,8 +13,9 @@ namespace rtrt {
 enum class TextureWrap : uint32_t { kRepeat = 0, kClampToEdge = 1, kMirroredRepeat = 2 };
 enum class TextureFilter : uint32_t { kLinear = 0, kNearest = 1 };
 
-// One image of the scene's texel array, 32 bytes. Texel (x, y) is texels[texelOffset + y * width
-// + x], row 0 the top of the image; texture coordinate (0, 0) is its top-left corner (glTF).
+// One image of the scene's texel array as a material uses it, 64 bytes. Texel (x, y) is
+// texels[texelOffset + y * width + x], row 0 the top of the image; texture coordinate (0, 0) is
+// its top-left corner (glTF). Records may share texels (one image under several transforms).
 struct Texture {
     uint64_t texelOffset = 0;
     uint32_t width = 0, height = 0;
@@ -23,8 +24,27 @@ struct Texture {
     // 1: the texels are sRGB-encoded colours (glTF's base colour in a scene of linear colours),
     // decoded per texel before filtering; 0: used as they are.
     uint32_t srgb = 0;
+    uint32_t pad = 0;
+    // 1: uv is mapped by uvTransform (rows of a 2x3 affine map, KHR_texture_transform) first.
+    uint32_t transformed = 0;
+    float uvTransform[6] = {1, 0, 0, 0, 1, 0};
 };
-static_assert(sizeof(Texture) == 32);
+static_assert(sizeof(Texture) == 64);
+
+// KHR_texture_transform's map: scale, then rotate by `rotation` radians (counter-clockwise in uv
+// with v down, as the specification's matrix says), then offset.
+inline void SetUvTransform(Texture* t, vec2 offset, float rotation, vec2 scale) {
+    const float c = cosf(rotation), s = sinf(rotation);
+    const float m[6] = {c * scale.x, s * scale.y, offset.x, -s * scale.x, c * scale.y, offset.y};
+    for (int i = 0; i < 6; ++i) t->uvTransform[i] = m[i];
+    t->transformed = 1;
+}
+
+RT_HD inline vec2 TransformUv(const Texture& t, vec2 uv) {
+    if (!t.transformed) return uv;
+    const float* m = t.uvTransform;
+    return vec2(m[0] * uv.x + m[1] * uv.y + m[2], m[3] * uv.x + m[4] * uv.y + m[5]);
+}
 
 // Reduces a coordinate to one period of its wrap mode before it is scaled to texels, so that a
 // huge coordinate never overflows the integer texel index.
@@ -54,6 +74,7 @@ RT_HD inline vec3 TexelColor(const Texture& t, const uint32_t* texels, uint32_t 
 // The colour at texture coordinate uv: the texel under it (nearest), or the bilinear blend of the
 // four texels around it, texel centres at ((i + 0.5) / width, (j + 0.5) / height).
 RT_HD inline vec3 SampleTexture(const Texture& t, const uint32_t* texels, vec2 uv) {
+    uv = TransformUv(t, uv);
     const int w = int(t.width), h = int(t.height);
     const float x = ReduceCoordinate(uv.x, t.wrapS) * float(w);
     const float y = ReduceCoordinate(uv.y, t.wrapT) * float(h);

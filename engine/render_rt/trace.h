@@ -3,8 +3,9 @@
 // follow an explicit ray stack instead of recursion (the original paper's iterative ray queue):
 // a ray's secondary rays are pushed with the weight they contribute, and the pixel is the sum of
 // weight * local shading over every ray popped.
+#include "engine/render_rt/light_loop.h"
 #include "engine/render_rt/optics.h"
-#include "engine/render_rt/trace_policy.h"
+#include "engine/render_rt/shade_pbr.h"
 
 namespace rtrt {
 
@@ -15,32 +16,6 @@ struct PixelResult {
     TraversalStats stats;  // primary ray's binary-BVH traversal, when countTraversal
     uint32_t rays;         // rays traced for this pixel: primary, shadow and secondary
 };
-
-// The scene traversal a specialisation uses: on the GPU, scenes of many instances take the single
-// loop over both levels; otherwise (and always on the CPU) the nested form. Both take the
-// policy's primitive tests (trace_policy.h).
-template <uint32_t kFeatures, class Policy = TracePolicy>
-RT_HD inline bool TraceIntersect(const TlasView& tlas, const Ray& ray, SceneHit* hit,
-                                 TraversalStats* stats) {
-#if defined(RT_ON_GPU)
-    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
-        float tMax = ray.tMax;
-        return TraverseTwoLevel<Query::kIntersect, Policy>(tlas, ray, tMax, hit, stats);
-    }
-#endif
-    return IntersectScene<Policy>(tlas, ray, hit, stats);
-}
-
-template <uint32_t kFeatures, class Policy = TracePolicy>
-RT_HD inline bool TraceOccluded(const TlasView& tlas, const Ray& ray) {
-#if defined(RT_ON_GPU)
-    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
-        float tMax = ray.tMax;
-        return TraverseTwoLevel<Query::kOccluded, Policy>(tlas, ray, tMax, nullptr, nullptr);
-    }
-#endif
-    return OccludedScene<Policy>(tlas, ray);
-}
 
 // The material at a hit, its base-colour texture applied (only in kernels with kFeatureTextures):
 // the sample multiplies diffuse and ambient. scratch holds the textured copy.
@@ -68,30 +43,12 @@ template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, const Material& m,
                              vec3 toViewer, uint32_t* rays) {
     vec3 color = m.ambient;
-    for (uint32_t i = 0; i < scene.lightCount; ++i) {
-        const Light& light = scene.lights[i];
-        vec3 toLight;
-        float shadowTMax;
-        if (light.type == LightType::kDirectional) {
-            toLight = light.vector;
-            shadowTMax = kInfinity;
-        } else {
-            toLight = light.vector - s.point;  // unnormalised: the light sits at t = 1
-            shadowTMax = NextFloatDown(1.0f);
-        }
-        const vec3 l = glm::normalize(toLight);
-        const float nDotL = glm::dot(s.shadingNormal, l);
-        if (nDotL <= 0.0f || glm::dot(s.geomNormal, l) <= 0.0f) continue;
-        if constexpr ((kFeatures & kFeatureShadows) != 0) {
-            ++*rays;
-            if (TraceOccluded<kFeatures, Policy>(scene.tlas,
-                                                 Policy::SpawnRay(s, toLight, shadowTMax)))
-                continue;
-        }
-        const vec3 h = glm::normalize(l + toViewer);
-        const float nDotH = fmaxf(0.0f, glm::dot(s.shadingNormal, h));
-        color += light.color * (m.diffuse * nDotL + m.specular * powf(nDotH, m.shininess));
-    }
+    ForEachLight<kFeatures, Policy>(
+        scene, s, s.shadingNormal, rays, [&](vec3 l, vec3 arriving, float nDotL) {
+            const vec3 h = glm::normalize(l + toViewer);
+            const float nDotH = fmaxf(0.0f, glm::dot(s.shadingNormal, h));
+            color += arriving * (m.diffuse * nDotL + m.specular * powf(nDotH, m.shininess));
+        });
     return color;
 }
 
@@ -127,9 +84,28 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
             result.normal = s.shadingNormal;
             primary = false;
         }
+        const vec3 toViewer = -glm::normalize(pending.ray.dir);
+        if constexpr ((kFeatures & kFeaturePbr) != 0) {
+            const Material& material = scene.materials[s.materialId];
+            if (material.pbrMaterial != kNoPbrMaterial) {
+                const HitShading h =
+                    ShadePbr<kFeatures, Policy>(scene, hit, s, material, toViewer, &result.rays);
+                result.color += pending.weight * h.local;
+                if (pending.depth >= scene.maxDepth) continue;
+                if (MaxComponent(h.reflectWeight) > 0.0f) {
+                    const vec3 dir = Reflect(toViewer, h.normal);
+                    if (glm::dot(dir, s.geomNormal) > 0.0f)
+                        stack[stackSize++] = {Policy::SpawnRay(s, dir),
+                                              pending.weight * h.reflectWeight, pending.depth + 1};
+                }
+                if (MaxComponent(h.refractWeight) > 0.0f)
+                    stack[stackSize++] = {Policy::SpawnRay(s, h.refracted),
+                                          pending.weight * h.refractWeight, pending.depth + 1};
+                continue;
+            }
+        }
         Material textured;
         const Material& m = MaterialAt<kFeatures>(scene, hit, s.materialId, &textured);
-        const vec3 toViewer = -glm::normalize(pending.ray.dir);
         float reflectWeight = (kFeatures & kFeatureReflection) ? m.reflectivity : 0.0f;
         float refractWeight = 0.0f;
         vec3 refracted(0.0f);

@@ -347,7 +347,8 @@ class App {
         // Textures are content, not an effect the overlay turns off.
         s.enabledFeatures = (model_.shadows ? kFeatureShadows : 0u) |
                             (model_.reflection ? kFeatureReflection : 0u) |
-                            (model_.refraction ? kFeatureRefraction : 0u) | kFeatureTextures;
+                            (model_.refraction ? kFeatureRefraction : 0u) | kFeatureTextures |
+                            kFeaturePbr;
         return s;
     }
 

@@ -80,6 +80,7 @@ void SpawnPalette::AddGltf(World& world, const std::string& name, const std::str
     LoadedScene into;
     into.scene.blases = scene.blases;
     into.scene.materials = scene.materials;
+    into.scene.pbrMaterials = scene.pbrMaterials;
     into.scene.textures = scene.textures;
     into.scene.texels = scene.texels;
     into.scene.deformableMeshes = scene.deformableMeshes;
@@ -87,7 +88,10 @@ void SpawnPalette::AddGltf(World& world, const std::string& name, const std::str
     for (size_t i = scene.blases.size(); i < into.scene.blases.size(); ++i)
         world.AddBlas(into.scene.blases[i]);
     for (size_t i = scene.materials.size(); i < into.scene.materials.size(); ++i)
-        world.AddMaterial(into.scene.materials[i]);
+        if (const Material& m = into.scene.materials[i]; m.pbrMaterial != kNoPbrMaterial)
+            world.AddPbrMaterial(m, into.scene.pbrMaterials[m.pbrMaterial]);
+        else
+            world.AddMaterial(m);
     for (size_t i = scene.textures.size(); i < into.scene.textures.size(); ++i)
         world.AddTexture(into.scene.textures[i],
                          into.scene.texels.data() + into.scene.textures[i].texelOffset);

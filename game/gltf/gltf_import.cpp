@@ -25,6 +25,7 @@ void CheckExtensions(GltfDocument& doc) {
                                                 "KHR_materials_ior",
                                                 "KHR_materials_specular",
                                                 "KHR_materials_emissive_strength",
+                                                "KHR_texture_transform",
                                                 "KHR_materials_pbrSpecularGlossiness"};
     for (const std::string& ext : doc.Model().extensionsRequired)
         if (!kUsed.count(ext))

@@ -7,19 +7,11 @@
 #include "game/scene/json_fields.h"
 
 namespace rtrt {
-namespace {
 
 namespace fs = std::filesystem;
 
-TextureWrap Wrap(int mode) {
-    if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::kClampToEdge;
-    if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::kMirroredRepeat;
-    return TextureWrap::kRepeat;
-}
-
-}  // namespace
-
-// glTF's metallic-roughness material as rtrt's Blinn-Phong (the README's table says why).
+// glTF's metallic-roughness material as the PBR material it is, with rtrt's Blinn-Phong version of
+// it (the README's table says how) for kernels without PBR.
 uint32_t GltfMaterials::Id(int index, const std::string& field) {
     if (index < 0) {
         if (defaultMaterial_ == UINT32_MAX) {
@@ -93,11 +85,6 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
         doc_.Warn("alpha",
                   at + ".alphaMode: " + g.alphaMode + " is not supported; surfaces are opaque");
-    if (g.normalTexture.index >= 0 || g.occlusionTexture.index >= 0 ||
-        g.emissiveTexture.index >= 0 || pbr.metallicRoughnessTexture.index >= 0)
-        doc_.Warn("textures", at + ": only base colour textures are supported; normal, "
-                                   "occlusion, emissive and metallic-roughness textures are "
-                                   "ignored");
 
     // Dielectric reflectance at normal incidence from the index of refraction, scaled by
     // KHR_materials_specular; metals reflect their base colour (the glTF BRDF's F0).
@@ -117,73 +104,39 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     m.reflectivity =
         std::min(std::max(std::max(f0.x, f0.y), f0.z) * smooth, 1.0f - m.transmissivity);
     m.ior = ior;
-    m.baseColorTexture = BaseColorTexture(pbr.baseColorTexture, at);
-    const uint32_t id = out_.scene.AddMaterial(m);
+    m.baseColorTexture = textures_.Slot({pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                         &pbr.baseColorTexture.extensions},
+                                        at + ".pbrMetallicRoughness.baseColorTexture", true);
+
+    PbrMaterial p;
+    p.baseColor = base;
+    p.metallic = metallic;
+    p.roughness = roughness;
+    p.emissive = emissive;
+    p.dielectricF0 = glm::min(vec3(f0Dielectric) * specularColour, vec3(1.0f));
+    p.specularWeight = specularFactor;
+    p.transmission = transmission;
+    p.ior = ior;
+    p.normalScale = number(g.normalTexture.scale, "normalTexture.scale", -1e3, 1e3);
+    p.occlusionStrength = number(g.occlusionTexture.strength, "occlusionTexture.strength", 0, 1);
+    p.metallicRoughnessTexture =
+        textures_.Slot({pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                        &pbr.metallicRoughnessTexture.extensions},
+                       at + ".pbrMetallicRoughness.metallicRoughnessTexture", false);
+    p.normalTexture = textures_.Slot(
+        {g.normalTexture.index, g.normalTexture.texCoord, &g.normalTexture.extensions},
+        at + ".normalTexture", false);
+    p.occlusionTexture = textures_.Slot(
+        {g.occlusionTexture.index, g.occlusionTexture.texCoord, &g.occlusionTexture.extensions},
+        at + ".occlusionTexture", false);
+    p.emissiveTexture = textures_.Slot(
+        {g.emissiveTexture.index, g.emissiveTexture.texCoord, &g.emissiveTexture.extensions},
+        at + ".emissiveTexture", true);
+    const uint32_t id = out_.scene.AddPbrMaterial(m, p);
     out_.materialNames.push_back(
         g.name.empty() ? fs::path(doc_.File()).filename().string() + " " + at : g.name);
     materialIds_[index] = id;
     return id;
-}
-
-uint32_t GltfMaterials::BaseColorTexture(const tinygltf::TextureInfo& info,
-                                         const std::string& materialAt) {
-    if (info.index < 0) return kNoTexture;
-    const std::string at = materialAt + ".pbrMetallicRoughness.baseColorTexture";
-    if (size_t(info.index) >= model_.textures.size())
-        doc_.Fail(at + ".index", "texture " + std::to_string(info.index) + " out of range");
-    if (info.texCoord != 0) {
-        doc_.Warn("texcoord", at + ".texCoord: only TEXCOORD_0 is supported; untextured");
-        return kNoTexture;
-    }
-    if (info.extensions.count("KHR_texture_transform"))
-        doc_.Warn("transform", at + ": KHR_texture_transform is ignored (textures are sampled "
-                                    "at the primitive's own coordinates)");
-    auto found = textureIds_.find(info.index);
-    if (found != textureIds_.end()) return found->second;
-    const tinygltf::Texture& t = model_.textures[size_t(info.index)];
-    const std::string textureAt = JsonIndexed("textures", size_t(info.index));
-    if (t.source < 0) {
-        doc_.Warn("texture-source", textureAt +
-                                        ": no image rtrt can read (an extension's "
-                                        "format?); untextured");
-        return textureIds_[info.index] = kNoTexture;
-    }
-    if (size_t(t.source) >= model_.images.size())
-        doc_.Fail(textureAt + ".source", "image " + std::to_string(t.source) + " out of range");
-    const tinygltf::Image& image = model_.images[size_t(t.source)];
-    const std::string imageAt = JsonIndexed("images", size_t(t.source));
-    const int channels = image.component, bytes = image.bits / 8;
-    if (image.width <= 0 || image.height <= 0 || channels < 1 || channels > 4 ||
-        (bytes != 1 && bytes != 2) ||
-        image.image.size() !=
-            size_t(image.width) * size_t(image.height) * size_t(channels) * size_t(bytes))
-        doc_.Fail(imageAt, "the image is missing or could not be decoded");
-    std::vector<uint32_t> rgba(size_t(image.width) * size_t(image.height));
-    for (size_t p = 0; p < rgba.size(); ++p) {
-        uint32_t c[4] = {0, 0, 0, 255};
-        for (int k = 0; k < channels; ++k) {
-            // 16-bit images keep their high byte, little-endian as stb and OIIO return them.
-            c[k] =
-                image.image[(p * size_t(channels) + size_t(k)) * size_t(bytes) + size_t(bytes - 1)];
-        }
-        if (channels <= 2) c[1] = c[2] = c[0];  // grey (and alpha)
-        rgba[p] = c[0] | (c[1] << 8) | (c[2] << 16) | (c[3] << 24);
-    }
-    Texture texture;
-    texture.width = uint32_t(image.width);
-    texture.height = uint32_t(image.height);
-    texture.srgb = 1;  // base colour textures are sRGB-encoded (glTF); scene files may say not
-    if (t.sampler >= 0) {
-        if (size_t(t.sampler) >= model_.samplers.size())
-            doc_.Fail(textureAt + ".sampler",
-                      "sampler " + std::to_string(t.sampler) + " out of range");
-        const tinygltf::Sampler& s = model_.samplers[size_t(t.sampler)];
-        texture.wrapS = Wrap(s.wrapS);
-        texture.wrapT = Wrap(s.wrapT);
-        texture.filter = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? TextureFilter::kNearest
-                                                                        : TextureFilter::kLinear;
-    }
-    return textureIds_[info.index] = out_.scene.AddTexture(texture, rgba.data());
 }
 
 }  // namespace rtrt

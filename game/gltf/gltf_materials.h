@@ -1,11 +1,12 @@
 #pragma once
-// glTF materials and their base-colour textures, as rtrt's Blinn-Phong materials (the README's
-// table says how), each added to the scene once however many primitives use it.
+// glTF materials as rtrt's PBR materials with their textures (and a Blinn-Phong approximation
+// for kernels without PBR), each added to the scene once however many primitives use it.
 #include <cstdint>
 #include <map>
 #include <string>
 
 #include "game/gltf/gltf_document.h"
+#include "game/gltf/gltf_textures.h"
 #include "game/scene/loaded_scene.h"
 
 namespace rtrt {
@@ -13,18 +14,17 @@ namespace rtrt {
 class GltfMaterials {
   public:
     GltfMaterials(GltfDocument& doc, LoadedScene& out)
-        : doc_(doc), model_(doc.Model()), out_(out) {}
+        : doc_(doc), model_(doc.Model()), out_(out), textures_(doc, out) {}
 
     // The scene's material for glTF material INDEX (-1: a default grey), which FIELD refers to.
     uint32_t Id(int index, const std::string& field);
 
   private:
-    uint32_t BaseColorTexture(const tinygltf::TextureInfo& info, const std::string& materialAt);
-
     GltfDocument& doc_;
     const tinygltf::Model& model_;
     LoadedScene& out_;
-    std::map<int, uint32_t> materialIds_, textureIds_;
+    GltfTextures textures_;
+    std::map<int, uint32_t> materialIds_;
     uint32_t defaultMaterial_ = UINT32_MAX;
 };
 

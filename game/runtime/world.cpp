@@ -13,6 +13,7 @@ namespace rtrt {
 World::World(const LoadedScene& scene) : source_(scene) {
     scene_.blases = scene.scene.blases;
     scene_.materials = scene.scene.materials;
+    scene_.pbrMaterials = scene.scene.pbrMaterials;
     scene_.lights = scene.scene.lights;
     scene_.textures = scene.scene.textures;
     scene_.texels = scene.scene.texels;
@@ -142,6 +143,10 @@ uint32_t World::AddBlas(std::shared_ptr<const Blas> blas) {
 }
 
 uint32_t World::AddMaterial(const Material& material) { return scene_.AddMaterial(material); }
+
+uint32_t World::AddPbrMaterial(const Material& approximation, const PbrMaterial& pbr) {
+    return scene_.AddPbrMaterial(approximation, pbr);
+}
 
 ecs::Entity World::Spawn(const EntityDesc& desc) {
     const ecs::Entity e = Create(desc);

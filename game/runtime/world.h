@@ -58,6 +58,7 @@ class World {
     // Adds a model or a material for later spawns; call before a FrameRenderer takes the scene.
     uint32_t AddBlas(std::shared_ptr<const Blas> blas);
     uint32_t AddMaterial(const Material& material);
+    uint32_t AddPbrMaterial(const Material& approximation, const PbrMaterial& pbr);
     // Creates an entity as a scene file's spawner would (its spawnTime is ignored; a skin's
     // joints are not resolved: a spawned skinned mesh keeps its rest pose).
     ecs::Entity Spawn(const EntityDesc& desc);

@@ -170,18 +170,23 @@ inline int QuadMesh(GltfBuilder& b, int material) {
 }
 
 // The quad seen by a 90-degree camera from z = 1: it fills the square image exactly. The
-// material shows the texture unlit (ambient 0.1 + emissive 0.9 = 1, and the only light shines
-// on the quad's back), so every pixel is its texel. The caller sets doc["images"][0].
+// material shows the texture unlit: it is the emissive texture (factor 1) over a black base with
+// no specular layer, and the only light shines on the quad's back, so every pixel is its texel.
+// The texture is the base colour's too. The caller sets doc["images"][0].
 inline GltfBuilder TexturedQuadScene(int filter, int wrap) {
     GltfBuilder b;
     b.doc["samplers"] = Json::array(
         {{{"magFilter", filter}, {"minFilter", filter}, {"wrapS", wrap}, {"wrapT", wrap}}});
     b.doc["textures"] = Json::array({{{"source", 0}, {"sampler", 0}}});
-    b.doc["materials"] = Json::array({{{"pbrMetallicRoughness",
-                                        {{"baseColorTexture", {{"index", 0}}},
-                                         {"metallicFactor", 0.0},
-                                         {"roughnessFactor", 1.0}}},
-                                       {"emissiveFactor", {0.9, 0.9, 0.9}}}});
+    b.doc["materials"] =
+        Json::array({{{"pbrMetallicRoughness",
+                       {{"baseColorTexture", {{"index", 0}}},
+                        {"baseColorFactor", {0, 0, 0, 1}},
+                        {"metallicFactor", 0.0},
+                        {"roughnessFactor", 1.0}}},
+                      {"emissiveTexture", {{"index", 0}}},
+                      {"emissiveFactor", {1, 1, 1}},
+                      {"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.0}}}}}}});
     b.doc["cameras"] = Json::array(
         {{{"type", "perspective"},
           {"perspective", {{"yfov", M_PI / 2}, {"aspectRatio", 1.0}, {"znear", 0.01}}}}});

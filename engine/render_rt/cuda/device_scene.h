@@ -20,6 +20,7 @@ struct DeviceScene {
     std::vector<DeviceBuffer<TriangleUvs>> uvs;
     DeviceBuffer<BlasView> blasViews;
     DeviceBuffer<Material> materials;
+    DeviceBuffer<PbrMaterial> pbrMaterials;
     DeviceBuffer<Light> lights;
     DeviceBuffer<Texture> textures;
     DeviceBuffer<uint32_t> texels;
@@ -27,6 +28,7 @@ struct DeviceScene {
     explicit DeviceScene(const RenderScene& scene) {
         AddBlases(scene);
         materials.Upload(scene.materials);
+        pbrMaterials.Upload(scene.pbrMaterials);
         lights.Upload(scene.lights);
         textures.Upload(scene.textures);
         texels.Upload(scene.texels);
@@ -73,6 +75,7 @@ struct DeviceScene {
         view.samplesPerPixel = s.samplesPerPixel;
         view.tlas = {nullptr, nullptr, nullptr, blasViews.Data()};
         view.materials = materials.Data();
+        view.pbrMaterials = pbrMaterials.Data();
         view.lights = lights.Data();
         view.textures = textures.Data();
         view.texels = texels.Data();

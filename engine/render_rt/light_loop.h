@@ -1,0 +1,45 @@
+#pragma once
+// The direct-light loop both shading models share: for each light above the surface and not in
+// shadow, its unit direction, the colour that reaches the point and the cosine at the shading
+// normal.
+#include "engine/render_rt/light.h"
+#include "engine/render_rt/scene_trace.h"
+
+namespace rtrt {
+
+// Calls lit(l, arriving, nDotL) for every light that reaches surface point s with shading normal
+// n; counts the shadow rays in *rays.
+template <uint32_t kFeatures, class Policy, class Lit>
+RT_HD inline void ForEachLight(const RenderSceneView& scene, const Surface& s, vec3 n,
+                               uint32_t* rays, Lit&& lit) {
+    for (uint32_t i = 0; i < scene.lightCount; ++i) {
+        const Light& light = scene.lights[i];
+        vec3 toLight;
+        float shadowTMax;
+        if (light.type == LightType::kDirectional) {
+            toLight = light.vector;
+            shadowTMax = kInfinity;
+        } else {
+            toLight = light.vector - s.point;  // unnormalised: the light sits at t = 1
+            shadowTMax = NextFloatDown(1.0f);
+        }
+        const vec3 l = glm::normalize(toLight);
+        const float nDotL = glm::dot(n, l);
+        if (nDotL <= 0.0f || glm::dot(s.geomNormal, l) <= 0.0f) continue;
+        vec3 arriving = light.color;
+        if (LightAttenuates(light)) {
+            const float attenuation = LightAttenuation(light, toLight, l);
+            if (!(attenuation > 0.0f)) continue;
+            arriving *= attenuation;
+        }
+        if constexpr ((kFeatures & kFeatureShadows) != 0) {
+            ++*rays;
+            if (TraceOccluded<kFeatures, Policy>(scene.tlas,
+                                                 Policy::SpawnRay(s, toLight, shadowTMax)))
+                continue;
+        }
+        lit(l, arriving, nDotL);
+    }
+}
+
+}  // namespace rtrt

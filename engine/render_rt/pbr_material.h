@@ -1,0 +1,32 @@
+#pragma once
+// glTF 2.0's metallic-roughness material, beside rtrt's Blinn-Phong (material.h): a Material whose
+// pbrMaterial names one of these is shaded by pbr_brdf.h. Texture slots index the scene's texture
+// table (each record carries its own KHR_texture_transform); kNoTexture leaves the factor alone.
+#include "engine/render_rt/material.h"
+
+namespace rtrt {
+
+// 96 bytes.
+struct PbrMaterial {
+    vec3 baseColor{1.0f};  // linear; times the base-colour texture (Material::baseColorTexture)
+    float metallic = 1.0f;
+    vec3 emissive{0.0f};     // linear radiance, emissiveStrength included
+    float roughness = 1.0f;  // perceptual; GGX alpha = roughness^2
+    // Dielectric reflectance at normal incidence: ((ior - 1) / (ior + 1))^2 times
+    // KHR_materials_specular's colour, at most 1; specularWeight is its specularFactor.
+    vec3 dielectricF0{0.04f};
+    float specularWeight = 1.0f;
+    uint32_t metallicRoughnessTexture = kNoTexture;  // roughness in green, metalness in blue
+    uint32_t normalTexture = kNoTexture;             // tangent space, +y towards -v
+    uint32_t emissiveTexture = kNoTexture;
+    uint32_t occlusionTexture = kNoTexture;  // red; darkens ambient light only
+    float normalScale = 1.0f;
+    float occlusionStrength = 1.0f;
+    float transmission = 0.0f;  // KHR_materials_transmission: the dielectric's diffuse share
+    float ior = 1.5f;
+    vec3 ambientLight{0.1f};  // the uniform light around the object that stands for indirect light
+    float pad = 0.0f;
+};
+static_assert(sizeof(PbrMaterial) == 96);
+
+}  // namespace rtrt

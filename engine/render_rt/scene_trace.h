@@ -1,0 +1,34 @@
+#pragma once
+// Closest-hit and any-hit queries of a specialised kernel against the whole scene.
+#include "engine/render_rt/render_scene_view.h"
+#include "engine/render_rt/trace_policy.h"
+
+namespace rtrt {
+
+// The scene traversal a specialisation uses: on the GPU, scenes of many instances take the single
+// loop over both levels; otherwise (and always on the CPU) the nested form. Both take the
+// policy's primitive tests (trace_policy.h).
+template <uint32_t kFeatures, class Policy = TracePolicy>
+RT_HD inline bool TraceIntersect(const TlasView& tlas, const Ray& ray, SceneHit* hit,
+                                 TraversalStats* stats) {
+#if defined(RT_ON_GPU)
+    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
+        float tMax = ray.tMax;
+        return TraverseTwoLevel<Query::kIntersect, Policy>(tlas, ray, tMax, hit, stats);
+    }
+#endif
+    return IntersectScene<Policy>(tlas, ray, hit, stats);
+}
+
+template <uint32_t kFeatures, class Policy = TracePolicy>
+RT_HD inline bool TraceOccluded(const TlasView& tlas, const Ray& ray) {
+#if defined(RT_ON_GPU)
+    if constexpr ((kFeatures & kFeatureManyInstances) != 0) {
+        float tMax = ray.tMax;
+        return TraverseTwoLevel<Query::kOccluded, Policy>(tlas, ray, tMax, nullptr, nullptr);
+    }
+#endif
+    return OccludedScene<Policy>(tlas, ray);
+}
+
+}  // namespace rtrt

@@ -1,0 +1,42 @@
+#pragma once
+// The textures a glTF material's slots name, decoded once per image and recorded once per
+// (image, colour encoding, KHR_texture_transform) in the scene's texture table.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "game/gltf/gltf_document.h"
+#include "game/scene/loaded_scene.h"
+
+namespace rtrt {
+
+// A material's reference to a texture, whatever its slot (tinygltf keeps three types of them).
+struct GltfTextureRef {
+    int index = -1;
+    int texCoord = 0;
+    const tinygltf::ExtensionMap* extensions = nullptr;
+};
+
+class GltfTextures {
+  public:
+    GltfTextures(GltfDocument& doc, LoadedScene& out) : doc_(doc), model_(doc.Model()), out_(out) {}
+
+    // The scene's texture record for ref, found at field `at`, or kNoTexture where the slot is
+    // empty or rtrt cannot use it (with a warning). srgb: the texels are sRGB-encoded colours.
+    uint32_t Slot(const GltfTextureRef& ref, const std::string& at, bool srgb);
+
+  private:
+    // The texture's texels in the scene, decoded at its first use: the record without transform.
+    const Texture* Decoded(int index, const std::string& at);
+    bool ReadTransform(const GltfTextureRef& ref, const std::string& at, Texture* texture);
+
+    GltfDocument& doc_;
+    const tinygltf::Model& model_;
+    LoadedScene& out_;
+    std::map<int, Texture> decoded_;  // by texture index; kNoTexture-sized when unusable
+    std::map<std::tuple<int, bool, std::vector<float>>, uint32_t> records_;
+};
+
+}  // namespace rtrt
