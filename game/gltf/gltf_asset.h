@@ -47,7 +47,9 @@ struct GltfSkin {
 // A glTF light or camera in its node's frame (lights shine and cameras look along -z).
 struct GltfLight {
     LightType type = LightType::kDirectional;
-    vec3 color{1.0f};
+    vec3 color{1.0f};                          // lux (directional) or candela (point, spot)
+    float range = 0.0f;                        // 0: unlimited
+    float innerCone = 0.0f, outerCone = 0.0f;  // spot lights, radians
 };
 struct GltfCamera {
     float fovYDegrees = 45.0f;

@@ -88,12 +88,19 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
             Light light;
             light.type = l.type;
             light.color = l.color;
-            // Directional lights shine along the node's -z: the direction toward them is +z.
+            // Lights shine along the node's -z: the direction toward a directional one is +z.
             const vec3 toward = vec3(world[i] * glm::vec4(0, 0, 1, 0));
-            light.vector =
-                l.type == LightType::kPoint
-                    ? origin
-                    : (glm::length(toward) > 0.0f ? glm::normalize(toward) : vec3(0, 0, 1));
+            const vec3 unitToward =
+                glm::length(toward) > 0.0f ? glm::normalize(toward) : vec3(0, 0, 1);
+            if (l.type == LightType::kDirectional) {
+                light.vector = unitToward;
+            } else {
+                light.vector = origin;
+                light.falloff = 1;
+                light.range = l.range;
+                light.spotAxis = -unitToward;
+                if (l.type == LightType::kSpot) SetSpotCone(&light, l.innerCone, l.outerCone);
+            }
             out.scene.lights.push_back(light);
         }
         if (node.camera >= 0 && !camera) {

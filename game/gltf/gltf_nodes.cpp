@@ -201,22 +201,33 @@ void ReadGltfCamerasAndLights(GltfDocument& doc, GltfAsset& asset) {
         GltfLight light;
         if (l.type == "directional") {
             light.type = LightType::kDirectional;
-        } else if (l.type == "point" || l.type == "spot") {
+        } else if (l.type == "point") {
             light.type = LightType::kPoint;
-            if (l.type == "spot")
-                doc.Warn("spot", at + ": spot lights are rendered as point lights (no cone)");
+        } else if (l.type == "spot") {
+            light.type = LightType::kSpot;
+            const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+            if (!FiniteFloat(outer) || outer <= 0.0 || outer > M_PI / 2)
+                doc.Fail(at + ".spot.outerConeAngle", "must be above 0 and at most pi/2");
+            if (!FiniteFloat(inner) || inner < 0.0 || inner >= outer)
+                doc.Fail(at + ".spot.innerConeAngle",
+                         "must be at least 0 and below outerConeAngle");
+            light.innerCone = float(inner);
+            light.outerCone = float(outer);
         } else {
             doc.Fail(at + ".type", "unknown light type \"" + l.type + "\"");
         }
         if (!l.color.empty() && l.color.size() != 3) doc.Fail(at + ".color", "expected 3 numbers");
         for (double c : l.color)
             if (!FiniteFloat(c) || c < 0.0 || c > 1e6) doc.Fail(at + ".color", "must be 0 to 1e6");
-        if (!FiniteFloat(l.intensity) || l.intensity < 0.0 || l.intensity > 1e6)
-            doc.Fail(at + ".intensity", "must be 0 to 1e6");
+        if (!FiniteFloat(l.intensity) || l.intensity < 0.0 || l.intensity > 1e7)
+            doc.Fail(at + ".intensity", "must be 0 to 1e7");
+        if (!FiniteFloat(l.range) || l.range < 0.0) doc.Fail(at + ".range", "must be positive");
         const vec3 color =
             l.color.size() == 3 ? vec3(l.color[0], l.color[1], l.color[2]) : vec3(1.0f);
-        // rtrt lights do not fall off with distance: colour x intensity as it is.
+        // Physical units: lux for directional lights, candela for point and spot lights, which
+        // fall off with the square of the distance, smoothly to nothing at range.
         light.color = color * float(l.intensity);
+        light.range = light.type == LightType::kDirectional ? 0.0f : float(l.range);
         asset.lights.push_back(light);
     }
 }

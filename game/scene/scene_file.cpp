@@ -123,6 +123,19 @@ class SceneParser {
         }
     }
 
+    // "falloff": "none" (the default: the colour at every distance, as rtrt's lights always
+    // were) or "inverse_square" (colour / distance^2, to nothing at "range" if given).
+    static void ParseFalloff(JsonFields& f, Light* light) {
+        const std::string falloff = f.String("falloff", std::string("none"));
+        if (falloff == "inverse_square") {
+            light->falloff = 1;
+            light->range = f.InRange("range", 0.0f, 1e30f, 0.0f);
+        } else if (falloff != "none") {
+            f.Fail("falloff",
+                   "unknown falloff \"" + falloff + "\" (expected none or inverse_square)");
+        }
+    }
+
     void ParseLights(const Json& j, RenderScene& scene) {
         if (!j.is_array())
             throw InputError(file_, "lights",
@@ -136,12 +149,24 @@ class SceneParser {
                 const vec3 d = f.Vec3("direction");
                 if (glm::length(d) == 0.0f) f.Fail("direction", "direction has zero length");
                 light.vector = glm::normalize(d);
-            } else if (type == "point") {
-                light.type = LightType::kPoint;
+            } else if (type == "point" || type == "spot") {
+                light.type = type == "point" ? LightType::kPoint : LightType::kSpot;
                 light.vector = f.Vec3("position");
+                ParseFalloff(f, &light);
+                if (type == "spot") {
+                    const vec3 d = f.Vec3("direction");
+                    if (glm::length(d) == 0.0f) f.Fail("direction", "direction has zero length");
+                    light.spotAxis = glm::normalize(d);
+                    const float outer = f.InRange("outer_cone", 0.1f, 90.0f, 45.0f);
+                    const float inner = f.InRange("inner_cone", 0.0f, outer, 0.0f);
+                    if (inner >= outer)
+                        f.Fail("inner_cone", "must be less than outer_cone (" +
+                                                 std::to_string(outer) + " degrees)");
+                    SetSpotCone(&light, inner * kPi / 180.0f, outer * kPi / 180.0f);
+                }
             } else {
                 f.Fail("type",
-                       "unknown light type \"" + type + "\" (expected directional or point)");
+                       "unknown light type \"" + type + "\" (expected directional, point or spot)");
             }
             light.color = f.Colour("color", vec3(1.0f));
             f.Finish();

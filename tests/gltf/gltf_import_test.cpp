@@ -302,7 +302,11 @@ TEST_F(GltfTest, LightsAndCameraSitOnTheirNodes) {
         Json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}});
     b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
         Json::array({{{"type", "point"}, {"color", {1, 0.5, 0.25}}, {"intensity", 2}},
-                     {{"type", "directional"}}});
+                     {{"type", "directional"}},
+                     {{"type", "spot"},
+                      {"intensity", 100},
+                      {"range", 10},
+                      {"spot", {{"innerConeAngle", 0.25}, {"outerConeAngle", 0.5}}}}});
     // A camera as a child of the rotated parent, 5 units along its +z: world (1 + 5, 0, 0),
     // looking along the parent's -z turned, i.e. world -x.
     b.doc["nodes"][0]["children"].push_back(b.Node({{"camera", 0}, {"translation", {0, 0, 5}}}));
@@ -310,18 +314,32 @@ TEST_F(GltfTest, LightsAndCameraSitOnTheirNodes) {
         {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"translation", {0, 3, 0}}}));
     b.doc["nodes"][0]["children"].push_back(
         b.Node({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}));
+    b.doc["nodes"][0]["children"].push_back(
+        b.Node({{"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}}));
     const LoadedScene loaded = LoadSceneFile(Save("lights.gltf", b.GltfText()));
     const Camera& c = loaded.scene.camera;
     EXPECT_NEAR(glm::length(c.position - vec3(6, 0, 0)), 0.0f, 1e-5f);
     EXPECT_NEAR(glm::length(glm::normalize(c.forward) - vec3(-1, 0, 0)), 0.0f, 1e-5f);
     EXPECT_NEAR(c.fovYDegrees, 0.5f * 180.0f / float(M_PI), 1e-4f);
-    ASSERT_EQ(loaded.scene.lights.size(), 2u);
+    ASSERT_EQ(loaded.scene.lights.size(), 3u);
     EXPECT_EQ(loaded.scene.lights[0].type, LightType::kPoint);
     EXPECT_NEAR(glm::length(loaded.scene.lights[0].vector - vec3(1, 3, 0)), 0.0f, 1e-5f);
-    EXPECT_EQ(loaded.scene.lights[0].color, vec3(2, 1, 0.5f));
+    EXPECT_EQ(loaded.scene.lights[0].color, vec3(2, 1, 0.5f));  // candela
+    EXPECT_EQ(loaded.scene.lights[0].falloff, 1u);              // inverse-square, no range
+    EXPECT_EQ(loaded.scene.lights[0].range, 0.0f);
     // The directional light shines along the parent's -z (world -x): toward it is +x.
     EXPECT_EQ(loaded.scene.lights[1].type, LightType::kDirectional);
     EXPECT_NEAR(glm::length(loaded.scene.lights[1].vector - vec3(1, 0, 0)), 0.0f, 1e-5f);
+    EXPECT_EQ(loaded.scene.lights[1].falloff, 0u);
+    // The spot sits at the parent's origin (1, 0, 0) and shines along world -x; its cone's
+    // weight is 1 at the inner angle and 0 at the outer.
+    const Light& spot = loaded.scene.lights[2];
+    EXPECT_EQ(spot.type, LightType::kSpot);
+    EXPECT_EQ(spot.range, 10.0f);
+    EXPECT_EQ(spot.color, vec3(100.0f));
+    EXPECT_NEAR(glm::length(spot.spotAxis - vec3(-1, 0, 0)), 0.0f, 1e-5f);
+    EXPECT_NEAR(std::cos(0.25f) * spot.spotScale + spot.spotOffset, 1.0f, 1e-5f);
+    EXPECT_NEAR(std::cos(0.5f) * spot.spotScale + spot.spotOffset, 0.0f, 1e-5f);
 }
 
 TEST_F(GltfTest, MaterialMapping) {
@@ -350,6 +368,58 @@ TEST_F(GltfTest, MaterialMapping) {
     // alpha = 0.25: n = 2 / 0.0625 - 2 = 30.
     EXPECT_NEAR(m.shininess, 30.0f, 1e-3f);
     EXPECT_EQ(m.baseColorTexture, kNoTexture);
+    // The PBR material itself, which PBR kernels shade (the above is their fallback).
+    ASSERT_NE(m.pbrMaterial, kNoPbrMaterial);
+    const PbrMaterial& p = loaded.scene.pbrMaterials[m.pbrMaterial];
+    EXPECT_EQ(p.baseColor, vec3(0.5f, 0.25f, 1.0f));
+    EXPECT_EQ(p.metallic, 0.0f);
+    EXPECT_EQ(p.roughness, 0.5f);
+    EXPECT_NEAR(glm::length(p.emissive - vec3(0.2f, 0.4f, 0.6f)), 0.0f, 1e-6f);
+    EXPECT_NEAR(p.dielectricF0.x, f0, 1e-6f);
+    EXPECT_EQ(p.transmission, 0.5f);
+    EXPECT_FLOAT_EQ(p.ior, 1.33f);
+    const uint32_t features = loaded.scene.Features();
+    EXPECT_NE(features & kFeaturePbr, 0u);
+    EXPECT_NE(features & kFeatureRefraction, 0u);
+}
+
+// Every texture slot of a material, KHR_texture_transform on two of them: one image decoded once,
+// recorded once per encoding and transform, the transform as the specification's matrix.
+TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
+    GltfBuilder b = test::TexturedQuadScene(9728, 33071);
+    const std::vector<uint8_t> rgb(16 * 3, 200);
+    const std::string bmp = GltfBuilder::Bmp(4, 4, rgb);
+    b.doc["images"] =
+        Json::array({{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>(
+                                                             bmp.begin(), bmp.end()))}}});
+    Json& m = b.doc["materials"][0];
+    const Json transform = {
+        {"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", 0.0}, {"scale", {2, 3}}}}};
+    m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0},
+                                                             {"extensions", transform}};
+    m["normalTexture"] = {{"index", 0}, {"scale", 0.5}, {"extensions", transform}};
+    m["occlusionTexture"] = {{"index", 0}, {"strength", 0.25}};
+    b.doc["extensionsUsed"] = Json::array({"KHR_lights_punctual", "KHR_texture_transform"});
+    const LoadedScene loaded = LoadSceneFile(Save("slots.gltf", b.GltfText()));
+    const Material& mat = loaded.scene.materials[0];
+    const PbrMaterial& p = loaded.scene.pbrMaterials[mat.pbrMaterial];
+    const auto& textures = loaded.scene.textures;
+    // Base colour and emissive (sRGB, untransformed) share a record; occlusion (linear,
+    // untransformed) has its own; metallic-roughness and normal (linear, transformed) share one.
+    EXPECT_EQ(mat.baseColorTexture, p.emissiveTexture);
+    EXPECT_EQ(p.metallicRoughnessTexture, p.normalTexture);
+    EXPECT_EQ(textures.size(), 3u);
+    EXPECT_EQ(loaded.scene.texels.size(), 16u);  // the image once
+    EXPECT_EQ(textures[mat.baseColorTexture].srgb, 1u);
+    EXPECT_EQ(textures[p.occlusionTexture].srgb, 0u);
+    EXPECT_EQ(textures[p.occlusionTexture].transformed, 0u);
+    const Texture& t = textures[p.normalTexture];
+    EXPECT_EQ(t.srgb, 0u);
+    ASSERT_EQ(t.transformed, 1u);
+    const float expected[6] = {2, 0, 0.5f, 0, 3, 0.25f};
+    for (int i = 0; i < 6; ++i) EXPECT_FLOAT_EQ(t.uvTransform[i], expected[i]) << i;
+    EXPECT_EQ(p.normalScale, 0.5f);
+    EXPECT_EQ(p.occlusionStrength, 0.25f);
 }
 
 TEST_F(GltfTest, SceneFilePlacesAGltfModelPerInstance) {

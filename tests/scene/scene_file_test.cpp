@@ -80,8 +80,40 @@ TEST(SceneFile, DanglingReferencesAreRejected) {
     ExpectError(R"({"models": {"b": {"type": "cone"}}, "instances": []})", "models.b.type",
                 "unknown model type");
     ExpectError(R"({"instances": []}, "lights": [{"type": "spot"}])", "", "malformed JSON");
-    ExpectError(R"({"instances": [], "lights": [{"type": "spot"}]})", "lights[0].type",
+    ExpectError(R"({"instances": [], "lights": [{"type": "area"}]})", "lights[0].type",
                 "unknown light type");
+}
+
+TEST(SceneFile, PointAndSpotLightsOptInToFalloff) {
+    const LoadedScene s = ParseScene(R"({"instances": [], "lights": [
+        {"type": "point", "position": [0, 2, 0]},
+        {"type": "point", "position": [0, 2, 0], "falloff": "inverse_square", "range": 5},
+        {"type": "spot", "position": [0, 2, 0], "direction": [0, -2, 0], "inner_cone": 10,
+         "outer_cone": 30, "falloff": "inverse_square", "color": [10, 10, 10]}]})",
+                                     "lights.json", "");
+    const auto& lights = s.scene.lights;
+    ASSERT_EQ(lights.size(), 3u);
+    EXPECT_EQ(lights[0].falloff, 0u);  // as rtrt's point lights always were
+    EXPECT_FALSE(LightAttenuates(lights[0]));
+    EXPECT_EQ(lights[1].falloff, 1u);
+    EXPECT_EQ(lights[1].range, 5.0f);
+    EXPECT_EQ(lights[2].type, LightType::kSpot);
+    EXPECT_EQ(lights[2].spotAxis, vec3(0, -1, 0));
+    // Straight below at distance 2: 1/4; 20 degrees off the axis: half way through the cone.
+    EXPECT_FLOAT_EQ(LightAttenuation(lights[2], vec3(0, 2, 0), vec3(0, 1, 0)), 0.25f);
+    const float a = 20.0f * kPi / 180.0f;
+    const vec3 l(std::sin(a), std::cos(a), 0.0f);
+    const float w = (std::cos(a) - std::cos(kPi / 6)) / (std::cos(kPi / 18) - std::cos(kPi / 6));
+    EXPECT_NEAR(LightAttenuation(lights[2], l, l), w * w, 1e-5f);
+    ExpectError(R"({"instances": [], "lights": [{"type": "point", "position": [0, 0, 0],
+        "falloff": "linear"}]})",
+                "lights[0].falloff", "unknown falloff");
+    ExpectError(R"({"instances": [], "lights": [{"type": "spot", "position": [0, 0, 0],
+        "direction": [0, 0, 1], "inner_cone": 40, "outer_cone": 30}]})",
+                "lights[0].inner_cone", "between");
+    ExpectError(R"({"instances": [], "lights": [{"type": "point", "position": [0, 0, 0],
+        "range": 3}]})",
+                "lights[0].range", "unknown field");
 }
 
 TEST(SceneFile, MissingRequiredFieldsAreNamed) {
