@@ -1,8 +1,10 @@
 #pragma once
-// Punctual lights: directional, point and spot, each casting hard shadows. rtrt's own lights keep
-// their colour at every distance unless they opt in to inverse-square falloff; glTF's
-// KHR_lights_punctual lights always fall off, in its physical units (lux for directional lights,
-// candela for point and spot lights).
+// Punctual lights: directional, point and spot, each casting hard shadows. A light's colour is the
+// radiance a white Lambertian surface facing it shows, illuminance / pi: Blinn-Phong's diffuse
+// term multiplies it as it is, the PBR BRDF takes pi times it as illuminance. rtrt's own lights
+// keep their colour at every distance unless they opt in to inverse-square falloff; glTF's
+// KHR_lights_punctual lights always fall off, their physical units (lux for directional lights,
+// candela for point and spot lights) divided by pi.
 #include "engine/core/math.h"
 
 namespace rtrt {

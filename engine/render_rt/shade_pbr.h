@@ -86,8 +86,10 @@ RT_HD inline HitShading ShadePbr(const RenderSceneView& scene, const SceneHit& h
     HitShading out;
     out.normal = n;
     vec3 direct(0.0f);
+    // Light colours are what a white Lambertian surface facing the light shows (light.h): the
+    // illuminance is pi times the colour.
     ForEachLight<kFeatures, Policy>(scene, s, n, rays, [&](vec3 l, vec3 arriving, float nDotL) {
-        direct += arriving * GltfBrdf(p, n, toViewer, l) * nDotL;
+        direct += arriving * GltfBrdf(p, n, toViewer, l) * (kPi * nDotL);
     });
     const float nDotV = fmaxf(glm::dot(n, toViewer), 1e-4f);
     const vec3 specular = SpecularReflectance(p, nDotV);

@@ -33,9 +33,8 @@ void CheckExtensions(GltfDocument& doc) {
                                        " is not supported; what needs it is ignored or skipped");
 }
 
-// A camera that sees the whole scene from the front (+z), a little above and to the right, so
-// that a box shows three faces.
-Camera FramingCamera(const LoadedScene& out) {
+// The world bounds of what the scene shows at its start.
+Aabb SceneBounds(const LoadedScene& out) {
     const std::vector<glm::mat4> worlds = InitialWorlds(out);
     Aabb bounds;
     for (size_t i = 0; i < out.entities.size(); ++i) {
@@ -48,6 +47,13 @@ Camera FramingCamera(const LoadedScene& out) {
             bounds.Grow(vec3(worlds[i] * glm::vec4(p, 1.0f)));
         }
     }
+    return bounds;
+}
+
+// A camera that sees the whole scene from the front (+z), a little above and to the right, so
+// that a box shows three faces.
+Camera FramingCamera(const LoadedScene& out) {
+    const Aabb bounds = SceneBounds(out);
     Camera camera;
     const vec3 centre = 0.5f * (bounds.min + bounds.max);
     const float radius = std::max(0.5f * glm::length(bounds.Extent()), 1e-3f);
@@ -56,6 +62,35 @@ Camera FramingCamera(const LoadedScene& out) {
     camera.position = centre + from * (distance * 1.1f);
     camera.forward = -from;
     return camera;
+}
+
+// The key light's level: the largest colour component any light gives a white surface facing it
+// at the centre of the scene (directional lights everywhere; point and spot lights at their
+// distance, within range and cone). 0 without lights.
+float KeyLight(const LoadedScene& out) {
+    const vec3 centre = SceneBounds(out).Centroid();
+    float key = 0.0f;
+    for (const Light& light : out.scene.lights) {
+        float level = MaxComponent(light.color);
+        if (light.type != LightType::kDirectional) {
+            const vec3 toLight = light.vector - centre;
+            const float d = glm::length(toLight);
+            const vec3 l = d > 0.0f ? toLight / d : vec3(0, 0, 1);
+            if (LightAttenuates(light)) level *= LightAttenuation(light, toLight, l);
+        }
+        key = std::max(key, level);
+    }
+    return key;
+}
+
+// A glTF file's lights are in physical units, lux and candela, which may be tens of thousands:
+// its exposure makes a white surface facing the key light show 1 before tone mapping, and the
+// ambient light that stands for indirect light is a tenth of the key.
+void ExposeForKeyLight(LoadedScene& out) {
+    const float key = KeyLight(out);
+    if (!(key > 0.0f) || !std::isfinite(key)) return;
+    out.output.exposureEv = -std::log2(key);
+    for (PbrMaterial& m : out.scene.pbrMaterials) m.ambientLight = vec3(0.1f * key);
 }
 
 }  // namespace
@@ -115,6 +150,7 @@ LoadedScene LoadGltfScene(const std::string& path) {
         light.vector = glm::normalize(vec3(1.0f, 1.0f, 1.0f));
         out.scene.lights.push_back(light);
     }
+    ExposeForKeyLight(out);
     FinishLoadedScene(out, path);
     return out;
 }

@@ -225,8 +225,9 @@ void ReadGltfCamerasAndLights(GltfDocument& doc, GltfAsset& asset) {
         const vec3 color =
             l.color.size() == 3 ? vec3(l.color[0], l.color[1], l.color[2]) : vec3(1.0f);
         // Physical units: lux for directional lights, candela for point and spot lights, which
-        // fall off with the square of the distance, smoothly to nothing at range.
-        light.color = color * float(l.intensity);
+        // fall off with the square of the distance, smoothly to nothing at range; rtrt's light
+        // colours are those over pi (light.h).
+        light.color = color * float(l.intensity / M_PI);
         light.range = light.type == LightType::kDirectional ? 0.0f : float(l.range);
         asset.lights.push_back(light);
     }

@@ -324,8 +324,9 @@ TEST_F(GltfTest, LightsAndCameraSitOnTheirNodes) {
     ASSERT_EQ(loaded.scene.lights.size(), 3u);
     EXPECT_EQ(loaded.scene.lights[0].type, LightType::kPoint);
     EXPECT_NEAR(glm::length(loaded.scene.lights[0].vector - vec3(1, 3, 0)), 0.0f, 1e-5f);
-    EXPECT_EQ(loaded.scene.lights[0].color, vec3(2, 1, 0.5f));  // candela
-    EXPECT_EQ(loaded.scene.lights[0].falloff, 1u);              // inverse-square, no range
+    // candela over pi: what a white surface one unit away shows.
+    EXPECT_NEAR(glm::length(loaded.scene.lights[0].color - vec3(2, 1, 0.5f) / kPi), 0.0f, 1e-6f);
+    EXPECT_EQ(loaded.scene.lights[0].falloff, 1u);  // inverse-square, no range
     EXPECT_EQ(loaded.scene.lights[0].range, 0.0f);
     // The directional light shines along the parent's -z (world -x): toward it is +x.
     EXPECT_EQ(loaded.scene.lights[1].type, LightType::kDirectional);
@@ -336,7 +337,7 @@ TEST_F(GltfTest, LightsAndCameraSitOnTheirNodes) {
     const Light& spot = loaded.scene.lights[2];
     EXPECT_EQ(spot.type, LightType::kSpot);
     EXPECT_EQ(spot.range, 10.0f);
-    EXPECT_EQ(spot.color, vec3(100.0f));
+    EXPECT_NEAR(spot.color.x, 100.0f / kPi, 1e-5f);
     EXPECT_NEAR(glm::length(spot.spotAxis - vec3(-1, 0, 0)), 0.0f, 1e-5f);
     EXPECT_NEAR(std::cos(0.25f) * spot.spotScale + spot.spotOffset, 1.0f, 1e-5f);
     EXPECT_NEAR(std::cos(0.5f) * spot.spotScale + spot.spotOffset, 0.0f, 1e-5f);

@@ -156,7 +156,8 @@ TEST(PbrShading, NormalMappedQuadFollowsTheMap) {
                                    glm::normalize(vec3(0, 1, 2)), glm::normalize(vec3(-1, 0, 3))}) {
             scene.lights = {Light{toLight, LightType::kDirectional, vec3(1.0f)}};
             const Image image = Render(scene, 8);
-            const float expected = std::max(0.0f, glm::dot(expectedNormal, toLight)) / kPi;
+            // A light's colour is what a white Lambertian surface facing it shows (light.h).
+            const float expected = std::max(0.0f, glm::dot(expectedNormal, toLight));
             for (uint32_t y = 0; y < 8; y += 3)
                 for (uint32_t x = 0; x < 8; x += 3)
                     EXPECT_NEAR(image.At(x, y).x, expected, 2e-6f)
@@ -229,7 +230,7 @@ TEST(PbrShading, EmissionAddsItsTexelsAndOcclusionDarkensOnlyAmbientLight) {
     const uint32_t black = 0;
     scene.pbrMaterials[0].occlusionTexture = scene.AddTexture(t, &black);
     scene.lights = {Light{vec3(0, 0, 1), LightType::kDirectional, vec3(1.0f)}};
-    EXPECT_NEAR(Render(scene, 2).At(0, 0).x, 0.5f * 0.2f + 1.0f / kPi, 1e-6f);
+    EXPECT_NEAR(Render(scene, 2).At(0, 0).x, 0.5f * 0.2f + 1.0f, 1e-6f);
 }
 
 TEST(TextureTransform, OffsetAndRotationMoveATexelExactly) {
@@ -288,8 +289,8 @@ TEST(LightFalloff, InverseSquareWithRangeAndSpotCone) {
 }
 
 TEST(LightFalloff, PointLightOverAPlaneFallsOffWithDistance) {
-    // A Lambertian quad under a point light of 4 (candela-like) at heights 1 and 2 on its axis:
-    // the pixels at the centre see 4 / h^2 / pi.
+    // A Lambertian quad under a point light of 4 at heights 1 and 2 on its axis: a pixel sees
+    // 4 cos / d^2.
     for (float h : {1.0f, 2.0f}) {
         RenderScene scene = QuadScene(Lambert());
         scene.camera.position = vec3(0, 0, 0.5f);
@@ -302,7 +303,7 @@ TEST(LightFalloff, PointLightOverAPlaneFallsOffWithDistance) {
         const Image image = Render(scene, 2);
         // Pixel centres look 0.25 off the axis at z = 0.5: the point is (±0.25, ±0.25, 0).
         const vec3 p(0.25f, 0.25f, 0.0f), toLight = light.vector - p;
-        const float expected = 4.0f / glm::dot(toLight, toLight) * glm::normalize(toLight).z / kPi;
+        const float expected = 4.0f / glm::dot(toLight, toLight) * glm::normalize(toLight).z;
         EXPECT_NEAR(image.At(1, 0).x, expected, 1e-5f * expected) << h;
     }
 }
