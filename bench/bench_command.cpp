@@ -370,6 +370,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     AddDeformBench(*bench, exitCode);
     AddSoakBench(*bench, exitCode);
     AddAccuracyBench(*bench, exitCode);
+    AddMaterialsBench(*bench, exitCode);
     CLI::App* gpu = bench->add_subcommand(
         "gpu", "Trace time on the GPU (CUDA events) of the paper scene, median of --frames");
     gpu->add_option("--frames", options->gpuFrames,

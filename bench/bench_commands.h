@@ -14,6 +14,8 @@ void AddFrameBench(CLI::App& bench, int* exitCode);
 void AddDeformBench(CLI::App& bench, int* exitCode);
 // `rtrt bench soak`, registered by AddBenchCommand.
 void AddSoakBench(CLI::App& bench, int* exitCode);
+// `rtrt bench materials`, registered by AddBenchCommand.
+void AddMaterialsBench(CLI::App& bench, int* exitCode);
 // `rtrt bench accuracy`, registered by AddBenchCommand.
 void AddAccuracyBench(CLI::App& bench, int* exitCode);
 // `rtrt bench convert`, registered by AddBenchCommand; machineInfo describes the machine for the

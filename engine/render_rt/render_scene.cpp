@@ -35,7 +35,8 @@ uint64_t RenderScene::AddTexels(const uint32_t* rgba, size_t count) {
 }
 
 uint32_t RenderScene::AddTexture(Texture texture, const uint32_t* rgba) {
-    texture.texelOffset = AddTexels(rgba, size_t(texture.width) * texture.height);
+    texture.texelOffset =
+        AddTexels(rgba, TexelCount(texture.width, texture.height, texture.levels));
     textures.push_back(texture);
     return uint32_t(textures.size() - 1);
 }

@@ -41,7 +41,8 @@ struct RenderScene {
     // A glTF metallic-roughness material; approximation is what kernels without kFeaturePbr
     // (textures turned off) shade instead.
     uint32_t AddPbrMaterial(Material approximation, const PbrMaterial& pbr);
-    // Appends width x height RGBA8 texels (row 0 the top) as a texture; texelOffset is set here.
+    // Appends width x height RGBA8 texels (row 0 the top), and its smaller mip levels after them
+    // if texture.levels says so, as a texture; texelOffset is set here.
     uint32_t AddTexture(Texture texture, const uint32_t* rgba);
     // Appends texels for records to point at (AddTextureView); returns their offset.
     uint64_t AddTexels(const uint32_t* rgba, size_t count);

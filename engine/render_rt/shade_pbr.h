@@ -31,7 +31,8 @@ struct PbrInputs {
 
 template <uint32_t kFeatures>
 RT_HD inline PbrInputs PbrInputsAt(const RenderSceneView& scene, const SceneHit& hit,
-                                   const Surface& s, const Material& m, const PbrMaterial& pm) {
+                                   const Surface& s, const Material& m, const PbrMaterial& pm,
+                                   float footprint) {
     PbrInputs in;
     in.sample.baseColor = pm.baseColor;
     in.sample.metallic = pm.metallic;
@@ -49,7 +50,7 @@ RT_HD inline PbrInputs PbrInputsAt(const RenderSceneView& scene, const SceneHit&
             const TriangleUvs& uvs = blas.uvs[hit.prim];
             const vec2 uv = InterpolateUv(uvs, hit.b1, hit.b2);
             auto sample = [&](uint32_t texture) {
-                return SampleTexture(scene.textures[texture], scene.texels, uv);
+                return SampleTexture(scene.textures[texture], scene.texels, uv, footprint);
             };
             if (m.baseColorTexture != kNoTexture) in.sample.baseColor *= sample(m.baseColorTexture);
             if (pm.metallicRoughnessTexture != kNoTexture) {
@@ -78,9 +79,9 @@ RT_HD inline PbrInputs PbrInputsAt(const RenderSceneView& scene, const SceneHit&
 template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline HitShading ShadePbr(const RenderSceneView& scene, const SceneHit& hit,
                                  const Surface& s, const Material& m, vec3 toViewer,
-                                 uint32_t* rays) {
+                                 float footprint, uint32_t* rays) {
     const PbrMaterial& pm = scene.pbrMaterials[m.pbrMaterial];
-    const PbrInputs in = PbrInputsAt<kFeatures>(scene, hit, s, m, pm);
+    const PbrInputs in = PbrInputsAt<kFeatures>(scene, hit, s, m, pm, footprint);
     const PbrSample& p = in.sample;
     const vec3 n = in.normal;
     HitShading out;

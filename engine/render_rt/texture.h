@@ -24,7 +24,9 @@ struct Texture {
     // 1: the texels are sRGB-encoded colours (glTF's base colour in a scene of linear colours),
     // decoded per texel before filtering; 0: used as they are.
     uint32_t srgb = 0;
-    uint32_t pad = 0;
+    // Mip levels stored one after another from texelOffset (level l is max(1, width >> l) x
+    // max(1, height >> l)); 1: the image alone.
+    uint32_t levels = 1;
     // 1: uv is mapped by uvTransform (rows of a 2x3 affine map, KHR_texture_transform) first.
     uint32_t transformed = 0;
     float uvTransform[6] = {1, 0, 0, 0, 1, 0};
@@ -63,23 +65,60 @@ RT_HD inline uint32_t WrapTexel(int i, int n, TextureWrap wrap) {
     return uint32_t(m < n ? m : 2 * n - 1 - m);
 }
 
-RT_HD inline vec3 TexelColor(const Texture& t, const uint32_t* texels, uint32_t x, uint32_t y) {
-    const uint32_t rgba = texels[t.texelOffset + uint64_t(y) * t.width + x];
+// One mip level's place in the texel array.
+struct TextureLevel {
+    uint64_t offset;
+    int width, height;
+};
+
+RT_HD inline TextureLevel LevelOf(const Texture& t, uint32_t level) {
+    TextureLevel l{t.texelOffset, int(t.width), int(t.height)};
+    for (uint32_t i = 0; i < level; ++i) {
+        l.offset += uint64_t(l.width) * uint64_t(l.height);
+        l.width = l.width > 1 ? l.width / 2 : 1;
+        l.height = l.height > 1 ? l.height / 2 : 1;
+    }
+    return l;
+}
+
+// The texels of a texture with its levels.
+inline uint64_t TexelCount(uint32_t width, uint32_t height, uint32_t levels) {
+    uint64_t count = 0;
+    for (uint32_t i = 0; i < levels; ++i) {
+        count += uint64_t(width) * height;
+        width = width > 1 ? width / 2 : 1;
+        height = height > 1 ? height / 2 : 1;
+    }
+    return count;
+}
+
+// Levels down to 1 x 1: floor(log2(max(width, height))) + 1.
+inline uint32_t FullMipLevels(uint32_t width, uint32_t height) {
+    uint32_t levels = 1;
+    for (uint32_t size = width > height ? width : height; size > 1; size /= 2) ++levels;
+    return levels;
+}
+
+RT_HD inline vec3 TexelColor(const Texture& t, const TextureLevel& l, const uint32_t* texels,
+                             uint32_t x, uint32_t y) {
+    const uint32_t rgba = texels[l.offset + uint64_t(y) * uint32_t(l.width) + x];
     const vec3 c =
         vec3(float(rgba & 0xffu), float((rgba >> 8) & 0xffu), float((rgba >> 16) & 0xffu)) *
         (1.0f / 255.0f);
     return t.srgb ? vec3(SrgbDecode(c.x), SrgbDecode(c.y), SrgbDecode(c.z)) : c;
 }
 
-// The colour at texture coordinate uv: the texel under it (nearest), or the bilinear blend of the
-// four texels around it, texel centres at ((i + 0.5) / width, (j + 0.5) / height).
-RT_HD inline vec3 SampleTexture(const Texture& t, const uint32_t* texels, vec2 uv) {
-    uv = TransformUv(t, uv);
-    const int w = int(t.width), h = int(t.height);
+// The colour of one level at (already transformed) texture coordinate uv: the texel under it
+// (nearest), or the bilinear blend of the four texels around it, texel centres at
+// ((i + 0.5) / width, (j + 0.5) / height).
+RT_HD inline vec3 SampleLevel(const Texture& t, const uint32_t* texels, vec2 uv, uint32_t level,
+                              bool nearest) {
+    const TextureLevel l = LevelOf(t, level);
+    const int w = l.width, h = l.height;
     const float x = ReduceCoordinate(uv.x, t.wrapS) * float(w);
     const float y = ReduceCoordinate(uv.y, t.wrapT) * float(h);
-    if (t.filter == TextureFilter::kNearest)
-        return TexelColor(t, texels, WrapTexel(int(floorf(x)), w, t.wrapS),
+    if (nearest)
+        return TexelColor(t, l, texels, WrapTexel(int(floorf(x)), w, t.wrapS),
                           WrapTexel(int(floorf(y)), h, t.wrapT));
     const float fx = x - 0.5f, fy = y - 0.5f;
     const float x0f = floorf(fx), y0f = floorf(fy);
@@ -88,15 +127,61 @@ RT_HD inline vec3 SampleTexture(const Texture& t, const uint32_t* texels, vec2 u
     const uint32_t xa = WrapTexel(x0, w, t.wrapS), xb = WrapTexel(x0 + 1, w, t.wrapS);
     const uint32_t ya = WrapTexel(y0, h, t.wrapT), yb = WrapTexel(y0 + 1, h, t.wrapT);
     const vec3 top =
-        (1.0f - ax) * TexelColor(t, texels, xa, ya) + ax * TexelColor(t, texels, xb, ya);
+        (1.0f - ax) * TexelColor(t, l, texels, xa, ya) + ax * TexelColor(t, l, texels, xb, ya);
     const vec3 bottom =
-        (1.0f - ax) * TexelColor(t, texels, xa, yb) + ax * TexelColor(t, texels, xb, yb);
+        (1.0f - ax) * TexelColor(t, l, texels, xa, yb) + ax * TexelColor(t, l, texels, xb, yb);
     return (1.0f - ay) * top + ay * bottom;
+}
+
+// The colour at texture coordinate uv on the full-resolution image (its filter as it says).
+RT_HD inline vec3 SampleTexture(const Texture& t, const uint32_t* texels, vec2 uv) {
+    return SampleLevel(t, texels, TransformUv(t, uv), 0, t.filter == TextureFilter::kNearest);
+}
+
+// log2 of how many texels of level 0 a footprint covers, less log2 of its size in texture
+// coordinates: 0.5 log2(width height |det uvTransform|).
+RT_HD inline float TextureLodBias(const Texture& t) {
+    float area = float(t.width) * float(t.height);
+    if (t.transformed)
+        area *= fabsf(t.uvTransform[0] * t.uvTransform[4] - t.uvTransform[1] * t.uvTransform[3]);
+    return 0.5f * log2f(fmaxf(area, 1e-30f));
+}
+
+// Trilinear filtering for a footprint lodNoBias (log2 of its size in texture coordinates, see
+// TextureFootprint): the blend of the two levels around lod; level 0 magnified by the texture's
+// own filter. Textures without levels sample their image.
+RT_HD inline vec3 SampleTexture(const Texture& t, const uint32_t* texels, vec2 uv,
+                                float lodNoBias) {
+    uv = TransformUv(t, uv);
+    const bool nearest = t.filter == TextureFilter::kNearest;
+    const float lod = lodNoBias + TextureLodBias(t);
+    if (t.levels <= 1 || !(lod > 0.0f)) return SampleLevel(t, texels, uv, 0, nearest);
+    const float top = float(t.levels - 1);
+    if (lod >= top) return SampleLevel(t, texels, uv, t.levels - 1, false);
+    const float base = floorf(lod);
+    const float blend = lod - base;
+    const uint32_t level = uint32_t(base);
+    return (1.0f - blend) * SampleLevel(t, texels, uv, level, level == 0 && nearest) +
+           blend * SampleLevel(t, texels, uv, level + 1, false);
 }
 
 // The texture coordinate of a hit on a triangle with per-vertex uvs.
 RT_HD inline vec2 InterpolateUv(const TriangleUvs& t, float b1, float b2) {
     return (1.0f - b1 - b2) * t.uv0 + b1 * t.uv1 + b2 * t.uv2;
+}
+
+// log2 of a ray cone's footprint in texture coordinates on a triangle (Akenine-Moller et al.,
+// "Texture Level of Detail Strategies for Real-Time Ray Tracing", Ray Tracing Gems ch. 20):
+// 0.5 log2(uv area / world area) + log2(coneWidth / |cos|), with the world edges e1, e2 after the
+// instance's transform and cosine the angle between the ray and the surface's normal.
+RT_HD inline float TextureFootprint(const TriangleUvs& t, vec3 e1, vec3 e2, float coneWidth,
+                                    float cosine) {
+    const vec2 d1 = t.uv1 - t.uv0, d2 = t.uv2 - t.uv0;
+    const float uvArea = fabsf(d1.x * d2.y - d2.x * d1.y);
+    const float worldArea = glm::length(glm::cross(e1, e2));
+    if (!(uvArea > 0.0f) || !(worldArea > 0.0f)) return -1e30f;
+    return 0.5f * log2f(uvArea / worldArea) +
+           log2f(fmaxf(coneWidth, 1e-30f) / fmaxf(fabsf(cosine), 1e-3f));
 }
 
 }  // namespace rtrt

@@ -5,6 +5,7 @@
 // weight * local shading over every ray popped.
 #include "engine/render_rt/light_loop.h"
 #include "engine/render_rt/optics.h"
+#include "engine/render_rt/pixel_sample.h"
 #include "engine/render_rt/shade_pbr.h"
 
 namespace rtrt {
@@ -17,11 +18,33 @@ struct PixelResult {
     uint32_t rays;         // rays traced for this pixel: primary, shadow and secondary
 };
 
+// The angle a pixel's ray cone spreads by: the image plane's height over its rows, and over the
+// strata per side when a pixel takes several samples.
+RT_HD inline float PixelSpreadAngle(const RenderSceneView& scene) {
+    return 2.0f * scene.camera.tanHalfFovY /
+           (float(scene.height) * float(StrataPerSide(scene.samplesPerPixel)));
+}
+
+// log2 of the footprint in texture coordinates of a ray cone coneWidth wide where it hits a
+// triangle (TextureFootprint), for mip level selection; very small where there is no triangle.
+RT_HD inline float HitFootprint(const RenderSceneView& scene, const SceneHit& hit, const Surface& s,
+                                const Ray& ray, float coneWidth) {
+    const Instance& inst = scene.tlas.instances[hit.instance];
+    const BlasView& blas = scene.tlas.blases[inst.blasId];
+    if (blas.kind != GeometryKind::kTriangles || !blas.uvs) return -1e30f;
+    const Triangle& tri = blas.triangles[hit.prim];
+    const vec3 e1 = inst.objectToWorld.Vector(tri.v1 - tri.v0);
+    const vec3 e2 = inst.objectToWorld.Vector(tri.v2 - tri.v0);
+    return TextureFootprint(blas.uvs[hit.prim], e1, e2, coneWidth,
+                            glm::dot(s.geomNormal, glm::normalize(ray.dir)));
+}
+
 // The material at a hit, its base-colour texture applied (only in kernels with kFeatureTextures):
-// the sample multiplies diffuse and ambient. scratch holds the textured copy.
+// the sample multiplies diffuse and ambient. scratch holds the textured copy. footprint selects
+// the mip level (HitFootprint).
 template <uint32_t kFeatures>
 RT_HD inline const Material& MaterialAt(const RenderSceneView& scene, const SceneHit& hit,
-                                        uint32_t materialId, Material* scratch) {
+                                        uint32_t materialId, float footprint, Material* scratch) {
     const Material& m = scene.materials[materialId];
     if constexpr ((kFeatures & kFeatureTextures) != 0) {
         if (m.baseColorTexture == kNoTexture) return m;
@@ -29,7 +52,8 @@ RT_HD inline const Material& MaterialAt(const RenderSceneView& scene, const Scen
         const BlasView& blas = scene.tlas.blases[inst.blasId];
         if (blas.kind != GeometryKind::kTriangles || !blas.uvs) return m;
         const vec2 uv = InterpolateUv(blas.uvs[hit.prim], hit.b1, hit.b2);
-        const vec3 sample = SampleTexture(scene.textures[m.baseColorTexture], scene.texels, uv);
+        const vec3 sample =
+            SampleTexture(scene.textures[m.baseColorTexture], scene.texels, uv, footprint);
         *scratch = m;
         scratch->diffuse *= sample;
         scratch->ambient *= sample;
@@ -60,10 +84,11 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         Ray ray;
         vec3 weight;
         uint32_t depth;
+        float pathLength;  // from the camera to the ray's origin, for texture ray cones
     };
     PendingRay stack[kMaxRayDepth + 1];
     uint32_t stackSize = 0;
-    stack[stackSize++] = {primaryRay, vec3(1.0f), 1};
+    stack[stackSize++] = {primaryRay, vec3(1.0f), 1, 0.0f};
 
     PixelResult result{vec3(0.0f), vec3(0.0f), kInfinity, {}, 0};
     bool primary = true;
@@ -85,27 +110,35 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
             primary = false;
         }
         const vec3 toViewer = -glm::normalize(pending.ray.dir);
+        float footprint = 0.0f, pathLength = 0.0f;
+        if constexpr ((kFeatures & kFeatureTextures) != 0) {
+            pathLength = pending.pathLength + hit.t * glm::length(pending.ray.dir);
+            footprint =
+                HitFootprint(scene, hit, s, pending.ray, pathLength * PixelSpreadAngle(scene));
+        }
         if constexpr ((kFeatures & kFeaturePbr) != 0) {
             const Material& material = scene.materials[s.materialId];
             if (material.pbrMaterial != kNoPbrMaterial) {
-                const HitShading h =
-                    ShadePbr<kFeatures, Policy>(scene, hit, s, material, toViewer, &result.rays);
+                const HitShading h = ShadePbr<kFeatures, Policy>(scene, hit, s, material, toViewer,
+                                                                 footprint, &result.rays);
                 result.color += pending.weight * h.local;
                 if (pending.depth >= scene.maxDepth) continue;
                 if (MaxComponent(h.reflectWeight) > 0.0f) {
                     const vec3 dir = Reflect(toViewer, h.normal);
                     if (glm::dot(dir, s.geomNormal) > 0.0f)
                         stack[stackSize++] = {Policy::SpawnRay(s, dir),
-                                              pending.weight * h.reflectWeight, pending.depth + 1};
+                                              pending.weight * h.reflectWeight, pending.depth + 1,
+                                              pathLength};
                 }
                 if (MaxComponent(h.refractWeight) > 0.0f)
                     stack[stackSize++] = {Policy::SpawnRay(s, h.refracted),
-                                          pending.weight * h.refractWeight, pending.depth + 1};
+                                          pending.weight * h.refractWeight, pending.depth + 1,
+                                          pathLength};
                 continue;
             }
         }
         Material textured;
-        const Material& m = MaterialAt<kFeatures>(scene, hit, s.materialId, &textured);
+        const Material& m = MaterialAt<kFeatures>(scene, hit, s.materialId, footprint, &textured);
         float reflectWeight = (kFeatures & kFeatureReflection) ? m.reflectivity : 0.0f;
         float refractWeight = 0.0f;
         vec3 refracted(0.0f);
@@ -132,11 +165,11 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
             const vec3 dir = Reflect(toViewer, s.shadingNormal);
             if (glm::dot(dir, s.geomNormal) > 0.0f)
                 stack[stackSize++] = {Policy::SpawnRay(s, dir), pending.weight * reflectWeight,
-                                      pending.depth + 1};
+                                      pending.depth + 1, pathLength};
         }
         if (refractWeight > 0.0f) {
             stack[stackSize++] = {Policy::SpawnRay(s, refracted), pending.weight * refractWeight,
-                                  pending.depth + 1};
+                                  pending.depth + 1, pathLength};
         }
     }
     return result;

@@ -85,12 +85,13 @@ float KeyLight(const LoadedScene& out) {
 
 // A glTF file's lights are in physical units, lux and candela, which may be tens of thousands:
 // its exposure makes a white surface facing the key light show 1 before tone mapping, and the
-// ambient light that stands for indirect light is a tenth of the key.
+// ambient light that stands for indirect light (a tenth of the key) and the sky scale with it.
 void ExposeForKeyLight(LoadedScene& out) {
     const float key = KeyLight(out);
     if (!(key > 0.0f) || !std::isfinite(key)) return;
     out.output.exposureEv = -std::log2(key);
     for (PbrMaterial& m : out.scene.pbrMaterials) m.ambientLight = vec3(0.1f * key);
+    out.scene.background *= key;
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "game/gltf/gltf_textures.h"
 
+#include "engine/render_rt/texture_mips.h"
 #include "game/scene/json_fields.h"
 
 namespace rtrt {
@@ -19,7 +20,7 @@ uint32_t GltfTextures::Slot(const GltfTextureRef& ref, const std::string& at, bo
         doc_.Fail(at + ".index", "texture " + std::to_string(ref.index) + " out of range");
     Texture texture;
     if (!ReadTransform(ref, at, &texture)) return kNoTexture;
-    const Texture* decoded = Decoded(ref.index, at);
+    const Texture* decoded = Decoded(ref.index, srgb, at);
     if (!decoded) return kNoTexture;
     const std::vector<float> transform(texture.uvTransform, texture.uvTransform + 6);
     const auto key =
@@ -78,8 +79,9 @@ bool GltfTextures::ReadTransform(const GltfTextureRef& ref, const std::string& a
     return true;
 }
 
-const Texture* GltfTextures::Decoded(int index, const std::string& at) {
-    auto found = decoded_.find(index);
+const Texture* GltfTextures::Decoded(int index, bool srgb, const std::string& at) {
+    const auto key = std::make_pair(index, srgb);
+    auto found = decoded_.find(key);
     if (found != decoded_.end()) return found->second.width == 0 ? nullptr : &found->second;
     const tinygltf::Texture& t = model_.textures[size_t(index)];
     const std::string textureAt = JsonIndexed("textures", size_t(index));
@@ -88,7 +90,7 @@ const Texture* GltfTextures::Decoded(int index, const std::string& at) {
                                         ": no image rtrt can read (an extension's "
                                         "format?); the slot at " +
                                         at + " is unused");
-        decoded_[index] = Texture{0, 0, 0};
+        decoded_[key] = Texture{0, 0, 0};
         return nullptr;
     }
     if (size_t(t.source) >= model_.images.size())
@@ -125,9 +127,20 @@ const Texture* GltfTextures::Decoded(int index, const std::string& at) {
         texture.filter = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? TextureFilter::kNearest
                                                                         : TextureFilter::kLinear;
     }
-    // The texels go in once; each slot's record (Slot) points at them.
-    texture.texelOffset = out_.scene.AddTexels(rgba.data(), rgba.size());
-    return &(decoded_[index] = texture);
+    // Minification without mip levels only where the sampler asks for it (NEAREST or LINEAR);
+    // glTF leaves the filter to the renderer when it names none.
+    bool mipmapped = true;
+    if (t.sampler >= 0) {
+        const int minFilter = model_.samplers[size_t(t.sampler)].minFilter;
+        mipmapped = minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+                    minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
+    }
+    texture.levels = mipmapped ? FullMipLevels(texture.width, texture.height) : 1;
+    // The texels go in once per encoding; each slot's record (Slot) points at them.
+    const std::vector<uint32_t> chain =
+        BuildMipChain(rgba.data(), texture.width, texture.height, texture.levels, srgb);
+    texture.texelOffset = out_.scene.AddTexels(chain.data(), chain.size());
+    return &(decoded_[key] = texture);
 }
 
 }  // namespace rtrt

@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "game/gltf/gltf_document.h"
@@ -28,14 +29,15 @@ class GltfTextures {
     uint32_t Slot(const GltfTextureRef& ref, const std::string& at, bool srgb);
 
   private:
-    // The texture's texels in the scene, decoded at its first use: the record without transform.
-    const Texture* Decoded(int index, const std::string& at);
+    // The texture's texels in the scene with their mip levels (averaged in linear light where
+    // srgb), decoded at its first use: the record without transform.
+    const Texture* Decoded(int index, bool srgb, const std::string& at);
     bool ReadTransform(const GltfTextureRef& ref, const std::string& at, Texture* texture);
 
     GltfDocument& doc_;
     const tinygltf::Model& model_;
     LoadedScene& out_;
-    std::map<int, Texture> decoded_;  // by texture index; kNoTexture-sized when unusable
+    std::map<std::pair<int, bool>, Texture> decoded_;  // by texture index and srgb; 0 x 0: unusable
     std::map<std::tuple<int, bool, std::vector<float>>, uint32_t> records_;
 };
 

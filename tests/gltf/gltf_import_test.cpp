@@ -384,8 +384,9 @@ TEST_F(GltfTest, MaterialMapping) {
     EXPECT_NE(features & kFeatureRefraction, 0u);
 }
 
-// Every texture slot of a material, KHR_texture_transform on two of them: one image decoded once,
-// recorded once per encoding and transform, the transform as the specification's matrix.
+// Every texture slot of a material, KHR_texture_transform on two of them: one image decoded once
+// per encoding, recorded once per encoding and transform, the transform as the specification's
+// matrix.
 TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
     GltfBuilder b = test::TexturedQuadScene(9728, 33071);
     const std::vector<uint8_t> rgb(16 * 3, 200);
@@ -410,7 +411,8 @@ TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
     EXPECT_EQ(mat.baseColorTexture, p.emissiveTexture);
     EXPECT_EQ(p.metallicRoughnessTexture, p.normalTexture);
     EXPECT_EQ(textures.size(), 3u);
-    EXPECT_EQ(loaded.scene.texels.size(), 16u);  // the image once
+    // The image once per encoding (its sampler asks for no mip levels).
+    EXPECT_EQ(loaded.scene.texels.size(), 32u);
     EXPECT_EQ(textures[mat.baseColorTexture].srgb, 1u);
     EXPECT_EQ(textures[p.occlusionTexture].srgb, 0u);
     EXPECT_EQ(textures[p.occlusionTexture].transformed, 0u);

@@ -30,6 +30,8 @@ renders=$(mktemp -d)
 for scene in dragon reflective_sphere refractive_sphere teapot_shadow; do
     "$rtrt" render "assets/scenes/$scene.json" --backend cuda -o "$renders/$scene.ppm" --size 640x360
 done 2>&1 | tee "$renders/renders.log"
+"$rtrt" render assets/models/pbr_showcase.gltf --backend cuda -o "$renders/pbr_showcase.ppm" \
+    --size 960x540 2>&1 | tee -a "$renders/renders.log"
 tar -C "$renders" -cf "$out/renders.tar" .
 results=$(mktemp -d)
 {
@@ -41,6 +43,8 @@ results=$(mktemp -d)
         assets/scenes/demo_glass.json --size 1920x1080 -o "$results/frame-bench-1080p.json"
     # ~10 s of GPU time; the double reference renders on the host's CPU (docs/accuracy.md).
     "$rtrt" bench accuracy --backend cuda -o "$results/accuracy-gpu.json"
+    "$rtrt" bench materials assets/models/pbr_showcase.gltf assets/models/textured_quads.gltf \
+        -o "$results/materials-bench.json"
 } 2>&1 | tee "$out/bench.log"
 tar -C "$results" -cf "$out/results.tar" .
 # RTRT_SANITIZE=1: the whole GPU suite under compute-sanitizer's memcheck and racecheck.
