@@ -215,4 +215,17 @@ inline std::string TexturedQuadGltf(int texWidth, int texHeight, const std::vect
     return b.GltfText();
 }
 
+// Parent: translate (1, 0, 0), rotate 90 degrees about y; child: translate (0, 0, 2), scale 2.
+// The child's mesh point (1, 0, 0) goes to (1, 0, 0) * 2 + (0, 0, 2) = (2, 0, 2) in the parent,
+// rotated to (2, 0, -2), moved to (3, 0, -2) in the world.
+inline GltfBuilder TwoLevels() {
+    GltfBuilder b;
+    const int mesh = b.Mesh(b.Floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3));
+    const float s = std::sqrt(0.5f);
+    b.Node({{"translation", {1, 0, 0}}, {"rotation", {0, s, 0, s}}, {"children", {1}}});
+    b.Node({{"translation", {0, 0, 2}}, {"scale", {2, 2, 2}}, {"mesh", mesh}});
+    b.doc["scenes"] = Json::array({{{"nodes", {0}}}});
+    return b;
+}
+
 }  // namespace rtrt::test

@@ -1,8 +1,8 @@
-// glTF import, checked against small files the tests write with known answers: texels reach the
-// image exactly, every index type gives the same mesh, node hierarchies and animations give the
+// glTF import, checked against small files the tests write with known answers: every index type
+// gives the same mesh, node hierarchies and animations give the
 // expected world transforms, lights and cameras land where their nodes are; and Debian's
 // assimp-testmodels load (skipped when the package is missing). Skins and morph targets:
-// gltf_deform_test.cpp.
+// gltf_deform_test.cpp; materials and textures: gltf_materials_test.cpp.
 #include "game/gltf/gltf_import.h"
 
 #include <gtest/gtest.h>
@@ -20,6 +20,7 @@
 #include "game/runtime/world.h"
 #include "game/scene/scene_file.h"
 #include "tests/gltf/gltf_builder.h"
+#include "tests/gltf/gltf_test_dir.h"
 #include "tests/test_util.h"
 
 namespace rtrt {
@@ -30,72 +31,6 @@ using test::GltfBuilder;
 using Json = nlohmann::json;
 
 constexpr int kFloat = 5126, kUByte = 5121, kUShort = 5123, kUInt = 5125;
-
-class GltfTest : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("rtrt_gltf_" + std::to_string(getpid()) + "_" + info->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string Save(const std::string& name, const std::string& bytes) const {
-        const std::string path = (dir_ / name).string();
-        GltfBuilder::Save(path, bytes);
-        return path;
-    }
-    fs::path dir_;
-};
-
-Image RenderScene8(const LoadedScene& loaded, uint32_t size) {
-    RenderSettings settings;
-    settings.width = settings.height = size;
-    settings.maxDepth = 1;
-    return RenderRaw(loaded.scene, settings);
-}
-
-// Each pixel of an 8x8 image of a 4x4 texture shows its texel, sRGB-decoded or as it is.
-void ExpectTexels(const Image& image, const std::vector<uint8_t>& rgb, bool decoded) {
-    for (uint32_t y = 0; y < 8; ++y)
-        for (uint32_t x = 0; x < 8; ++x)
-            for (int c = 0; c < 3; ++c) {
-                const uint8_t byte = rgb[3 * size_t((y / 2) * 4 + x / 2) + size_t(c)];
-                const float v = float(byte) * (1.0f / 255.0f);  // as the sampler computes it
-                EXPECT_FLOAT_EQ(image.At(x, y)[c], decoded ? SrgbDecode(v) : v)
-                    << x << "," << y << " channel " << c;
-            }
-}
-
-TEST_F(GltfTest, NearestTexturedQuadShowsItsTexels) {
-    std::vector<uint8_t> rgb;
-    for (int i = 0; i < 16; ++i)
-        rgb.insert(rgb.end(), {uint8_t(16 * i), uint8_t(255 - 9 * i), uint8_t(7 * i + 3)});
-    const std::string path = Save("quad.gltf", test::TexturedQuadGltf(4, 4, rgb, 9728, 33071));
-    const LoadedScene loaded = LoadSceneFile(path);
-    EXPECT_NE(loaded.scene.Features() & kFeatureTextures, 0u);
-    ASSERT_EQ(loaded.scene.textures.size(), 1u);
-    EXPECT_TRUE(loaded.width == 1280u && loaded.height == 1280u);
-    EXPECT_EQ(loaded.output.srgbEncode, 1u);  // a glTF file alone has linear colours
-    ExpectTexels(RenderScene8(loaded, 8), rgb, true);
-    // In a scene file of display colours the texels are used as they are, as they always were.
-    std::ofstream(dir_ / "display.json") << R"({"models": {"q": {"type": "gltf", "file":
-        "quad.gltf"}}, "instances": [{"model": "q"}]})";
-    ExpectTexels(RenderScene8(LoadSceneFile((dir_ / "display.json").string()), 8), rgb, false);
-}
-
-TEST_F(GltfTest, BilinearTexturedQuadBlendsNeighbours) {
-    // Two texels, black and white, clamped: along x the colour ramps from the first texel
-    // centre (u = 1/4) to the second (u = 3/4) and is flat outside.
-    const std::vector<uint8_t> rgb = {0, 0, 0, 255, 255, 255};
-    const std::string path = Save("ramp.gltf", test::TexturedQuadGltf(2, 1, rgb, 9729, 33071));
-    const Image image = RenderScene8(LoadSceneFile(path), 8);
-    for (uint32_t x = 0; x < 8; ++x) {
-        const float u = (float(x) + 0.5f) / 8.0f;
-        const float expected = std::clamp(2.0f * u - 0.5f, 0.0f, 1.0f);
-        EXPECT_NEAR(image.At(x, 3).x, expected, 2e-6f) << x;
-    }
-}
 
 // Either build's decoder (OpenImageIO, or stb without it) names the image it could not decode.
 TEST_F(GltfTest, UndecodableImageIsNamed) {
@@ -156,21 +91,8 @@ TEST_F(GltfTest, EveryIndexTypeGivesTheSameMesh) {
     EXPECT_EQ(meshes[0][1].v2, vec3(-1, 1, 0));
 }
 
-// Parent: translate (1, 0, 0), rotate 90 degrees about y; child: translate (0, 0, 2), scale 2.
-// The child's mesh point (1, 0, 0) goes to (1, 0, 0) * 2 + (0, 0, 2) = (2, 0, 2) in the parent,
-// rotated to (2, 0, -2), moved to (3, 0, -2) in the world.
-GltfBuilder TwoLevels() {
-    GltfBuilder b;
-    const int mesh = b.Mesh(b.Floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3));
-    const float s = std::sqrt(0.5f);
-    b.Node({{"translation", {1, 0, 0}}, {"rotation", {0, s, 0, s}}, {"children", {1}}});
-    b.Node({{"translation", {0, 0, 2}}, {"scale", {2, 2, 2}}, {"mesh", mesh}});
-    b.doc["scenes"] = Json::array({{{"nodes", {0}}}});
-    return b;
-}
-
 TEST_F(GltfTest, NodeHierarchyGivesWorldTransforms) {
-    const LoadedScene loaded = LoadSceneFile(Save("tree.gltf", TwoLevels().GltfText()));
+    const LoadedScene loaded = LoadSceneFile(Save("tree.gltf", test::TwoLevels().GltfText()));
     ASSERT_EQ(loaded.scene.instances.size(), 1u);
     ASSERT_EQ(loaded.entities.size(), 3u);  // two nodes and the child's primitive
     EXPECT_EQ(loaded.entities[1].parent, 0);
@@ -191,14 +113,14 @@ TEST_F(GltfTest, NodeHierarchyGivesWorldTransforms) {
 // scene.nodes listing a child: shown once under its parent when the parent's tree is shown,
 // as a root of its own when it is not (files that common engines load), with a warning.
 TEST_F(GltfTest, SceneNodesListingAChildShowItOnce) {
-    GltfBuilder both = TwoLevels();
+    GltfBuilder both = test::TwoLevels();
     both.doc["scenes"] = Json::array({{{"nodes", {0, 1}}}});
     const LoadedScene shownUnder = LoadSceneFile(Save("both.gltf", both.GltfText()));
     ASSERT_EQ(shownUnder.scene.instances.size(), 1u);
     const vec3 p = shownUnder.scene.instances[0].objectToWorld.Point(vec3(1, 0, 0));
     EXPECT_NEAR(glm::length(p - vec3(3, 0, -2)), 0.0f, 1e-5f);  // under its parent
 
-    GltfBuilder child = TwoLevels();
+    GltfBuilder child = test::TwoLevels();
     child.doc["scenes"] = Json::array({{{"nodes", {1}}}});
     const LoadedScene alone = LoadSceneFile(Save("child.gltf", child.GltfText()));
     ASSERT_EQ(alone.scene.instances.size(), 1u);
@@ -253,7 +175,7 @@ TEST_F(GltfTest, ImagesOnlyAnExtensionUsesDoNotFailTheFile) {
 }
 
 TEST_F(GltfTest, MatrixNodesAreDecomposed) {
-    GltfBuilder b = TwoLevels();
+    GltfBuilder b = test::TwoLevels();
     // The parent as a matrix: columns of a 90-degree turn about y, translation (1, 0, 0).
     b.doc["nodes"][0].erase("translation");
     b.doc["nodes"][0].erase("rotation");
@@ -266,7 +188,7 @@ TEST_F(GltfTest, MatrixNodesAreDecomposed) {
 // The child's translation animated: LINEAR from (0, 0, 2) at t = 0 to (0, 4, 2) at t = 2; the
 // parent's scale STEP 1 until t = 1, then 3.
 TEST_F(GltfTest, AnimationIsSampledAtKnownTimes) {
-    GltfBuilder b = TwoLevels();
+    GltfBuilder b = test::TwoLevels();
     const int times = b.Floats({0, 2}, "SCALAR", 1);
     const int moves = b.Floats({0, 0, 2, 0, 4, 2}, "VEC3", 3);
     const int stepTimes = b.Floats({0, 1}, "SCALAR", 1);
@@ -297,7 +219,7 @@ TEST_F(GltfTest, AnimationIsSampledAtKnownTimes) {
 }
 
 TEST_F(GltfTest, LightsAndCameraSitOnTheirNodes) {
-    GltfBuilder b = TwoLevels();
+    GltfBuilder b = test::TwoLevels();
     b.doc["cameras"] =
         Json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}});
     b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
@@ -343,90 +265,8 @@ TEST_F(GltfTest, LightsAndCameraSitOnTheirNodes) {
     EXPECT_NEAR(std::cos(0.5f) * spot.spotScale + spot.spotOffset, 0.0f, 1e-5f);
 }
 
-TEST_F(GltfTest, MaterialMapping) {
-    GltfBuilder b = TwoLevels();
-    b.doc["materials"] =
-        Json::array({{{"pbrMetallicRoughness",
-                       {{"baseColorFactor", {0.5, 0.25, 1.0, 1.0}},
-                        {"metallicFactor", 0.0},
-                        {"roughnessFactor", 0.5}}},
-                      {"emissiveFactor", {0.1, 0.2, 0.3}},
-                      {"extensions",
-                       {{"KHR_materials_transmission", {{"transmissionFactor", 0.5}}},
-                        {"KHR_materials_ior", {{"ior", 1.33}}},
-                        {"KHR_materials_emissive_strength", {{"emissiveStrength", 2.0}}}}}}});
-    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
-    const LoadedScene loaded = LoadSceneFile(Save("material.gltf", b.GltfText()));
-    const Material& m = loaded.scene.materials[0];
-    EXPECT_NEAR(glm::length(m.diffuse - vec3(0.25f, 0.125f, 0.5f)), 0.0f, 1e-6f);
-    EXPECT_NEAR(glm::length(m.ambient - (vec3(0.05f, 0.025f, 0.1f) + vec3(0.2f, 0.4f, 0.6f))), 0.0f,
-                1e-6f);
-    EXPECT_FLOAT_EQ(m.transmissivity, 0.5f);
-    EXPECT_FLOAT_EQ(m.ior, 1.33f);
-    const float f0 = (0.33f / 2.33f) * (0.33f / 2.33f);
-    EXPECT_NEAR(m.specular.x, f0, 1e-6f);
-    EXPECT_NEAR(m.reflectivity, f0 * 0.25f, 1e-6f);
-    // alpha = 0.25: n = 2 / 0.0625 - 2 = 30.
-    EXPECT_NEAR(m.shininess, 30.0f, 1e-3f);
-    EXPECT_EQ(m.baseColorTexture, kNoTexture);
-    // The PBR material itself, which PBR kernels shade (the above is their fallback).
-    ASSERT_NE(m.pbrMaterial, kNoPbrMaterial);
-    const PbrMaterial& p = loaded.scene.pbrMaterials[m.pbrMaterial];
-    EXPECT_EQ(p.baseColor, vec3(0.5f, 0.25f, 1.0f));
-    EXPECT_EQ(p.metallic, 0.0f);
-    EXPECT_EQ(p.roughness, 0.5f);
-    EXPECT_NEAR(glm::length(p.emissive - vec3(0.2f, 0.4f, 0.6f)), 0.0f, 1e-6f);
-    EXPECT_NEAR(p.dielectricF0.x, f0, 1e-6f);
-    EXPECT_EQ(p.transmission, 0.5f);
-    EXPECT_FLOAT_EQ(p.ior, 1.33f);
-    const uint32_t features = loaded.scene.Features();
-    EXPECT_NE(features & kFeaturePbr, 0u);
-    EXPECT_NE(features & kFeatureRefraction, 0u);
-}
-
-// Every texture slot of a material, KHR_texture_transform on two of them: one image decoded once
-// per encoding, recorded once per encoding and transform, the transform as the specification's
-// matrix.
-TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
-    GltfBuilder b = test::TexturedQuadScene(9728, 33071);
-    const std::vector<uint8_t> rgb(16 * 3, 200);
-    const std::string bmp = GltfBuilder::Bmp(4, 4, rgb);
-    b.doc["images"] =
-        Json::array({{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>(
-                                                             bmp.begin(), bmp.end()))}}});
-    Json& m = b.doc["materials"][0];
-    const Json transform = {
-        {"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", 0.0}, {"scale", {2, 3}}}}};
-    m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0},
-                                                             {"extensions", transform}};
-    m["normalTexture"] = {{"index", 0}, {"scale", 0.5}, {"extensions", transform}};
-    m["occlusionTexture"] = {{"index", 0}, {"strength", 0.25}};
-    b.doc["extensionsUsed"] = Json::array({"KHR_lights_punctual", "KHR_texture_transform"});
-    const LoadedScene loaded = LoadSceneFile(Save("slots.gltf", b.GltfText()));
-    const Material& mat = loaded.scene.materials[0];
-    const PbrMaterial& p = loaded.scene.pbrMaterials[mat.pbrMaterial];
-    const auto& textures = loaded.scene.textures;
-    // Base colour and emissive (sRGB, untransformed) share a record; occlusion (linear,
-    // untransformed) has its own; metallic-roughness and normal (linear, transformed) share one.
-    EXPECT_EQ(mat.baseColorTexture, p.emissiveTexture);
-    EXPECT_EQ(p.metallicRoughnessTexture, p.normalTexture);
-    EXPECT_EQ(textures.size(), 3u);
-    // The image once per encoding (its sampler asks for no mip levels).
-    EXPECT_EQ(loaded.scene.texels.size(), 32u);
-    EXPECT_EQ(textures[mat.baseColorTexture].srgb, 1u);
-    EXPECT_EQ(textures[p.occlusionTexture].srgb, 0u);
-    EXPECT_EQ(textures[p.occlusionTexture].transformed, 0u);
-    const Texture& t = textures[p.normalTexture];
-    EXPECT_EQ(t.srgb, 0u);
-    ASSERT_EQ(t.transformed, 1u);
-    const float expected[6] = {2, 0, 0.5f, 0, 3, 0.25f};
-    for (int i = 0; i < 6; ++i) EXPECT_FLOAT_EQ(t.uvTransform[i], expected[i]) << i;
-    EXPECT_EQ(p.normalScale, 0.5f);
-    EXPECT_EQ(p.occlusionStrength, 0.25f);
-}
-
 TEST_F(GltfTest, SceneFilePlacesAGltfModelPerInstance) {
-    Save("tree.glb", TwoLevels().Glb());
+    Save("tree.glb", test::TwoLevels().Glb());
     const std::string scene = R"({
         "models": { "tree": { "type": "gltf", "file": "tree.glb" } },
         "instances": [ { "model": "tree" }, { "model": "tree", "position": [0, 10, 0] } ]
@@ -451,7 +291,7 @@ struct HostileGltf {
 };
 
 std::vector<HostileGltf> MakeHostileGltfCorpus() {
-    const GltfBuilder base = TwoLevels();
+    const GltfBuilder base = test::TwoLevels();
     const std::string glb = base.Glb();
     auto edit = [&](auto change) {
         GltfBuilder b = base;
@@ -568,8 +408,8 @@ TEST_F(GltfTest, CommittedHostileGltfCorpusIsCurrent) {
     const bool write = std::getenv("RTRT_WRITE_HOSTILE_CORPUS") != nullptr;
     if (write) {
         fs::create_directories(corpus);
-        GltfBuilder::Save(corpus + "/valid.glb", TwoLevels().Glb());
-        GltfBuilder::Save(corpus + "/valid.gltf", TwoLevels().GltfText());
+        GltfBuilder::Save(corpus + "/valid.glb", test::TwoLevels().Glb());
+        GltfBuilder::Save(corpus + "/valid.gltf", test::TwoLevels().GltfText());
     }
     EXPECT_NO_THROW(LoadSceneFile(corpus + "/valid.glb"));
     for (const HostileGltf& c : MakeHostileGltfCorpus()) {

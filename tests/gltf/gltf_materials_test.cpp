@@ -1,0 +1,153 @@
+// glTF materials and textures, checked against small files the tests write with known answers:
+// texels reach the image exactly (nearest and bilinear), factors and extensions become the PBR
+// material and its Blinn-Phong approximation, every texture slot gets its record with its
+// encoding and KHR_texture_transform.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "engine/render_rt/renderer.h"
+#include "game/gltf/gltf_import.h"
+#include "game/scene/scene_file.h"
+#include "tests/gltf/gltf_builder.h"
+#include "tests/gltf/gltf_test_dir.h"
+
+namespace rtrt {
+namespace {
+
+using test::GltfBuilder;
+using Json = nlohmann::json;
+
+Image RenderScene8(const LoadedScene& loaded, uint32_t size) {
+    RenderSettings settings;
+    settings.width = settings.height = size;
+    settings.maxDepth = 1;
+    return RenderRaw(loaded.scene, settings);
+}
+
+// Each pixel of an 8x8 image of a 4x4 texture shows its texel, sRGB-decoded or as it is.
+void ExpectTexels(const Image& image, const std::vector<uint8_t>& rgb, bool decoded) {
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 8; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const uint8_t byte = rgb[3 * size_t((y / 2) * 4 + x / 2) + size_t(c)];
+                const float v = float(byte) * (1.0f / 255.0f);  // as the sampler computes it
+                EXPECT_FLOAT_EQ(image.At(x, y)[c], decoded ? SrgbDecode(v) : v)
+                    << x << "," << y << " channel " << c;
+            }
+}
+
+TEST_F(GltfTest, NearestTexturedQuadShowsItsTexels) {
+    std::vector<uint8_t> rgb;
+    for (int i = 0; i < 16; ++i)
+        rgb.insert(rgb.end(), {uint8_t(16 * i), uint8_t(255 - 9 * i), uint8_t(7 * i + 3)});
+    const std::string path = Save("quad.gltf", test::TexturedQuadGltf(4, 4, rgb, 9728, 33071));
+    const LoadedScene loaded = LoadSceneFile(path);
+    EXPECT_NE(loaded.scene.Features() & kFeatureTextures, 0u);
+    ASSERT_EQ(loaded.scene.textures.size(), 1u);
+    EXPECT_TRUE(loaded.width == 1280u && loaded.height == 1280u);
+    EXPECT_EQ(loaded.output.srgbEncode, 1u);  // a glTF file alone has linear colours
+    ExpectTexels(RenderScene8(loaded, 8), rgb, true);
+    // In a scene file of display colours the texels are used as they are, as they always were.
+    std::ofstream(dir_ / "display.json") << R"({"models": {"q": {"type": "gltf", "file":
+        "quad.gltf"}}, "instances": [{"model": "q"}]})";
+    ExpectTexels(RenderScene8(LoadSceneFile((dir_ / "display.json").string()), 8), rgb, false);
+}
+
+TEST_F(GltfTest, BilinearTexturedQuadBlendsNeighbours) {
+    // Two texels, black and white, clamped: along x the colour ramps from the first texel
+    // centre (u = 1/4) to the second (u = 3/4) and is flat outside.
+    const std::vector<uint8_t> rgb = {0, 0, 0, 255, 255, 255};
+    const std::string path = Save("ramp.gltf", test::TexturedQuadGltf(2, 1, rgb, 9729, 33071));
+    const Image image = RenderScene8(LoadSceneFile(path), 8);
+    for (uint32_t x = 0; x < 8; ++x) {
+        const float u = (float(x) + 0.5f) / 8.0f;
+        const float expected = std::clamp(2.0f * u - 0.5f, 0.0f, 1.0f);
+        EXPECT_NEAR(image.At(x, 3).x, expected, 2e-6f) << x;
+    }
+}
+
+TEST_F(GltfTest, MaterialMapping) {
+    GltfBuilder b = test::TwoLevels();
+    b.doc["materials"] =
+        Json::array({{{"pbrMetallicRoughness",
+                       {{"baseColorFactor", {0.5, 0.25, 1.0, 1.0}},
+                        {"metallicFactor", 0.0},
+                        {"roughnessFactor", 0.5}}},
+                      {"emissiveFactor", {0.1, 0.2, 0.3}},
+                      {"extensions",
+                       {{"KHR_materials_transmission", {{"transmissionFactor", 0.5}}},
+                        {"KHR_materials_ior", {{"ior", 1.33}}},
+                        {"KHR_materials_emissive_strength", {{"emissiveStrength", 2.0}}}}}}});
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    const LoadedScene loaded = LoadSceneFile(Save("material.gltf", b.GltfText()));
+    const Material& m = loaded.scene.materials[0];
+    EXPECT_NEAR(glm::length(m.diffuse - vec3(0.25f, 0.125f, 0.5f)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(m.ambient - (vec3(0.05f, 0.025f, 0.1f) + vec3(0.2f, 0.4f, 0.6f))), 0.0f,
+                1e-6f);
+    EXPECT_FLOAT_EQ(m.transmissivity, 0.5f);
+    EXPECT_FLOAT_EQ(m.ior, 1.33f);
+    const float f0 = (0.33f / 2.33f) * (0.33f / 2.33f);
+    EXPECT_NEAR(m.specular.x, f0, 1e-6f);
+    EXPECT_NEAR(m.reflectivity, f0 * 0.25f, 1e-6f);
+    // alpha = 0.25: n = 2 / 0.0625 - 2 = 30.
+    EXPECT_NEAR(m.shininess, 30.0f, 1e-3f);
+    EXPECT_EQ(m.baseColorTexture, kNoTexture);
+    // The PBR material itself, which PBR kernels shade (the above is their fallback).
+    ASSERT_NE(m.pbrMaterial, kNoPbrMaterial);
+    const PbrMaterial& p = loaded.scene.pbrMaterials[m.pbrMaterial];
+    EXPECT_EQ(p.baseColor, vec3(0.5f, 0.25f, 1.0f));
+    EXPECT_EQ(p.metallic, 0.0f);
+    EXPECT_EQ(p.roughness, 0.5f);
+    EXPECT_NEAR(glm::length(p.emissive - vec3(0.2f, 0.4f, 0.6f)), 0.0f, 1e-6f);
+    EXPECT_NEAR(p.dielectricF0.x, f0, 1e-6f);
+    EXPECT_EQ(p.transmission, 0.5f);
+    EXPECT_FLOAT_EQ(p.ior, 1.33f);
+    const uint32_t features = loaded.scene.Features();
+    EXPECT_NE(features & kFeaturePbr, 0u);
+    EXPECT_NE(features & kFeatureRefraction, 0u);
+}
+
+// Every texture slot of a material, KHR_texture_transform on two of them: one image decoded once
+// per encoding, recorded once per encoding and transform, the transform as the specification's
+// matrix.
+TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
+    GltfBuilder b = test::TexturedQuadScene(9728, 33071);
+    const std::vector<uint8_t> rgb(16 * 3, 200);
+    const std::string bmp = GltfBuilder::Bmp(4, 4, rgb);
+    b.doc["images"] =
+        Json::array({{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>(
+                                                             bmp.begin(), bmp.end()))}}});
+    Json& m = b.doc["materials"][0];
+    const Json transform = {
+        {"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", 0.0}, {"scale", {2, 3}}}}};
+    m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0},
+                                                             {"extensions", transform}};
+    m["normalTexture"] = {{"index", 0}, {"scale", 0.5}, {"extensions", transform}};
+    m["occlusionTexture"] = {{"index", 0}, {"strength", 0.25}};
+    b.doc["extensionsUsed"] = Json::array({"KHR_lights_punctual", "KHR_texture_transform"});
+    const LoadedScene loaded = LoadSceneFile(Save("slots.gltf", b.GltfText()));
+    const Material& mat = loaded.scene.materials[0];
+    const PbrMaterial& p = loaded.scene.pbrMaterials[mat.pbrMaterial];
+    const auto& textures = loaded.scene.textures;
+    // Base colour and emissive (sRGB, untransformed) share a record; occlusion (linear,
+    // untransformed) has its own; metallic-roughness and normal (linear, transformed) share one.
+    EXPECT_EQ(mat.baseColorTexture, p.emissiveTexture);
+    EXPECT_EQ(p.metallicRoughnessTexture, p.normalTexture);
+    EXPECT_EQ(textures.size(), 3u);
+    // The image once per encoding (its sampler asks for no mip levels).
+    EXPECT_EQ(loaded.scene.texels.size(), 32u);
+    EXPECT_EQ(textures[mat.baseColorTexture].srgb, 1u);
+    EXPECT_EQ(textures[p.occlusionTexture].srgb, 0u);
+    EXPECT_EQ(textures[p.occlusionTexture].transformed, 0u);
+    const Texture& t = textures[p.normalTexture];
+    EXPECT_EQ(t.srgb, 0u);
+    ASSERT_EQ(t.transformed, 1u);
+    const float expected[6] = {2, 0, 0.5f, 0, 3, 0.25f};
+    for (int i = 0; i < 6; ++i) EXPECT_FLOAT_EQ(t.uvTransform[i], expected[i]) << i;
+    EXPECT_EQ(p.normalScale, 0.5f);
+    EXPECT_EQ(p.occlusionStrength, 0.25f);
+}
+
+}  // namespace
+}  // namespace rtrt
