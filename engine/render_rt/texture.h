@@ -57,11 +57,12 @@ RT_HD inline float ReduceCoordinate(float u, TextureWrap wrap) {
     return u - period * floorf(u / period);
 }
 
-// A texel index (at most one period plus one off the range) mapped into [0, n).
+// A texel index at most one period (n texels, 2n mirrored) off the range mapped into [0, n),
+// without integer division: ReduceCoordinate leaves every index SampleLevel makes in that span.
 RT_HD inline uint32_t WrapTexel(int i, int n, TextureWrap wrap) {
     if (wrap == TextureWrap::kClampToEdge) return uint32_t(i < 0 ? 0 : (i >= n ? n - 1 : i));
-    if (wrap == TextureWrap::kRepeat) return uint32_t(((i % n) + n) % n);
-    const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
+    if (wrap == TextureWrap::kRepeat) return uint32_t(i < 0 ? i + n : (i >= n ? i - n : i));
+    const int m = i < 0 ? i + 2 * n : (i >= 2 * n ? i - 2 * n : i);
     return uint32_t(m < n ? m : 2 * n - 1 - m);
 }
 

@@ -84,16 +84,26 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         Ray ray;
         vec3 weight;
         uint32_t depth;
-        float pathLength;  // from the camera to the ray's origin, for texture ray cones
     };
     PendingRay stack[kMaxRayDepth + 1];
+    // From the camera to each pending ray's origin, for texture ray cones: kept apart so that
+    // kernels without textures keep the stack entry they had (a longer one slowed deep
+    // refraction down: bench/results/pbr-h200-2026-12-02.txt).
+    constexpr bool kCones = (kFeatures & kFeatureTextures) != 0;
+    float pathLengths[kCones ? kMaxRayDepth + 1 : 1];
     uint32_t stackSize = 0;
-    stack[stackSize++] = {primaryRay, vec3(1.0f), 1, 0.0f};
+    auto push = [&](const Ray& ray, vec3 weight, uint32_t depth, float pathLength) {
+        if constexpr (kCones) pathLengths[stackSize] = pathLength;
+        stack[stackSize++] = {ray, weight, depth};
+    };
+    push(primaryRay, vec3(1.0f), 1, 0.0f);
 
     PixelResult result{vec3(0.0f), vec3(0.0f), kInfinity, {}, 0};
     bool primary = true;
     while (stackSize > 0) {
         const PendingRay pending = stack[--stackSize];
+        float pathLength = 0.0f;
+        if constexpr (kCones) pathLength = pathLengths[stackSize];
         SceneHit hit;
         ++result.rays;
         const bool found = TraceIntersect<kFeatures, Policy>(
@@ -110,9 +120,9 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
             primary = false;
         }
         const vec3 toViewer = -glm::normalize(pending.ray.dir);
-        float footprint = 0.0f, pathLength = 0.0f;
-        if constexpr ((kFeatures & kFeatureTextures) != 0) {
-            pathLength = pending.pathLength + hit.t * glm::length(pending.ray.dir);
+        float footprint = 0.0f;
+        if constexpr (kCones) {
+            pathLength += hit.t * glm::length(pending.ray.dir);
             footprint =
                 HitFootprint(scene, hit, s, pending.ray, pathLength * PixelSpreadAngle(scene));
         }
@@ -126,14 +136,12 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
                 if (MaxComponent(h.reflectWeight) > 0.0f) {
                     const vec3 dir = Reflect(toViewer, h.normal);
                     if (glm::dot(dir, s.geomNormal) > 0.0f)
-                        stack[stackSize++] = {Policy::SpawnRay(s, dir),
-                                              pending.weight * h.reflectWeight, pending.depth + 1,
-                                              pathLength};
+                        push(Policy::SpawnRay(s, dir), pending.weight * h.reflectWeight,
+                             pending.depth + 1, pathLength);
                 }
                 if (MaxComponent(h.refractWeight) > 0.0f)
-                    stack[stackSize++] = {Policy::SpawnRay(s, h.refracted),
-                                          pending.weight * h.refractWeight, pending.depth + 1,
-                                          pathLength};
+                    push(Policy::SpawnRay(s, h.refracted), pending.weight * h.refractWeight,
+                         pending.depth + 1, pathLength);
                 continue;
             }
         }
@@ -164,12 +172,12 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         if (reflectWeight > 0.0f) {
             const vec3 dir = Reflect(toViewer, s.shadingNormal);
             if (glm::dot(dir, s.geomNormal) > 0.0f)
-                stack[stackSize++] = {Policy::SpawnRay(s, dir), pending.weight * reflectWeight,
-                                      pending.depth + 1, pathLength};
+                push(Policy::SpawnRay(s, dir), pending.weight * reflectWeight, pending.depth + 1,
+                     pathLength);
         }
         if (refractWeight > 0.0f) {
-            stack[stackSize++] = {Policy::SpawnRay(s, refracted), pending.weight * refractWeight,
-                                  pending.depth + 1, pathLength};
+            push(Policy::SpawnRay(s, refracted), pending.weight * refractWeight, pending.depth + 1,
+                 pathLength);
         }
     }
     return result;
