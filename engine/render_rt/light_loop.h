@@ -26,11 +26,12 @@ RT_HD inline void ForEachLight(const RenderSceneView& scene, const Surface& s, v
         const vec3 l = glm::normalize(toLight);
         const float nDotL = glm::dot(n, l);
         if (nDotL <= 0.0f || glm::dot(s.geomNormal, l) <= 0.0f) continue;
-        vec3 arriving = light.color;
-        if (LightAttenuates(light)) {
-            const float attenuation = LightAttenuation(light, toLight, l);
-            if (!(attenuation > 0.0f)) continue;
-            arriving *= attenuation;
+        // What arrives is worked out after the shadow ray, from the light's record again: a
+        // value kept across the traversal cost the Blinn-Phong kernels an occupancy step
+        // (bench/results/pbr-h200-2026-12-02.txt). Only PBR kernels skip the shadow rays of
+        // lights beyond their range or cone.
+        if constexpr ((kFeatures & kFeaturePbr) != 0) {
+            if (LightAttenuates(light) && !(LightAttenuation(light, toLight, l) > 0.0f)) continue;
         }
         if constexpr ((kFeatures & kFeatureShadows) != 0) {
             ++*rays;
@@ -38,6 +39,8 @@ RT_HD inline void ForEachLight(const RenderSceneView& scene, const Surface& s, v
                                                  Policy::SpawnRay(s, toLight, shadowTMax)))
                 continue;
         }
+        vec3 arriving = light.color;
+        if (LightAttenuates(light)) arriving *= LightAttenuation(light, light.vector - s.point, l);
         lit(l, arriving, nDotL);
     }
 }
