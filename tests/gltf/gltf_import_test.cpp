@@ -378,6 +378,35 @@ std::vector<HostileGltf> MakeHostileGltfCorpus() {
         {"bad_accessor_type.gltf",
          edit([](GltfBuilder& b) { b.doc["accessors"][0]["type"] = "VEC2"; }), "accessors[0].type",
          "wrong element type"},
+        {"texture_transform_not_number.gltf", edit([](GltfBuilder& b) {
+             b.doc["textures"] = Json::array({Json::object()});
+             b.doc["materials"] =
+                 Json::array({{{"pbrMetallicRoughness",
+                                {{"baseColorTexture",
+                                  {{"index", 0},
+                                   {"extensions",
+                                    {{"KHR_texture_transform", {{"offset", {"left", 0}}}}}}}}}}}});
+             b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+         }),
+         "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform."
+         "offset",
+         "expected a number"},
+        {"normal_texture_out_of_range.gltf", edit([](GltfBuilder& b) {
+             b.doc["materials"] = Json::array({{{"normalTexture", {{"index", 5}}}}});
+             b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+         }),
+         "materials[0].normalTexture.index", "out of range"},
+        {"spot_cone_inverted.gltf", edit([](GltfBuilder& b) {
+             b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+                 Json::array({{{"type", "spot"},
+                               {"spot", {{"innerConeAngle", 0.8}, {"outerConeAngle", 0.5}}}}});
+         }),
+         "extensions.KHR_lights_punctual.lights[0].spot.innerConeAngle", "below outerConeAngle"},
+        {"negative_light_range.gltf", edit([](GltfBuilder& b) {
+             b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+                 Json::array({{{"type", "point"}, {"range", -2}}});
+         }),
+         "extensions.KHR_lights_punctual.lights[0].range", "must be positive"},
     };
 }
 
