@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <glm/gtc/matrix_inverse.hpp>
 
-#include "engine/render_rt/pbr_brdf.h"
+#include "engine/render_rt/shading/pbr_brdf.h"
 
 namespace rtrt {
 

@@ -124,10 +124,19 @@ void PrintScene(const std::string& path) {
         std::printf(" %s", i < loaded.materialNames.size() ? loaded.materialNames[i].c_str()
                                                            : "(default grey)");
     std::printf("\n  lights        %zu\n", scene.lights.size());
-    for (const Light& l : scene.lights)
-        std::printf("                %s %s, colour %s\n",
-                    l.type == LightType::kPoint ? "point at" : "directional toward",
-                    Vec(l.vector).c_str(), Vec(l.color).c_str());
+    for (const Light& l : scene.lights) {
+        const char* kind = l.type == LightType::kDirectional ? "directional toward"
+                           : l.type == LightType::kPoint     ? "point at"
+                                                             : "spot at";
+        std::printf("                %s %s, colour %s", kind, Vec(l.vector).c_str(),
+                    Vec(l.color).c_str());
+        if (l.type == LightType::kSpot) std::printf(", shining along %s", Vec(l.spotAxis).c_str());
+        if (l.falloff) {
+            std::printf(", inverse-square falloff");
+            if (l.range > 0.0f) std::printf(" to range %g", l.range);
+        }
+        std::printf("\n");
+    }
     size_t animated = 0, bodies = 0, later = 0;
     for (const EntityDesc& e : loaded.entities) {
         animated += e.animator.has_value();

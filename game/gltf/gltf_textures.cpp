@@ -1,6 +1,6 @@
 #include "game/gltf/gltf_textures.h"
 
-#include "engine/render_rt/texture_mips.h"
+#include "engine/render_rt/shading/texture_mips.h"
 #include "game/scene/json_fields.h"
 
 namespace rtrt {

@@ -8,10 +8,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 
-#include "engine/render_rt/light.h"
-#include "engine/render_rt/pbr_brdf.h"
+#include "engine/render_rt/shading/light.h"
+#include "engine/render_rt/shading/pbr_brdf.h"
 #include "engine/render_rt/renderer.h"
-#include "engine/render_rt/texture.h"
+#include "engine/render_rt/shading/texture.h"
 
 namespace rtrt {
 namespace {

@@ -1,11 +1,11 @@
 // Texture sampling (texture.h): wrap modes and filters at known coordinates, sRGB texels decoded
 // before they are filtered, mip levels as box filters (in linear light for sRGB), and trilinear
 // filtering at a known footprint.
-#include "engine/render_rt/texture.h"
+#include "engine/render_rt/shading/texture.h"
 
 #include <gtest/gtest.h>
 
-#include "engine/render_rt/texture_mips.h"
+#include "engine/render_rt/shading/texture_mips.h"
 
 namespace rtrt {
 namespace {

@@ -4,7 +4,7 @@
 // runner (gpu_runner.cu) calls the very same functions in a kernel compiled by nvcc with its
 // default contraction (--fmad=true), so both back ends are held to the same expected values.
 #include "engine/bvh/traversal/scene_traversal.h"
-#include "engine/render_rt/optics.h"
+#include "engine/render_rt/shading/optics.h"
 #include "engine/render_rt/surface.h"
 
 namespace rtrt::robust {

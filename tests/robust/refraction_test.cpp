@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "engine/render_rt/optics.h"
+#include "engine/render_rt/shading/optics.h"
 #include "engine/render_rt/renderer.h"
 #include "tests/robust/closed_meshes.h"
 #include "tests/robust/scene_builder.h"

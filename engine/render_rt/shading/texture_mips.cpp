@@ -1,4 +1,4 @@
-#include "engine/render_rt/texture_mips.h"
+#include "engine/render_rt/shading/texture_mips.h"
 
 #include <algorithm>
 #include <cmath>

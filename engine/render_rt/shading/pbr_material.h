@@ -2,7 +2,7 @@
 // glTF 2.0's metallic-roughness material, beside rtrt's Blinn-Phong (material.h): a Material whose
 // pbrMaterial names one of these is shaded by pbr_brdf.h. Texture slots index the scene's texture
 // table (each record carries its own KHR_texture_transform); kNoTexture leaves the factor alone.
-#include "engine/render_rt/material.h"
+#include "engine/render_rt/shading/material.h"
 
 namespace rtrt {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "engine/geometry/primitives.h"
-#include "engine/render_rt/material.h"
+#include "engine/render_rt/shading/material.h"
 #include "engine/render_rt/srgb.h"
 
 namespace rtrt {

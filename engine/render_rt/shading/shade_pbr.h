@@ -2,11 +2,11 @@
 // Shading of a hit whose material is glTF's metallic-roughness (pbr_material.h): its textures,
 // normal map, the BRDF of pbr_brdf.h under every light, emission, ambient light darkened by
 // occlusion, and the weights of the mirror and refraction rays that carry the scene around it.
-#include "engine/render_rt/light_loop.h"
-#include "engine/render_rt/optics.h"
-#include "engine/render_rt/pbr_brdf.h"
-#include "engine/render_rt/pbr_material.h"
-#include "engine/render_rt/tangent_frame.h"
+#include "engine/render_rt/shading/light_loop.h"
+#include "engine/render_rt/shading/optics.h"
+#include "engine/render_rt/shading/pbr_brdf.h"
+#include "engine/render_rt/shading/pbr_material.h"
+#include "engine/render_rt/shading/tangent_frame.h"
 
 namespace rtrt {
 
