@@ -84,20 +84,44 @@ void RenderScene::SetTlas(Tlas tlas) {
     tlas_ = std::move(tlas);
 }
 
+namespace {
+
+// The features one material calls for. A metallic-roughness texture can lower roughness and
+// metalness anywhere below their factors.
+uint32_t MaterialFeatures(const Material& m, const std::vector<PbrMaterial>& pbrMaterials) {
+    uint32_t features = 0;
+    if (m.reflectivity > 0.0f) features |= kFeatureReflection;
+    if (m.transmissivity > 0.0f) features |= kFeatureRefraction | kFeatureReflection;
+    if (m.baseColorTexture != kNoTexture) features |= kFeatureTextures;
+    if (m.pbrMaterial == kNoPbrMaterial) return features;
+    const PbrMaterial& p = pbrMaterials[m.pbrMaterial];
+    const bool textured = p.metallicRoughnessTexture != kNoTexture;
+    features |= kFeaturePbr | kFeatureTextures;  // IsKernelFeatureSet
+    if (textured || MirrorShare(p.roughness) > 0.0f) features |= kFeatureReflection;
+    if (p.transmission > 0.0f && (textured || p.metallic < 1.0f))
+        features |= kFeatureRefraction | kFeatureReflection;
+    return features;
+}
+
+// Up to this many instances, only the materials they use count (a window's spawn palette holds
+// materials nothing may use yet); beyond it, every material, without a pass over the instances.
+constexpr size_t kMaterialUseScanLimit = 65536;
+
+}  // namespace
+
 uint32_t RenderScene::Features() const {
     uint32_t features = lights.empty() ? 0u : kFeatureShadows;
     features |= InstanceCountFeatures(instances.size());
-    for (const Material& m : materials) {
-        if (m.reflectivity > 0.0f) features |= kFeatureReflection;
-        if (m.transmissivity > 0.0f) features |= kFeatureRefraction | kFeatureReflection;
-        if (m.baseColorTexture != kNoTexture) features |= kFeatureTextures;
-        if (m.pbrMaterial == kNoPbrMaterial) continue;
-        const PbrMaterial& p = pbrMaterials[m.pbrMaterial];
-        features |= kFeaturePbr | kFeatureTextures;  // IsKernelFeatureSet
-        if (MirrorShare(p.roughness) > 0.0f) features |= kFeatureReflection;
-        if (p.transmission > 0.0f && p.metallic < 1.0f)
-            features |= kFeatureRefraction | kFeatureReflection;
+    if (instances.size() > kMaterialUseScanLimit) {
+        for (const Material& m : materials) features |= MaterialFeatures(m, pbrMaterials);
+        return features;
     }
+    std::vector<bool> used(materials.size(), false);
+    for (const Instance& inst : instances)
+        if (inst.materialId < used.size() && !used[inst.materialId]) {
+            used[inst.materialId] = true;
+            features |= MaterialFeatures(materials[inst.materialId], pbrMaterials);
+        }
     return features;
 }
 

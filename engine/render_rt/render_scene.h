@@ -59,7 +59,7 @@ struct RenderScene {
     void BuildTlas();
     // Takes a TLAS built elsewhere over the current instances (tests, the accuracy study).
     void SetTlas(Tlas tlas);
-    // The SceneFeature bits this scene's materials and lights call for.
+    // The SceneFeature bits this scene's lights and the materials of its instances call for.
     uint32_t Features() const;
     uint64_t TriangleCount() const;  // over all instances
 

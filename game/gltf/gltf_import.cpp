@@ -65,18 +65,19 @@ Camera FramingCamera(const LoadedScene& out) {
 }
 
 // The key light's level: the largest colour component any light gives a white surface facing it
-// at the centre of the scene (directional lights everywhere; point and spot lights at their
-// distance, within range and cone). 0 without lights.
+// at the centre of the scene, directional lights everywhere, point and spot lights at their
+// distance (at least a quarter of the scene's radius, so that a lamp inside the scene does not
+// set it), their cones and ranges aside: where they shine. 0 without lights.
 float KeyLight(const LoadedScene& out) {
-    const vec3 centre = SceneBounds(out).Centroid();
+    const Aabb bounds = SceneBounds(out);
+    const vec3 centre = bounds.Centroid();
+    const float nearest = 0.125f * glm::length(bounds.Extent());
     float key = 0.0f;
     for (const Light& light : out.scene.lights) {
         float level = MaxComponent(light.color);
-        if (light.type != LightType::kDirectional) {
-            const vec3 toLight = light.vector - centre;
-            const float d = glm::length(toLight);
-            const vec3 l = d > 0.0f ? toLight / d : vec3(0, 0, 1);
-            if (LightAttenuates(light)) level *= LightAttenuation(light, toLight, l);
+        if (light.type != LightType::kDirectional && light.falloff != 0) {
+            const float d = std::max(glm::length(light.vector - centre), nearest);
+            level /= std::max(d * d, 1e-12f);
         }
         key = std::max(key, level);
     }
@@ -84,13 +85,19 @@ float KeyLight(const LoadedScene& out) {
 }
 
 // A glTF file's lights are in physical units, lux and candela, which may be tens of thousands:
-// its exposure makes a white surface facing the key light show 1 before tone mapping, and the
-// ambient light that stands for indirect light (a tenth of the key) and the sky scale with it.
+// its exposure makes a white surface facing the key light show 1 before tone mapping (within the
+// scene files' exposure range), and the ambient light that stands for indirect light (a tenth of
+// the key) and the sky scale with it, in the PBR materials and their Blinn-Phong approximations.
 void ExposeForKeyLight(LoadedScene& out) {
     const float key = KeyLight(out);
     if (!(key > 0.0f) || !std::isfinite(key)) return;
-    out.output.exposureEv = -std::log2(key);
-    for (PbrMaterial& m : out.scene.pbrMaterials) m.ambientLight = vec3(0.1f * key);
+    out.output.exposureEv = std::clamp(-std::log2(key), -20.0f, 20.0f);
+    for (Material& m : out.scene.materials) {
+        if (m.pbrMaterial == kNoPbrMaterial) continue;
+        PbrMaterial& p = out.scene.pbrMaterials[m.pbrMaterial];
+        p.ambientLight = vec3(0.1f * key);
+        m.ambient = GltfApproximationAmbient(p);
+    }
     out.scene.background *= key;
 }
 

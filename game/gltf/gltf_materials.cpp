@@ -94,7 +94,6 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     const float smooth = (1.0f - roughness) * (1.0f - roughness);
     Material m;
     m.diffuse = base * (1.0f - metallic) * (1.0f - transmission);
-    m.ambient = 0.1f * base * (1.0f - metallic) + emissive;
     m.specular = f0;
     // Blinn-Phong exponent of the same highlight width as GGX of alpha = roughness^2
     // (Walter et al. 2007): n = 2 / alpha^2 - 2.
@@ -132,6 +131,7 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     p.emissiveTexture = textures_.Slot(
         {g.emissiveTexture.index, g.emissiveTexture.texCoord, &g.emissiveTexture.extensions},
         at + ".emissiveTexture", true);
+    m.ambient = GltfApproximationAmbient(p);
     const uint32_t id = out_.scene.AddPbrMaterial(m, p);
     out_.materialNames.push_back(
         g.name.empty() ? fs::path(doc_.File()).filename().string() + " " + at : g.name);

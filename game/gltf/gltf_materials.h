@@ -11,6 +11,12 @@
 
 namespace rtrt {
 
+// The Blinn-Phong approximation's ambient: the PBR material's ambient light on its diffuse
+// colour, plus its emission.
+inline vec3 GltfApproximationAmbient(const PbrMaterial& p) {
+    return p.ambientLight * p.baseColor * (1.0f - p.metallic) + p.emissive;
+}
+
 class GltfMaterials {
   public:
     GltfMaterials(GltfDocument& doc, LoadedScene& out)

@@ -221,7 +221,8 @@ void ReadGltfCamerasAndLights(GltfDocument& doc, GltfAsset& asset) {
             if (!FiniteFloat(c) || c < 0.0 || c > 1e6) doc.Fail(at + ".color", "must be 0 to 1e6");
         if (!FiniteFloat(l.intensity) || l.intensity < 0.0 || l.intensity > 1e7)
             doc.Fail(at + ".intensity", "must be 0 to 1e7");
-        if (!FiniteFloat(l.range) || l.range < 0.0) doc.Fail(at + ".range", "must be positive");
+        if (!FiniteFloat(l.range) || l.range < 0.0)
+            doc.Fail(at + ".range", "must be positive (or 0: unlimited)");
         const vec3 color =
             l.color.size() == 3 ? vec3(l.color[0], l.color[1], l.color[2]) : vec3(1.0f);
         // Physical units: lux for directional lights, candela for point and spot lights, which

@@ -406,7 +406,7 @@ std::vector<HostileGltf> MakeHostileGltfCorpus() {
              b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
                  Json::array({{{"type", "point"}, {"range", -2}}});
          }),
-         "extensions.KHR_lights_punctual.lights[0].range", "must be positive"},
+         "extensions.KHR_lights_punctual.lights[0].range", "must be positive (or 0"},
     };
 }
 

@@ -4,6 +4,7 @@
 // encoding and KHR_texture_transform.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "engine/render_rt/renderer.h"
@@ -147,6 +148,30 @@ TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
     for (int i = 0; i < 6; ++i) EXPECT_FLOAT_EQ(t.uvTransform[i], expected[i]) << i;
     EXPECT_EQ(p.normalScale, 0.5f);
     EXPECT_EQ(p.occlusionStrength, 0.25f);
+}
+
+// A glTF shown alone is exposed for its key light: a 2,000 lux sun makes a white surface show 1
+// before tone mapping; a lamp at the very centre of the scene counts from a quarter of the
+// scene's radius, not from 0.
+TEST_F(GltfTest, ExposureFollowsTheKeyLight) {
+    auto exposure = [&](const Json& light, const Json& at) {
+        GltfBuilder b = test::TwoLevels();
+        b.doc["extensions"]["KHR_lights_punctual"]["lights"] = Json::array({light});
+        b.doc["scenes"][0]["nodes"].push_back(b.Node(
+            {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"translation", at}}));
+        return LoadSceneFile(Save("lit.gltf", b.GltfText())).output.exposureEv;
+    };
+    EXPECT_NEAR(exposure({{"type", "directional"}, {"intensity", 2000}}, {0, 0, 0}),
+                -std::log2(2000.0 / M_PI), 1e-4);
+    const float centred = exposure({{"type", "point"}, {"intensity", 100}}, {2, 0, -1});
+    EXPECT_TRUE(std::isfinite(centred));
+    EXPECT_GT(centred, -20.0f);
+    // A spot 10 above the scene whose cone misses it still sets the exposure where it shines:
+    // 100 cd / pi at a distance of 9 to 11.
+    const float spot = exposure(
+        {{"type", "spot"}, {"intensity", 100}, {"spot", {{"outerConeAngle", 0.2}}}}, {2, 10, -1});
+    EXPECT_GT(spot, -std::log2(100.0 / M_PI / 81.0));
+    EXPECT_LT(spot, -std::log2(100.0 / M_PI / 121.0));
 }
 
 }  // namespace

@@ -8,9 +8,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 
+#include "engine/render_rt/renderer.h"
 #include "engine/render_rt/shading/light.h"
 #include "engine/render_rt/shading/pbr_brdf.h"
-#include "engine/render_rt/renderer.h"
 #include "engine/render_rt/shading/texture.h"
 
 namespace rtrt {
@@ -306,6 +306,28 @@ TEST(LightFalloff, PointLightOverAPlaneFallsOffWithDistance) {
         const float expected = 4.0f / glm::dot(toLight, toLight) * glm::normalize(toLight).z;
         EXPECT_NEAR(image.At(1, 0).x, expected, 1e-5f * expected) << h;
     }
+}
+
+TEST(PbrFeatures, KernelsFollowTheMaterialsInstancesUse) {
+    // A rough PBR material: no mirror rays; with a metallic-roughness texture that may make
+    // parts of it smooth, mirror rays.
+    PbrMaterial rough;
+    rough.roughness = 1.0f;
+    RenderScene scene = QuadScene(rough);
+    EXPECT_EQ(scene.Features() & kFeatureReflection, 0u);
+    EXPECT_NE(scene.Features() & kFeaturePbr, 0u);
+    Texture t;
+    t.width = t.height = 1;
+    const uint32_t texel = 0;
+    scene.pbrMaterials[0].metallicRoughnessTexture = scene.AddTexture(t, &texel);
+    EXPECT_NE(scene.Features() & kFeatureReflection, 0u);
+    // A glass material no instance uses (a spawn palette's) adds no refraction.
+    Material glass;
+    glass.transmissivity = 1.0f;
+    scene.AddMaterial(glass);
+    EXPECT_EQ(scene.Features() & kFeatureRefraction, 0u);
+    scene.AddInstance(0, 1, glm::translate(glm::mat4(1.0f), vec3(0, 0, -3)));
+    EXPECT_NE(scene.Features() & kFeatureRefraction, 0u);
 }
 
 }  // namespace

@@ -2,8 +2,8 @@
 // The direct-light loop both shading models share: for each light above the surface and not in
 // shadow, its unit direction, the colour that reaches the point and the cosine at the shading
 // normal.
-#include "engine/render_rt/shading/light.h"
 #include "engine/render_rt/scene_trace.h"
+#include "engine/render_rt/shading/light.h"
 
 namespace rtrt {
 

@@ -6,7 +6,7 @@ namespace rtrt {
 inline constexpr uint32_t kNoTexture = 0xffffffffu;
 inline constexpr uint32_t kNoPbrMaterial = 0xffffffffu;
 
-// Blinn-Phong with mirror reflection and Fresnel-weighted refraction, 48 bytes.
+// Blinn-Phong with mirror reflection and Fresnel-weighted refraction, 64 bytes.
 // Radiance leaving a hit: (1 - reflectivity - transmissivity) * local
 //                       + (reflectivity + transmissivity * F) * reflected
 //                       + transmissivity * (1 - F) * refracted,

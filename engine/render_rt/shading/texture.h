@@ -1,7 +1,8 @@
 #pragma once
-// Base-colour textures: RGBA8 texels in one array per scene, a table of Texture records, and
-// nearest or bilinear sampling with glTF's wrap modes. Plain RT_HD code, no CUDA texture
-// objects, so the CPU back end is the reference for the GPU's samples bit for bit.
+// Textures: RGBA8 texels (mip levels after each image) in one array per scene, a table of Texture
+// records, and nearest, bilinear or trilinear sampling with glTF's wrap modes. Plain RT_HD code,
+// no CUDA texture objects, so the CPU back end is the reference for the GPU's samples: bit for
+// bit on one level, within the ulps of log2f where the level of detail blends two.
 #include <cstdint>
 
 #include "engine/geometry/primitives.h"
