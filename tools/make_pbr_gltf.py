@@ -6,16 +6,9 @@ metallic-roughness, a normal map with bevelled tiles, occlusion in the grout, al
 KHR_texture_transform. Lights in physical units (KHR_lights_punctual): a sun of 2,000 lux, a spot
 of 3,000 cd and a point light of 400 cd. The GPU-vs-CPU tests, the README's pictures and
 assets/scenes/pbr_showcase.json use it. Self-contained: buffer and PNG images are data URIs."""
-import base64, json, math, struct, sys, zlib
-
-def png(width, height, rgb):  # 8-bit RGB, rows top to bottom, no filtering (PNG spec, ISO 15948)
-    def chunk(kind, data):
-        return (struct.pack(">I", len(data)) + kind + data +
-                struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff))
-    raw = b"".join(b"\0" + b"".join(bytes(rgb[y][x]) for x in range(width)) for y in range(height))
-    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) +
-            chunk(b"IEND", b""))
+import base64, json, math, os, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gltf_writer import GltfBuffer, png  # noqa: E402 (after the path)
 
 N = 64  # texture size: 4 x 4 tiles of 16 texels, 2 of them grout
 def tile(x, y):  # (distance to the tile's left/right/top/bottom edge in texels, grout?)
@@ -50,17 +43,8 @@ for y in range(N):
         row.append(r)
 images = [png(N, N, img) for img in (base, mr, normal, occlusion, glow)]
 
-buf = bytearray()
-views, accessors = [], []
-def add(fmt, values, type_, count, component=5126, minmax=None):
-    while len(buf) % 4: buf.append(0)
-    offset = len(buf)
-    buf.extend(struct.pack("<" + fmt * len(values), *values))
-    views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(buf) - offset})
-    acc = {"bufferView": len(views) - 1, "componentType": component, "count": count, "type": type_}
-    if minmax: acc["min"], acc["max"] = minmax
-    accessors.append(acc)
-    return len(accessors) - 1
+buffer = GltfBuffer()
+add, views, accessors = buffer.add, buffer.views, buffer.accessors
 
 # A UV sphere of radius 0.5: 48 segments, 24 rings; u around, v from the top down.
 seg, rings = 48, 24
@@ -136,8 +120,7 @@ doc = {
         {"type": "spot", "color": [1, 1, 1], "intensity": 3000, "range": 20,
          "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.6}},
         {"type": "point", "color": [0.6, 0.75, 1.0], "intensity": 400}]}},
-    "buffers": [{"byteLength": len(buf),
-                 "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buf)).decode()}],
+    "buffers": buffer.buffers(),
     "bufferViews": views, "accessors": accessors,
     "images": [{"uri": "data:image/png;base64," + base64.b64encode(i).decode()} for i in images],
     "samplers": [{"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}],

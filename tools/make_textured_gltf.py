@@ -5,32 +5,16 @@ from -0.5 to 1.5 so that every wrap shows, an untextured floor, a point and a di
 (KHR_lights_punctual), a camera, and an animation that turns the middle quad (LINEAR rotation)
 and moves the right one (STEP translation). The GPU-vs-CPU tests and assets/scenes/gltf_demo.json
 use it. Self-contained: the buffer and the PNG image are base64 data URIs."""
-import base64, json, math, struct, sys, zlib
-
-def png(width, height, rgb):  # 8-bit RGB, rows top to bottom, no filtering (PNG spec, ISO 15948)
-    def chunk(kind, data):
-        return (struct.pack(">I", len(data)) + kind + data +
-                struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff))
-    raw = b"".join(b"\0" + b"".join(bytes(rgb[y][x]) for x in range(width)) for y in range(height))
-    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) +
-            chunk(b"IEND", b""))
+import base64, json, math, os, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gltf_writer import GltfBuffer, png  # noqa: E402 (after the path)
 
 texels = [[((x * 37 + y * 11) % 256, (255 - x * 32) % 256, (y * 32 + 16) % 256) if (x + y) % 2 == 0
            else (240, 240 - 20 * y, 30 + 25 * x) for x in range(8)] for y in range(8)]
 image = png(8, 8, texels)
 
-buf = bytearray()
-views, accessors = [], []
-def add(fmt, values, type_, count, component=5126, minmax=None):
-    while len(buf) % 4: buf.append(0)
-    offset = len(buf)
-    buf.extend(struct.pack("<" + fmt * len(values), *values))
-    views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(buf) - offset})
-    acc = {"bufferView": len(views) - 1, "componentType": component, "count": count, "type": type_}
-    if minmax: acc["min"], acc["max"] = minmax
-    accessors.append(acc)
-    return len(accessors) - 1
+buffer = GltfBuffer()
+add, views, accessors = buffer.add, buffer.views, buffer.accessors
 
 quad_pos = add("f", [-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0], "VEC3", 4,
                minmax=([-1, -1, 0], [1, 1, 0]))
@@ -51,8 +35,7 @@ doc = {
     "extensions": {"KHR_lights_punctual": {"lights": [
         {"type": "point", "color": [1, 0.9, 0.8], "intensity": 0.6},
         {"type": "directional", "color": [1, 1, 1], "intensity": 0.5}]}},
-    "buffers": [{"byteLength": len(buf),
-                 "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buf)).decode()}],
+    "buffers": buffer.buffers(),
     "bufferViews": views, "accessors": accessors,
     "images": [{"uri": "data:image/png;base64," + base64.b64encode(image).decode()}],
     "samplers": [{"magFilter": 9728, "minFilter": 9728, "wrapS": 10497, "wrapT": 10497},

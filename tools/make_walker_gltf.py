@@ -10,7 +10,9 @@ LINEAR (hip bob translation, pelvis and torso twist, arm swing, feet), and a LIN
 channel on a "breathing" morph target that swells the chest (POSITION and NORMAL deltas).
 The mesh node and the skeleton root are siblings under one scene root, as exporters write
 them. Self-contained: the buffer is a base64 data URI."""
-import base64, json, math, struct, sys
+import json, math, os, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gltf_writer import GltfBuffer  # noqa: E402 (after the path)
 
 SEGMENTS = 16  # around every capsule: enough that silhouettes and normals read round
 
@@ -203,18 +205,8 @@ def hips_translation(p): return [0, 0.95 - 0.012 + 0.012 * math.cos(2 * p), 0]
 def breath(p): return 0.5 - 0.5 * math.cos(p)
 
 # --- Buffer ---
-buf = bytearray()
-views, accessors = [], []
-def add(fmt, values, type_, count, component=5126, minmax=None, target=None):
-    while len(buf) % 4: buf.append(0)
-    offset = len(buf)
-    buf.extend(struct.pack("<" + fmt * len(values), *values))
-    views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(buf) - offset})
-    if target: views[-1]["target"] = target
-    acc = {"bufferView": len(views) - 1, "componentType": component, "count": count, "type": type_}
-    if minmax: acc["min"], acc["max"] = minmax
-    accessors.append(acc)
-    return len(accessors) - 1
+buffer = GltfBuffer()
+add, views, accessors = buffer.add, buffer.views, buffer.accessors
 
 def vec3s(values, minmax=False):
     bounds = ([min(v[i] for v in values) for i in range(3)],
@@ -285,8 +277,7 @@ for i, (name, parent, p) in enumerate(JOINTS):
 
 doc = {
     "asset": {"version": "2.0", "generator": "rtrt tools/make_walker_gltf.py"},
-    "buffers": [{"byteLength": len(buf),
-                 "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(buf)).decode()}],
+    "buffers": buffer.buffers(),
     "bufferViews": views, "accessors": accessors,
     "materials": [{"name": "walker", "pbrMetallicRoughness": {
         "baseColorFactor": [0.75, 0.45, 0.3, 1], "metallicFactor": 0, "roughnessFactor": 0.55}}],

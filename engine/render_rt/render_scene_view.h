@@ -2,9 +2,9 @@
 // Everything a trace kernel reads, as plain pointers into host or device memory.
 #include "engine/bvh/traversal/scene_traversal.h"
 #include "engine/render_rt/camera.h"
+#include "engine/render_rt/scene_features.h"
 #include "engine/render_rt/shading/light.h"
 #include "engine/render_rt/shading/pbr_material.h"
-#include "engine/render_rt/scene_features.h"
 #include "engine/render_rt/shading/texture.h"
 
 namespace rtrt {

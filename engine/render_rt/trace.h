@@ -3,9 +3,9 @@
 // follow an explicit ray stack instead of recursion (the original paper's iterative ray queue):
 // a ray's secondary rays are pushed with the weight they contribute, and the pixel is the sum of
 // weight * local shading over every ray popped.
+#include "engine/render_rt/pixel_sample.h"
 #include "engine/render_rt/shading/light_loop.h"
 #include "engine/render_rt/shading/optics.h"
-#include "engine/render_rt/pixel_sample.h"
 #include "engine/render_rt/shading/shade_pbr.h"
 
 namespace rtrt {

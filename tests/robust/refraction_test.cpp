@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "engine/render_rt/shading/optics.h"
 #include "engine/render_rt/renderer.h"
+#include "engine/render_rt/shading/optics.h"
 #include "tests/robust/closed_meshes.h"
 #include "tests/robust/scene_builder.h"
 
