@@ -26,7 +26,7 @@ esac
 # tests, which bring up a one-host cluster of their own (tools/slurm_cluster.sh).
 packages=(g++ cmake ninja-build pkg-config git ca-certificates libglm-dev libtbb-dev libcli11-dev
     nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev libxxhash-dev
-    libglfw3-dev libgl-dev libimgui-dev xvfb xauth libgl1-mesa-dri clang libtinygltf-dev
+    libglfw3-dev libgl-dev libimgui-dev libdraco-dev xvfb xauth libgl1-mesa-dri clang libtinygltf-dev
     assimp-testmodels python3 ffmpeg slurm-wlm munge)
 missing=()
 for p in "${packages[@]}"; do

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "engine/core/error.h"
+#include "game/gltf/gltf_draco.h"
 #include "game/gltf/gltf_image_loader.h"
 #include "game/gltf/gltf_precheck.h"
 #include "game/scene/json_fields.h"
@@ -25,9 +26,10 @@ std::string OneLine(std::string text) {
 
 GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     const GltfFileBytes checked = ReadCheckedGltf(file_);
-    const std::string& bytes = checked.bytes;
-    const bool binary = checked.binary;
     const std::string dir = std::filesystem::path(file_).parent_path().string();
+    const DracoDecoded draco = DecodeDracoPrimitives(file_, checked.bytes, checked.binary, dir);
+    const std::string& bytes = draco.bytes;
+    const bool binary = draco.binary;
     tinygltf::TinyGLTF loader;
     GltfImageFailure imageFailure;
     imageFailure.used = &checked.imageUsed;
@@ -44,6 +46,10 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     if (imageFailure.index >= 0)
         Fail(JsonIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
     if (!ok || !err.empty()) Fail("", OneLine(err));
+    if (draco.primitives > 0)
+        Warn("draco", std::to_string(draco.primitives) +
+                          " Draco-compressed primitive(s) decoded with libdraco "
+                          "(KHR_draco_mesh_compression)");
     for (int index : imageFailure.skipped)
         Warn("image-unused", JsonIndexed("images", size_t(index)) +
                                  ": no texture's source names it (an extension's image, as "

@@ -57,21 +57,6 @@ std::string GlbJson(const std::string& bytes) {
     return bytes.substr(20, length);
 }
 
-// glTF URIs are percent-encoded (RFC 3986): "a%20b.bin" names "a b.bin".
-std::string DecodeUri(const std::string& uri) {
-    std::string out;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
-            std::isxdigit(uint8_t(uri[i + 2]))) {
-            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
-}
-
 // The JSON types of the fields rtrt reads, per top-level array (glTF 2.0 schema). tinygltf
 // treats a field of the wrong type as absent; rtrt rejects it, naming it.
 struct FieldKind {
@@ -113,36 +98,6 @@ constexpr FieldKind kFieldKinds[] = {
     {"cameras", "type", JsonKind::kString},
 };
 
-// Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
-// that external buffers and images exist, so that the message names the field
-// ("buffers[0].uri") where tinygltf's would not.
-// Draco-compressed primitives (KHR_draco_mesh_compression) cannot be read yet: a file that
-// requires the extension is refused, naming the first such primitive and what to do, before
-// tinygltf's own message ("accessor[0] invalid bufferView") would say nothing useful. A file that
-// only uses it keeps uncompressed accessors, which are read.
-void CheckDraco(const std::string& file, const Json& root) {
-    constexpr const char* kDraco = "KHR_draco_mesh_compression";
-    bool required = false;
-    if (root.contains("extensionsRequired") && root["extensionsRequired"].is_array())
-        for (const Json& e : root["extensionsRequired"]) required |= e == kDraco;
-    if (!required || !root.contains("meshes") || !root["meshes"].is_array()) return;
-    const Json& meshes = root["meshes"];
-    for (size_t m = 0; m < meshes.size(); ++m) {
-        if (!meshes[m].contains("primitives") || !meshes[m]["primitives"].is_array()) continue;
-        const Json& primitives = meshes[m]["primitives"];
-        for (size_t p = 0; p < primitives.size(); ++p)
-            if (primitives[p].is_object() && primitives[p].contains("extensions") &&
-                primitives[p]["extensions"].is_object() &&
-                primitives[p]["extensions"].contains(kDraco))
-                throw InputError(
-                    file,
-                    JsonIndexed(JsonIndexed("meshes", m) + ".primitives", p) + ".extensions." +
-                        kDraco,
-                    "Draco-compressed meshes are not supported yet; export the file without "
-                    "Draco or decompress it (e.g. gltf-transform copy IN OUT)");
-    }
-}
-
 // Which images a texture's own source names (the ones rtrt can sample).
 std::vector<bool> UsedImages(const Json& root) {
     const size_t count =
@@ -157,6 +112,9 @@ std::vector<bool> UsedImages(const Json& root) {
     return used;
 }
 
+// Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
+// that external buffers and images exist, so that the message names the field
+// ("buffers[0].uri") where tinygltf's would not.
 std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                             const std::string& dir) {
     const Json root = ParseJson(json, file, DuplicateKeys::kLastWins);
@@ -173,7 +131,6 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                 if (std::strcmp(f.array, array) == 0) element.ExpectKind(f.field, f.kind);
         }
     }
-    CheckDraco(file, root);
     const std::vector<bool> used = UsedImages(root);
     for (const char* array : {"buffers", "images"}) {
         if (!root.contains(array) || !root[array].is_array()) continue;
@@ -186,7 +143,7 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
             const std::string uri = list[i]["uri"].get<std::string>();
             if (uri.rfind("data:", 0) == 0) continue;
             std::error_code ec;
-            const fs::path path = fs::path(dir.empty() ? "." : dir) / DecodeUri(uri);
+            const fs::path path = fs::path(dir.empty() ? "." : dir) / DecodeGltfUri(uri);
             if (!fs::is_regular_file(path, ec))
                 throw InputError(file, JsonIndexed(array, i) + ".uri",
                                  "no such file \"" + path.string() + "\"");
@@ -208,6 +165,20 @@ std::string ReadWholeFile(const std::string& path) {
 }
 
 }  // namespace
+
+std::string DecodeGltfUri(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
+            std::isxdigit(uint8_t(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
 
 GltfFileBytes ReadCheckedGltf(const std::string& file) {
     GltfFileBytes out;

@@ -18,4 +18,7 @@ struct GltfFileBytes {
 // Reads FILE and checks it as above; throws InputError naming the file and field.
 GltfFileBytes ReadCheckedGltf(const std::string& file);
 
+// A glTF URI's path: percent-encoded (RFC 3986), so "a%20b.bin" names "a b.bin".
+std::string DecodeGltfUri(const std::string& uri);
+
 }  // namespace rtrt
