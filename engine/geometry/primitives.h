@@ -38,6 +38,13 @@ struct TriangleUvs {
 };
 static_assert(sizeof(TriangleUvs) == 24);
 
+// Per-vertex tangents of one triangle, in the same order as Triangle, as glTF's TANGENT: xyz the
+// tangent (direction of increasing u), w the bitangent's sign (bitangent = cross(normal, xyz) * w).
+struct TriangleTangents {
+    vec4 t0, t1, t2;
+};
+static_assert(sizeof(TriangleTangents) == 48);
+
 enum class GeometryKind : uint32_t { kTriangles = 0, kSpheres = 1 };
 
 }  // namespace rtrt

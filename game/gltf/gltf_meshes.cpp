@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "engine/bvh/blas/blas.h"
+#include "engine/geometry/mesh_tangents.h"
 #include "game/gltf/gltf_accessors.h"
 #include "game/gltf/gltf_deformable.h"
 #include "game/scene/json_fields.h"
@@ -39,6 +40,7 @@ std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
             continue;
         }
         if (triangles.indices.empty()) continue;
+        AddTangents(prim, at, skin, triangles);
         summary_.primitives++;
         summary_.vertices += uint32_t(triangles.positions.size());
         summary_.triangles += uint32_t(triangles.indices.size());
@@ -54,6 +56,37 @@ std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
     }
     meshPrimitives_[{mesh, skin}] = result;
     return result;
+}
+
+void GltfMeshes::AddTangents(const tinygltf::Primitive& prim, const std::string& at, int skin,
+                             TriangleMesh& mesh) {
+    const bool normalMapped = prim.material >= 0 &&
+                              size_t(prim.material) < model_.materials.size() &&
+                              model_.materials[size_t(prim.material)].normalTexture.index >= 0;
+    const bool deforms =
+        !prim.targets.empty() || (skin >= 0 && prim.attributes.count("JOINTS_0") > 0);
+    if (mesh.uvs.empty() || !normalMapped || deforms) return;
+    const auto tangent = prim.attributes.find("TANGENT");
+    if (tangent == prim.attributes.end()) {
+        GenerateTangents(mesh);
+        return;
+    }
+    const std::string field = at + ".attributes.TANGENT";
+    std::vector<vec4> tangents =
+        ReadGltfFloats<4>(doc_, tangent->second, field, TINYGLTF_TYPE_VEC4);
+    if (tangents.size() != mesh.positions.size()) doc_.Fail(field, "count differs from POSITION's");
+    for (vec4& t : tangents) {
+        const float length = glm::length(vec3(t));
+        if (!(length > 0.0f)) {
+            doc_.Warn("tangent-zero", field +
+                                          ": a zero tangent; the primitive's tangents are "
+                                          "generated instead");
+            GenerateTangents(mesh);
+            return;
+        }
+        t = vec4(vec3(t) / length, t.w < 0.0f ? -1.0f : 1.0f);
+    }
+    mesh.tangents = std::move(tangents);
 }
 
 void GltfMeshes::ReadDeformation(const tinygltf::Primitive& prim, const std::string& at,

@@ -33,6 +33,11 @@ class GltfMeshes {
 
   private:
     TriangleMesh ReadPrimitive(const tinygltf::Primitive& prim, const std::string& at);
+    // Vertex tangents for a normal-mapped primitive that does not deform: the file's TANGENT,
+    // else generated (GenerateTangents). Deforming ones keep per-face tangents, taken from their
+    // deformed triangles at each hit, where stored ones would go stale.
+    void AddTangents(const tinygltf::Primitive& prim, const std::string& at, int skin,
+                     TriangleMesh& mesh);
     // Registers the primitive as a deformable mesh when it is skinned (SKIN >= 0 and it has
     // joints) or has morph targets.
     void ReadDeformation(const tinygltf::Primitive& prim, const std::string& at, size_t mesh,

@@ -153,6 +153,46 @@ TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
 // A glTF shown alone is exposed for its key light: a 2,000 lux sun makes a white surface show 1
 // before tone mapping; a lamp at the very centre of the scene counts from a quarter of the
 // scene's radius, not from 0.
+// A normal-mapped primitive's BLAS keeps vertex tangents: the file's TANGENT (normalised, w
+// reduced to its sign) where it has one, else generated along increasing u; a primitive without
+// a normal map keeps none.
+TEST_F(GltfTest, NormalMappedPrimitivesGetVertexTangents) {
+    const std::vector<uint8_t> rgb(16 * 3, 128);
+    const std::string bmp = GltfBuilder::Bmp(4, 4, rgb);
+    auto scene = [&](bool normalMap, bool tangents) {
+        GltfBuilder b = test::TexturedQuadScene(9729, 10497);
+        b.doc["images"] = Json::array(
+            {{{"uri", "data:image/bmp;base64," +
+                          GltfBuilder::Base64(std::vector<uint8_t>(bmp.begin(), bmp.end()))}}});
+        if (normalMap) b.doc["materials"][0]["normalTexture"] = {{"index", 0}};
+        if (tangents)
+            b.doc["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] =
+                b.Floats({0, 2, 0, 1, 0, 2, 0, 1, 0, 2, 0, -0.5f, 0, 2, 0, -1}, "VEC4", 4);
+        return LoadSceneFile(Save("quad.gltf", b.GltfText()));
+    };
+    const LoadedScene plain = scene(false, true);
+    EXPECT_TRUE(plain.scene.blases[0]->tangents.empty());
+    const LoadedScene given = scene(true, true);
+    ASSERT_EQ(given.scene.blases[0]->tangents.size(), 2u);
+    const std::vector<uint32_t>& ids = given.scene.blases[0]->primIds;
+    for (size_t slot = 0; slot < 2; ++slot) {
+        const TriangleTangents& t = given.scene.blases[0]->tangents[slot];
+        // Triangle 0 is vertices 0, 1, 2 (w 1, 1, -1); triangle 1 is 0, 2, 3 (w 1, -1, -1).
+        EXPECT_EQ(t.t0, vec4(0, 1, 0, 1));
+        EXPECT_EQ(t.t1, ids[slot] == 0 ? vec4(0, 1, 0, 1) : vec4(0, 1, 0, -1));
+        EXPECT_EQ(t.t2, vec4(0, 1, 0, -1));
+    }
+    const LoadedScene generated = scene(true, false);
+    ASSERT_EQ(generated.scene.blases[0]->tangents.size(), 2u);
+    for (const TriangleTangents& t : generated.scene.blases[0]->tangents)
+        for (const vec4& v : {t.t0, t.t1, t.t2}) {
+            EXPECT_NEAR(v.x, 1.0f, 1e-6f);
+            EXPECT_NEAR(v.y, 0.0f, 1e-6f);
+            EXPECT_NEAR(v.z, 0.0f, 1e-6f);
+            EXPECT_EQ(v.w, 1.0f);  // n x t = +y, up the image: decreasing v
+        }
+}
+
 TEST_F(GltfTest, ExposureFollowsTheKeyLight) {
     auto exposure = [&](const Json& light, const Json& at) {
         GltfBuilder b = test::TwoLevels();

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 
+#include "engine/geometry/mesh_tangents.h"
 #include "engine/render_rt/renderer.h"
 #include "engine/render_rt/shading/light.h"
 #include "engine/render_rt/shading/pbr_brdf.h"
@@ -93,14 +94,19 @@ TEST(PbrBrdf, WhiteFurnaceNeverGainsEnergy) {
     EXPECT_NEAR(DirectionalAlbedo(White(1.0f, 1.0f), 0.0f), 1.0 - std::log(2.0), 1e-3);
 }
 
+// How a normal map finds its tangents: per face from the uvs at the hit, or stored per vertex.
+enum class Tangents { kPerFace, kGenerated };
+
 // A quad filling [-1, 1]^2 in z = 0 (uv (0, 0) at its top-left corner, glTF's convention), seen
 // by a 90-degree camera from z = 1 so that it fills the square image.
-RenderScene QuadScene(const PbrMaterial& pbr, uint32_t baseColorTexture = kNoTexture) {
+RenderScene QuadScene(const PbrMaterial& pbr, uint32_t baseColorTexture = kNoTexture,
+                      Tangents tangents = Tangents::kPerFace) {
     RenderScene scene;
     TriangleMesh quad;
     quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     quad.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
     quad.indices = {{0, 1, 2}, {0, 2, 3}};
+    if (tangents == Tangents::kGenerated) GenerateTangents(quad);
     scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(quad)));
     Material approximation;
     approximation.baseColorTexture = baseColorTexture;
@@ -142,54 +148,125 @@ TEST(PbrShading, NormalMappedQuadFollowsTheMap) {
         return glm::normalize(vec3(c(0), c(1), c(2)));
     };
     const float s = 0.5f, c = std::sqrt(3.0f) / 2.0f;
-    for (const vec3 tilt : {vec3(s, 0, c), vec3(0, s, c)}) {
-        PbrMaterial pbr = Lambert();
-        RenderScene scene = QuadScene(pbr);
-        Texture map;
-        map.width = map.height = 1;
-        map.filter = TextureFilter::kNearest;
-        const uint32_t rgba = texel(tilt);
-        scene.pbrMaterials[0].normalTexture = scene.AddTexture(map, &rgba);
-        // On the quad, +x of the map is world +x and +y of the map world +y.
-        const vec3 expectedNormal = decoded(rgba);
-        for (const vec3 toLight : {vec3(0, 0, 1), glm::normalize(vec3(1, 0, 1)),
-                                   glm::normalize(vec3(0, 1, 2)), glm::normalize(vec3(-1, 0, 3))}) {
-            scene.lights = {Light{toLight, LightType::kDirectional, vec3(1.0f)}};
-            const Image image = Render(scene, 8);
-            // A light's colour is what a white Lambertian surface facing it shows (light.h).
-            const float expected = std::max(0.0f, glm::dot(expectedNormal, toLight));
-            for (uint32_t y = 0; y < 8; y += 3)
-                for (uint32_t x = 0; x < 8; x += 3)
-                    EXPECT_NEAR(image.At(x, y).x, expected, 2e-6f)
-                        << "tilt " << tilt.x << "," << tilt.y << " light " << toLight.x << ","
-                        << toLight.y << " pixel " << x << "," << y;
+    for (const Tangents tangents : {Tangents::kPerFace, Tangents::kGenerated})
+        for (const vec3 tilt : {vec3(s, 0, c), vec3(0, s, c)}) {
+            PbrMaterial pbr = Lambert();
+            RenderScene scene = QuadScene(pbr, kNoTexture, tangents);
+            ASSERT_EQ(scene.blases[0]->tangents.empty(), tangents == Tangents::kPerFace);
+            Texture map;
+            map.width = map.height = 1;
+            map.filter = TextureFilter::kNearest;
+            const uint32_t rgba = texel(tilt);
+            scene.pbrMaterials[0].normalTexture = scene.AddTexture(map, &rgba);
+            // On the quad, +x of the map is world +x and +y of the map world +y.
+            const vec3 expectedNormal = decoded(rgba);
+            for (const vec3 toLight :
+                 {vec3(0, 0, 1), glm::normalize(vec3(1, 0, 1)), glm::normalize(vec3(0, 1, 2)),
+                  glm::normalize(vec3(-1, 0, 3))}) {
+                scene.lights = {Light{toLight, LightType::kDirectional, vec3(1.0f)}};
+                const Image image = Render(scene, 8);
+                // A light's colour is what a white Lambertian surface facing it shows (light.h).
+                const float expected = std::max(0.0f, glm::dot(expectedNormal, toLight));
+                for (uint32_t y = 0; y < 8; y += 3)
+                    for (uint32_t x = 0; x < 8; x += 3)
+                        EXPECT_NEAR(image.At(x, y).x, expected, 2e-6f)
+                            << "tilt " << tilt.x << "," << tilt.y << " light " << toLight.x << ","
+                            << toLight.y << " pixel " << x << "," << y;
+            }
         }
-    }
 }
 
 TEST(PbrShading, MirroredUvsKeepTheMapsUpTheImagesUp) {
     // The same +y tilt on a quad whose v runs the other way: the bitangent follows decreasing v.
-    PbrMaterial pbr = Lambert();
-    RenderScene scene;
+    for (const Tangents tangents : {Tangents::kPerFace, Tangents::kGenerated}) {
+        PbrMaterial pbr = Lambert();
+        RenderScene scene;
+        TriangleMesh quad;
+        quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+        quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};  // v up the quad
+        quad.indices = {{0, 1, 2}, {0, 2, 3}};
+        if (tangents == Tangents::kGenerated) {
+            GenerateTangents(quad);
+            EXPECT_EQ(quad.tangents[0], vec4(1, 0, 0, -1));  // the bitangent n x t = +y is +v
+        }
+        scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(quad)));
+        scene.AddPbrMaterial(Material{}, pbr);
+        scene.AddInstance(0, 0, glm::mat4(1.0f));
+        scene.camera.position = vec3(0, 0, 1);
+        scene.camera.fovYDegrees = 90.0f;
+        scene.BuildTlas();
+        Texture map;
+        map.width = map.height = 1;
+        const uint32_t up = 128u | (238u << 8) | (238u << 16);  // +y tilt, about 45 degrees
+        scene.pbrMaterials[0].normalTexture = scene.AddTexture(map, &up);
+        scene.lights = {Light{vec3(0, -1, 0.01f), LightType::kDirectional, vec3(1.0f)}};
+        // The map's +y is now world -y: a light from -y lights the quad.
+        EXPECT_GT(Render(scene, 4).At(1, 1).x, 0.2f);
+        scene.lights = {
+            Light{glm::normalize(vec3(0, 1, 0.01f)), LightType::kDirectional, vec3(1.0f)}};
+        EXPECT_EQ(Render(scene, 4).At(1, 1).x, 0.0f);
+    }
+}
+
+// Two triangles sharing an edge whose uvs mirror each other: the shared vertices are split, so
+// that each triangle keeps its own frame (opposite handedness) instead of an average.
+TEST(MeshTangents, MirroredNeighboursSplitTheirSharedVertices) {
+    TriangleMesh mesh;
+    mesh.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    mesh.uvs = {{0, 1}, {1, 1}, {1, 0}, {2, 1}};
+    mesh.indices = {{0, 1, 2}, {0, 2, 3}};
+    GenerateTangents(mesh);
+    ASSERT_EQ(mesh.positions.size(), 6u);
+    ASSERT_EQ(mesh.uvs.size(), 6u);
+    ASSERT_EQ(mesh.tangents.size(), 6u);
+    EXPECT_EQ(mesh.indices[0], glm::uvec3(0, 1, 2));
+    EXPECT_EQ(mesh.indices[1], glm::uvec3(4, 5, 3));
+    EXPECT_EQ(mesh.positions[4], mesh.positions[0]);
+    EXPECT_EQ(mesh.positions[5], mesh.positions[2]);
+    for (uint32_t v : {0u, 1u, 2u}) EXPECT_EQ(mesh.tangents[v], vec4(1, 0, 0, 1)) << v;
+    // Triangle 1: dp/du = (0, 1, 0) and dp/dv = (-2, -1, 0), so n x t = -x points along +v.
+    const vec4 mirrored(0, 1, 0, -1);
+    for (uint32_t v : {3u, 4u, 5u}) {
+        EXPECT_NEAR(glm::distance(mesh.tangents[v], mirrored), 0.0f, 1e-6f) << v;
+    }
+}
+
+// Stored tangents are followed, not re-derived from the uvs: a quad whose file says its tangent
+// is +y (uvs as the other quads) turns the map's +x tilt towards world +y; mirrored by its
+// instance (x -> -x), the bitangent turns with it.
+TEST(PbrShading, StoredTangentsOrientTheMap) {
     TriangleMesh quad;
     quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-    quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};  // v up the quad
+    quad.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
     quad.indices = {{0, 1, 2}, {0, 2, 3}};
-    scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(quad)));
-    scene.AddPbrMaterial(Material{}, pbr);
-    scene.AddInstance(0, 0, glm::mat4(1.0f));
-    scene.camera.position = vec3(0, 0, 1);
-    scene.camera.fovYDegrees = 90.0f;
-    scene.BuildTlas();
-    Texture map;
-    map.width = map.height = 1;
-    const uint32_t up = 128u | (238u << 8) | (238u << 16);  // +y tilt, about 45 degrees
-    scene.pbrMaterials[0].normalTexture = scene.AddTexture(map, &up);
-    scene.lights = {Light{vec3(0, -1, 0.01f), LightType::kDirectional, vec3(1.0f)}};
-    // The map's +y is now world -y: a light from -y lights the quad.
-    EXPECT_GT(Render(scene, 4).At(1, 1).x, 0.2f);
-    scene.lights = {Light{glm::normalize(vec3(0, 1, 0.01f)), LightType::kDirectional, vec3(1.0f)}};
-    EXPECT_EQ(Render(scene, 4).At(1, 1).x, 0.0f);
+    quad.tangents.assign(4, vec4(0, 1, 0, 1));                 // bitangent n x t = -x
+    const uint32_t tiltX = 238u | (128u << 8) | (238u << 16);  // map +x, about 45 degrees
+    const uint32_t tiltY = 128u | (238u << 8) | (238u << 16);  // map +y
+    struct Case {
+        uint32_t texel;
+        float mirror;  // the instance's x scale
+        vec3 lit;      // a light from here lights the quad; from its mirror image it does not
+    };
+    for (const Case& c :
+         {Case{tiltX, 1.0f, vec3(0, 1, 0.01f)}, Case{tiltY, 1.0f, vec3(-1, 0, 0.01f)},
+          Case{tiltY, -1.0f, vec3(1, 0, 0.01f)}}) {
+        RenderScene scene;
+        scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(quad)));
+        scene.AddPbrMaterial(Material{}, Lambert());
+        // A mirrored instance's front face points -z; the camera looks at whichever face it sees.
+        scene.AddInstance(0, 0, glm::scale(glm::mat4(1.0f), vec3(c.mirror, 1, 1)));
+        scene.camera.position = vec3(0, 0, 1);
+        scene.camera.fovYDegrees = 90.0f;
+        scene.BuildTlas();
+        Texture map;
+        map.width = map.height = 1;
+        scene.pbrMaterials[0].normalTexture = scene.AddTexture(map, &c.texel);
+        scene.lights = {Light{glm::normalize(c.lit), LightType::kDirectional, vec3(1.0f)}};
+        EXPECT_GT(Render(scene, 4).At(1, 1).x, 0.2f) << c.texel << " " << c.mirror;
+        scene.lights = {Light{glm::normalize(vec3(-c.lit.x, -c.lit.y, c.lit.z)),
+                              LightType::kDirectional, vec3(1.0f)}};
+        EXPECT_EQ(Render(scene, 4).At(1, 1).x, 0.0f) << c.texel << " " << c.mirror;
+    }
 }
 
 TEST(PbrShading, WhiteObjectsInUniformLightAreNoBrighterThanIt) {

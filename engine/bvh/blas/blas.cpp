@@ -14,13 +14,15 @@ BlasView Blas::View() const {
     view.kind = kind;
     view.primCount = PrimCount();
     view.uvs = uvs.empty() ? nullptr : uvs.data();
+    view.tangents = tangents.empty() ? nullptr : tangents.data();
     return view;
 }
 
 size_t Blas::Bytes() const {
     return nodes.size() * sizeof(BvhNode) + nodes4.size() * sizeof(Bvh4Node) +
            triangles.size() * sizeof(Triangle) + normals.size() * sizeof(TriangleNormals) +
-           spheres.size() * sizeof(Sphere) + uvs.size() * sizeof(TriangleUvs);
+           spheres.size() * sizeof(Sphere) + uvs.size() * sizeof(TriangleUvs) +
+           tangents.size() * sizeof(TriangleTangents);
 }
 
 size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4Node); }
@@ -74,6 +76,8 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
     if (smooth) blas.normals.resize(count);
     const bool textured = !mesh.uvs.empty();
     if (textured) blas.uvs.resize(count);
+    const bool tangents = !mesh.tangents.empty();
+    if (tangents) blas.tangents.resize(count);
     ParallelFor(0, count, 4096, [&](size_t slot) {
         const uint32_t prim = blas.primIds[slot];
         blas.triangles[slot] = triangle(prim);
@@ -84,6 +88,11 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
         if (textured) {
             const glm::uvec3 idx = mesh.indices[prim];
             blas.uvs[slot] = {mesh.uvs[idx.x], mesh.uvs[idx.y], mesh.uvs[idx.z]};
+        }
+        if (tangents) {
+            const glm::uvec3 idx = mesh.indices[prim];
+            blas.tangents[slot] = {mesh.tangents[idx.x], mesh.tangents[idx.y],
+                                   mesh.tangents[idx.z]};
         }
     });
     blas.nodes4 = CollapseToBvh4(blas.nodes);

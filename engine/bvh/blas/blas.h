@@ -23,6 +23,7 @@ struct BlasView {
     GeometryKind kind;
     uint32_t primCount;
     const TriangleUvs* uvs;  // kTriangles: leaf order, or null without texture coordinates
+    const TriangleTangents* tangents;  // kTriangles: leaf order, or null (per-face tangents)
 };
 
 struct Blas {
@@ -32,14 +33,16 @@ struct Blas {
     AlignedVector<Triangle> triangles;
     std::vector<TriangleNormals> normals;
     std::vector<Sphere> spheres;
-    std::vector<uint32_t> primIds;  // leaf slot -> index in the source mesh or sphere list
-    std::vector<TriangleUvs> uvs;   // kTriangles: leaf order, or none
+    std::vector<uint32_t> primIds;           // leaf slot -> index in the source mesh or sphere list
+    std::vector<TriangleUvs> uvs;            // kTriangles: leaf order, or none
+    std::vector<TriangleTangents> tangents;  // kTriangles: leaf order, or none
     Aabb bounds;
 
     uint32_t PrimCount() const { return uint32_t(primIds.size()); }
     BlasView View() const;
     size_t Bytes() const;        // what the CPU tracer keeps of it (both node layouts too)
-    size_t DeviceBytes() const;  // what the GPU holds: binary nodes, primitives, normals, uvs
+    size_t DeviceBytes() const;  // what the GPU holds: binary nodes, primitives, normals, uvs,
+                                 // tangents
 };
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options = {});

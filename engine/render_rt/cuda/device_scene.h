@@ -18,6 +18,7 @@ struct DeviceScene {
     std::vector<DeviceBuffer<TriangleNormals>> normals;
     std::vector<DeviceBuffer<Sphere>> spheres;
     std::vector<DeviceBuffer<TriangleUvs>> uvs;
+    std::vector<DeviceBuffer<TriangleTangents>> tangents;
     DeviceBuffer<BlasView> blasViews;
     DeviceBuffer<Material> materials;
     DeviceBuffer<PbrMaterial> pbrMaterials;
@@ -50,6 +51,7 @@ struct DeviceScene {
             normals.emplace_back(std::span<const TriangleNormals>(blas->normals));
             spheres.emplace_back(std::span<const Sphere>(blas->spheres));
             uvs.emplace_back(std::span<const TriangleUvs>(blas->uvs));
+            tangents.emplace_back(std::span<const TriangleTangents>(blas->tangents));
             BlasView v = blas->View();
             v.nodes = blasNodes.back().Data();
             v.nodes4 = nullptr;  // the GPU traverses the binary BVH
@@ -57,6 +59,7 @@ struct DeviceScene {
             v.normals = blas->normals.empty() ? nullptr : normals.back().Data();
             v.spheres = spheres.back().Data();
             v.uvs = blas->uvs.empty() ? nullptr : uvs.back().Data();
+            v.tangents = blas->tangents.empty() ? nullptr : tangents.back().Data();
             uploaded_[blas] = v;
             views_.push_back(v);
         }

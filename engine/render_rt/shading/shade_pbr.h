@@ -66,8 +66,11 @@ RT_HD inline PbrInputs PbrInputsAt(const RenderSceneView& scene, const SceneHit&
                 const vec3 mapped(t.x * pm.normalScale, t.y * pm.normalScale, t.z);
                 // A back face's normal is the front's reversed, bumps included.
                 const vec3 front = s.frontFace ? s.shadingNormal : -s.shadingNormal;
-                const vec3 n =
-                    NormalFromMap(blas.triangles[hit.prim], uvs, inst.objectToWorld, front, mapped);
+                const vec3 n = blas.tangents
+                                   ? NormalFromTangents(blas.tangents[hit.prim], hit.b1, hit.b2,
+                                                        inst.objectToWorld, front, mapped)
+                                   : NormalFromMap(blas.triangles[hit.prim], uvs,
+                                                   inst.objectToWorld, front, mapped);
                 in.normal = s.frontFace ? n : -n;
             }
         }

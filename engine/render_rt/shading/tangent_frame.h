@@ -1,9 +1,10 @@
 #pragma once
-// Tangent-space normal maps on triangles. The tangent comes from the triangle's positions and
-// texture coordinates at the hit (the direction of increasing u, as MikkTSpace takes it, per face
-// rather than averaged over vertices, so no tangent is stored), made perpendicular to the
-// interpolated shading normal; the bitangent is n x t, its sign flipped where the uvs are
-// mirrored. glTF's normal textures point +y towards decreasing v (the image's up).
+// Tangent-space normal maps on triangles. Where the BLAS stores vertex tangents (a glTF file's
+// TANGENT, or GenerateTangents' MikkTSpace-like ones), the tangent is interpolated at the hit;
+// elsewhere (deforming meshes) it comes from the triangle's positions and texture coordinates at
+// the hit (the direction of increasing u, per face). Either is made perpendicular to the
+// interpolated shading normal; the bitangent is n x t, its sign the tangent's w (or flipped where
+// the uvs are mirrored). glTF's normal textures point +y towards decreasing v (the image's up).
 #include "engine/core/affine.h"
 #include "engine/geometry/primitives.h"
 
@@ -26,6 +27,25 @@ RT_HD inline vec3 NormalFromMap(const Triangle& tri, const TriangleUvs& uvs,
     t /= tLength;
     vec3 b = glm::cross(n, t);
     if (glm::dot(b, dpdv) > 0.0f) b = -b;  // +y of the map runs towards decreasing v
+    const vec3 mapped = m.x * t + m.y * b + m.z * n;
+    const float length = glm::length(mapped);
+    return length > 0.0f ? mapped / length : n;
+}
+
+// The same with the triangle's vertex tangents, interpolated at barycentrics (b1, b2). An
+// instance that mirrors (negative determinant) mirrors the bitangent too.
+RT_HD inline vec3 NormalFromTangents(const TriangleTangents& tangents, float b1, float b2,
+                                     const Affine& objectToWorld, vec3 n, vec3 m) {
+    const vec4 objectTangent = (1.0f - b1 - b2) * tangents.t0 + b1 * tangents.t1 + b2 * tangents.t2;
+    vec3 t = objectToWorld.Vector(vec3(objectTangent));
+    t -= n * glm::dot(n, t);
+    const float tLength = glm::length(t);
+    if (!(tLength > 0.0f)) return n;
+    t /= tLength;
+    const float det = glm::dot(vec3(objectToWorld.row[0]),
+                               glm::cross(vec3(objectToWorld.row[1]), vec3(objectToWorld.row[2])));
+    const float sign = (tangents.t0.w < 0.0f) != (det < 0.0f) ? -1.0f : 1.0f;
+    const vec3 b = sign * glm::cross(n, t);
     const vec3 mapped = m.x * t + m.y * b + m.z * n;
     const float length = glm::length(mapped);
     return length > 0.0f ? mapped / length : n;
