@@ -122,30 +122,6 @@ std::string BufferBytes(const std::string& file, const Json& root, size_t index,
     return text.str();
 }
 
-size_t ComponentCount(const std::string& type) {
-    if (type == "SCALAR") return 1;
-    if (type == "VEC2") return 2;
-    if (type == "VEC3") return 3;
-    if (type == "VEC4") return 4;
-    return 0;
-}
-
-size_t ComponentBytes(int componentType) {
-    switch (componentType) {
-        case 5120:
-        case 5121:
-            return 1;
-        case 5122:
-        case 5123:
-            return 2;
-        case 5125:
-        case 5126:
-            return 4;
-        default:
-            return 0;
-    }
-}
-
 bool UsesDraco(const Json& primitive) {
     return primitive.is_object() && primitive.contains("extensions") &&
            primitive["extensions"].is_object() && primitive["extensions"].contains(kDraco);
@@ -182,6 +158,30 @@ void ForgetExtension(Json& root) {
 }
 
 #if RTRT_WITH_DRACO
+
+size_t ComponentCount(const std::string& type) {
+    if (type == "SCALAR") return 1;
+    if (type == "VEC2") return 2;
+    if (type == "VEC3") return 3;
+    if (type == "VEC4") return 4;
+    return 0;
+}
+
+size_t ComponentBytes(int componentType) {
+    switch (componentType) {
+        case 5120:
+        case 5121:
+            return 1;
+        case 5122:
+        case 5123:
+            return 2;
+        case 5125:
+        case 5126:
+            return 4;
+        default:
+            return 0;
+    }
+}
 
 // Appends one accessor's decoded data to OUT (4-byte aligned), returning its offset there.
 size_t AppendAligned(std::string& out, const std::vector<uint8_t>& data) {
