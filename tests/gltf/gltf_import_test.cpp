@@ -490,6 +490,38 @@ TEST(GltfAssimpModels, BoxTexturedIsTexturedOnEveryContainer) {
     }
 }
 
+// The package's primitive-mode files: its strips and fans (modes 5 and 6, with and without
+// indices) draw the same quad as its triangle lists, pixel for pixel; points and lines are
+// skipped with a warning, leaving nothing to render.
+TEST(GltfAssimpModels, StripAndFanFilesDrawTheirTriangleListsQuad) {
+    const std::string dir = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_";
+    if (AssimpModel(dir + "06.gltf").empty()) GTEST_SKIP() << "assimp-testmodels is not installed";
+    RenderSettings settings;
+    settings.width = settings.height = 24;
+    settings.maxDepth = 1;
+    auto render = [&](const char* number) {
+        const LoadedScene loaded = LoadSceneFile(AssimpModel(dir + number + ".gltf"));
+        EXPECT_EQ(loaded.scene.TriangleCount(), 2u) << number;
+        return RenderRaw(loaded.scene, settings);
+    };
+    const Image list = render("06");
+    // The quad covers a good part of the view: pixels other than the corner's background.
+    size_t covered = 0;
+    for (const vec3& p : list.pixels) covered += p != list.At(0, 0);
+    EXPECT_GT(covered, list.pixels.size() / 4);
+    for (const char* number : {"04", "05", "11", "12", "13"}) {
+        const Image image = render(number);
+        EXPECT_EQ(image.pixels, list.pixels) << number;
+    }
+    for (const char* number : {"00", "01", "02", "03", "07", "08", "09", "10"}) {
+        ::testing::internal::CaptureStderr();
+        EXPECT_THROW(LoadSceneFile(AssimpModel(dir + number + ".gltf")), InputError) << number;
+        EXPECT_NE(::testing::internal::GetCapturedStderr().find("no surface to trace"),
+                  std::string::npos)
+            << number;
+    }
+}
+
 TEST(GltfAssimpModels, MorphCubeLoadsItsTargetsWithoutWarnings) {
     const std::string path =
         AssimpModel("glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf");
