@@ -55,7 +55,8 @@ inline SurfaceD MakeSurfaceD(const TlasView& tlas, const RayD& ray, const HitD& 
         ns = ng;
         if (blas.normals) {
             const TriangleNormals& n = blas.normals[hit.prim];
-            ns = b0 * dvec3(n.n0) + hit.b1 * dvec3(n.n1) + hit.b2 * dvec3(n.n2);
+            ns = b0 * dvec3(UnpackNormal(n.n0)) + hit.b1 * dvec3(UnpackNormal(n.n1)) +
+                 hit.b2 * dvec3(UnpackNormal(n.n2));
         }
     } else {
         const Sphere& s = blas.spheres[hit.prim];

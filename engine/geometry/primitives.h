@@ -1,5 +1,6 @@
 #pragma once
 #include "engine/geometry/aabb.h"
+#include "engine/geometry/packed_normal.h"
 
 namespace rtrt {
 
@@ -25,11 +26,21 @@ struct Sphere {
 };
 static_assert(sizeof(Sphere) == 16);
 
-// Per-vertex shading normals of one triangle, in the same order as Triangle.
+// Per-vertex shading normals of one triangle, in the same order as Triangle, each packed in 32
+// bits (packed_normal.h): a third of three floats' bytes, for a change of the shading normal
+// below 5e-5 radians.
 struct TriangleNormals {
-    vec3 n0, n1, n2;
+    uint32_t n0, n1, n2;
+
+    RT_HD static TriangleNormals Pack(vec3 a, vec3 b, vec3 c) {
+        return {PackNormal(a), PackNormal(b), PackNormal(c)};
+    }
+    // The unnormalised interpolation at barycentrics (b0, b1, b2).
+    RT_HD vec3 At(float b0, float b1, float b2) const {
+        return b0 * UnpackNormal(n0) + b1 * UnpackNormal(n1) + b2 * UnpackNormal(n2);
+    }
 };
-static_assert(sizeof(TriangleNormals) == 36);
+static_assert(sizeof(TriangleNormals) == 12);
 
 // Texture coordinates of one triangle's vertices, in the same order as Triangle (glTF's
 // TEXCOORD_0: u right, v down the image).

@@ -67,8 +67,7 @@ RT_HD inline Surface MakeSurface(const RenderSceneView& scene, const Ray& ray,
         ng = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
         ns = ng;
         if (blas.normals) {
-            const TriangleNormals& n = blas.normals[hit.prim];
-            ns = b0 * n.n0 + hit.b1 * n.n1 + hit.b2 * n.n2;
+            ns = blas.normals[hit.prim].At(b0, hit.b1, hit.b2);
         }
         surface.pointError = inst.objectToWorld.PointError(p, pError);
         surface.point = inst.objectToWorld.Point(p);

@@ -43,9 +43,9 @@ DeformableMesh RestMeshOfBlas(const Blas& blas) {
         rest.positions[v + 2] = t.v2;
         rest.indices[blas.primIds[s]] = glm::uvec3(v, v + 1, v + 2);
         if (!blas.normals.empty()) {
-            rest.normals[v] = blas.normals[s].n0;
-            rest.normals[v + 1] = blas.normals[s].n1;
-            rest.normals[v + 2] = blas.normals[s].n2;
+            rest.normals[v] = UnpackNormal(blas.normals[s].n0);
+            rest.normals[v + 1] = UnpackNormal(blas.normals[s].n1);
+            rest.normals[v + 2] = UnpackNormal(blas.normals[s].n2);
         }
         if (!blas.uvs.empty()) {
             rest.uvs[v] = blas.uvs[s].uv0;
@@ -83,7 +83,8 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
         blas.triangles[slot] = triangle(prim);
         if (smooth) {
             const glm::uvec3 idx = mesh.indices[prim];
-            blas.normals[slot] = {mesh.normals[idx.x], mesh.normals[idx.y], mesh.normals[idx.z]};
+            blas.normals[slot] = TriangleNormals::Pack(mesh.normals[idx.x], mesh.normals[idx.y],
+                                                       mesh.normals[idx.z]);
         }
         if (textured) {
             const glm::uvec3 idx = mesh.indices[prim];

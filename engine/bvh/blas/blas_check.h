@@ -15,7 +15,7 @@ inline constexpr uint32_t kMaxBvhDepth = kBvhStackSize - 4;
 // at least one primitive; every binary and 4-wide node is reached exactly once from the root
 // through forward child links, no deeper than kMaxBvhDepth, with finite non-inverted boxes (or, for
 // unused 4-wide slots, the empty box); leaf ranges lie inside the primitives; primIds is a
-// permutation; vertices, normals, uvs and spheres are finite (radii >= 0).
+// permutation; vertices, uvs and spheres are finite (radii >= 0).
 void CheckBlas(const Blas& blas, const std::string& file);
 
 }  // namespace rtrt

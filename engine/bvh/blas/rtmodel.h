@@ -14,8 +14,9 @@
 
 namespace rtrt {
 
-// Version 2 added the uvs section (per-triangle texture coordinates).
-inline constexpr uint32_t kRtModelVersion = 2;
+// Version 2 added the uvs section (per-triangle texture coordinates); version 3 packs the
+// normals (three 32-bit octahedral normals per triangle, packed_normal.h).
+inline constexpr uint32_t kRtModelVersion = 3;
 // Bump when a builder or a mesh loader changes its output for the same input: cached files made
 // before then no longer match their key and are rebuilt.
 inline constexpr uint32_t kRtModelRevision = 1;

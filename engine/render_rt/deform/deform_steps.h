@@ -86,7 +86,7 @@ struct GatherTrianglesStep {
         work.pools.triangles[slot] = {p[idx.x], p[idx.y], p[idx.z]};
         if (mesh.normals) {
             const vec3* n = work.pools.normals + job.vertexOffset;
-            work.pools.triangleNormals[slot] = {n[idx.x], n[idx.y], n[idx.z]};
+            work.pools.triangleNormals[slot] = TriangleNormals::Pack(n[idx.x], n[idx.y], n[idx.z]);
         }
         if (uvs && mesh.uvs)
             work.pools.triangleUvs[slot] = {mesh.uvs[idx.x], mesh.uvs[idx.y], mesh.uvs[idx.z]};
