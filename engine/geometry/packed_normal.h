@@ -1,9 +1,9 @@
 #pragma once
 // Unit normals in 32 bits: the octahedral mapping (Cigolle et al. 2014, "A Survey of Efficient
 // Representations for Independent Unit Vectors", JCGT 3(2)) with two 16-bit signed-normalised
-// components. The encoder tries the four roundings of the two components and keeps the one that
-// decodes closest to the input (the paper's "precise" variant), so that the angle between a
-// normal and its decoding stays below 5e-5 radians.
+// components. The precise encoder tries the four roundings of the two components and keeps the
+// one that decodes closest to the input (the paper's "precise" variant), so that the angle
+// between a normal and its decoding stays below 5e-5 radians; the rounded one stays below 1e-4.
 #include <cmath>
 #include <cstdint>
 
@@ -40,11 +40,13 @@ RT_HD inline vec3 UnpackNormal(uint32_t packed) {
     return v * (1.0f / sqrtf(glm::dot(v, v)));
 }
 
-// N need not be unit length; a zero or non-finite N packs as +z.
-RT_HD inline uint32_t PackNormal(vec3 n) {
-    using namespace packed_normal_detail;
+namespace packed_normal_detail {
+
+// N's point on the octahedron's square, scaled to the snorm16 range; false for a zero or
+// non-finite N.
+RT_HD inline bool OctahedronOf(vec3 n, float& sx, float& sy) {
     const float l1 = fabsf(n.x) + fabsf(n.y) + fabsf(n.z);
-    if (!(l1 > 0.0f) || !(l1 < INFINITY)) return 0;  // (0, 0) decodes to +z
+    if (!(l1 > 0.0f) || !(l1 < INFINITY)) return false;
     float x = n.x / l1, y = n.y / l1;
     if (n.z < 0.0f) {
         const float fx = (1.0f - fabsf(y)) * SignNotZero(x);
@@ -52,18 +54,32 @@ RT_HD inline uint32_t PackNormal(vec3 n) {
         x = fx;
         y = fy;
     }
+    // Comparisons rather than fminf/fmaxf, which are library calls on x86 without -ffast-math.
+    sx = (x < -1.0f ? -1.0f : x > 1.0f ? 1.0f : x) * 32767.0f;
+    sy = (y < -1.0f ? -1.0f : y > 1.0f ? 1.0f : y) * 32767.0f;
+    return true;
+}
+
+RT_HD inline uint32_t Snorm16Pair(int qx, int qy) {
+    return uint32_t(uint16_t(int16_t(qx))) | uint32_t(uint16_t(int16_t(qy))) << 16;
+}
+
+}  // namespace packed_normal_detail
+
+// N need not be unit length; a zero or non-finite N packs as +z. The precise encoder, for BLAS
+// builds.
+RT_HD inline uint32_t PackNormal(vec3 n) {
+    using namespace packed_normal_detail;
+    float sx, sy;
+    if (!OctahedronOf(n, sx, sy)) return 0;  // (0, 0) decodes to +z
     const vec3 unit = n * (1.0f / sqrtf(glm::dot(n, n)));
-    const float sx = fminf(fmaxf(x, -1.0f), 1.0f) * 32767.0f;
-    const float sy = fminf(fmaxf(y, -1.0f), 1.0f) * 32767.0f;
     // Closest by distance, not by dot product: near 1, float dot products of such close
     // directions are all equal.
     uint32_t best = 0;
     float bestDistance = INFINITY;
     for (int k = 0; k < 4; ++k) {
-        const int qx = int((k & 1) ? ceilf(sx) : floorf(sx));
-        const int qy = int((k & 2) ? ceilf(sy) : floorf(sy));
-        const uint32_t packed = uint32_t(uint16_t(int16_t(qx))) | uint32_t(uint16_t(int16_t(qy)))
-                                                                      << 16;
+        const uint32_t packed = Snorm16Pair(int((k & 1) ? ceilf(sx) : floorf(sx)),
+                                            int((k & 2) ? ceilf(sy) : floorf(sy)));
         const vec3 error = UnpackNormal(packed) - unit;
         const float distance = glm::dot(error, error);
         if (distance < bestDistance) {
@@ -72,6 +88,15 @@ RT_HD inline uint32_t PackNormal(vec3 n) {
         }
     }
     return best;
+}
+
+// The same with each component rounded to the nearest step: a quarter of the work, for normals
+// packed every frame (deforming meshes), within 1e-4 radians.
+RT_HD inline uint32_t PackNormalRounded(vec3 n) {
+    using namespace packed_normal_detail;
+    float sx, sy;
+    if (!OctahedronOf(n, sx, sy)) return 0;
+    return Snorm16Pair(int(rintf(sx)), int(rintf(sy)));
 }
 
 }  // namespace rtrt

@@ -33,7 +33,8 @@ class CpuDeformer {
 
     DeformPlan plan_;
     std::vector<DeformMeshView> meshes_;
-    std::vector<vec3> positions_, normals_;
+    std::vector<vec3> positions_;
+    std::vector<uint32_t> normals_;  // packed
     std::vector<Triangle> triangles_;
     std::vector<TriangleNormals> triangleNormals_;
     std::vector<TriangleUvs> triangleUvs_;

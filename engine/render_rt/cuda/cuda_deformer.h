@@ -61,7 +61,8 @@ class CudaDeformer {
     std::vector<std::unique_ptr<MeshArrays>> meshArrays_;
     std::vector<DeformMeshView> meshViews_;
     DeviceBuffer<DeformMeshView> meshes_;
-    DeviceBuffer<vec3> positions_, normals_;
+    DeviceBuffer<vec3> positions_;
+    DeviceBuffer<uint32_t> normals_;  // packed
     DeviceBuffer<Triangle> triangles_;
     DeviceBuffer<TriangleNormals> triangleNormals_;
     DeviceBuffer<TriangleUvs> triangleUvs_;

@@ -26,7 +26,7 @@ struct DeformJob {
 // The deformer's arrays: every deformation's deformed vertices, leaf-ordered triangles and tree.
 struct DeformPools {
     vec3* positions;
-    vec3* normals;
+    uint32_t* normals;  // packed (packed_normal.h) once per vertex, copied to each corner
     Triangle* triangles;
     TriangleNormals* triangleNormals;  // per slot; unused for flat meshes
     TriangleUvs* triangleUvs;          // per slot; unused for untextured meshes
@@ -66,7 +66,7 @@ struct DeformVerticesStep {
         vec3 n;
         const vec3 p = DeformVertex(work.meshes[job.mesh], job.pose, v, &n);
         work.pools.positions[job.vertexOffset + v] = p;
-        work.pools.normals[job.vertexOffset + v] = n;
+        work.pools.normals[job.vertexOffset + v] = PackNormalRounded(n);
     }
 };
 
@@ -85,8 +85,8 @@ struct GatherTrianglesStep {
         const vec3* p = work.pools.positions + job.vertexOffset;
         work.pools.triangles[slot] = {p[idx.x], p[idx.y], p[idx.z]};
         if (mesh.normals) {
-            const vec3* n = work.pools.normals + job.vertexOffset;
-            work.pools.triangleNormals[slot] = TriangleNormals::Pack(n[idx.x], n[idx.y], n[idx.z]);
+            const uint32_t* n = work.pools.normals + job.vertexOffset;
+            work.pools.triangleNormals[slot] = {n[idx.x], n[idx.y], n[idx.z]};
         }
         if (uvs && mesh.uvs)
             work.pools.triangleUvs[slot] = {mesh.uvs[idx.x], mesh.uvs[idx.y], mesh.uvs[idx.z]};
