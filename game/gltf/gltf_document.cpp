@@ -27,9 +27,10 @@ std::string OneLine(std::string text) {
 GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     const GltfFileBytes checked = ReadCheckedGltf(file_);
     const std::string dir = std::filesystem::path(file_).parent_path().string();
-    const DracoDecoded draco = DecodeDracoPrimitives(file_, checked.bytes, checked.binary, dir);
-    const std::string& bytes = draco.bytes;
-    const bool binary = draco.binary;
+    const std::optional<DracoDecoded> draco =
+        DecodeDracoPrimitives(file_, checked.bytes, checked.binary, dir);
+    const std::string& bytes = draco ? draco->glb : checked.bytes;
+    const bool binary = draco ? true : checked.binary;
     tinygltf::TinyGLTF loader;
     GltfImageFailure imageFailure;
     imageFailure.used = &checked.imageUsed;
@@ -46,8 +47,8 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     if (imageFailure.index >= 0)
         Fail(JsonIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
     if (!ok || !err.empty()) Fail("", OneLine(err));
-    if (draco.primitives > 0)
-        Warn("draco", std::to_string(draco.primitives) +
+    if (draco)
+        Warn("draco", std::to_string(draco->primitives) +
                           " Draco-compressed primitive(s) decoded with libdraco "
                           "(KHR_draco_mesh_compression)");
     for (int index : imageFailure.skipped)

@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "engine/core/error.h"
@@ -374,13 +375,17 @@ std::string StreamBytes(const std::string& file, const Json& root, const Json& e
 
 bool DracoAvailable() { return RTRT_WITH_DRACO != 0; }
 
-DracoDecoded DecodeDracoPrimitives(const std::string& file, const std::string& bytes, bool binary,
-                                   const std::string& dir) {
-    DracoDecoded out{bytes, binary, 0};
+std::optional<DracoDecoded> DecodeDracoPrimitives(const std::string& file, const std::string& bytes,
+                                                  bool binary, const std::string& dir) {
+    const std::string_view json =
+        binary ? std::string_view(bytes).substr(20, ReadU32(bytes, 12)) : std::string_view(bytes);
+    if (json.find(kDraco) == std::string_view::npos) return std::nullopt;
+    DracoDecoded out;
     std::optional<GlbChunks> glb;
     if (binary) glb = SplitGlb(bytes);
     Json root = ParseJson(binary ? glb->json : bytes, file, DuplicateKeys::kLastWins);
-    if (!root.is_object() || !root.contains("meshes") || !root["meshes"].is_array()) return out;
+    if (!root.is_object() || !root.contains("meshes") || !root["meshes"].is_array())
+        return std::nullopt;
     // The decoded data goes into buffer 0, the BIN chunk of the GLB written at the end: after a
     // GLB's own BIN data, or as a new first buffer (every view's buffer shifting by one).
     const bool keepsBin = glb && glb->hasBin && root.contains("buffers") &&
@@ -417,7 +422,7 @@ DracoDecoded DecodeDracoPrimitives(const std::string& file, const std::string& b
             ++out.primitives;
         }
     }
-    if (out.primitives == 0) return out;
+    if (out.primitives == 0) return std::nullopt;
     ForgetExtension(root);
     if (!keepsBin) {
         // The decoded views already name buffer 0; the file's own views shift to make room.
@@ -430,8 +435,7 @@ DracoDecoded DecodeDracoPrimitives(const std::string& file, const std::string& b
         root["buffers"].insert(root["buffers"].begin(), Json::object());
     }
     root["buffers"][0]["byteLength"] = bin.size();
-    out.bytes = MakeGlb(root.dump(), std::move(bin));
-    out.binary = true;
+    out.glb = MakeGlb(root.dump(), std::move(bin));
     return out;
 }
 

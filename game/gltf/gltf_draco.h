@@ -2,6 +2,7 @@
 // Draco-compressed glTF primitives (KHR_draco_mesh_compression), decoded with Debian's libdraco
 // before tinygltf reads the file: tinygltf 2.7 knows nothing of the extension and refuses the
 // accessors it leaves without a bufferView.
+#include <optional>
 #include <string>
 
 namespace rtrt {
@@ -10,9 +11,8 @@ namespace rtrt {
 bool DracoAvailable();
 
 struct DracoDecoded {
-    std::string bytes;    // the file's bytes, or a GLB holding the decoded data
-    bool binary = false;  // whether BYTES is a GLB
-    int primitives = 0;   // how many Draco primitives were decoded
+    std::string glb;     // the file as a GLB holding the decoded data
+    int primitives = 0;  // how many Draco primitives were decoded
 };
 
 // Decodes every Draco primitive of a glTF file (BYTES: its whole text, or a GLB when BINARY)
@@ -23,7 +23,9 @@ struct DracoDecoded {
 // naming the primitive's extension (or the buffer view) and why: no such view, data past its
 // buffer, a stream libdraco cannot decode, counts or attributes that do not match the accessors.
 // Without libdraco, a file that requires the extension is refused with what to do instead.
-DracoDecoded DecodeDracoPrimitives(const std::string& file, const std::string& bytes, bool binary,
-                                   const std::string& dir);
+// Nothing (no copy, no second parse) for a file whose JSON never names the extension, or when no
+// primitive needed decoding.
+std::optional<DracoDecoded> DecodeDracoPrimitives(const std::string& file, const std::string& bytes,
+                                                  bool binary, const std::string& dir);
 
 }  // namespace rtrt
