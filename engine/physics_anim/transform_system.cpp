@@ -49,6 +49,29 @@ void TransformSystem::Update(Registry& registry) {
         registry.ChangedCount<Parent>() > 0 || registry.Count<Parent>() != childOf_.size();
     if (!linksChanged && registry.ChangedCount<LocalTransform>() == 0) return;
 
+    if (!linksChanged && SameSeedsAsLastPass(registry)) {
+        // The same entities moved under the same links: the set and its order are last pass's.
+        ++stats_.repeated;
+    } else {
+        CollectDirty(registry, linksChanged);
+    }
+    stats_.lastCyclic = cyclic_;
+    ComputeAndWrite(registry);
+    registry.ClearChanged<LocalTransform>();
+    registry.ClearChanged<Parent>();
+}
+
+bool TransformSystem::SameSeedsAsLastPass(const Registry& registry) const {
+    if (registry.ChangedCount<LocalTransform>() != seedCount_ || seedCount_ == 0) return false;
+    bool same = true;
+    registry.EachChanged<LocalTransform>([&](Entity e, const LocalTransform&) {
+        const uint32_t i = e.index < slot_.size() ? slot_[e.index] : UINT32_MAX;
+        same = same && i < dirty_.size() && dirty_[i].entity == e && seeded_[i];
+    });
+    return same;
+}
+
+void TransformSystem::CollectDirty(Registry& registry, bool linksChanged) {
     if (++stamp_ == 0) {  // the stamps wrapped: forget every old one
         std::fill(visited_.begin(), visited_.end(), 0u);
         stamp_ = 1;
@@ -56,7 +79,11 @@ void TransformSystem::Update(Registry& registry) {
     pending_.clear();
     set_.clear();
     if (linksChanged) RebuildLinks(registry);
-    registry.EachChanged<LocalTransform>([&](Entity e, LocalTransform&) { Seed(e); });
+    localSeeds_.clear();
+    registry.EachChanged<LocalTransform>([&](Entity e, LocalTransform&) {
+        localSeeds_.push_back(e);
+        Seed(e);
+    });
     registry.EachChanged<Parent>([&](Entity e, Parent&) { Seed(e); });
     CollectDescendants();
 
@@ -88,11 +115,21 @@ void TransformSystem::Update(Registry& registry) {
         }
     }
     for (uint32_t i = 0; i < dirty_.size(); ++i) slot_[dirty_[i].entity.index] = i;
-    stats_.lastCyclic = cyclic;
+    cyclic_ = cyclic;
+    // Which entries moved by their own pose: the next pass may find the same seeds.
+    seeded_.assign(dirty_.size(), 0);
+    for (const Entity e : localSeeds_) seeded_[slot_[e.index]] = 1;
+    seedCount_ = localSeeds_.size();
+}
 
+void TransformSystem::ComputeAndWrite(Registry& registry) {
     // Each depth's matrices in parallel (they read only shallower results and the registry),
-    // then the writes and marks in order, on this thread.
+    // written where the entity has its WorldTransform already (distinct components, and no
+    // parent outside the set is written); then the marks and new components in order, on this
+    // thread.
     worlds_.resize(dirty_.size());
+    written_.resize(dirty_.size());
+    Registry& writer = registry;
     const Registry& reader = registry;
     for (size_t begin = 0; begin < dirty_.size();) {
         size_t end = begin;
@@ -109,13 +146,15 @@ void TransformSystem::Update(Registry& registry) {
             }
             const LocalTransform* local = reader.Get<LocalTransform>(d.entity);
             worlds_[i] = local != nullptr ? parentWorld * ToMatrix(*local) : parentWorld;
+            WorldTransform* world = writer.Get<WorldTransform>(d.entity);
+            if (world != nullptr) world->objectToWorld = worlds_[i];
+            written_[i] = world != nullptr;
         });
         begin = end;
     }
     for (size_t i = 0; i < dirty_.size(); ++i) {
         const Dirty& d = dirty_[i];
-        if (WorldTransform* world = registry.Get<WorldTransform>(d.entity)) {
-            world->objectToWorld = worlds_[i];
+        if (written_[i]) {
             registry.MarkChanged<WorldTransform>(d.entity);
         } else {
             registry.Add(d.entity, WorldTransform{worlds_[i]});  // adding marks it changed
@@ -123,8 +162,6 @@ void TransformSystem::Update(Registry& registry) {
     }
     stats_.lastRecomputed = static_cast<uint32_t>(dirty_.size());
     stats_.recomputed += dirty_.size();
-    registry.ClearChanged<LocalTransform>();
-    registry.ClearChanged<Parent>();
 }
 
 void TransformSystem::RebuildLinks(const Registry& registry) {

@@ -22,6 +22,7 @@ struct TransformStats {
     uint64_t recomputed = 0;      // world transforms written since construction
     uint32_t lastRecomputed = 0;  // in the last Update
     uint32_t lastCyclic = 0;      // entities found in or under a parent cycle in the last Update
+    uint64_t repeated = 0;        // Updates that reused the last pass's set and order
 };
 
 // Recomputes WorldTransform = parent's WorldTransform * ToMatrix(LocalTransform) for the entities
@@ -34,6 +35,10 @@ struct TransformStats {
 // An entity whose ancestor chain loops is treated as a root (and counted in lastCyclic). A child
 // whose parent was destroyed keeps its world transform until its own pose changes, then it is
 // treated as a root. A dirty entity without a LocalTransform uses the identity.
+//
+// An animated scene moves the same entities every frame: when the links did not change and the
+// marked LocalTransforms are exactly the last pass's, the last pass's set and order are reused
+// (no search for descendants, no sort).
 class TransformSystem {
   public:
     void Update(ecs::Registry& registry);
@@ -46,6 +51,12 @@ class TransformSystem {
         ecs::Entity parent;  // null for roots and broken links
     };
 
+    // Whether the marked LocalTransforms are exactly the ones that seeded the last pass.
+    bool SameSeedsAsLastPass(const ecs::Registry& registry) const;
+    // The entities to recompute (the seeds and their descendants) into dirty_, parents first.
+    void CollectDirty(ecs::Registry& registry, bool linksChanged);
+    // Each dirty entity's world matrix, written and marked changed.
+    void ComputeAndWrite(ecs::Registry& registry);
     // Rebuilds the child lists from the Parent pool and seeds every child whose link changed.
     void RebuildLinks(const ecs::Registry& registry);
     void Seed(ecs::Entity e);
@@ -69,7 +80,12 @@ class TransformSystem {
     std::vector<ecs::Entity> set_;
     std::vector<uint64_t> order_;  // (depth << 32 | entity index) of the set, sorted
     std::vector<Dirty> dirty_;
+    std::vector<uint8_t> seeded_;  // parallel to dirty_: seeded by its own LocalTransform
+    std::vector<ecs::Entity> localSeeds_;
+    size_t seedCount_ = 0;           // entries of seeded_ set
+    uint32_t cyclic_ = 0;            // entries of dirty_ in or under a parent cycle
     std::vector<glm::mat4> worlds_;  // parallel to dirty_
+    std::vector<uint8_t> written_;   // parallel to dirty_: its WorldTransform written in place
     TransformStats stats_;
 };
 

@@ -214,5 +214,68 @@ TEST(TransformSystemTest, WorldTransformsAddedDuringAPhaseAppearAtItsEnd) {
     EXPECT_EQ(registry.ChangedCount<WorldTransform>(), 1u);
 }
 
+// world = parent's world * local, by recursion: the same float operations in the same order.
+glm::mat4 ExpectedWorld(const Registry& registry, Entity e) {
+    const Parent* link = registry.Get<Parent>(e);
+    const glm::mat4 parent = link ? ExpectedWorld(registry, link->entity) : glm::mat4(1.0f);
+    return parent * ToMatrix(*registry.Get<LocalTransform>(e));
+}
+
+void Turn(Registry& registry, Entity e, float angle) {
+    registry.Get<LocalTransform>(e)->rotation = glm::angleAxis(angle, vec3(0.0f, 0.0f, 1.0f));
+    registry.MarkChanged<LocalTransform>(e);
+}
+
+// An animated crowd moves the same joints every frame: the system reuses its last order, and
+// falls back to a full pass as soon as the set of moved entities is another one, also when a
+// destroyed entity's index is taken by a new one.
+TEST(TransformSystemTest, RepeatedMovesReuseTheOrderAndStayExact) {
+    Registry registry;
+    std::vector<Entity> joints;
+    for (int tree = 0; tree < 40; ++tree) {
+        Entity parent = MakeNode(registry, vec3(float(tree), 0.0f, 0.0f));
+        for (int depth = 0; depth < 5; ++depth) {
+            const Entity joint = MakeNode(registry, vec3(0.0f, 0.5f, 0.1f * float(depth)));
+            ASSERT_TRUE(SetParent(registry, joint, parent));
+            joints.push_back(joint);
+            parent = joint;
+        }
+    }
+    TransformSystem system;
+    system.Update(registry);
+    auto expectExact = [&] {
+        registry.View<const WorldTransform>().Each([&](Entity e, const WorldTransform& w) {
+            ASSERT_EQ(w.objectToWorld, ExpectedWorld(registry, e)) << "entity " << e.index;
+        });
+    };
+    for (int frame = 1; frame <= 3; ++frame) {
+        for (size_t j = 0; j < joints.size(); ++j)
+            Turn(registry, joints[j], 0.1f * float(frame + j));
+        system.Update(registry);
+        expectExact();
+        EXPECT_EQ(system.Stats().repeated, uint64_t(frame - 1));  // the first move is a full pass
+        EXPECT_EQ(system.Stats().lastRecomputed, joints.size());
+    }
+    // One joint fewer moves, one root more: another set, a full pass.
+    for (size_t j = 1; j < joints.size(); ++j) Turn(registry, joints[j], 0.7f);
+    registry.Get<LocalTransform>(Entity{0, 0})->translation = vec3(0.0f, 3.0f, 0.0f);
+    registry.MarkChanged<LocalTransform>(Entity{0, 0});
+    system.Update(registry);
+    expectExact();
+    EXPECT_EQ(system.Stats().repeated, 2u);
+    // A leaf joint destroyed and its index reused by a new root in the same frame; as many
+    // entities move as before, but not the same ones.
+    const Entity leaf = joints.back();
+    joints.pop_back();
+    ASSERT_TRUE(registry.Destroy(leaf));
+    const Entity fresh = MakeNode(registry, vec3(7.0f, 7.0f, 7.0f));
+    ASSERT_EQ(fresh.index, leaf.index);
+    for (size_t j = 1; j < joints.size(); ++j) Turn(registry, joints[j], 0.9f);
+    registry.MarkChanged<LocalTransform>(Entity{0, 0});
+    system.Update(registry);
+    expectExact();
+    EXPECT_EQ(system.Stats().repeated, 2u);
+}
+
 }  // namespace
 }  // namespace rtrt::physics
