@@ -145,6 +145,40 @@ TEST(GpuVsCpu, DeformingDragonRebuiltEveryFrame) {
 // A crowd of 1,000 skinned walkers (assets/models/walker.gltf), each in its own phase.
 TEST(GpuVsCpu, DemoCrowdPlayed) { ExpectPlayedGpuMatchesCpu("demo_crowd.json", 20); }
 
+// Pipelined play (the window's loop, `bench frame`'s pipelined pass): the host advances the world
+// while earlier frames are still queued on the device. Every frame must be what one-at-a-time
+// play makes of it, bit for bit: nothing the device reads may change under it.
+TEST(GpuFrameLoop, PipelinedFramesEqualOneAtATime) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    const LoadedScene loaded = LoadSceneFile(test::SourcePath("assets/scenes/demo_crowd.json"));
+    RenderSettings s;
+    s.width = 320;
+    s.height = 180;
+    s.maxDepth = loaded.scene.maxDepth;
+    World serialWorld(loaded);
+    World pipelinedWorld(loaded);
+    const std::unique_ptr<FrameRenderer> serial =
+        MakeFrameRenderer(Backend::kCuda, serialWorld.Scene());
+    const std::unique_ptr<FrameRenderer> pipelined =
+        MakeFrameRenderer(Backend::kCuda, pipelinedWorld.Scene());
+    for (int f = 1; f <= 24; ++f) {
+        serialWorld.Advance(1.0f / 60.0f);
+        serial->Update(serialWorld.Scene(), serialWorld.Changes());
+        pipelinedWorld.Advance(1.0f / 60.0f);
+        pipelined->Update(pipelinedWorld.Scene(), pipelinedWorld.Changes());
+        const bool compare = f % 8 == 0;  // the other frames stay queued while the host runs on
+        Image a, b;
+        serial->Trace(serialWorld.Scene(), s, compare ? &a : nullptr);
+        serial->Finish();
+        pipelined->Trace(pipelinedWorld.Scene(), s, compare ? &b : nullptr);
+        if (!compare) continue;
+        SCOPED_TRACE("frame " + std::to_string(f));
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        EXPECT_EQ(0, std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(vec3)));
+    }
+}
+
 TEST(GpuVsCpu, DemoGlassPlayed) {
     RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
     ExpectPlayedGpuMatchesCpu("demo_glass.json", 30);
