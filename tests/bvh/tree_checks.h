@@ -13,7 +13,6 @@
 #include "engine/bvh/blas/blas.h"
 #include "engine/bvh/traversal/bvh4_traversal.h"
 #include "engine/bvh/traversal/traversal.h"
-#include "engine/bvh/traversal/wide_traversal.h"
 #include "engine/geometry/sphere_intersect.h"
 #include "engine/geometry/triangle_intersect.h"
 
@@ -88,28 +87,6 @@ inline Found Intersect4(const Blas& blas, const RaySetup& r, float tMax) {
             return true;
         });
     return f;
-}
-
-// The GPU's 4-wide traversal (wide_traversal.h), the same portable code run here.
-inline Found IntersectWide(const Blas& blas, const RaySetup& r, float tMax) {
-    Found f;
-    f.hit = TraverseWide<Query::kIntersect>(
-        blas.nodes4.data(), r, tMax, [&](uint32_t slot, float& tBest) {
-            TriangleHit h;
-            if (!IntersectTriangle(blas.triangles[slot], r, tBest, &h)) return false;
-            tBest = f.t = h.t;
-            f.slot = slot;
-            return true;
-        });
-    return f;
-}
-
-inline bool OccludedWide(const Blas& blas, const RaySetup& r, float tMax) {
-    return TraverseWide<Query::kOccluded>(
-        blas.nodes4.data(), r, tMax, [&](uint32_t slot, float tLimit) {
-            TriangleHit h;
-            return IntersectTriangle(blas.triangles[slot], r, tLimit, &h);
-        });
 }
 
 inline bool Occluded4(const Blas& blas, const RaySetup& r, float tMax) {
@@ -199,19 +176,6 @@ inline void ExpectMatchesBruteForce(const Blas& blas, uint32_t seed) {
         if (Occluded4(blas, r, tLimit) != expected.hit && ++mismatches <= 5)
             ADD_FAILURE() << "ray " << i
                           << ": the 4-wide occlusion query disagrees with brute force";
-        const Found portable = IntersectWide(blas, r, ray.tMax);
-        const bool portableSame =
-            portable.hit == expected.hit &&
-            (!portable.hit ||
-             (portable.t == expected.t &&
-              (portable.slot == expected.slot || HitsAt(blas, portable.slot, r, portable.t))));
-        if (!portableSame && ++mismatches <= 5)
-            ADD_FAILURE() << "ray " << i << ": portable 4-wide traversal " << portable.hit
-                          << " t=" << portable.t << ", brute force " << expected.hit
-                          << " t=" << expected.t;
-        if (OccludedWide(blas, r, tLimit) != expected.hit && ++mismatches <= 5)
-            ADD_FAILURE() << "ray " << i
-                          << ": the portable 4-wide occlusion query disagrees with brute force";
     }
     EXPECT_EQ(mismatches, 0u);
     EXPECT_GT(hits, kRayCount / 4) << "too few hits for the comparison to mean much";

@@ -25,7 +25,7 @@ size_t Blas::Bytes() const {
            tangents.size() * sizeof(TriangleTangents);
 }
 
-size_t Blas::DeviceBytes() const { return Bytes(); }
+size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4Node); }
 
 DeformableMesh RestMeshOfBlas(const Blas& blas) {
     DeformableMesh mesh;

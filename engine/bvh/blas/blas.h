@@ -16,7 +16,7 @@ namespace rtrt {
 // What the tracer needs of a BLAS: plain pointers, valid in host or device memory.
 struct BlasView {
     const BvhNode* nodes;
-    const Bvh4Node* nodes4;          // the 4-wide collapse of nodes, or null (refit trees)
+    const Bvh4Node* nodes4;          // CPU only: the 4-wide collapse of nodes, or null
     const Triangle* triangles;       // kTriangles: leaf order
     const TriangleNormals* normals;  // kTriangles: leaf order, or null for flat shading
     const Sphere* spheres;           // kSpheres: leaf order
@@ -41,8 +41,8 @@ struct Blas {
     uint32_t PrimCount() const { return uint32_t(primIds.size()); }
     BlasView View() const;
     size_t Bytes() const;        // what the CPU tracer keeps of it (both node layouts too)
-    size_t DeviceBytes() const;  // what the GPU holds: the same (binary nodes for the
-                                 // heatmap's counts and the many-instance loop)
+    size_t DeviceBytes() const;  // what the GPU holds: binary nodes, primitives, normals, uvs,
+                                 // tangents
 };
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options = {});

@@ -2,21 +2,18 @@
 // Two-level traversal: the TLAS over instances, then each reached instance's BLAS in object
 // space. Object-space directions are not renormalised, so t means the same in both spaces.
 //
-// This is the nested form: a BLAS traversal in each reached TLAS leaf, through the triangle
-// BLASes' 4-wide collapse where they have one (SSE on the CPU, wide_traversal.h on the GPU). The
-// GPU uses it for scenes of few instances, where the ray spends its time in one tight BLAS loop.
-// Scenes of many instances run the single loop of two_level_traversal.h on the GPU (see
-// kFeatureManyInstances); both forms find the same hits.
+// This is the nested form: a BLAS traversal in each reached TLAS leaf. The CPU uses it with the
+// triangle BLASes' 4-wide SSE collapse; the GPU uses it for scenes of few instances, where the
+// ray spends its time in one tight BLAS loop. Scenes of many instances run the single loop of
+// two_level_traversal.h on the GPU (see kFeatureManyInstances); both forms find the same hits.
 #include "engine/bvh/traversal/two_level_traversal.h"
 #include "engine/geometry/primitive_tests.h"
 
-// Triangle BLASes are traversed through their 4-wide collapse: with SSE on the CPU, in portable
-// code on the GPU. The heatmap's node counts use the binary BVH.
+// The CPU back end traverses triangle BLASes through their 4-wide collapse (SSE); the GPU and the
+// heatmap's node counts use the binary BVH.
 #if !defined(__CUDACC__)
 #include "engine/bvh/traversal/bvh4_traversal.h"
 #define RTRT_HOST_WIDE_BVH 1
-#else
-#include "engine/bvh/traversal/wide_traversal.h"
 #endif
 
 namespace rtrt {
@@ -42,9 +39,6 @@ RT_HD inline bool IntersectBlas(const BlasView& blas, const Instance& inst, cons
 #if defined(RTRT_HOST_WIDE_BVH)
         if (blas.nodes4 && !stats)
             return Traverse4<Query::kIntersect>(blas.nodes4, setup, tMax, intersect);
-#else
-        if (blas.nodes4 && !stats)
-            return TraverseWide<Query::kIntersect>(blas.nodes4, setup, tMax, intersect);
 #endif
         return Traverse<Query::kIntersect>(blas.nodes, setup, tMax, intersect, stats);
     }
@@ -77,9 +71,6 @@ RT_HD inline bool OccludedBlas(const BlasView& blas, const Instance& inst, const
 #if defined(RTRT_HOST_WIDE_BVH)
         if (blas.nodes4 && !stats)
             return Traverse4<Query::kOccluded>(blas.nodes4, setup, tMax, occludes);
-#else
-        if (blas.nodes4 && !stats)
-            return TraverseWide<Query::kOccluded>(blas.nodes4, setup, tMax, occludes);
 #endif
         return Traverse<Query::kOccluded>(blas.nodes, setup, tMax, occludes, stats);
     }

@@ -14,7 +14,6 @@ namespace rtrt {
 
 struct DeviceScene {
     std::vector<DeviceBuffer<BvhNode>> blasNodes;
-    std::vector<DeviceBuffer<Bvh4Node>> blasNodes4;
     std::vector<DeviceBuffer<Triangle>> triangles;
     std::vector<DeviceBuffer<TriangleNormals>> normals;
     std::vector<DeviceBuffer<Sphere>> spheres;
@@ -48,7 +47,6 @@ struct DeviceScene {
                 continue;
             }
             blasNodes.emplace_back(std::span<const BvhNode>(blas->nodes));
-            blasNodes4.emplace_back(std::span<const Bvh4Node>(blas->nodes4));
             triangles.emplace_back(std::span<const Triangle>(blas->triangles));
             normals.emplace_back(std::span<const TriangleNormals>(blas->normals));
             spheres.emplace_back(std::span<const Sphere>(blas->spheres));
@@ -56,7 +54,7 @@ struct DeviceScene {
             tangents.emplace_back(std::span<const TriangleTangents>(blas->tangents));
             BlasView v = blas->View();
             v.nodes = blasNodes.back().Data();
-            v.nodes4 = blas->nodes4.empty() ? nullptr : blasNodes4.back().Data();
+            v.nodes4 = nullptr;  // the GPU traverses the binary BVH
             v.triangles = triangles.back().Data();
             v.normals = blas->normals.empty() ? nullptr : normals.back().Data();
             v.spheres = spheres.back().Data();
