@@ -1,5 +1,6 @@
 #include "game/app/interactive_app.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "game/app/controls.h"
 #include "game/app/cuda_gl_frame.h"
 #include "game/app/frame_display.h"
+#include "game/app/gl.h"
 #include "game/app/input_script.h"
 #include "game/app/overlay.h"
 #include "game/app/spawn_palette.h"
@@ -75,6 +77,8 @@ class App {
             Stopwatch displayTimer;
             const ivec2 fb = window_.FramebufferSize();
             display_.Draw(fb.x, fb.y);
+            FinishStage();
+            model_.times.draw = displayTimer.Milliseconds();
             // Screenshots and recordings read back what the window shows, before the overlay.
             if (!effects.screenshots.empty() || screenshotKey_ || !o_.record.empty()) {
                 const Image shown = FrameDisplay::ReadBack(fb.x, fb.y);
@@ -98,15 +102,23 @@ class App {
                     WriteImage(o_.record + name, shown);
                 }
             }
+            Stopwatch stageTimer;
             overlay_.Draw(model_);
+            FinishStage();
+            model_.times.overlay = stageTimer.Milliseconds();
+            stageTimer.Restart();
             window_.SwapBuffers();
+            FinishStage();
+            model_.times.swap = stageTimer.Milliseconds();
             model_.times.display = displayTimer.Milliseconds();
             model_.times.frame = frameTimer.Milliseconds();
+            if (frame_ >= kUntimedFrames) timed_.push_back(model_.times);
             model_.frameMs.push_back(float(model_.times.frame));
             if (model_.frameMs.size() > OverlayModel::kHistory) model_.frameMs.pop_front();
         }
         std::printf("rtrt: %d frames, %zu instances at the end, display: %s\n", frame_,
                     world_->Scene().instances.size(), model_.display.c_str());
+        PrintStageMedians();
         if (video_) {
             video_->Finish();
             std::printf("rtrt: recorded %d frames to %s\n", video_->Frames(), o_.record.c_str());
@@ -115,6 +127,30 @@ class App {
     }
 
   private:
+    void FinishStage() const {
+        if (o_.finishStages) glFinish();
+    }
+
+    // Medians of the timed frames' stages: where a windowed frame's time goes.
+    void PrintStageMedians() const {
+        if (timed_.empty()) return;
+        auto median = [&](double StageTimes::*stage) {
+            std::vector<double> v;
+            for (const StageTimes& t : timed_) v.push_back(t.*stage);
+            std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+            return v[v.size() / 2];
+        };
+        std::printf(
+            "rtrt: medians of %zu frames, ms: frame %.3f | simulate %.3f extract %.3f | render "
+            "deform %.3f BLAS %.3f upload %.3f TLAS %.3f trace %.3f | host present %.3f draw "
+            "%.3f overlay %.3f swap %.3f\n",
+            timed_.size(), median(&StageTimes::frame), median(&StageTimes::simulate),
+            median(&StageTimes::extract), median(&StageTimes::deform), median(&StageTimes::blas),
+            median(&StageTimes::upload), median(&StageTimes::tlas), median(&StageTimes::trace),
+            median(&StageTimes::present), median(&StageTimes::draw), median(&StageTimes::overlay),
+            median(&StageTimes::swap));
+    }
+
     void LoadScene(size_t index) {
         sceneIndex_ = index;
         renderer_.reset();
@@ -389,6 +425,7 @@ class App {
             s.view == ViewMode::kShaded
                 ? OutputTransform{model_.exposureEv, ToneMap(model_.toneMap), model_.srgb ? 1u : 0u}
                 : kDisplayValues;
+        Stopwatch presentTimer;
         if (viaHost) {
             shown_ = FinishView(raw_, s.view);
             display_.Upload(shown_, output);
@@ -397,6 +434,8 @@ class App {
             interop_.Present(renderer_->DeviceFrame(), s.width, s.height, output);
             model_.display = "CUDA-GL interop";
         }
+        FinishStage();
+        model_.times.present = presentTimer.Milliseconds();
         model_.backend = gpu ? "CUDA" : "CPU";
         model_.instances = scene.instances.size();
         model_.triangles = scene.TriangleCount();
@@ -417,6 +456,10 @@ class App {
     CameraController camera_;
     bool cameraTaken_ = false;
     OverlayModel model_;
+    // Stage times of the frames after the first kUntimedFrames (start-up, first uploads), for
+    // the medians printed at the end.
+    static constexpr int kUntimedFrames = 30;
+    std::vector<StageTimes> timed_;
     Image raw_, shown_;
     ecs::Entity selected_;
     float grabDistance_ = 0.0f;

@@ -13,6 +13,9 @@ struct WindowOptions {
     std::string backend = "auto";     // auto (CUDA when usable), cpu, cuda
     uint32_t width = 1280, height = 720;
     bool vsync = true;
+    // Waits for the GPU (glFinish) after each display stage, so that the stage times printed at
+    // the end are each stage's own, GPU work included, rather than wherever the driver blocks.
+    bool finishStages = false;
     std::string record;  // a video (.mp4...), or a folder for each frame shown as frame_NNNNN.png
     std::string script;  // scripted input (input_script.h), for tests
     int frames = 0;      // stop after this many frames (0: when the window closes)

@@ -60,6 +60,8 @@ void Overlay::Draw(OverlayModel& m) {
                         m.times.blas, m.times.deformed, m.times.blasRebuilt);
         ImGui::Text("TLAS %.3f  trace %.3f  display %.3f ms", m.times.tlas, m.times.trace,
                     m.times.display);
+        ImGui::Text("present %.3f  draw %.3f  overlay %.3f  swap %.3f ms", m.times.present,
+                    m.times.draw, m.times.overlay, m.times.swap);
         ImGui::Text("instances %llu  triangles %llu", (unsigned long long)m.instances,
                     (unsigned long long)m.triangles);
         ImGui::Text("rays/frame %.2f M  TLAS nodes %llu", double(m.rays) * 1e-6,

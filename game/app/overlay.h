@@ -12,6 +12,11 @@ namespace rtrt {
 struct StageTimes {
     double simulate = 0, extract = 0, deform = 0, blas = 0, upload = 0, tlas = 0, trace = 0,
            display = 0, frame = 0;
+    // The host's time in the display path's parts (display = draw + overlay + swap): the frame
+    // into the display texture (CUDA-GL interop or a host upload), the texture drawn, the
+    // overlay drawn, and the buffer swap (where the driver makes the host wait for the GPU and
+    // the X server when it is behind).
+    double present = 0, draw = 0, overlay = 0, swap = 0;
     uint32_t deformed = 0, blasRebuilt = 0;  // deforming BLASes updated, of them rebuilt
 };
 

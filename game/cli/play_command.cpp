@@ -36,6 +36,7 @@ struct PlayOptions {
     std::string manifest;  // headless: a line per finished frame, with its checksum
     bool headless = false;
     bool noVsync = false;
+    bool finishStages = false;
     std::string frames;  // N, or A:B (headless)
     uint32_t spp = 1;
     double fps = 60.0;
@@ -93,6 +94,7 @@ void RunWindowed(const PlayOptions& o) {
     }
     for (const std::string& scene : o.scenes) LoadSceneFile(scene);
     w.vsync = !o.noVsync;
+    w.finishStages = o.finishStages;
     w.record = o.record;
     if (IsVideoPath(o.record)) CheckVideoPath(o.record);
     w.script = o.script;
@@ -209,6 +211,9 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
                     "Window: scripted input, for tests (see game/app/input_script.h)")
         ->check(CLI::ExistingFile);
     cmd->add_flag("--no-vsync", options->noVsync, "Window: start with vsync off (V toggles it)");
+    cmd->add_flag("--finish-stages", options->finishStages,
+                  "Window: wait for the GPU after each display stage, so that the stage medians "
+                  "printed at the end are each stage's own cost (slower; for profiling)");
     cmd->add_option("--fps", options->fps,
                     "Frames per second of scene time (the fixed step is 1/fps)")
         ->check(CLI::Range(1.0, 1000.0))
