@@ -4,10 +4,9 @@
 // trace (CUDA events), or on the CPU the TLAS and the trace. Each scene is played twice:
 //   - one frame at a time: the frame time is the wall clock from the start of the simulation to
 //     the finished image on the device (a frame's latency), and the stages are timed;
-//   - pipelined, as the window plays (its loop queues a frame and goes on to simulate the next
-//     without waiting for it): the host simulates and extracts frame N+1 while the device
-//     still deforms and traces frame N (Trace returns with the frame in flight; the frame
-//     renderer keeps at most two queued). The frame time is then the interval between frames
+//   - pipelined, as a game loop overlaps them: the host simulates and extracts frame N+1 while
+//     the device still deforms and traces frame N (Trace returns with the frame in flight; the
+//     frame renderer keeps at most two queued). The frame time is then the interval between frames
 //     in steady state, what a player sees as the frame rate.
 #include <algorithm>
 #include <cstdio>
@@ -136,7 +135,7 @@ void RunFrameBench(const FrameBenchOptions& o) {
         "simulation and extraction and the whole frame by the CPU clock (frame_ms: one frame at "
         "a time, from the start of its simulation until its image is finished in device memory; "
         "pipelined_frame_ms: the interval between frames when the host simulates frame N+1 while "
-        "the device works on frame N, as the window plays)";
+        "the device works on frame N)";
     std::printf("rtrt bench frame (%s back end), medians over %d frames, ms\n", o.backend.c_str(),
                 o.frames);
     std::printf("%-26s %9s %9s %8s %9s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene", "size",
