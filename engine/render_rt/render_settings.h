@@ -17,6 +17,10 @@ struct RenderSettings {
     ViewMode view = ViewMode::kShaded;
     uint32_t enabledFeatures = kAllFeatures;  // a feature runs only if the scene has it too
     uint32_t samplesPerPixel = 1;  // shaded view; a square (1, 4, 9...), see pixel_sample.h
+    // CUDA: the frame's rows split into this many bands, each traced on its own stream, the
+    // shares following each band's last trace time (split/frame_split.h): the split of several
+    // GPUs, on one. The image is the same for any count. The CPU back end ignores it.
+    uint32_t traceBands = 1;
 };
 
 struct RenderStats {

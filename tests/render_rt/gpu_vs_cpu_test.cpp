@@ -145,8 +145,44 @@ TEST(GpuVsCpu, DeformingDragonRebuiltEveryFrame) {
 // A crowd of 1,000 skinned walkers (assets/models/walker.gltf), each in its own phase.
 TEST(GpuVsCpu, DemoCrowdPlayed) { ExpectPlayedGpuMatchesCpu("demo_crowd.json", 20); }
 
-// Pipelined play (the window's loop, `bench frame`'s pipelined pass): the host advances the world
-// while earlier frames are still queued on the device. Every frame must be what one-at-a-time
+// The frame split over several CUDA streams of one GPU (issue 17's split, RenderSettings::
+// traceBands): every frame equals the unsplit one bit for bit, whatever shares the bands' measured
+// times give them (frame_split_test.cpp tests the shares).
+TEST(GpuFrameLoop, BandedFramesEqualWholeFrames) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    const LoadedScene loaded = LoadSceneFile(test::SourcePath("assets/scenes/demo_crowd.json"));
+    RenderSettings whole;
+    whole.width = 320;
+    whole.height = 181;  // not a multiple of the bands' granule
+    whole.maxDepth = loaded.scene.maxDepth;
+    RenderSettings banded = whole;
+    banded.traceBands = 3;
+    World wholeWorld(loaded);
+    World bandedWorld(loaded);
+    const std::unique_ptr<FrameRenderer> a = MakeFrameRenderer(Backend::kCuda, wholeWorld.Scene());
+    const std::unique_ptr<FrameRenderer> b = MakeFrameRenderer(Backend::kCuda, bandedWorld.Scene());
+    for (int f = 1; f <= 12; ++f) {
+        wholeWorld.Advance(1.0f / 60.0f);
+        a->Update(wholeWorld.Scene(), wholeWorld.Changes());
+        bandedWorld.Advance(1.0f / 60.0f);
+        b->Update(bandedWorld.Scene(), bandedWorld.Changes());
+        const bool compare = f % 4 == 0;
+        Image wholeImage, bandedImage;
+        RenderStats wholeStats, bandedStats;
+        a->Trace(wholeWorld.Scene(), whole, compare ? &wholeImage : nullptr, &wholeStats);
+        b->Trace(bandedWorld.Scene(), banded, compare ? &bandedImage : nullptr, &bandedStats);
+        if (!compare) continue;
+        SCOPED_TRACE("frame " + std::to_string(f));
+        ASSERT_EQ(wholeImage.pixels.size(), bandedImage.pixels.size());
+        EXPECT_EQ(0, std::memcmp(wholeImage.pixels.data(), bandedImage.pixels.data(),
+                                 wholeImage.pixels.size() * sizeof(vec3)));
+        EXPECT_EQ(wholeStats.rays, bandedStats.rays);
+    }
+}
+
+// Pipelined play (a game loop's overlap, `bench frame`'s pipelined pass): the host advances the
+// world while earlier frames are still queued on the device. Every frame must be what one-at-a-time
 // play makes of it, bit for bit: nothing the device reads may change under it.
 TEST(GpuFrameLoop, PipelinedFramesEqualOneAtATime) {
     std::string why;

@@ -1,4 +1,5 @@
 #include <cub/cub.cuh>
+#include <optional>
 #include <vector>
 
 #include "engine/bvh/build/gpu_lbvh.h"
@@ -14,6 +15,7 @@ namespace rtrt {
 namespace {
 
 constexpr int kBlock = 256;
+constexpr uint32_t kMaxTraceBands = 64;
 uint32_t Blocks(size_t n) { return uint32_t((n + kBlock - 1) / kBlock); }
 
 // Writes the changed records into place and recomputes their world boxes.
@@ -58,6 +60,12 @@ double Elapsed(cudaEvent_t a, cudaEvent_t b) {
 // for the frame that was just queued.
 struct FrameEvents {
     cudaEvent_t events[8];
+    // A split frame (RenderSettings::traceBands > 1): the trace's start on the main stream, and
+    // each band's start and end on its own stream; the bands' rows and the frame's height.
+    cudaEvent_t traceReady = nullptr;
+    std::vector<cudaEvent_t> bandStart, bandEnd;
+    std::vector<RowBand> bands;
+    uint32_t height = 0;
     bool pending = false;                    // recorded and not read yet
     bool counted = false;                    // rays were counted into raysHost
     unsigned long long* raysHost = nullptr;  // pinned
@@ -84,8 +92,12 @@ class CudaFrameRenderer final : public FrameRenderer {
     ~CudaFrameRenderer() override {
         for (FrameEvents& f : frames_) {
             for (cudaEvent_t e : f.events) cudaEventDestroy(e);
+            for (cudaEvent_t e : f.bandStart) cudaEventDestroy(e);
+            for (cudaEvent_t e : f.bandEnd) cudaEventDestroy(e);
+            if (f.traceReady) cudaEventDestroy(f.traceReady);
             cudaFreeHost(f.raysHost);
         }
+        for (cudaStream_t s : bandStreams_) cudaStreamDestroy(s);
         cudaEventDestroy(sahCopied_);
         cudaFreeHost(sahHost_);
     }
@@ -143,9 +155,15 @@ class CudaFrameRenderer final : public FrameRenderer {
         const size_t pixels = size_t(settings.width) * settings.height;
         if (frame_.Size() != pixels) frame_.Resize(pixels);
         if (stats) RT_CUDA_CHECK(cudaMemsetAsync(rayCount_.Data(), 0, sizeof(unsigned long long)));
-        LaunchTrace(view, settings.view,
-                    EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
-                    frame_.Data(), stats ? rayCount_.Data() : nullptr);
+        const uint32_t features =
+            EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
+        unsigned long long* rays = stats ? rayCount_.Data() : nullptr;
+        f.bands.clear();
+        if (settings.traceBands > 1) {
+            TraceBands(f, view, settings, features, rays);
+        } else {
+            LaunchTrace(view, settings.view, features, frame_.Data(), rays);
+        }
         if (stats)
             RT_CUDA_CHECK(cudaMemcpyAsync(f.raysHost, rayCount_.Data(), sizeof(unsigned long long),
                                           cudaMemcpyDeviceToHost));
@@ -231,8 +249,46 @@ class CudaFrameRenderer final : public FrameRenderer {
         f.times.tlasMs = Elapsed(e[5], e[6]);
         f.times.traceMs = Elapsed(e[6], e[7]);
         f.times.rays = f.counted ? *f.raysHost : 0;
+        if (!f.bands.empty() && split_ && split_->Parts() == f.bands.size()) {
+            std::vector<double> ms(f.bands.size());
+            for (size_t b = 0; b < f.bands.size(); ++b)
+                ms[b] = Elapsed(f.bandStart[b], f.bandEnd[b]);
+            split_->Report(f.height, ms);
+        }
         f.pending = false;
         if (f.times.frame > times_.frame) times_ = f.times;
+    }
+
+    // The frame in row bands, each on its own stream once the main stream has the scene ready;
+    // the main stream goes on when every band is done. The shares follow the bands' times as
+    // their frames are collected.
+    void TraceBands(FrameEvents& f, const RenderSceneView& view, const RenderSettings& settings,
+                    uint32_t features, unsigned long long* rays) {
+        const uint32_t parts = std::min(settings.traceBands, kMaxTraceBands);
+        if (!split_ || split_->Parts() != parts) split_.emplace(parts);
+        while (bandStreams_.size() < parts) {
+            cudaStream_t s;
+            RT_CUDA_CHECK(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking));
+            bandStreams_.push_back(s);
+        }
+        if (!f.traceReady) RT_CUDA_CHECK(cudaEventCreate(&f.traceReady));
+        while (f.bandStart.size() < parts) {
+            f.bandStart.emplace_back();
+            f.bandEnd.emplace_back();
+            RT_CUDA_CHECK(cudaEventCreate(&f.bandStart.back()));
+            RT_CUDA_CHECK(cudaEventCreate(&f.bandEnd.back()));
+        }
+        f.bands = split_->Bands(settings.height);
+        f.height = settings.height;
+        RT_CUDA_CHECK(cudaEventRecord(f.traceReady));
+        for (uint32_t b = 0; b < parts; ++b) {
+            cudaStream_t s = bandStreams_[b];
+            RT_CUDA_CHECK(cudaStreamWaitEvent(s, f.traceReady));
+            RT_CUDA_CHECK(cudaEventRecord(f.bandStart[b], s));
+            LaunchTrace(view, settings.view, features, frame_.Data(), rays, s, f.bands[b]);
+            RT_CUDA_CHECK(cudaEventRecord(f.bandEnd[b], s));
+            RT_CUDA_CHECK(cudaStreamWaitEvent(0, f.bandEnd[b]));
+        }
     }
 
     // The cost the last update queued, once its copy has landed.
@@ -359,8 +415,10 @@ class CudaFrameRenderer final : public FrameRenderer {
     DeviceBuffer<vec3> frame_;
     DeviceBuffer<unsigned long long> rayCount_;
     FrameEvents frames_[2];
-    uint32_t current_ = 1;  // the first frame takes set 0
-    bool inFrame_ = false;  // Update began the frame that Trace ends
+    std::optional<FrameSplit> split_;        // with traceBands > 1
+    std::vector<cudaStream_t> bandStreams_;  // one per band
+    uint32_t current_ = 1;                   // the first frame takes set 0
+    bool inFrame_ = false;                   // Update began the frame that Trace ends
     uint64_t traced_ = 0;
     FrameTimes times_;
 };

@@ -9,9 +9,9 @@
 namespace rtrt {
 
 void LaunchTrace(const RenderSceneView& view, ViewMode mode, uint32_t features, vec3* frame,
-                 unsigned long long* rayCount, cudaStream_t stream) {
+                 unsigned long long* rayCount, cudaStream_t stream, RowBand rows) {
     DispatchFeatures(features, [&](auto featureTag) {
-        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream);
+        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream, rows);
     });
 }
 

@@ -5,12 +5,14 @@
 // time the same kernel the same way.
 #include <cuda_runtime.h>
 
+#include <algorithm>
 #include <span>
 #include <vector>
 
 #include "engine/core/cuda_check.h"
 #include "engine/core/device_buffer.h"
 #include "engine/render_rt/pixel_kernel.h"
+#include "engine/render_rt/split/frame_split.h"
 
 namespace rtrt {
 
@@ -28,29 +30,33 @@ constexpr int TraceMinBlocks(uint32_t features) {
 
 template <uint32_t kFeatures, class Policy>
 __global__ void __launch_bounds__(64, TraceMinBlocks(kFeatures))
-    TraceKernel(RenderSceneView scene, ViewMode view, uint32_t sample, uint32_t perSide, vec3* out,
-                unsigned long long* rayCount) {
+    TraceKernel(RenderSceneView scene, ViewMode view, uint32_t sample, uint32_t perSide,
+                uint32_t rowBegin, uint32_t rowEnd, vec3* out, unsigned long long* rayCount) {
     const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
-    const uint32_t y = blockIdx.y * blockDim.y + threadIdx.y;
-    if (x >= scene.width || y >= scene.height) return;
+    const uint32_t y = rowBegin + blockIdx.y * blockDim.y + threadIdx.y;
+    if (x >= scene.width || y >= rowEnd) return;
     uint32_t rays = 0;
     const vec3 value = RawSample<kFeatures, Policy>(scene, view, x, y, sample, perSide, &rays);
     AccumulateSample(out[size_t(y) * scene.width + x], value, sample, perSide * perSide);
     if (rayCount) atomicAdd(rayCount, (unsigned long long)rays);
 }
 
-// Traces view (all pointers in device memory) into frame (width x height, device memory);
-// rayCount, if not null, accumulates the rays traced.
+// Traces view (all pointers in device memory) into frame (width x height, device memory), the
+// rows of `rows` only (default: all); rayCount, if not null, accumulates the rays traced.
 template <uint32_t kFeatures, class Policy = TracePolicy>
 void LaunchTraceKernel(const RenderSceneView& view, ViewMode mode, vec3* frame,
-                       unsigned long long* rayCount, cudaStream_t stream = 0) {
+                       unsigned long long* rayCount, cudaStream_t stream = 0,
+                       RowBand rows = {0, UINT32_MAX}) {
+    const uint32_t rowEnd = std::min(rows.end, view.height);
+    if (rows.begin >= rowEnd) return;
     const dim3 block(8, 8);
-    const dim3 grid((view.width + block.x - 1) / block.x, (view.height + block.y - 1) / block.y);
+    const dim3 grid((view.width + block.x - 1) / block.x,
+                    (rowEnd - rows.begin + block.y - 1) / block.y);
     // One launch per sample (AccumulateSample says why).
     const uint32_t perSide = SamplesPerSide(view, mode);
     for (uint32_t s = 0; s < perSide * perSide; ++s) {
-        TraceKernel<kFeatures, Policy>
-            <<<grid, block, 0, stream>>>(view, mode, s, perSide, frame, rayCount);
+        TraceKernel<kFeatures, Policy><<<grid, block, 0, stream>>>(
+            view, mode, s, perSide, rows.begin, rowEnd, frame, rayCount);
         RT_CUDA_CHECK_LAUNCH();
     }
 }
