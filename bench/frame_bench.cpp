@@ -33,6 +33,7 @@ struct FrameBenchOptions {
     std::string size;
     int frames = 300;
     int warmup = 30;
+    uint32_t traceBands = 1;
     std::string output;
 };
 
@@ -69,6 +70,7 @@ nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
     settings.height = loaded.height.value_or(720);
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
     settings.maxDepth = loaded.scene.maxDepth;
+    settings.traceBands = o.traceBands;
     const bool gpu = o.backend == "cuda";
     World world(loaded);
     const std::unique_ptr<FrameRenderer> renderer =
@@ -130,6 +132,7 @@ void RunFrameBench(const FrameBenchOptions& o) {
     nlohmann::json report;
     report["machine"] = BenchMachine(gpu);
     report["backend"] = o.backend;
+    report["trace_bands"] = o.traceBands;
     report["timing"] =
         "medians over --frames frames at 60 fps after --warmup frames; GPU stages by CUDA events, "
         "simulation and extraction and the whole frame by the CPU clock (frame_ms: one frame at "
@@ -166,6 +169,10 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
         ->capture_default_str();
     cmd->add_option("--warmup", o->warmup, "Untimed frames first")
         ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    cmd->add_option("--trace-bands", o->traceBands,
+                    "CUDA: trace each frame in this many row bands, each on its own stream")
+        ->check(CLI::Range(1, 64))
         ->capture_default_str();
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
     cmd->callback([o, exitCode] {
