@@ -112,7 +112,8 @@ class App {
             model_.times.swap = stageTimer.Milliseconds();
             model_.times.display = displayTimer.Milliseconds();
             model_.times.frame = frameTimer.Milliseconds();
-            if (frame_ >= kUntimedFrames) timed_.push_back(model_.times);
+            if (frame_ >= kUntimedFrames && timed_.size() < kTimedFrames)
+                timed_.push_back(model_.times);
             model_.frameMs.push_back(float(model_.times.frame));
             if (model_.frameMs.size() > OverlayModel::kHistory) model_.frameMs.pop_front();
         }
@@ -457,8 +458,10 @@ class App {
     bool cameraTaken_ = false;
     OverlayModel model_;
     // Stage times of the frames after the first kUntimedFrames (start-up, first uploads), for
-    // the medians printed at the end.
+    // the medians printed at the end; at most kTimedFrames of them, so that a long session's
+    // memory does not grow with it.
     static constexpr int kUntimedFrames = 30;
+    static constexpr size_t kTimedFrames = 100000;
     std::vector<StageTimes> timed_;
     Image raw_, shown_;
     ecs::Entity selected_;
