@@ -47,7 +47,7 @@ TEST(FrameSplit, StartsEqualAndTilesTheFrame) {
 TEST(FrameSplit, EveryPartGetsAGranuleWhileThereAreEnough) {
     FrameSplit split(3);
     const double ms[] = {1.0, 1000.0, 1000.0};  // the first part far faster
-    for (int i = 0; i < 20; ++i) split.Report(240, ms);
+    for (int i = 0; i < 20; ++i) split.Report(split.Bands(240), ms);
     const std::vector<RowBand> bands = split.Bands(240);
     ExpectTiles(bands, 240);
     EXPECT_GE(bands[1].Rows(), FrameSplit::kRowGranule);
@@ -63,7 +63,7 @@ TEST(FrameSplit, SharesFollowSpeed) {
     for (int frame = 0; frame < 30; ++frame) {
         const std::vector<RowBand> bands = split.Bands(height);
         const double ms[] = {bands[0].Rows() * 0.001, bands[1].Rows() * 0.002};
-        split.Report(height, ms);
+        split.Report(bands, ms);
     }
     EXPECT_NEAR(split.Shares()[0], 2.0 / 3.0, 1e-3);
     const std::vector<RowBand> bands = split.Bands(height);
@@ -74,10 +74,10 @@ TEST(FrameSplit, SharesFollowSpeed) {
 TEST(FrameSplit, UnmeasuredTimesLeaveTheShares) {
     FrameSplit split(2);
     const double zero[] = {0.0, 1.0};
-    split.Report(1080, zero);
+    split.Report(split.Bands(1080), zero);
     EXPECT_EQ(split.Shares()[0], 0.5);
     const double wrongCount[] = {1.0};
-    split.Report(1080, wrongCount);
+    split.Report(split.Bands(1080), wrongCount);
     EXPECT_EQ(split.Shares()[1], 0.5);
 }
 

@@ -61,11 +61,10 @@ double Elapsed(cudaEvent_t a, cudaEvent_t b) {
 struct FrameEvents {
     cudaEvent_t events[8];
     // A split frame (RenderSettings::traceBands > 1): the trace's start on the main stream, and
-    // each band's start and end on its own stream; the bands' rows and the frame's height.
+    // each band's start and end on its own stream; the bands' rows.
     cudaEvent_t traceReady = nullptr;
     std::vector<cudaEvent_t> bandStart, bandEnd;
     std::vector<RowBand> bands;
-    uint32_t height = 0;
     bool pending = false;                    // recorded and not read yet
     bool counted = false;                    // rays were counted into raysHost
     unsigned long long* raysHost = nullptr;  // pinned
@@ -253,7 +252,7 @@ class CudaFrameRenderer final : public FrameRenderer {
             std::vector<double> ms(f.bands.size());
             for (size_t b = 0; b < f.bands.size(); ++b)
                 ms[b] = Elapsed(f.bandStart[b], f.bandEnd[b]);
-            split_->Report(f.height, ms);
+            split_->Report(f.bands, ms);
         }
         f.pending = false;
         if (f.times.frame > times_.frame) times_ = f.times;
@@ -279,7 +278,6 @@ class CudaFrameRenderer final : public FrameRenderer {
             RT_CUDA_CHECK(cudaEventCreate(&f.bandEnd.back()));
         }
         f.bands = split_->Bands(settings.height);
-        f.height = settings.height;
         RT_CUDA_CHECK(cudaEventRecord(f.traceReady));
         for (uint32_t b = 0; b < parts; ++b) {
             cudaStream_t s = bandStreams_[b];

@@ -38,9 +38,8 @@ std::vector<RowBand> FrameSplit::Bands(uint32_t height) const {
     return bands;
 }
 
-void FrameSplit::Report(uint32_t height, std::span<const double> milliseconds) {
-    if (milliseconds.size() != share_.size()) return;
-    const std::vector<RowBand> bands = Bands(height);
+void FrameSplit::Report(std::span<const RowBand> bands, std::span<const double> milliseconds) {
+    if (milliseconds.size() != share_.size() || bands.size() != share_.size()) return;
     std::vector<double> speed(share_.size());
     double total = 0.0;
     for (size_t p = 0; p < share_.size(); ++p) {

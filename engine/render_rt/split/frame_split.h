@@ -26,11 +26,12 @@ class FrameSplit {
     // at first, then the shares Report last set. Every part gets at least one granule while the
     // frame has that many.
     std::vector<RowBand> Bands(uint32_t height) const;
-    // How long each part took to trace its band of the frame cut by Bands(height): the next
+    // How long each part took to trace its band of `bands` (a frame as Bands cut it, perhaps
+    // before other reports moved the shares): the next
     // shares move halfway from the current ones to those proportional to each part's speed
     // (rows per millisecond), which settles within a few frames without chasing noise. A time
     // that is not positive (a band too small to measure) leaves the shares as they are.
-    void Report(uint32_t height, std::span<const double> milliseconds);
+    void Report(std::span<const RowBand> bands, std::span<const double> milliseconds);
     // The fraction of the rows each part is given.
     std::span<const double> Shares() const { return share_; }
 
