@@ -1,5 +1,7 @@
 // `rtrt bench cpu`: BLAS build time and SAH cost per builder, and CPU frame time and rays per
 // second on the paper scene (paper_scene.h), for the cube, the teapot and the dragons.
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -245,41 +247,54 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
     }
 }
 
-// Runtime cost per stage on a played scene: what a scene does not use must cost ~nothing.
-void RunRuntimeBench(const std::vector<std::string>& scenes, int frames) {
+// Runtime cost per stage on a played scene: what a scene does not use must cost ~nothing. Each
+// scene is played once per thread count (0: TBB's default, every core).
+void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
+                     const std::vector<int>& threadCounts) {
     std::printf("rtrt bench runtime: medians over %d frames at 60 fps (CPU, ms)\n", frames);
-    std::printf("%-28s %9s %9s %9s %11s %9s %9s %9s %9s %9s\n", "scene", "instances", "moving",
-                "physics", "animators", "transform", "extract", "deform", "BLAS", "TLAS");
+    std::printf("%-28s %7s %9s %9s %9s %11s %9s %9s %9s %9s %9s %9s %7s\n", "scene", "threads",
+                "instances", "moving", "physics", "animators", "transform", "extract", "deform",
+                "BLAS", "TLAS", "contacts", "colours");
     for (const std::string& path : scenes) {
         const LoadedScene loaded = LoadSceneFile(path);
-        World world(loaded);
-        // The TLAS stage of the CPU back end: its frame renderer's update, without a trace.
-        const std::unique_ptr<FrameRenderer> renderer =
-            MakeFrameRenderer(Backend::kCpu, world.Scene());
-        std::vector<double> physics, animators, transforms, extract, deform, blas, tlas, moving;
-        for (int i = 0; i < frames; ++i) {
-            const FrameStats stats = world.Advance(1.0f / 60.0f);
-            renderer->Update(world.Scene(), world.Changes());
-            // A frame's times are published by its trace: a one-pixel one costs nothing here.
-            RenderSettings onePixel;
-            onePixel.width = onePixel.height = 1;
-            renderer->Trace(world.Scene(), onePixel, nullptr);
-            deform.push_back(renderer->Times().deformMs);
-            blas.push_back(renderer->Times().blasMs);
-            tlas.push_back(renderer->Times().tlasMs);
-            for (const ecs::SystemTiming& t : world.Scheduler().SystemTimings()) {
-                if (t.name == "physics") physics.push_back(t.milliseconds);
-                if (t.name == "animators") animators.push_back(t.milliseconds);
-                if (t.name == "transforms") transforms.push_back(t.milliseconds);
+        for (const int threadCount : threadCounts) {
+            const int threads =
+                threadCount > 0 ? threadCount : tbb::this_task_arena::max_concurrency();
+            const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                            static_cast<size_t>(threads));
+            World world(loaded);
+            // The TLAS stage of the CPU back end: its frame renderer's update, without a trace.
+            const std::unique_ptr<FrameRenderer> renderer =
+                MakeFrameRenderer(Backend::kCpu, world.Scene());
+            std::vector<double> physics, animators, transforms, extract, deform, blas, tlas, moving,
+                contacts, colours;
+            for (int i = 0; i < frames; ++i) {
+                const FrameStats stats = world.Advance(1.0f / 60.0f);
+                renderer->Update(world.Scene(), world.Changes());
+                // A frame's times are published by its trace: a one-pixel one costs nothing here.
+                RenderSettings onePixel;
+                onePixel.width = onePixel.height = 1;
+                renderer->Trace(world.Scene(), onePixel, nullptr);
+                deform.push_back(renderer->Times().deformMs);
+                blas.push_back(renderer->Times().blasMs);
+                tlas.push_back(renderer->Times().tlasMs);
+                for (const ecs::SystemTiming& t : world.Scheduler().SystemTimings()) {
+                    if (t.name == "physics") physics.push_back(t.milliseconds);
+                    if (t.name == "animators") animators.push_back(t.milliseconds);
+                    if (t.name == "transforms") transforms.push_back(t.milliseconds);
+                }
+                extract.push_back(stats.extractMs);
+                moving.push_back(stats.extracted);
+                contacts.push_back(world.PhysicsStats().lastContacts);
+                colours.push_back(world.PhysicsStats().lastColors);
             }
-            extract.push_back(stats.extractMs);
-            moving.push_back(stats.extracted);
+            std::printf(
+                "%-28s %7d %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.0f %7.0f\n",
+                std::filesystem::path(path).filename().string().c_str(), threads,
+                world.Scene().instances.size(), Median(moving), Median(physics), Median(animators),
+                Median(transforms), Median(extract), Median(deform), Median(blas), Median(tlas),
+                Median(contacts), Median(colours));
         }
-        std::printf("%-28s %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f\n",
-                    std::filesystem::path(path).filename().string().c_str(),
-                    world.Scene().instances.size(), Median(moving), Median(physics),
-                    Median(animators), Median(transforms), Median(extract), Median(deform),
-                    Median(blas), Median(tlas));
     }
 }
 
@@ -352,6 +367,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     struct RuntimeOptions {
         std::vector<std::string> scenes;
         int frames = 300;
+        std::vector<int> threads{0};
     };
     auto runtime = std::make_shared<RuntimeOptions>();
     CLI::App* runtimeBench = bench->add_subcommand(
@@ -362,8 +378,15 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     runtimeBench->add_option("--frames", runtime->frames, "Frames to play")
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();
+    runtimeBench
+        ->add_option("--threads", runtime->threads,
+                     "Thread counts to play each scene with, e.g. 1,4,16 (0: every core)")
+        ->delimiter(',')
+        ->allow_extra_args(false)
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
     runtimeBench->callback([runtime, exitCode] {
-        RunRuntimeBench(runtime->scenes, runtime->frames);
+        RunRuntimeBench(runtime->scenes, runtime->frames, runtime->threads);
         *exitCode = kExitOk;
     });
     AddFrameBench(*bench, exitCode);

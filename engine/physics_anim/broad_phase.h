@@ -18,7 +18,8 @@ struct BroadPhaseBox {
 // Sort and sweep (Baraff 1992, "Dynamic Simulation of Non-Penetrating Rigid Bodies", ch. 7): the
 // boxes sorted by their lower bound on the axis along which their centres spread most; each box
 // is tested against the following ones until their lower bound passes its upper bound. Cost is
-// O(n log n) plus the overlaps on that axis. The order of the pairs depends only on the boxes.
+// O(n log n) plus the overlaps on that axis, in parallel on TBB. The order of the pairs depends
+// only on the boxes.
 class SweepAndPrune {
   public:
     // Replaces pairs with every overlapping (i, j), i < j, that is not static-static; touching
@@ -37,8 +38,10 @@ class SweepAndPrune {
         uint32_t box;
         uint32_t isStatic;
     };
+    static constexpr size_t kSlice = 256;  // boxes per parallel task of the sweep
     std::vector<Entry> order_;
     std::vector<SweptBox> sorted_;  // in sweep order
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> slicePairs_;
 };
 
 }  // namespace rtrt::physics

@@ -1,8 +1,12 @@
 #include "engine/physics_anim/contact_solver.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
+#include "engine/core/parallel_for.h"
 #include "engine/physics_anim/procedural_motion.h"
 
 namespace rtrt::physics {
@@ -34,20 +38,52 @@ float PseudoSpeed(const SimBody& a, const SimBody& b, const ContactAxis& axis) {
            glm::dot(a.pseudoAngularVelocity, axis.armA);
 }
 
-// Applies impulse along the axis to b and its opposite to a. Bodies that are not awake have zero
-// inverse mass and turn vectors in the contact, so they do not move.
+// Applies impulse along the axis to b and its opposite to a. A body that is not awake has zero
+// inverse mass in the contact and is not written: other manifolds of the same colour may read it
+// at the same time.
 void Push(SimBody& a, SimBody& b, const Contact& c, const ContactAxis& axis, float impulse) {
-    a.velocity -= (c.invMassA * impulse) * axis.direction;
-    a.angularVelocity -= impulse * axis.turnA;
-    b.velocity += (c.invMassB * impulse) * axis.direction;
-    b.angularVelocity += impulse * axis.turnB;
+    if (c.invMassA > 0.0f) {
+        a.velocity -= (c.invMassA * impulse) * axis.direction;
+        a.angularVelocity -= impulse * axis.turnA;
+    }
+    if (c.invMassB > 0.0f) {
+        b.velocity += (c.invMassB * impulse) * axis.direction;
+        b.angularVelocity += impulse * axis.turnB;
+    }
+}
+
+// Manifolds per task: a box manifold's iteration is a few dozen dot products.
+constexpr size_t kManifoldGrain = 64;
+
+// Calls solve(contact) for every contact, colour after colour, the manifolds of a colour in
+// parallel and each manifold's contacts in order on one thread.
+template <typename ContactType, typename Solve>
+void ForEachContact(std::span<ContactType> contacts, const ContactBatches& batches,
+                    const Solve& solve) {
+    const auto solveManifolds = [&](size_t begin, size_t end) {
+        for (uint32_t k = batches.manifoldBegin[begin]; k < batches.manifoldBegin[end]; ++k) {
+            solve(contacts[k]);
+        }
+    };
+    for (uint32_t color = 0; color < batches.Colors(); ++color) {
+        const uint32_t begin = batches.colorBegin[color];
+        const uint32_t end = batches.colorBegin[color + 1];
+        if (batches.lastIsOverflow && color + 1 == batches.Colors()) {
+            solveManifolds(begin, end);
+            continue;
+        }
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(begin, end, kManifoldGrain),
+            [&](const tbb::blocked_range<size_t>& r) { solveManifolds(r.begin(), r.end()); });
+    }
 }
 
 }  // namespace
 
 void PrepareContacts(std::span<const SimBody> bodies, std::span<Contact> contacts,
                      const SolverSettings& settings) {
-    for (Contact& c : contacts) {
+    ParallelFor(0, contacts.size(), 256, [&](size_t k) {
+        Contact& c = contacts[k];
         const SimBody& a = bodies[c.a];
         const SimBody& b = bodies[c.b];
         c.invMassA = a.awake ? a.invMass : 0.0f;
@@ -80,24 +116,25 @@ void PrepareContacts(std::span<const SimBody> bodies, std::span<Contact> contact
         c.gravitySpeed = std::fabs(glm::dot(settings.gravity, c.normal)) * settings.dt;
         c.restitution = std::max(a.restitution, b.restitution);
         c.friction = std::sqrt(a.friction * b.friction);
-    }
+    });
 }
 
-void WarmStart(std::span<SimBody> bodies, std::span<const Contact> contacts) {
-    for (const Contact& c : contacts) {
+void WarmStart(std::span<SimBody> bodies, std::span<const Contact> contacts,
+               const ContactBatches& batches) {
+    ForEachContact(contacts, batches, [&](const Contact& c) {
         SimBody& a = bodies[c.a];
         SimBody& b = bodies[c.b];
         Push(a, b, c, c.normalAxis, c.normalImpulse);
         Push(a, b, c, c.tangentAxis1, c.tangentImpulse1);
         Push(a, b, c, c.tangentAxis2, c.tangentImpulse2);
-    }
+    });
 }
 
 void SolveVelocities(std::span<SimBody> bodies, std::span<Contact> contacts,
-                     const SolverSettings& settings) {
+                     const ContactBatches& batches, const SolverSettings& settings) {
     const float invDt = 1.0f / settings.dt;
     for (int iteration = 0; iteration < settings.velocityIterations; ++iteration) {
-        for (Contact& c : contacts) {
+        ForEachContact(contacts, batches, [&](Contact& c) {
             SimBody& a = bodies[c.a];
             SimBody& b = bodies[c.b];
             if (c.rollingLimit > 0.0f && c.normalImpulse > 0.0f) {
@@ -133,32 +170,32 @@ void SolveVelocities(std::span<SimBody> bodies, std::span<Contact> contacts,
                 std::max(c.normalImpulse - c.normalAxis.mass * (vn + allowedApproach), 0.0f);
             Push(a, b, c, c.normalAxis, impulse - c.normalImpulse);
             c.normalImpulse = impulse;
-        }
+        });
     }
 }
 
 void ApplyRestitution(std::span<SimBody> bodies, std::span<Contact> contacts,
-                      const SolverSettings& settings) {
-    for (Contact& c : contacts) {
-        if (c.normalImpulse <= 0.0f || c.approachSpeed <= settings.restitutionThreshold) continue;
+                      const ContactBatches& batches, const SolverSettings& settings) {
+    ForEachContact(contacts, batches, [&](Contact& c) {
+        if (c.normalImpulse <= 0.0f || c.approachSpeed <= settings.restitutionThreshold) return;
         const float target = c.restitution * c.approachSpeed - c.gravitySpeed;
-        if (target <= 0.0f) continue;
+        if (target <= 0.0f) return;
         SimBody& a = bodies[c.a];
         SimBody& b = bodies[c.b];
         const float vn = Speed(a, b, c.normalAxis);
         const float impulse = std::max(c.normalImpulse - c.normalAxis.mass * (vn - target), 0.0f);
         Push(a, b, c, c.normalAxis, impulse - c.normalImpulse);
         c.normalImpulse = impulse;
-    }
+    });
 }
 
 void SolvePositions(std::span<SimBody> bodies, std::span<Contact> contacts,
-                    const SolverSettings& settings) {
+                    const ContactBatches& batches, const SolverSettings& settings) {
     const float rate = settings.positionCorrection / settings.dt;
     for (int iteration = 0; iteration < settings.positionIterations; ++iteration) {
-        for (Contact& c : contacts) {
+        ForEachContact(contacts, batches, [&](Contact& c) {
             const float overlap = -c.separation - settings.linearSlop;
-            if (overlap <= 0.0f) continue;
+            if (overlap <= 0.0f) return;
             SimBody& a = bodies[c.a];
             SimBody& b = bodies[c.b];
             const float vn = PseudoSpeed(a, b, c.normalAxis);
@@ -167,11 +204,15 @@ void SolvePositions(std::span<SimBody> bodies, std::span<Contact> contacts,
             const float delta = impulse - c.pseudoImpulse;
             c.pseudoImpulse = impulse;
             const vec3 p = delta * c.normalAxis.direction;
-            a.pseudoVelocity -= c.invMassA * p;
-            a.pseudoAngularVelocity -= delta * c.normalAxis.turnA;
-            b.pseudoVelocity += c.invMassB * p;
-            b.pseudoAngularVelocity += delta * c.normalAxis.turnB;
-        }
+            if (c.invMassA > 0.0f) {
+                a.pseudoVelocity -= c.invMassA * p;
+                a.pseudoAngularVelocity -= delta * c.normalAxis.turnA;
+            }
+            if (c.invMassB > 0.0f) {
+                b.pseudoVelocity += c.invMassB * p;
+                b.pseudoAngularVelocity += delta * c.normalAxis.turnB;
+            }
+        });
     }
 }
 

@@ -6,6 +6,7 @@
 #include <glm/mat3x3.hpp>
 #include <span>
 
+#include "engine/physics_anim/contact_coloring.h"
 #include "engine/physics_anim/sim_body.h"
 
 namespace rtrt::physics {
@@ -58,29 +59,33 @@ struct SolverSettings {
     float positionCorrection;
 };
 
+// Each pass below runs the colours of batches one after another and the manifolds of a colour in
+// parallel (TBB); only bodies that are awake are written. The result does not depend on the
+// number of threads.
 void PrepareContacts(std::span<const SimBody> bodies, std::span<Contact> contacts,
                      const SolverSettings& settings);
 
 // Applies the contacts' seeded impulses, so that the iterations start from last step's solution:
 // resting stacks converge in a few iterations instead of sinking.
-void WarmStart(std::span<SimBody> bodies, std::span<const Contact> contacts);
+void WarmStart(std::span<SimBody> bodies, std::span<const Contact> contacts,
+               const ContactBatches& batches);
 
 // Rolling resistance, friction within the Coulomb cone and a non-negative normal impulse that
 // lets a speculative contact (separation > 0) close its gap within the step but not overshoot it.
 void SolveVelocities(std::span<SimBody> bodies, std::span<Contact> contacts,
-                     const SolverSettings& settings);
+                     const ContactBatches& batches, const SolverSettings& settings);
 
 // One pass after SolveVelocities (as Box2D v3 does): a touching contact whose approach speed u
 // exceeds the threshold leaves at e * u - |g . n| * dt. Dropping one step's worth of gravity from
 // the rebound means that a bounce never gains energy (a ball that reached the contact at the
 // start of the step would otherwise also keep the speed gravity gave it during the step).
 void ApplyRestitution(std::span<SimBody> bodies, std::span<Contact> contacts,
-                      const SolverSettings& settings);
+                      const ContactBatches& batches, const SolverSettings& settings);
 
 // Split impulse: pseudo velocities push overlapping bodies apart by positionCorrection of the
 // overlap beyond linearSlop per step; they move the bodies but are discarded afterwards, so the
 // correction adds no kinetic energy (unlike Baumgarte stabilisation of the velocities).
 void SolvePositions(std::span<SimBody> bodies, std::span<Contact> contacts,
-                    const SolverSettings& settings);
+                    const ContactBatches& batches, const SolverSettings& settings);
 
 }  // namespace rtrt::physics

@@ -1,9 +1,13 @@
 #include "engine/physics_anim/physics_world.h"
 
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <tuple>
 
+#include "engine/core/parallel_for.h"
 #include "engine/physics_anim/narrow_phase.h"
 #include "engine/physics_anim/quat_interp.h"
 
@@ -30,6 +34,11 @@ bool PairLess(Entity a1, Entity b1, Entity a2, Entity b2) {
     return std::tie(a1.index, a1.generation, b1.index, b1.generation) <
            std::tie(a2.index, a2.generation, b2.index, b2.generation);
 }
+
+// Work per TBB task: each element is a few dozen to a few hundred flops.
+constexpr size_t kBodyGrain = 256;
+constexpr size_t kPairGrain = 128;
+constexpr size_t kContactGrain = 256;
 
 void ClampLength(vec3& v, float maxLength) {
     const float length2 = glm::dot(v, v);
@@ -124,7 +133,8 @@ void PhysicsWorld::TakeStep() {
     ++stats_.steps;
     stats_.bodySteps += bodies_.size();
     stats_.lastBodies = static_cast<uint32_t>(bodies_.size());
-    for (SimBody& s : bodies_) {
+    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+        SimBody& s = bodies_[i];
         s.previousPosition = s.position;
         s.previousOrientation = s.orientation;
         s.rotation = glm::mat3_cast(s.orientation);
@@ -132,17 +142,17 @@ void PhysicsWorld::TakeStep() {
         s.startAngularVelocity = s.angularVelocity;
         s.invInertiaWorld =
             s.awake ? WorldInverseInertia(s.rotation, s.invInertiaLocal) : glm::mat3(0.0f);
-    }
+    });
     FindPairs();
     WakeTouched();
     IntegrateVelocities();
     FindContacts();
     PrepareContacts(bodies_, contacts_, solver_);
     SeedFromLastStep();
-    WarmStart(bodies_, contacts_);
-    SolveVelocities(bodies_, contacts_, solver_);
-    ApplyRestitution(bodies_, contacts_, solver_);
-    SolvePositions(bodies_, contacts_, solver_);
+    WarmStart(bodies_, contacts_, batches_);
+    SolveVelocities(bodies_, contacts_, batches_, solver_);
+    ApplyRestitution(bodies_, contacts_, batches_, solver_);
+    SolvePositions(bodies_, contacts_, batches_, solver_);
     RememberImpulses();
     IntegratePositions();
     UpdateSleep();
@@ -159,11 +169,14 @@ float PhysicsWorld::Margin(const SimBody& s) const {
 }
 
 void PhysicsWorld::FindPairs() {
-    boxes_.clear();
     broadBodies_.clear();
     for (uint32_t i = 0; i < bodies_.size(); ++i) {
         const SimBody& s = bodies_[i];
-        if (!s.hasCollider || s.collider.shape == ColliderShape::kPlane) continue;
+        if (s.hasCollider && s.collider.shape != ColliderShape::kPlane) broadBodies_.push_back(i);
+    }
+    boxes_.resize(broadBodies_.size());
+    ParallelFor(0, broadBodies_.size(), kBodyGrain, [&](size_t k) {
+        const SimBody& s = bodies_[broadBodies_[k]];
         vec3 extent(s.collider.radius);
         if (s.collider.shape == ColliderShape::kBox) {
             const glm::mat3& r = s.rotation;
@@ -174,14 +187,12 @@ void PhysicsWorld::FindPairs() {
             }
         }
         extent += vec3(Margin(s));
-        boxes_.push_back({s.position - extent, s.position + extent, !s.dynamic});
-        broadBodies_.push_back(i);
-    }
+        boxes_[k] = {s.position - extent, s.position + extent, !s.dynamic};
+    });
     sweep_.FindPairs(boxes_, pairs_);
-    for (auto& [a, b] : pairs_) {
-        a = broadBodies_[a];
-        b = broadBodies_[b];
-    }
+    ParallelFor(0, pairs_.size(), kPairGrain, [&](size_t k) {
+        pairs_[k] = {broadBodies_[pairs_[k].first], broadBodies_[pairs_[k].second]};
+    });
     stats_.lastPairs = static_cast<uint32_t>(pairs_.size());
 }
 
@@ -204,134 +215,231 @@ void PhysicsWorld::IntegrateVelocities() {
     const float h = settings_.fixedStep;
     const float linearDamping = 1.0f / (1.0f + h * settings_.linearDamping);
     const float angularDamping = 1.0f / (1.0f + h * settings_.angularDamping);
-    uint32_t awake = 0;
-    for (SimBody& s : bodies_) {
-        if (!s.awake) continue;
-        ++awake;
+    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+        SimBody& s = bodies_[i];
+        if (!s.awake) return;
         s.velocity = (s.velocity + settings_.gravity * h) * linearDamping;
         s.angularVelocity *= angularDamping;
         ClampLength(s.velocity, settings_.maxLinearSpeed);
         ClampLength(s.angularVelocity, settings_.maxAngularSpeed);
-    }
-    stats_.lastAwake = awake;
+    });
+    stats_.lastAwake = static_cast<uint32_t>(
+        std::count_if(bodies_.begin(), bodies_.end(), [](const SimBody& s) { return s.awake; }));
 }
 
 void PhysicsWorld::FindContacts() {
+    CollideCandidates();
+    LayOutContacts();
+    stats_.lastContacts = static_cast<uint32_t>(contacts_.size());
+    stats_.lastColors = batches_.Colors();
+}
+
+void PhysicsWorld::CollideCandidates() {
     const float h = settings_.fixedStep;
-    contacts_.clear();
-    Manifold m;
-    for (const auto& [i, j] : pairs_) {
+    const size_t bodyCount = bodies_.size();
+    candidates_.resize(pairs_.size() + planes_.size() * bodyCount);
+    ParallelFor(0, pairs_.size(), kPairGrain, [&](size_t k) {
+        const auto [i, j] = pairs_[k];
+        Candidate& out = candidates_[k];
+        out.manifold.count = 0;
         const SimBody& a = bodies_[i];
         const SimBody& b = bodies_[j];
-        if (!a.awake && !b.awake) continue;
+        if (!a.awake && !b.awake) return;
         const float margin = settings_.contactMargin + glm::length(a.velocity - b.velocity) * h +
                              (glm::length(a.angularVelocity) * a.boundingRadius +
                               glm::length(b.angularVelocity) * b.boundingRadius) *
                                  h;
         const bool aSphere = a.collider.shape == ColliderShape::kSphere;
         const bool bSphere = b.collider.shape == ColliderShape::kSphere;
+        Manifold& m = out.manifold;
         if (aSphere && bSphere) {
             if (CollideSpheres(a.position, a.collider.radius, b.position, b.collider.radius, margin,
                                m)) {
-                AddContacts(i, j, m, std::min(a.collider.radius, b.collider.radius));
+                out.first = i;
+                out.second = j;
+                out.lever = std::min(a.collider.radius, b.collider.radius);
+                return;
             }
         } else if (aSphere) {
             if (CollideBoxSphere(BoxOf(b), a.position, a.collider.radius, margin, m)) {
-                AddContacts(j, i, m, a.collider.radius);
+                out.first = j;
+                out.second = i;
+                out.lever = a.collider.radius;
+                return;
             }
         } else if (bSphere) {
             if (CollideBoxSphere(BoxOf(a), b.position, b.collider.radius, margin, m)) {
-                AddContacts(i, j, m, b.collider.radius);
+                out.first = i;
+                out.second = j;
+                out.lever = b.collider.radius;
+                return;
             }
         } else if (CollideBoxes(BoxOf(a), BoxOf(b), margin, m)) {
-            AddContacts(i, j, m, 0.0f);
+            out.first = i;
+            out.second = j;
+            out.lever = 0.0f;
+            return;
         }
-    }
-    for (const uint32_t p : planes_) {
-        const SimBody& plane = bodies_[p];
+        m.count = 0;
+    });
+    for (size_t p = 0; p < planes_.size(); ++p) {
+        const uint32_t planeBody = planes_[p];
+        const SimBody& plane = bodies_[planeBody];
         PlaneShape shape;
         shape.normal = glm::normalize(plane.orientation * plane.collider.normal);
         shape.offset = glm::dot(shape.normal, plane.position);
-        for (uint32_t i = 0; i < bodies_.size(); ++i) {
+        Candidate* const row = candidates_.data() + pairs_.size() + p * bodyCount;
+        ParallelFor(0, bodyCount, kBodyGrain, [&](size_t i) {
+            Candidate& out = row[i];
+            out.manifold.count = 0;
             const SimBody& s = bodies_[i];
-            if (!s.awake || !s.hasCollider) continue;
+            if (!s.awake || !s.hasCollider) return;
             const float margin = settings_.contactMargin + glm::length(s.velocity) * h +
                                  glm::length(s.angularVelocity) * s.boundingRadius * h;
+            const auto body = static_cast<uint32_t>(i);
+            Manifold& m = out.manifold;
             if (s.collider.shape == ColliderShape::kSphere) {
                 if (CollidePlaneSphere(shape, s.position, s.collider.radius, margin, m)) {
-                    AddContacts(p, i, m, s.collider.radius);
+                    out.first = planeBody;
+                    out.second = body;
+                    out.lever = s.collider.radius;
+                    return;
                 }
             } else if (s.collider.shape == ColliderShape::kBox) {
-                if (CollidePlaneBox(shape, BoxOf(s), margin, m)) AddContacts(p, i, m, 0.0f);
+                if (CollidePlaneBox(shape, BoxOf(s), margin, m)) {
+                    out.first = planeBody;
+                    out.second = body;
+                    out.lever = 0.0f;
+                    return;
+                }
             }
-        }
+            m.count = 0;
+        });
     }
-    stats_.lastContacts = static_cast<uint32_t>(contacts_.size());
 }
 
-void PhysicsWorld::AddContacts(uint32_t first, uint32_t second, const Manifold& manifold,
-                               float lever) {
-    const float rolling =
-        lever * std::max(bodies_[first].rollingResistance, bodies_[second].rollingResistance);
+void PhysicsWorld::LayOutContacts() {
+    // Colours in candidate order, then a counting sort of the manifolds by colour: the layout
+    // depends only on the candidates, never on the threads that found them. Only the colouring
+    // is serial; it reads the hits, not the manifolds.
+    hits_.clear();
+    for (uint32_t k = 0; k < candidates_.size(); ++k) {
+        if (candidates_[k].manifold.count > 0) hits_.push_back({k, 0, 0});
+    }
+    constexpr uint32_t kSlots = ContactColoring::kColors + 1;  // the colours and the overflow
+    std::array<uint32_t, kSlots> manifolds{};
+    std::array<uint32_t, kSlots> points{};
+    coloring_.Reset(static_cast<uint32_t>(bodies_.size()));
+    for (Hit& hit : hits_) {
+        const Candidate& c = candidates_[hit.candidate];
+        hit.color =
+            coloring_.Assign(c.first, bodies_[c.first].awake, c.second, bodies_[c.second].awake);
+        ++manifolds[hit.color];
+        points[hit.color] += static_cast<uint32_t>(c.manifold.count);
+    }
+    batches_.colorBegin.assign(1, 0);
+    batches_.lastIsOverflow = manifolds[ContactColoring::kOverflow] > 0;
+    std::array<uint32_t, kSlots> nextManifold{};
+    std::array<uint32_t, kSlots> nextPoint{};
+    uint32_t manifoldTotal = 0;
+    uint32_t pointTotal = 0;
+    for (uint32_t color = 0; color < kSlots; ++color) {
+        if (manifolds[color] == 0) continue;
+        nextManifold[color] = manifoldTotal;
+        nextPoint[color] = pointTotal;
+        manifoldTotal += manifolds[color];
+        pointTotal += points[color];
+        batches_.colorBegin.push_back(manifoldTotal);
+    }
+    batches_.manifoldBegin.resize(manifoldTotal + 1);
+    batches_.manifoldBegin[manifoldTotal] = pointTotal;
+    for (Hit& hit : hits_) {
+        hit.manifold = nextManifold[hit.color]++;
+        batches_.manifoldBegin[hit.manifold] = nextPoint[hit.color];
+        nextPoint[hit.color] += static_cast<uint32_t>(candidates_[hit.candidate].manifold.count);
+    }
+    contacts_.resize(pointTotal);
+    ParallelFor(0, hits_.size(), kPairGrain, [&](size_t k) {
+        const Hit& hit = hits_[k];
+        WriteContacts(candidates_[hit.candidate],
+                      contacts_.data() + batches_.manifoldBegin[hit.manifold]);
+    });
+}
+
+void PhysicsWorld::WriteContacts(const Candidate& candidate, Contact* out) const {
+    const Manifold& manifold = candidate.manifold;
+    const float rolling = candidate.lever * std::max(bodies_[candidate.first].rollingResistance,
+                                                     bodies_[candidate.second].rollingResistance);
     for (int k = 0; k < manifold.count; ++k) {
         Contact c{};
-        c.a = first;
-        c.b = second;
+        c.a = candidate.first;
+        c.b = candidate.second;
         c.normal = manifold.normal;
         c.point = manifold.points[k].point;
         c.separation = manifold.points[k].separation;
         c.rollingLimit = rolling;
-        contacts_.push_back(c);
+        out[k] = c;
     }
 }
 
 void PhysicsWorld::SeedFromLastStep() {
     const float maxDistance2 = settings_.warmStartDistance * settings_.warmStartDistance;
-    for (Contact& c : contacts_) {
-        const SimBody& a = bodies_[c.a];
+    ParallelFor(0, batches_.Manifolds(), kPairGrain, [&](size_t m) {
+        const uint32_t begin = batches_.manifoldBegin[m];
+        const uint32_t end = batches_.manifoldBegin[m + 1];
+        const SimBody& a = bodies_[contacts_[begin].a];
         const Entity ea = a.entity;
-        const Entity eb = bodies_[c.b].entity;
-        auto it = std::lower_bound(
-            cache_.begin(), cache_.end(), c,
-            [&](const CachedContact& k, const Contact&) { return PairLess(k.a, k.b, ea, eb); });
-        const vec3 local = glm::transpose(a.rotation) * (c.point - a.position);
-        const CachedContact* best = nullptr;
-        float bestDistance2 = maxDistance2;
-        for (; it != cache_.end() && it->a == ea && it->b == eb; ++it) {
-            const vec3 d = it->localPoint - local;
-            const float distance2 = glm::dot(d, d);
-            if (distance2 < bestDistance2) {
-                bestDistance2 = distance2;
-                best = &*it;
+        const Entity eb = bodies_[contacts_[begin].b].entity;
+        const auto first = std::lower_bound(
+            cache_.begin(), cache_.end(), ea,
+            [&](const CachedContact& k, Entity) { return PairLess(k.a, k.b, ea, eb); });
+        if (first == cache_.end() || first->a != ea || first->b != eb) return;
+        const glm::mat3 toLocal = glm::transpose(a.rotation);
+        for (uint32_t k = begin; k < end; ++k) {
+            Contact& c = contacts_[k];
+            const vec3 local = toLocal * (c.point - a.position);
+            const CachedContact* best = nullptr;
+            float bestDistance2 = maxDistance2;
+            for (auto it = first; it != cache_.end() && it->a == ea && it->b == eb; ++it) {
+                const vec3 d = it->localPoint - local;
+                const float distance2 = glm::dot(d, d);
+                if (distance2 < bestDistance2) {
+                    bestDistance2 = distance2;
+                    best = &*it;
+                }
             }
+            if (best == nullptr) continue;
+            c.normalImpulse = best->normalImpulse;
+            c.tangentImpulse1 = best->tangentImpulse1;
+            c.tangentImpulse2 = best->tangentImpulse2;
         }
-        if (best == nullptr) continue;
-        c.normalImpulse = best->normalImpulse;
-        c.tangentImpulse1 = best->tangentImpulse1;
-        c.tangentImpulse2 = best->tangentImpulse2;
-    }
+    });
 }
 
 void PhysicsWorld::RememberImpulses() {
     nextCache_.clear();
-    for (const Contact& c : contacts_) {
+    for (uint32_t k = 0; k < contacts_.size(); ++k) {
+        const Contact& c = contacts_[k];
         if (c.normalImpulse <= 0.0f) continue;
         const SimBody& a = bodies_[c.a];
         nextCache_.push_back({a.entity, bodies_[c.b].entity,
                               glm::transpose(a.rotation) * (c.point - a.position), c.normalImpulse,
-                              c.tangentImpulse1, c.tangentImpulse2});
+                              c.tangentImpulse1, c.tangentImpulse2, k});
     }
-    std::stable_sort(nextCache_.begin(), nextCache_.end(),
-                     [](const CachedContact& x, const CachedContact& y) {
-                         return PairLess(x.a, x.b, y.a, y.b);
-                     });
+    // The contact index breaks ties, so the unstable parallel sort gives one order.
+    tbb::parallel_sort(nextCache_.begin(), nextCache_.end(),
+                       [](const CachedContact& x, const CachedContact& y) {
+                           if (x.a != y.a || x.b != y.b) return PairLess(x.a, x.b, y.a, y.b);
+                           return x.contact < y.contact;
+                       });
     std::swap(cache_, nextCache_);
 }
 
 void PhysicsWorld::IntegratePositions() {
     const float h = settings_.fixedStep;
-    for (SimBody& s : bodies_) {
-        if (!s.awake) continue;
+    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+        SimBody& s = bodies_[i];
+        if (!s.awake) return;
         s.position += (s.velocity + s.pseudoVelocity) * h;
         const vec3 w = s.angularVelocity + s.pseudoAngularVelocity;
         // dq/dt = 1/2 (0, w) q, then renormalised.
@@ -339,15 +447,16 @@ void PhysicsWorld::IntegratePositions() {
                                        glm::quat(0.0f, w.x, w.y, w.z) * s.orientation * (0.5f * h));
         s.pseudoVelocity = vec3(0.0f);
         s.pseudoAngularVelocity = vec3(0.0f);
-    }
+    });
 }
 
 void PhysicsWorld::UpdateSleep() {
     const float h = settings_.fixedStep;
     const float linear2 = settings_.sleepLinearSpeed * settings_.sleepLinearSpeed;
     const float angular2 = settings_.sleepAngularSpeed * settings_.sleepAngularSpeed;
-    for (SimBody& s : bodies_) {
-        if (!s.awake) continue;
+    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+        SimBody& s = bodies_[i];
+        if (!s.awake) return;
         const bool slow = glm::dot(s.velocity, s.velocity) < linear2 &&
                           glm::dot(s.angularVelocity, s.angularVelocity) < angular2;
         s.restingTime = slow ? s.restingTime + h : 0.0f;
@@ -356,7 +465,7 @@ void PhysicsWorld::UpdateSleep() {
             s.velocity = vec3(0.0f);
             s.angularVelocity = vec3(0.0f);
         }
-    }
+    });
 }
 
 void PhysicsWorld::WriteBack(Registry& registry, float alpha) {

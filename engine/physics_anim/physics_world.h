@@ -56,6 +56,7 @@ struct PhysicsStats {
     uint32_t lastAwake = 0;
     uint32_t lastPairs = 0;  // broad-phase pairs
     uint32_t lastContacts = 0;
+    uint32_t lastColors = 0;  // contact colours (ContactColoring), the overflow included
 };
 
 // Simulates the entities that have a RigidBody and a LocalTransform (rigid_body.h), over the
@@ -65,9 +66,12 @@ struct PhysicsStats {
 // (speculative, narrow_phase.h); warm-started sequential impulses (contact_solver.h) with
 // friction, rolling resistance, restitution and split-impulse correction; symplectic Euler
 // positions; sleeping. Gyroscopic torque is ignored (a tumbling box keeps its angular velocity).
-// Deterministic: bodies are visited in pool order, pairs in sweep order with index tie-breaks,
-// nothing depends on time or threads, so the same registry contents and calls give bit-identical
-// results (on one build and machine).
+// Parallel on TBB: per-body passes, the sweep and the narrow phase split their arrays; the solver
+// runs the manifolds of one colour (contact_coloring.h) at once.
+// Deterministic whatever the number of threads: bodies are visited in pool order, pairs in sweep
+// order with index tie-breaks, the colours are assigned serially in that order, and parallel
+// passes write disjoint data, so the same registry contents and calls give bit-identical results
+// on one build and machine, on 1 thread or 16.
 class PhysicsWorld {
     using Entity = ecs::Entity;
 
@@ -101,8 +105,17 @@ class PhysicsWorld {
     void WakeTouched();
     void IntegrateVelocities();
     void FindContacts();
-    // lever: the radius of the sphere that can roll on this contact (0 when none can).
-    void AddContacts(uint32_t first, uint32_t second, const Manifold& manifold, float lever);
+    // A pair's or a plane and body's manifold, first to second; no contact when manifold.count
+    // is 0. lever: the radius of the sphere that can roll on it (0 when none can).
+    struct Candidate {
+        Manifold manifold;
+        uint32_t first;
+        uint32_t second;
+        float lever;
+    };
+    void CollideCandidates();
+    void LayOutContacts();
+    void WriteContacts(const Candidate& candidate, Contact* out) const;
     void SeedFromLastStep();
     void RememberImpulses();
     void IntegratePositions();
@@ -120,7 +133,16 @@ class PhysicsWorld {
     std::vector<uint32_t> broadBodies_;  // body of each broad-phase box
     std::vector<BroadPhaseBox> boxes_;
     std::vector<std::pair<uint32_t, uint32_t>> pairs_;  // body indices
-    std::vector<Contact> contacts_;
+    std::vector<Candidate> candidates_;                 // the pairs, then a row of bodies per plane
+    struct Hit {
+        uint32_t candidate;  // that has contacts
+        uint32_t color;
+        uint32_t manifold;  // its place in batches_
+    };
+    std::vector<Hit> hits_;
+    ContactColoring coloring_;
+    std::vector<Contact> contacts_;  // colour by colour, as batches_ says
+    ContactBatches batches_;
 
     // Last step's touching contacts, sorted by body pair, for warm starting. Keyed by entity, so
     // they survive the per-frame gathering of bodies.
@@ -131,6 +153,7 @@ class PhysicsWorld {
         float normalImpulse;
         float tangentImpulse1;
         float tangentImpulse2;
+        uint32_t contact;  // index in the step's contacts: orders the sort
     };
     std::vector<CachedContact> cache_;
     std::vector<CachedContact> nextCache_;

@@ -84,6 +84,8 @@ class World {
 
     // Per-system times of the last frame (physics, animators, transforms), for benchmarks.
     const ecs::Scheduler& Scheduler() const { return scheduler_; }
+    // The rigid-body step's counts (bodies, contacts, colours) after the last frame.
+    const physics::PhysicsStats& PhysicsStats() const { return physics_.Stats(); }
 
   private:
     void SpawnDue();
