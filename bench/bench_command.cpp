@@ -248,13 +248,15 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
 }
 
 // Runtime cost per stage on a played scene: what a scene does not use must cost ~nothing. Each
-// scene is played once per thread count (0: TBB's default, every core).
+// scene is played once per thread count (0: TBB's default, every core); the last four columns
+// split the physics step (PhysicsTimes).
 void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
                      const std::vector<int>& threadCounts) {
     std::printf("rtrt bench runtime: medians over %d frames at 60 fps (CPU, ms)\n", frames);
-    std::printf("%-28s %7s %9s %9s %9s %11s %9s %9s %9s %9s %9s %9s %7s\n", "scene", "threads",
-                "instances", "moving", "physics", "animators", "transform", "extract", "deform",
-                "BLAS", "TLAS", "contacts", "colours");
+    std::printf("%-28s %7s %9s %9s %9s %11s %9s %9s %9s %9s %9s %9s %7s %8s %8s %8s %8s\n", "scene",
+                "threads", "instances", "moving", "physics", "animators", "transform", "extract",
+                "deform", "BLAS", "TLAS", "contacts", "colours", "broad", "narrow", "solver",
+                "integr.");
     for (const std::string& path : scenes) {
         const LoadedScene loaded = LoadSceneFile(path);
         for (const int threadCount : threadCounts) {
@@ -267,7 +269,7 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
             const std::unique_ptr<FrameRenderer> renderer =
                 MakeFrameRenderer(Backend::kCpu, world.Scene());
             std::vector<double> physics, animators, transforms, extract, deform, blas, tlas, moving,
-                contacts, colours;
+                contacts, colours, broad, narrow, solver, integrate;
             for (int i = 0; i < frames; ++i) {
                 const FrameStats stats = world.Advance(1.0f / 60.0f);
                 renderer->Update(world.Scene(), world.Changes());
@@ -287,13 +289,20 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
                 moving.push_back(stats.extracted);
                 contacts.push_back(world.PhysicsStats().lastContacts);
                 colours.push_back(world.PhysicsStats().lastColors);
+                const physics::PhysicsTimes& times = world.PhysicsStats().lastTimes;
+                broad.push_back(times.broadPhaseMs);
+                narrow.push_back(times.narrowPhaseMs);
+                solver.push_back(times.solverMs);
+                integrate.push_back(times.integrateMs);
             }
             std::printf(
-                "%-28s %7d %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.0f %7.0f\n",
+                "%-28s %7d %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.0f %7.0f %8.3f "
+                "%8.3f %8.3f %8.3f\n",
                 std::filesystem::path(path).filename().string().c_str(), threads,
                 world.Scene().instances.size(), Median(moving), Median(physics), Median(animators),
                 Median(transforms), Median(extract), Median(deform), Median(blas), Median(tlas),
-                Median(contacts), Median(colours));
+                Median(contacts), Median(colours), Median(broad), Median(narrow), Median(solver),
+                Median(integrate));
         }
     }
 }

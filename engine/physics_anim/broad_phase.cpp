@@ -39,7 +39,10 @@ int SweepAxis(std::span<const BroadPhaseBox> boxes) {
 void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
                               std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
     pairs.clear();
-    if (boxes.size() < 2) return;
+    if (boxes.size() < 2) {
+        order_.assign(boxes.size(), {0.0f, 0});
+        return;
+    }
     const int axis = SweepAxis(boxes);
     const int other1 = (axis + 1) % 3;
     const int other2 = (axis + 2) % 3;
@@ -78,6 +81,11 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
     for (size_t slice = 0; slice < slices; ++slice) {
         pairs.insert(pairs.end(), slicePairs_[slice].begin(), slicePairs_[slice].end());
     }
+}
+
+void SweepAndPrune::Ranks(std::vector<uint32_t>& rankOfBox) const {
+    rankOfBox.resize(order_.size());
+    for (uint32_t rank = 0; rank < order_.size(); ++rank) rankOfBox[order_[rank].box] = rank;
 }
 
 }  // namespace rtrt::physics

@@ -26,6 +26,9 @@ class SweepAndPrune {
     // boxes (equal bounds) overlap.
     void FindPairs(std::span<const BroadPhaseBox> boxes,
                    std::vector<std::pair<uint32_t, uint32_t>>& pairs);
+    // After FindPairs: each box's place in the sweep order, a spatial key (nearby boxes have
+    // nearby ranks along the sweep axis).
+    void Ranks(std::vector<uint32_t>& rankOfBox) const;
 
   private:
     struct Entry {

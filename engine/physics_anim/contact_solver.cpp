@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,89 +14,79 @@ namespace rtrt::physics {
 
 namespace {
 
-ContactAxis MakeAxis(const SimBody& a, const SimBody& b, const Contact& c, vec3 rA, vec3 rB,
-                     vec3 direction) {
+ContactAxis MakeAxis(const SolverBody& a, const SolverBody& b, vec3 rA, vec3 rB, vec3 direction) {
     ContactAxis axis;
     axis.direction = direction;
     axis.armA = glm::cross(rA, direction);
     axis.armB = glm::cross(rB, direction);
-    axis.turnA = a.invInertiaWorld * axis.armA;
-    axis.turnB = b.invInertiaWorld * axis.armB;
-    const float k =
-        c.invMassA + c.invMassB + glm::dot(axis.armA, axis.turnA) + glm::dot(axis.armB, axis.turnB);
+    const float k = a.invMass + b.invMass + glm::dot(axis.armA, a.invInertia * axis.armA) +
+                    glm::dot(axis.armB, b.invInertia * axis.armB);
     axis.mass = k > 0.0f ? 1.0f / k : 0.0f;
     return axis;
 }
 
-float Speed(const SimBody& a, const SimBody& b, const ContactAxis& axis) {
+float Speed(const SolverBody& a, const SolverBody& b, const ContactAxis& axis) {
     return glm::dot(axis.direction, b.velocity - a.velocity) +
            glm::dot(b.angularVelocity, axis.armB) - glm::dot(a.angularVelocity, axis.armA);
 }
 
-float PseudoSpeed(const SimBody& a, const SimBody& b, const ContactAxis& axis) {
-    return glm::dot(axis.direction, b.pseudoVelocity - a.pseudoVelocity) +
-           glm::dot(b.pseudoAngularVelocity, axis.armB) -
-           glm::dot(a.pseudoAngularVelocity, axis.armA);
+float PseudoSpeed(const PseudoVelocity& a, const PseudoVelocity& b, const ContactAxis& axis) {
+    return glm::dot(axis.direction, b.linear - a.linear) + glm::dot(b.angular, axis.armB) -
+           glm::dot(a.angular, axis.armA);
 }
 
-// Applies impulse along the axis to b and its opposite to a. A body that is not awake has zero
-// inverse mass in the contact and is not written: other manifolds of the same colour may read it
-// at the same time.
-void Push(SimBody& a, SimBody& b, const Contact& c, const ContactAxis& axis, float impulse) {
-    if (c.invMassA > 0.0f) {
-        a.velocity -= (c.invMassA * impulse) * axis.direction;
-        a.angularVelocity -= impulse * axis.turnA;
+// Applies the impulse `linear` (a vector) with angular lever sums armA and armB: b gains it, a
+// loses it. A body that is not awake (zero inverse mass) is not written: other manifolds of the
+// same colour may read it at the same time.
+void Push(SolverBody& a, SolverBody& b, vec3 linear, vec3 armA, vec3 armB) {
+    if (a.invMass > 0.0f) {
+        a.velocity -= a.invMass * linear;
+        a.angularVelocity -= a.invInertia * armA;
     }
-    if (c.invMassB > 0.0f) {
-        b.velocity += (c.invMassB * impulse) * axis.direction;
-        b.angularVelocity += impulse * axis.turnB;
+    if (b.invMass > 0.0f) {
+        b.velocity += b.invMass * linear;
+        b.angularVelocity += b.invInertia * armB;
     }
 }
 
-// Manifolds per task: a box manifold's iteration is a few dozen dot products.
-constexpr size_t kManifoldGrain = 64;
-
-// Calls solve(contact) for every contact, colour after colour, the manifolds of a colour in
-// parallel and each manifold's contacts in order on one thread.
-template <typename ContactType, typename Solve>
-void ForEachContact(std::span<ContactType> contacts, const ContactBatches& batches,
-                    const Solve& solve) {
-    const auto solveManifolds = [&](size_t begin, size_t end) {
-        for (uint32_t k = batches.manifoldBegin[begin]; k < batches.manifoldBegin[end]; ++k) {
-            solve(contacts[k]);
-        }
-    };
-    for (uint32_t color = 0; color < batches.Colors(); ++color) {
-        const uint32_t begin = batches.colorBegin[color];
-        const uint32_t end = batches.colorBegin[color + 1];
-        if (batches.lastIsOverflow && color + 1 == batches.Colors()) {
-            solveManifolds(begin, end);
-            continue;
-        }
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(begin, end, kManifoldGrain),
-            [&](const tbb::blocked_range<size_t>& r) { solveManifolds(r.begin(), r.end()); });
-    }
+void PushAlong(SolverBody& a, SolverBody& b, const ContactAxis& axis, float impulse) {
+    Push(a, b, impulse * axis.direction, impulse * axis.armA, impulse * axis.armB);
 }
+
+// Below this many manifolds a step is solved on one thread: the threads' start costs more.
+constexpr uint32_t kParallelManifolds = 1024;
+// The smallest slice of a colour that a thread claims at once.
+constexpr uint32_t kMinBlockManifolds = 32;
 
 }  // namespace
 
-void PrepareContacts(std::span<const SimBody> bodies, std::span<Contact> contacts,
-                     const SolverSettings& settings) {
-    ParallelFor(0, contacts.size(), 256, [&](size_t k) {
+void GatherSolverBodies(std::span<const SimBody> bodies, std::span<SolverBody> out) {
+    ParallelFor(0, bodies.size(), 1024, [&](size_t i) {
+        const SimBody& s = bodies[i];
+        SolverBody& b = out[i];
+        b.velocity = s.velocity;
+        b.angularVelocity = s.angularVelocity;
+        b.invMass = s.awake ? s.invMass : 0.0f;
+        b.invInertia = s.awake ? s.invInertiaWorld : glm::mat3(0.0f);
+    });
+}
+
+void PrepareContacts(std::span<const SimBody> bodies, std::span<const SolverBody> solverBodies,
+                     std::span<Contact> contacts, const SolverSettings& settings) {
+    ParallelFor(0, contacts.size(), 512, [&](size_t k) {
         Contact& c = contacts[k];
         const SimBody& a = bodies[c.a];
         const SimBody& b = bodies[c.b];
-        c.invMassA = a.awake ? a.invMass : 0.0f;
-        c.invMassB = b.awake ? b.invMass : 0.0f;
+        const SolverBody& sa = solverBodies[c.a];
+        const SolverBody& sb = solverBodies[c.b];
         const vec3 rA = c.point - a.position;
         const vec3 rB = c.point - b.position;
         vec3 t1;
         vec3 t2;
         OrthonormalBasis(c.normal, t1, t2);
-        c.normalAxis = MakeAxis(a, b, c, rA, rB, c.normal);
-        c.tangentAxis1 = MakeAxis(a, b, c, rA, rB, t1);
-        c.tangentAxis2 = MakeAxis(a, b, c, rA, rB, t2);
+        c.normalAxis = MakeAxis(sa, sb, rA, rB, c.normal);
+        c.tangentAxis1 = MakeAxis(sa, sb, rA, rB, t1);
+        c.tangentAxis2 = MakeAxis(sa, sb, rA, rB, t2);
         c.normalImpulse = 0.0f;
         c.tangentImpulse1 = 0.0f;
         c.tangentImpulse2 = 0.0f;
@@ -103,9 +94,9 @@ void PrepareContacts(std::span<const SimBody> bodies, std::span<Contact> contact
         c.rollingImpulse = vec3(0.0f);
         c.rollingMass = glm::mat3(0.0f);
         if (c.rollingLimit > 0.0f) {
-            const glm::mat3 k = a.invInertiaWorld + b.invInertiaWorld;
-            if (glm::determinant(k) > 0.0f) {
-                c.rollingMass = glm::inverse(k);
+            const glm::mat3 inverse = sa.invInertia + sb.invInertia;
+            if (glm::determinant(inverse) > 0.0f) {
+                c.rollingMass = glm::inverse(inverse);
             } else {
                 c.rollingLimit = 0.0f;  // neither body can turn
             }
@@ -119,101 +110,159 @@ void PrepareContacts(std::span<const SimBody> bodies, std::span<Contact> contact
     });
 }
 
-void WarmStart(std::span<SimBody> bodies, std::span<const Contact> contacts,
-               const ContactBatches& batches) {
-    ForEachContact(contacts, batches, [&](const Contact& c) {
-        SimBody& a = bodies[c.a];
-        SimBody& b = bodies[c.b];
-        Push(a, b, c, c.normalAxis, c.normalImpulse);
-        Push(a, b, c, c.tangentAxis1, c.tangentImpulse1);
-        Push(a, b, c, c.tangentAxis2, c.tangentImpulse2);
-    });
+namespace {
+
+void WarmStartContact(std::span<SolverBody> bodies, const Contact& c) {
+    const ContactAxis& n = c.normalAxis;
+    const ContactAxis& t1 = c.tangentAxis1;
+    const ContactAxis& t2 = c.tangentAxis2;
+    Push(bodies[c.a], bodies[c.b],
+         c.normalImpulse * n.direction + c.tangentImpulse1 * t1.direction +
+             c.tangentImpulse2 * t2.direction,
+         c.normalImpulse * n.armA + c.tangentImpulse1 * t1.armA + c.tangentImpulse2 * t2.armA,
+         c.normalImpulse * n.armB + c.tangentImpulse1 * t1.armB + c.tangentImpulse2 * t2.armB);
 }
 
-void SolveVelocities(std::span<SimBody> bodies, std::span<Contact> contacts,
-                     const ContactBatches& batches, const SolverSettings& settings) {
+void SolveVelocityContact(std::span<SolverBody> bodies, Contact& c, float invDt) {
+    SolverBody& a = bodies[c.a];
+    SolverBody& b = bodies[c.b];
+    if (c.rollingLimit > 0.0f && c.normalImpulse > 0.0f) {
+        const vec3 spin = b.angularVelocity - a.angularVelocity;
+        vec3 rolling = c.rollingImpulse - c.rollingMass * spin;
+        const float maxRolling = c.rollingLimit * c.normalImpulse;
+        const float length = glm::length(rolling);
+        if (length > maxRolling) rolling *= maxRolling / length;
+        const vec3 delta = rolling - c.rollingImpulse;
+        c.rollingImpulse = rolling;
+        if (a.invMass > 0.0f) a.angularVelocity -= a.invInertia * delta;
+        if (b.invMass > 0.0f) b.angularVelocity += b.invInertia * delta;
+    }
+    // Friction before the normal, so that the normal constraint, which matters more, is solved
+    // last.
+    const float maxFriction = c.friction * c.normalImpulse;
+    if (maxFriction > 0.0f) {
+        const ContactAxis& axis1 = c.tangentAxis1;
+        const ContactAxis& axis2 = c.tangentAxis2;
+        float t1 = c.tangentImpulse1 - axis1.mass * Speed(a, b, axis1);
+        float t2 = c.tangentImpulse2 - axis2.mass * Speed(a, b, axis2);
+        const float length = std::sqrt(t1 * t1 + t2 * t2);
+        if (length > maxFriction) {  // clamp to the friction cone
+            t1 *= maxFriction / length;
+            t2 *= maxFriction / length;
+        }
+        const float d1 = t1 - c.tangentImpulse1;
+        const float d2 = t2 - c.tangentImpulse2;
+        Push(a, b, d1 * axis1.direction + d2 * axis2.direction, d1 * axis1.armA + d2 * axis2.armA,
+             d1 * axis1.armB + d2 * axis2.armB);
+        c.tangentImpulse1 = t1;
+        c.tangentImpulse2 = t2;
+    }
+    const float vn = Speed(a, b, c.normalAxis);
+    const float allowedApproach = c.separation > 0.0f ? c.separation * invDt : 0.0f;
+    const float impulse =
+        std::max(c.normalImpulse - c.normalAxis.mass * (vn + allowedApproach), 0.0f);
+    PushAlong(a, b, c.normalAxis, impulse - c.normalImpulse);
+    c.normalImpulse = impulse;
+}
+
+void RestituteContact(std::span<SolverBody> bodies, Contact& c, const SolverSettings& settings) {
+    if (c.normalImpulse <= 0.0f || c.approachSpeed <= settings.restitutionThreshold) return;
+    const float target = c.restitution * c.approachSpeed - c.gravitySpeed;
+    if (target <= 0.0f) return;
+    SolverBody& a = bodies[c.a];
+    SolverBody& b = bodies[c.b];
+    const float vn = Speed(a, b, c.normalAxis);
+    const float impulse = std::max(c.normalImpulse - c.normalAxis.mass * (vn - target), 0.0f);
+    PushAlong(a, b, c.normalAxis, impulse - c.normalImpulse);
+    c.normalImpulse = impulse;
+}
+
+void SolvePositionContact(std::span<const SolverBody> bodies, std::span<PseudoVelocity> pseudo,
+                          Contact& c, float rate, float linearSlop) {
+    const float overlap = -c.separation - linearSlop;
+    if (overlap <= 0.0f) return;
+    const SolverBody& a = bodies[c.a];
+    const SolverBody& b = bodies[c.b];
+    PseudoVelocity& pa = pseudo[c.a];
+    PseudoVelocity& pb = pseudo[c.b];
+    const ContactAxis& axis = c.normalAxis;
+    const float vn = PseudoSpeed(pa, pb, axis);
+    const float impulse = std::max(c.pseudoImpulse - axis.mass * (vn - rate * overlap), 0.0f);
+    const float delta = impulse - c.pseudoImpulse;
+    c.pseudoImpulse = impulse;
+    if (a.invMass > 0.0f) {
+        pa.linear -= (a.invMass * delta) * axis.direction;
+        pa.angular -= a.invInertia * (delta * axis.armA);
+    }
+    if (b.invMass > 0.0f) {
+        pb.linear += (b.invMass * delta) * axis.direction;
+        pb.angular += b.invInertia * (delta * axis.armB);
+    }
+}
+
+enum class Pass : uint8_t { kWarmStart, kVelocity, kRestitution, kPosition };
+
+}  // namespace
+
+void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,
+                   std::span<Contact> contacts, const ContactBatches& batches,
+                   const SolverSettings& settings, ContactSolverScratch& scratch) {
+    const uint32_t colors = batches.Colors();
+    if (colors == 0) return;
+    // A stage is one pass over one colour; its blocks are slices of the colour's manifolds. The
+    // overflow colour is a single block, solved in order by one thread.
+    const int threads =
+        batches.Manifolds() < kParallelManifolds ? 1 : StageRunner::AvailableThreads();
+    const auto blockSize = [&](uint32_t color) -> uint32_t {
+        const uint32_t manifolds = batches.colorBegin[color + 1] - batches.colorBegin[color];
+        if (batches.lastIsOverflow && color + 1 == colors) return std::max(1u, manifolds);
+        const uint32_t perThread = manifolds / (4 * static_cast<uint32_t>(threads));
+        return std::max(kMinBlockManifolds, perThread);
+    };
+    scratch.stages.clear();
+    scratch.blocks.clear();
+    const auto addPass = [&](Pass pass) {
+        for (uint32_t color = 0; color < colors; ++color) {
+            const uint32_t manifolds = batches.colorBegin[color + 1] - batches.colorBegin[color];
+            const uint32_t size = blockSize(color);
+            scratch.stages.push_back({static_cast<uint8_t>(pass), color, size});
+            scratch.blocks.push_back((manifolds + size - 1) / size);
+        }
+    };
+    addPass(Pass::kWarmStart);
+    for (int i = 0; i < settings.velocityIterations; ++i) addPass(Pass::kVelocity);
+    addPass(Pass::kRestitution);
+    for (int i = 0; i < settings.positionIterations; ++i) addPass(Pass::kPosition);
+
     const float invDt = 1.0f / settings.dt;
-    for (int iteration = 0; iteration < settings.velocityIterations; ++iteration) {
-        ForEachContact(contacts, batches, [&](Contact& c) {
-            SimBody& a = bodies[c.a];
-            SimBody& b = bodies[c.b];
-            if (c.rollingLimit > 0.0f && c.normalImpulse > 0.0f) {
-                const vec3 spin = b.angularVelocity - a.angularVelocity;
-                vec3 rolling = c.rollingImpulse - c.rollingMass * spin;
-                const float maxRolling = c.rollingLimit * c.normalImpulse;
-                const float length = glm::length(rolling);
-                if (length > maxRolling) rolling *= maxRolling / length;
-                const vec3 delta = rolling - c.rollingImpulse;
-                c.rollingImpulse = rolling;
-                if (a.awake) a.angularVelocity -= a.invInertiaWorld * delta;
-                if (b.awake) b.angularVelocity += b.invInertiaWorld * delta;
-            }
-            // Friction before the normal, so that the normal constraint, which matters more, is
-            // solved last.
-            const float maxFriction = c.friction * c.normalImpulse;
-            if (maxFriction > 0.0f) {
-                float t1 = c.tangentImpulse1 - c.tangentAxis1.mass * Speed(a, b, c.tangentAxis1);
-                float t2 = c.tangentImpulse2 - c.tangentAxis2.mass * Speed(a, b, c.tangentAxis2);
-                const float length = std::sqrt(t1 * t1 + t2 * t2);
-                if (length > maxFriction) {  // clamp to the friction cone
-                    t1 *= maxFriction / length;
-                    t2 *= maxFriction / length;
-                }
-                Push(a, b, c, c.tangentAxis1, t1 - c.tangentImpulse1);
-                Push(a, b, c, c.tangentAxis2, t2 - c.tangentImpulse2);
-                c.tangentImpulse1 = t1;
-                c.tangentImpulse2 = t2;
-            }
-            const float vn = Speed(a, b, c.normalAxis);
-            const float allowedApproach = c.separation > 0.0f ? c.separation * invDt : 0.0f;
-            const float impulse =
-                std::max(c.normalImpulse - c.normalAxis.mass * (vn + allowedApproach), 0.0f);
-            Push(a, b, c, c.normalAxis, impulse - c.normalImpulse);
-            c.normalImpulse = impulse;
-        });
-    }
-}
-
-void ApplyRestitution(std::span<SimBody> bodies, std::span<Contact> contacts,
-                      const ContactBatches& batches, const SolverSettings& settings) {
-    ForEachContact(contacts, batches, [&](Contact& c) {
-        if (c.normalImpulse <= 0.0f || c.approachSpeed <= settings.restitutionThreshold) return;
-        const float target = c.restitution * c.approachSpeed - c.gravitySpeed;
-        if (target <= 0.0f) return;
-        SimBody& a = bodies[c.a];
-        SimBody& b = bodies[c.b];
-        const float vn = Speed(a, b, c.normalAxis);
-        const float impulse = std::max(c.normalImpulse - c.normalAxis.mass * (vn - target), 0.0f);
-        Push(a, b, c, c.normalAxis, impulse - c.normalImpulse);
-        c.normalImpulse = impulse;
-    });
-}
-
-void SolvePositions(std::span<SimBody> bodies, std::span<Contact> contacts,
-                    const ContactBatches& batches, const SolverSettings& settings) {
     const float rate = settings.positionCorrection / settings.dt;
-    for (int iteration = 0; iteration < settings.positionIterations; ++iteration) {
-        ForEachContact(contacts, batches, [&](Contact& c) {
-            const float overlap = -c.separation - settings.linearSlop;
-            if (overlap <= 0.0f) return;
-            SimBody& a = bodies[c.a];
-            SimBody& b = bodies[c.b];
-            const float vn = PseudoSpeed(a, b, c.normalAxis);
-            const float impulse =
-                std::max(c.pseudoImpulse - c.normalAxis.mass * (vn - rate * overlap), 0.0f);
-            const float delta = impulse - c.pseudoImpulse;
-            c.pseudoImpulse = impulse;
-            const vec3 p = delta * c.normalAxis.direction;
-            if (c.invMassA > 0.0f) {
-                a.pseudoVelocity -= c.invMassA * p;
-                a.pseudoAngularVelocity -= delta * c.normalAxis.turnA;
-            }
-            if (c.invMassB > 0.0f) {
-                b.pseudoVelocity += c.invMassB * p;
-                b.pseudoAngularVelocity += delta * c.normalAxis.turnB;
-            }
-        });
-    }
+    scratch.runner.Run(scratch.blocks, threads, [&](size_t stageIndex, uint32_t block) {
+        const ContactSolverScratch::Stage& stage = scratch.stages[stageIndex];
+        const uint32_t colorEnd = batches.colorBegin[stage.color + 1];
+        const uint32_t first = batches.colorBegin[stage.color] + block * stage.blockSize;
+        const uint32_t last = std::min(colorEnd, first + stage.blockSize);
+        const uint32_t begin = batches.manifoldBegin[first];
+        const uint32_t end = batches.manifoldBegin[last];
+        switch (static_cast<Pass>(stage.pass)) {
+            case Pass::kWarmStart:
+                for (uint32_t k = begin; k < end; ++k) WarmStartContact(bodies, contacts[k]);
+                break;
+            case Pass::kVelocity:
+                for (uint32_t k = begin; k < end; ++k) {
+                    SolveVelocityContact(bodies, contacts[k], invDt);
+                }
+                break;
+            case Pass::kRestitution:
+                for (uint32_t k = begin; k < end; ++k)
+                    RestituteContact(bodies, contacts[k], settings);
+                break;
+            case Pass::kPosition:
+                for (uint32_t k = begin; k < end; ++k) {
+                    SolvePositionContact(bodies, pseudo, contacts[k], rate, settings.linearSlop);
+                }
+                break;
+        }
+    });
 }
 
 }  // namespace rtrt::physics

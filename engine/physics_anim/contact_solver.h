@@ -5,21 +5,40 @@
 #include <cstdint>
 #include <glm/mat3x3.hpp>
 #include <span>
+#include <vector>
 
 #include "engine/physics_anim/contact_coloring.h"
 #include "engine/physics_anim/sim_body.h"
+#include "engine/physics_anim/stage_runner.h"
 
 namespace rtrt::physics {
 
-// One direction of a contact's constraint, with the lever arms precomputed so that an iteration
-// costs dot products: the relative speed along it is
-// dot(direction, vB - vA) + dot(wB, armB) - dot(wA, armA).
+// What an iteration reads and writes of a body, in one 64-byte cache line of its own: the
+// solver's passes stream the contacts and hit these at random, so 10,000 of them stay in a core's
+// cache, and threads writing neighbouring bodies do not share a line. A body that is not awake
+// has zero inverse mass and inertia and is never written.
+struct alignas(64) SolverBody {
+    vec3 velocity{0.0f};
+    float invMass = 0.0f;
+    vec3 angularVelocity{0.0f};
+    glm::mat3 invInertia{0.0f};  // world space
+};
+
+// Split impulse: moves a body out of overlap during the step, adds no speed. Aligned like
+// SolverBody, for the same reason.
+struct alignas(32) PseudoVelocity {
+    vec3 linear{0.0f};
+    vec3 angular{0.0f};
+};
+
+// One direction of a contact's constraint: the relative speed along it is
+// dot(direction, vB - vA) + dot(wB, armB) - dot(wA, armA), and an impulse p along it changes wA
+// by -p * invInertiaA * armA. The arms are kept and the turns computed: it halves the bytes an
+// iteration streams, which is what bounds it on many cores.
 struct ContactAxis {
     vec3 direction;
     vec3 armA;   // rA x direction
     vec3 armB;   // rB x direction
-    vec3 turnA;  // change of wA per unit impulse: invInertiaA * armA (zero when A is not awake)
-    vec3 turnB;
     float mass;  // effective mass along the direction
 };
 
@@ -31,22 +50,20 @@ struct Contact {
     float separation;    // at the start of the step; negative when overlapping
     float rollingLimit;  // max rolling impulse per unit normal impulse, in metres (0: none)
 
-    // Filled by PrepareContacts (the impulses zeroed; the caller may seed them, see WarmStart).
+    // Filled by PrepareContacts (the impulses zeroed; the caller may seed them).
     ContactAxis normalAxis;
     ContactAxis tangentAxis1;
     ContactAxis tangentAxis2;
-    float invMassA;  // zero for a body that is not awake
-    float invMassB;
     float normalImpulse;
     float tangentImpulse1;
     float tangentImpulse2;
     float pseudoImpulse;
+    float friction;
     vec3 rollingImpulse;
     glm::mat3 rollingMass;  // inverse of the summed inverse inertias
     float approachSpeed;    // normal speed of approach at the start of the step, before gravity
     float gravitySpeed;  // |gravity . normal| * dt: what gravity can add to the approach in a step
     float restitution;
-    float friction;
 };
 
 struct SolverSettings {
@@ -59,33 +76,45 @@ struct SolverSettings {
     float positionCorrection;
 };
 
-// Each pass below runs the colours of batches one after another and the manifolds of a colour in
-// parallel (TBB); only bodies that are awake are written. The result does not depend on the
-// number of threads.
-void PrepareContacts(std::span<const SimBody> bodies, std::span<Contact> contacts,
-                     const SolverSettings& settings);
+// The solver's view of the bodies at the start of the contact passes.
+void GatherSolverBodies(std::span<const SimBody> bodies, std::span<SolverBody> out);
 
-// Applies the contacts' seeded impulses, so that the iterations start from last step's solution:
-// resting stacks converge in a few iterations instead of sinking.
-void WarmStart(std::span<SimBody> bodies, std::span<const Contact> contacts,
-               const ContactBatches& batches);
+// Fills the contacts' axes and effective masses and zeroes their impulses (the caller may then
+// seed them from the last step: see SolveContacts).
+void PrepareContacts(std::span<const SimBody> bodies, std::span<const SolverBody> solverBodies,
+                     std::span<Contact> contacts, const SolverSettings& settings);
 
-// Rolling resistance, friction within the Coulomb cone and a non-negative normal impulse that
-// lets a speculative contact (separation > 0) close its gap within the step but not overshoot it.
-void SolveVelocities(std::span<SimBody> bodies, std::span<Contact> contacts,
-                     const ContactBatches& batches, const SolverSettings& settings);
+// What SolveContacts keeps between steps, so that a step allocates nothing.
+struct ContactSolverScratch {
+    struct Stage {
+        uint8_t pass;
+        uint32_t color;
+        uint32_t blockSize;  // manifolds per block
+    };
+    std::vector<Stage> stages;
+    std::vector<uint32_t> blocks;  // per stage
+    StageRunner runner;
+};
 
-// One pass after SolveVelocities (as Box2D v3 does): a touching contact whose approach speed u
-// exceeds the threshold leaves at e * u - |g . n| * dt. Dropping one step's worth of gravity from
-// the rebound means that a bounce never gains energy (a ball that reached the contact at the
-// start of the step would otherwise also keep the speed gravity gave it during the step).
-void ApplyRestitution(std::span<SimBody> bodies, std::span<Contact> contacts,
-                      const ContactBatches& batches, const SolverSettings& settings);
-
-// Split impulse: pseudo velocities push overlapping bodies apart by positionCorrection of the
-// overlap beyond linearSlop per step; they move the bodies but are discarded afterwards, so the
-// correction adds no kinetic energy (unlike Baumgarte stabilisation of the velocities).
-void SolvePositions(std::span<SimBody> bodies, std::span<Contact> contacts,
-                    const ContactBatches& batches, const SolverSettings& settings);
+// The contact passes of a step, each colour by colour (the manifolds of a colour at once, on
+// every thread TBB lends; only awake bodies are written, so the result does not depend on the
+// number of threads):
+// 1. Warm start: the contacts' seeded impulses are applied, so that the iterations start from
+//    the last step's solution and resting stacks converge in a few iterations instead of
+//    sinking.
+// 2. velocityIterations of rolling resistance, friction within the Coulomb cone and a
+//    non-negative normal impulse that lets a speculative contact (separation > 0) close its gap
+//    within the step but not overshoot it.
+// 3. Restitution, one pass (as Box2D v3 does): a touching contact whose approach speed u exceeds
+//    the threshold leaves at e * u - |g . n| * dt. Dropping one step's worth of gravity from the
+//    rebound means that a bounce never gains energy (a ball that reached the contact at the
+//    start of the step would otherwise also keep the speed gravity gave it during the step).
+// 4. positionIterations of split impulse: pseudo velocities push overlapping bodies apart by
+//    positionCorrection of the overlap beyond linearSlop per step; they move the bodies but are
+//    discarded afterwards, so the correction adds no kinetic energy (unlike Baumgarte
+//    stabilisation of the velocities).
+void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,
+                   std::span<Contact> contacts, const ContactBatches& batches,
+                   const SolverSettings& settings, ContactSolverScratch& scratch);
 
 }  // namespace rtrt::physics

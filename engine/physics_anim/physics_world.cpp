@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "engine/core/parallel_for.h"
+#include "engine/core/timer.h"
 #include "engine/physics_anim/narrow_phase.h"
 #include "engine/physics_anim/quat_interp.h"
 
@@ -36,7 +37,7 @@ bool PairLess(Entity a1, Entity b1, Entity a2, Entity b2) {
 }
 
 // Work per TBB task: each element is a few dozen to a few hundred flops.
-constexpr size_t kBodyGrain = 256;
+constexpr size_t kBodyGrain = 1024;
 constexpr size_t kPairGrain = 128;
 constexpr size_t kContactGrain = 256;
 
@@ -67,6 +68,7 @@ void PhysicsWorld::Advance(Registry& registry, float frameDt) {
     accumulator_ -= steps * step;
     if (accumulator_ >= step) accumulator_ = std::fmod(accumulator_, step);  // drop what is late
 
+    stats_.lastTimes = {};
     Gather(registry);
     for (int i = 0; i < steps; ++i) TakeStep();
     WriteBack(registry, InterpolationAlpha());
@@ -74,6 +76,7 @@ void PhysicsWorld::Advance(Registry& registry, float frameDt) {
 
 void PhysicsWorld::Step(Registry& registry, int steps) {
     if (registry.Count<RigidBody>() == 0) return;
+    stats_.lastTimes = {};
     Gather(registry);
     for (int i = 0; i < steps; ++i) TakeStep();
     WriteBack(registry, 1.0f);
@@ -143,19 +146,28 @@ void PhysicsWorld::TakeStep() {
         s.invInertiaWorld =
             s.awake ? WorldInverseInertia(s.rotation, s.invInertiaLocal) : glm::mat3(0.0f);
     });
+    PhysicsTimes& times = stats_.lastTimes;
+    Stopwatch clock;
     FindPairs();
     WakeTouched();
     IntegrateVelocities();
+    times.broadPhaseMs += clock.Milliseconds();
+    clock.Restart();
     FindContacts();
-    PrepareContacts(bodies_, contacts_, solver_);
+    times.narrowPhaseMs += clock.Milliseconds();
+    clock.Restart();
+    solverBodies_.resize(bodies_.size());
+    GatherSolverBodies(bodies_, solverBodies_);
+    PrepareContacts(bodies_, solverBodies_, contacts_, solver_);
     SeedFromLastStep();
-    WarmStart(bodies_, contacts_, batches_);
-    SolveVelocities(bodies_, contacts_, batches_, solver_);
-    ApplyRestitution(bodies_, contacts_, batches_, solver_);
-    SolvePositions(bodies_, contacts_, batches_, solver_);
+    pseudoVelocities_.assign(bodies_.size(), PseudoVelocity{});
+    SolveContacts(solverBodies_, pseudoVelocities_, contacts_, batches_, solver_, solverScratch_);
     RememberImpulses();
+    times.solverMs += clock.Milliseconds();
+    clock.Restart();
     IntegratePositions();
     UpdateSleep();
+    times.integrateMs += clock.Milliseconds();
 }
 
 float PhysicsWorld::Margin(const SimBody& s) const {
@@ -190,6 +202,9 @@ void PhysicsWorld::FindPairs() {
         boxes_[k] = {s.position - extent, s.position + extent, !s.dynamic};
     });
     sweep_.FindPairs(boxes_, pairs_);
+    sweep_.Ranks(boxRanks_);
+    bodyRanks_.assign(bodies_.size(), 0);
+    for (size_t k = 0; k < broadBodies_.size(); ++k) bodyRanks_[broadBodies_[k]] = boxRanks_[k];
     ParallelFor(0, pairs_.size(), kPairGrain, [&](size_t k) {
         pairs_[k] = {broadBodies_[pairs_[k].first], broadBodies_[pairs_[k].second]};
     });
@@ -319,44 +334,57 @@ void PhysicsWorld::CollideCandidates() {
 }
 
 void PhysicsWorld::LayOutContacts() {
-    // Colours in candidate order, then a counting sort of the manifolds by colour: the layout
-    // depends only on the candidates, never on the threads that found them. Only the colouring
-    // is serial; it reads the hits, not the manifolds.
+    // Colours are assigned serially in candidate order. Within a colour the manifolds are then
+    // ordered by region, the sweep rank of their moving body cut into kRegions: the solver splits
+    // each colour evenly among its threads in that order, so a thread gets about the same region
+    // in every colour and a body's cache line mostly stays with one core. A counting sort keeps
+    // candidate order within a region: the layout depends only on the candidates, never on the
+    // threads that found them.
+    constexpr uint32_t kSlots = ContactColoring::kColors + 1;  // the colours and the overflow
+    constexpr uint32_t kRegions = 256;
     hits_.clear();
     for (uint32_t k = 0; k < candidates_.size(); ++k) {
         if (candidates_[k].manifold.count > 0) hits_.push_back({k, 0, 0});
     }
-    constexpr uint32_t kSlots = ContactColoring::kColors + 1;  // the colours and the overflow
-    std::array<uint32_t, kSlots> manifolds{};
-    std::array<uint32_t, kSlots> points{};
     coloring_.Reset(static_cast<uint32_t>(bodies_.size()));
+    slotManifolds_.assign(kSlots * kRegions, 0);
+    slotPoints_.assign(kSlots * kRegions, 0);
+    const uint64_t ranks = std::max<uint64_t>(1, boxes_.size());
+    std::array<uint32_t, kSlots> colorManifolds{};
     for (Hit& hit : hits_) {
         const Candidate& c = candidates_[hit.candidate];
-        hit.color =
-            coloring_.Assign(c.first, bodies_[c.first].awake, c.second, bodies_[c.second].awake);
-        ++manifolds[hit.color];
-        points[hit.color] += static_cast<uint32_t>(c.manifold.count);
+        const bool firstMoves = bodies_[c.first].awake;
+        const uint32_t color =
+            coloring_.Assign(c.first, firstMoves, c.second, bodies_[c.second].awake);
+        const uint64_t rank = bodyRanks_[firstMoves ? c.first : c.second];
+        hit.slot = color * kRegions + static_cast<uint32_t>(rank * kRegions / ranks);
+        ++slotManifolds_[hit.slot];
+        slotPoints_[hit.slot] += static_cast<uint32_t>(c.manifold.count);
+        ++colorManifolds[color];
     }
     batches_.colorBegin.assign(1, 0);
-    batches_.lastIsOverflow = manifolds[ContactColoring::kOverflow] > 0;
-    std::array<uint32_t, kSlots> nextManifold{};
-    std::array<uint32_t, kSlots> nextPoint{};
+    batches_.lastIsOverflow = colorManifolds[ContactColoring::kOverflow] > 0;
     uint32_t manifoldTotal = 0;
     uint32_t pointTotal = 0;
-    for (uint32_t color = 0; color < kSlots; ++color) {
-        if (manifolds[color] == 0) continue;
-        nextManifold[color] = manifoldTotal;
-        nextPoint[color] = pointTotal;
-        manifoldTotal += manifolds[color];
-        pointTotal += points[color];
-        batches_.colorBegin.push_back(manifoldTotal);
+    for (uint32_t slot = 0; slot < kSlots * kRegions; ++slot) {
+        const uint32_t manifolds = slotManifolds_[slot];
+        const uint32_t points = slotPoints_[slot];
+        slotManifolds_[slot] = manifoldTotal;  // now where the slot's manifolds start
+        slotPoints_[slot] = pointTotal;
+        manifoldTotal += manifolds;
+        pointTotal += points;
+        const uint32_t color = slot / kRegions;
+        if (slot % kRegions == kRegions - 1 && colorManifolds[color] > 0) {
+            batches_.colorBegin.push_back(manifoldTotal);
+        }
     }
     batches_.manifoldBegin.resize(manifoldTotal + 1);
     batches_.manifoldBegin[manifoldTotal] = pointTotal;
     for (Hit& hit : hits_) {
-        hit.manifold = nextManifold[hit.color]++;
-        batches_.manifoldBegin[hit.manifold] = nextPoint[hit.color];
-        nextPoint[hit.color] += static_cast<uint32_t>(candidates_[hit.candidate].manifold.count);
+        const uint32_t manifold = slotManifolds_[hit.slot]++;
+        batches_.manifoldBegin[manifold] = slotPoints_[hit.slot];
+        slotPoints_[hit.slot] += static_cast<uint32_t>(candidates_[hit.candidate].manifold.count);
+        hit.manifold = manifold;
     }
     contacts_.resize(pointTotal);
     ParallelFor(0, hits_.size(), kPairGrain, [&](size_t k) {
@@ -440,13 +468,14 @@ void PhysicsWorld::IntegratePositions() {
     ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
         SimBody& s = bodies_[i];
         if (!s.awake) return;
-        s.position += (s.velocity + s.pseudoVelocity) * h;
-        const vec3 w = s.angularVelocity + s.pseudoAngularVelocity;
+        s.velocity = solverBodies_[i].velocity;
+        s.angularVelocity = solverBodies_[i].angularVelocity;
+        const PseudoVelocity& pseudo = pseudoVelocities_[i];
+        s.position += (s.velocity + pseudo.linear) * h;
+        const vec3 w = s.angularVelocity + pseudo.angular;
         // dq/dt = 1/2 (0, w) q, then renormalised.
         s.orientation = glm::normalize(s.orientation +
                                        glm::quat(0.0f, w.x, w.y, w.z) * s.orientation * (0.5f * h));
-        s.pseudoVelocity = vec3(0.0f);
-        s.pseudoAngularVelocity = vec3(0.0f);
     });
 }
 

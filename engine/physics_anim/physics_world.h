@@ -48,6 +48,14 @@ struct PhysicsSettings {
     float timeToSleep = 0.5f;         // s
 };
 
+// Where the last Advance or Step call spent its time, summed over its steps.
+struct PhysicsTimes {
+    double broadPhaseMs = 0.0;   // boxes, pairs, waking, gravity
+    double narrowPhaseMs = 0.0;  // contacts, colouring and layout
+    double solverMs = 0.0;       // warm start, velocity and position iterations, impulse cache
+    double integrateMs = 0.0;    // positions and sleep
+};
+
 struct PhysicsStats {
     uint64_t frames = 0;      // Advance calls that found rigid bodies
     uint64_t steps = 0;       // fixed steps taken
@@ -57,6 +65,7 @@ struct PhysicsStats {
     uint32_t lastPairs = 0;  // broad-phase pairs
     uint32_t lastContacts = 0;
     uint32_t lastColors = 0;  // contact colours (ContactColoring), the overflow included
+    PhysicsTimes lastTimes;
 };
 
 // Simulates the entities that have a RigidBody and a LocalTransform (rigid_body.h), over the
@@ -136,13 +145,20 @@ class PhysicsWorld {
     std::vector<Candidate> candidates_;                 // the pairs, then a row of bodies per plane
     struct Hit {
         uint32_t candidate;  // that has contacts
-        uint32_t color;
-        uint32_t manifold;  // its place in batches_
+        uint32_t slot;       // colour * regions + region (LayOutContacts)
+        uint32_t manifold;   // its place in batches_
     };
     std::vector<Hit> hits_;
+    std::vector<uint32_t> slotManifolds_;
+    std::vector<uint32_t> slotPoints_;
+    std::vector<uint32_t> boxRanks_;   // each broad-phase box's place in the sweep
+    std::vector<uint32_t> bodyRanks_;  // the same per body (0 for planes)
     ContactColoring coloring_;
     std::vector<Contact> contacts_;  // colour by colour, as batches_ says
     ContactBatches batches_;
+    std::vector<SolverBody> solverBodies_;
+    std::vector<PseudoVelocity> pseudoVelocities_;
+    ContactSolverScratch solverScratch_;
 
     // Last step's touching contacts, sorted by body pair, for warm starting. Keyed by entity, so
     // they survive the per-frame gathering of bodies.

@@ -29,8 +29,6 @@ struct SimBody {
     vec3 angularVelocity{0.0f};
     vec3 startVelocity{0.0f};  // at the start of the step, before gravity: restitution uses it
     vec3 startAngularVelocity{0.0f};
-    vec3 pseudoVelocity{0.0f};  // split impulse: moves the body out of overlap, adds no speed
-    vec3 pseudoAngularVelocity{0.0f};
 
     float invMass = 0.0f;             // of a dynamic body; the solver uses 0 for one not awake
     vec3 invInertiaLocal{0.0f};       // principal, zero for fixed rotation
