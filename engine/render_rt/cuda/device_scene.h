@@ -14,6 +14,8 @@ namespace rtrt {
 
 struct DeviceScene {
     std::vector<DeviceBuffer<BvhNode>> blasNodes;
+    std::vector<DeviceBuffer<WideBvhNode>> wideNodes;
+    std::vector<DeviceBuffer<WideBvhLeaf>> wideLeaves;
     std::vector<DeviceBuffer<Triangle>> triangles;
     std::vector<DeviceBuffer<TriangleNormals>> normals;
     std::vector<DeviceBuffer<Sphere>> spheres;
@@ -52,9 +54,17 @@ struct DeviceScene {
             spheres.emplace_back(std::span<const Sphere>(blas->spheres));
             uvs.emplace_back(std::span<const TriangleUvs>(blas->uvs));
             tangents.emplace_back(std::span<const TriangleTangents>(blas->tangents));
+            // Triangle BLASes are traversed through their compressed 8-wide collapse; the binary
+            // nodes serve the heatmap's counts and the many-instance loop.
+            const WideBvh wide =
+                blas->kind == GeometryKind::kTriangles ? CollapseToWideBvh(blas->nodes) : WideBvh{};
+            wideNodes.emplace_back(std::span<const WideBvhNode>(wide.nodes));
+            wideLeaves.emplace_back(std::span<const WideBvhLeaf>(wide.leaves));
             BlasView v = blas->View();
             v.nodes = blasNodes.back().Data();
-            v.nodes4 = nullptr;  // the GPU traverses the binary BVH
+            v.nodes4 = nullptr;
+            v.wideNodes = wide.nodes.empty() ? nullptr : wideNodes.back().Data();
+            v.wideLeaves = wide.nodes.empty() ? nullptr : wideLeaves.back().Data();
             v.triangles = triangles.back().Data();
             v.normals = blas->normals.empty() ? nullptr : normals.back().Data();
             v.spheres = spheres.back().Data();
