@@ -2,9 +2,10 @@
 // Traversal of the compressed 8-wide BVH (wide_bvh.h) in portable code: the GPU's BLAS loop for
 // triangle BLASes in the nested form, run on the CPU by the tests.
 //
-// A node is five 16-byte loads. Its children's boxes are decoded plane by plane and tested as
-// slab_test.h does (inclusive, NaN lanes dropped, far distance widened by 1 + 2 gamma(3)), so a
-// child is entered whenever the binary tree would enter it. The hit children become two 8-bit
+// A node is five 16-byte loads. Its children's boxes are tested with one fused multiply-add per
+// plane and the semantics of slab_test.h (inclusive, NaN lanes dropped, far distance widened by
+// 1 + 2 gamma(3)), on boxes widened for the rounding of the per-node terms, so a child is entered
+// whenever the binary tree would enter it. The hit children become two 8-bit
 // masks in visiting order (bit k for slot k ^ octant): the leaves are tested at once, the nearest
 // interior child is visited next and the rest wait on the stack as one entry (the node's
 // childBase and the remaining bits), as in Ylitie et al. (2017). Entries are not re-tested when
@@ -68,6 +69,16 @@ RT_HD inline float WordAsFloat(uint32_t w) {
 #endif
 }
 
+// Byte k of a word as a float: on the GPU a byte permute into the mantissa of 2^23 and one
+// subtraction, cheaper than an integer conversion.
+RT_HD inline float WideByte(uint32_t word, uint32_t k) {
+#if defined(__CUDA_ARCH__)
+    return __uint_as_float(__byte_perm(word, 0x4b00u, 0x5440u | k)) - 8388608.0f;
+#else
+    return float((word >> (8u * k)) & 0xffu);
+#endif
+}
+
 // Word offsets inside WideNodeWords.
 inline constexpr int kWideMetaWord = 3;  // exponents (3 bytes), interiorMask
 inline constexpr int kWideChildBaseWord = 4;
@@ -104,10 +115,28 @@ RT_HD inline bool TraverseWide(const WideBvhNode* nodes, const WideBvhLeaf* leav
         const uint32_t interiorMask = meta >> 24;
         const uint32_t leafMask = n.w[kWideLeafMaskWord] & 0xffu;
         const uint32_t occupied = interiorMask | leafMask;
-        float origin[3], scale[3];
-        for (int a = 0; a < 3; ++a) {
-            origin[a] = WordAsFloat(n.w[a]);
-            scale[a] = WideScale(int(int8_t(uint8_t(meta >> (8 * a)))));
+        // Per axis, the plane distance is q * a + b: a = 2^e / d exactly (a power of two scales
+        // without rounding), b = (origin - o) / d. The two roundings in b are absolute errors of
+        // up to gamma(2) |b|, which cancellation leaves uncovered by the relative widening below;
+        // so near planes use b - gamma(5) |b| and far planes b + gamma(5) |b|: the decoded box
+        // only grows. NaN (0 * inf, inf - inf) drops a plane, as in SlabTest.
+        float a[3], bNear[3], bFar[3];
+        uint32_t nearWords[3][2], farWords[3][2];
+        for (int axis = 0; axis < 3; ++axis) {
+            const float o = axis == 0 ? ray.origin.x : axis == 1 ? ray.origin.y : ray.origin.z;
+            const float inv = axis == 0 ? ray.invDir.x : axis == 1 ? ray.invDir.y : ray.invDir.z;
+            const float scale = WideScale(int(int8_t(uint8_t(meta >> (8 * axis)))));
+            a[axis] = scale * inv;
+            const float b = (WordAsFloat(n.w[axis]) - o) * inv;
+            const float margin = fabsf(b) * Gamma(5);
+            bNear[axis] = b - margin;
+            bFar[axis] = b + margin;
+            for (int half = 0; half < 2; ++half) {
+                const uint32_t lo = n.w[kWideQloWord + 2 * axis + half];
+                const uint32_t hi = n.w[kWideQhiWord + 2 * axis + half];
+                nearWords[axis][half] = negative[axis] ? hi : lo;
+                farWords[axis][half] = negative[axis] ? lo : hi;
+            }
         }
         uint32_t interiorHits = 0, leafHits = 0;
 #if defined(__CUDA_ARCH__)
@@ -116,17 +145,12 @@ RT_HD inline bool TraverseWide(const WideBvhNode* nodes, const WideBvhLeaf* leav
         for (uint32_t s = 0; s < uint32_t(kWideArity); ++s) {
             if (((occupied >> s) & 1u) == 0) continue;
             float t0 = 0.0f, t1 = tMax;
-            for (int a = 0; a < 3; ++a) {
-                const uint32_t shift = 8u * (s & 3u);
-                const uint32_t lo = (n.w[kWideQloWord + 2 * a + (s >> 2)] >> shift) & 0xffu;
-                const uint32_t hi = (n.w[kWideQhiWord + 2 * a + (s >> 2)] >> shift) & 0xffu;
-                const float nearPlane = WidePlane(origin[a], scale[a], negative[a] ? hi : lo);
-                const float farPlane = WidePlane(origin[a], scale[a], negative[a] ? lo : hi);
-                const float o = a == 0 ? ray.origin.x : a == 1 ? ray.origin.y : ray.origin.z;
-                const float inv = a == 0 ? ray.invDir.x : a == 1 ? ray.invDir.y : ray.invDir.z;
+            for (int axis = 0; axis < 3; ++axis) {
+                const float qNear = WideByte(nearWords[axis][s >> 2], s & 3u);
+                const float qFar = WideByte(farWords[axis][s >> 2], s & 3u);
                 // The accumulators start from 0 and tMax, never NaN, so NaN lanes are dropped.
-                t0 = MaxOrKeep((nearPlane - o) * inv, t0);
-                t1 = MinOrKeep((farPlane - o) * inv, t1);
+                t0 = MaxOrKeep(fmaf(qNear, a[axis], bNear[axis]), t0);
+                t1 = MinOrKeep(fmaf(qFar, a[axis], bFar[axis]), t1);
             }
             if (t0 <= t1 * widen) {
                 const uint32_t bit = 1u << (s ^ octant);
