@@ -69,13 +69,13 @@ RT_HD inline float WordAsFloat(uint32_t w) {
 #endif
 }
 
-// Byte k of a word as a float: on the GPU a byte permute into the mantissa of 2^23 and one
-// subtraction, cheaper than an integer conversion.
-RT_HD inline float WideByte(uint32_t word, uint32_t k) {
+// Byte k of a word as the float 2^23 + byte: the byte in the low mantissa bits of 2^23, one byte
+// permute on the GPU instead of an integer conversion.
+RT_HD inline float WideBiasedByte(uint32_t word, uint32_t k) {
 #if defined(__CUDA_ARCH__)
-    return __uint_as_float(__byte_perm(word, 0x4b00u, 0x5440u | k)) - 8388608.0f;
+    return __uint_as_float(__byte_perm(word, 0x4b00u, 0x5440u | k));
 #else
-    return float((word >> (8u * k)) & 0xffu);
+    return WordAsFloat(0x4b000000u | ((word >> (8u * k)) & 0xffu));
 #endif
 }
 
@@ -116,11 +116,13 @@ RT_HD inline bool TraverseWide(const WideBvhNode* nodes, const WideBvhLeaf* leav
         const uint32_t leafMask = n.w[kWideLeafMaskWord] & 0xffu;
         const uint32_t occupied = interiorMask | leafMask;
         // Per axis, the plane distance is q * a + b: a = 2^e / d exactly (a power of two scales
-        // without rounding), b = (origin - o) / d. The two roundings in b are absolute errors of
-        // up to gamma(2) |b|, which cancellation leaves uncovered by the relative widening below;
-        // so near planes use b - gamma(5) |b| and far planes b + gamma(5) |b|: the decoded box
-        // only grows. NaN (0 * inf, inf - inf) drops a plane, as in SlabTest.
-        float a[3], bNear[3], bFar[3];
+        // without rounding), b = (origin - o) / d. The byte q comes as the float 2^23 + q (see
+        // WideBiasedByte), so the distance is one fused multiply-add (2^23 + q) * a + c with
+        // c = b - 2^23 a per node. The roundings in b and c are absolute errors (of up to
+        // gamma(2) |b| and about 2^-24 |c|) that cancellation leaves uncovered by the relative
+        // widening below; so near planes use c minus a bound on them and far planes c plus it:
+        // the decoded box only grows. NaN (0 * inf, inf - inf) drops a plane, as in SlabTest.
+        float a[3], cNear[3], cFar[3];
         uint32_t nearWords[3][2], farWords[3][2];
         for (int axis = 0; axis < 3; ++axis) {
             const float o = axis == 0 ? ray.origin.x : axis == 1 ? ray.origin.y : ray.origin.z;
@@ -128,9 +130,10 @@ RT_HD inline bool TraverseWide(const WideBvhNode* nodes, const WideBvhLeaf* leav
             const float scale = WideScale(int(int8_t(uint8_t(meta >> (8 * axis)))));
             a[axis] = scale * inv;
             const float b = (WordAsFloat(n.w[axis]) - o) * inv;
-            const float margin = fabsf(b) * Gamma(5);
-            bNear[axis] = b - margin;
-            bFar[axis] = b + margin;
+            const float c = b - 8388608.0f * a[axis];
+            const float margin = fabsf(b) * Gamma(5) + fabsf(c) * Gamma(3);
+            cNear[axis] = c - margin;
+            cFar[axis] = c + margin;
             for (int half = 0; half < 2; ++half) {
                 const uint32_t lo = n.w[kWideQloWord + 2 * axis + half];
                 const uint32_t hi = n.w[kWideQhiWord + 2 * axis + half];
@@ -138,7 +141,8 @@ RT_HD inline bool TraverseWide(const WideBvhNode* nodes, const WideBvhLeaf* leav
                 farWords[axis][half] = negative[axis] ? lo : hi;
             }
         }
-        uint32_t interiorHits = 0, leafHits = 0;
+        uint32_t interiorHits = 0, leafHits = 0, nearestBit = 0;
+        float nearestT = 0.0f;
 #if defined(__CUDA_ARCH__)
 #pragma unroll
 #endif
@@ -146,17 +150,21 @@ RT_HD inline bool TraverseWide(const WideBvhNode* nodes, const WideBvhLeaf* leav
             if (((occupied >> s) & 1u) == 0) continue;
             float t0 = 0.0f, t1 = tMax;
             for (int axis = 0; axis < 3; ++axis) {
-                const float qNear = WideByte(nearWords[axis][s >> 2], s & 3u);
-                const float qFar = WideByte(farWords[axis][s >> 2], s & 3u);
+                const float qNear = WideBiasedByte(nearWords[axis][s >> 2], s & 3u);
+                const float qFar = WideBiasedByte(farWords[axis][s >> 2], s & 3u);
                 // The accumulators start from 0 and tMax, never NaN, so NaN lanes are dropped.
-                t0 = MaxOrKeep(fmaf(qNear, a[axis], bNear[axis]), t0);
-                t1 = MinOrKeep(fmaf(qFar, a[axis], bFar[axis]), t1);
+                t0 = MaxOrKeep(fmaf(qNear, a[axis], cNear[axis]), t0);
+                t1 = MinOrKeep(fmaf(qFar, a[axis], cFar[axis]), t1);
             }
             if (t0 <= t1 * widen) {
                 const uint32_t bit = 1u << (s ^ octant);
-                if ((interiorMask >> s) & 1u)
+                if ((interiorMask >> s) & 1u) {
                     interiorHits |= bit;
-                else
+                    if (nearestBit == 0 || t0 < nearestT) {
+                        nearestT = t0;
+                        nearestBit = bit;
+                    }
+                } else
                     leafHits |= bit;
             }
         }
@@ -174,8 +182,9 @@ RT_HD inline bool TraverseWide(const WideBvhNode* nodes, const WideBvhLeaf* leav
         }
         const uint32_t childBase = n.w[kWideChildBaseWord];
         if (interiorHits != 0) {
-            const uint32_t slot = LowestBit(interiorHits) ^ octant;
-            const uint32_t rest = interiorHits & (interiorHits - 1u);
+            // The nearest interior child next; the others wait in the octant order.
+            const uint32_t slot = LowestBit(nearestBit) ^ octant;
+            const uint32_t rest = interiorHits & ~nearestBit;
             if (rest != 0) stack[stackSize++] = {childBase, rest | (interiorMask << 8)};
             current = WideChildIndex(childBase, interiorMask, slot);
             continue;

@@ -3,6 +3,7 @@
 // running scene never changes (BLASes, materials, lights, textures); the TLAS and the instances
 // belong to whoever keeps them up to date (the CUDA frame renderer), or, for an image of the scene
 // as it is, to DeviceStaticScene.
+#include <cstdlib>
 #include <unordered_map>
 #include <vector>
 
