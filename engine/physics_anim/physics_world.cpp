@@ -39,7 +39,6 @@ bool PairLess(Entity a1, Entity b1, Entity a2, Entity b2) {
 // Work per TBB task: each element is a few dozen to a few hundred flops.
 constexpr size_t kBodyGrain = 1024;
 constexpr size_t kPairGrain = 128;
-constexpr size_t kContactGrain = 256;
 
 void ClampLength(vec3& v, float maxLength) {
     const float length2 = glm::dot(v, v);

@@ -242,9 +242,37 @@ TEST(PhysicsWorldTest, SpeedsAboveTheLimitAreClamped) {
     EXPECT_NEAR(glm::length(registry.Get<RigidBody>(e)->velocity), 200.0f, 1e-3f);
 }
 
+struct PileResult {
+    std::vector<float> state;  // per body: position, orientation, velocity, angular velocity
+    uint32_t colors = 0, contacts = 0;
+};
+
+// Random bodies spawned into a pit of half-width 3 and stepped on `threads` threads.
+PileResult RunPile(const SpawnDesc& desc, uint64_t seed, int steps, int threads) {
+    PileResult result;
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+        Registry registry;
+        AddPit(registry, 3.0f);
+        const std::vector<Entity> bodies = SpawnRandomBodies(registry, desc, seed);
+        PhysicsWorld world;
+        world.Step(registry, steps);
+        result.colors = world.Stats().lastColors;
+        result.contacts = world.Stats().lastContacts;
+        for (const Entity e : bodies) {
+            const RigidBody& b = *registry.Get<RigidBody>(e);
+            const RigidBody::State& s = b.state;
+            result.state.insert(
+                result.state.end(),
+                {s.position.x, s.position.y, s.position.z, s.orientation.x, s.orientation.y,
+                 s.orientation.z, s.orientation.w, b.velocity.x, b.velocity.y, b.velocity.z,
+                 b.angularVelocity.x, b.angularVelocity.y, b.angularVelocity.z});
+        }
+    });
+    return result;
+}
+
 std::vector<float> RunSeeded(uint64_t seed, int steps) {
-    Registry registry;
-    AddPit(registry, 3.0f);
     SpawnDesc desc;
     desc.count = 300;
     desc.regionMin = vec3(-3.0f, 0.0f, -3.0f);
@@ -254,22 +282,13 @@ std::vector<float> RunSeeded(uint64_t seed, int steps) {
     desc.maxSpeed = 2.0f;
     desc.minRestitution = 0.1f;
     desc.maxRestitution = 0.8f;
-    const std::vector<Entity> bodies = SpawnRandomBodies(registry, desc, seed);
-    PhysicsWorld world;
-    world.Step(registry, steps);
-    std::vector<float> state;
-    for (const Entity e : bodies) {
-        const RigidBody::State& s = registry.Get<RigidBody>(e)->state;
-        state.insert(state.end(), {s.position.x, s.position.y, s.position.z, s.orientation.x,
-                                   s.orientation.y, s.orientation.z, s.orientation.w});
-    }
-    return state;
+    return RunPile(desc, seed, steps, 1).state;
 }
 
 TEST(PhysicsWorldTest, SameSeedGivesBitIdenticalResults) {
     const std::vector<float> a = RunSeeded(42, 480);
     const std::vector<float> b = RunSeeded(42, 480);
-    ASSERT_EQ(a.size(), 300u * 7u);
+    ASSERT_EQ(a.size(), 300u * 13u);
     ASSERT_EQ(a.size(), b.size());
     EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
     EXPECT_NE(RunSeeded(43, 480), a);
@@ -277,54 +296,31 @@ TEST(PhysicsWorldTest, SameSeedGivesBitIdenticalResults) {
 
 // The solver runs a colour's manifolds in parallel: the same pile on 1, 3 and 8 threads must give
 // the same bits, velocities included.
-std::vector<float> RunOnThreads(int threads, uint32_t* colors, uint32_t* contacts) {
-    std::vector<float> state;
-    tbb::task_arena arena(threads);
-    arena.execute([&] {
-        Registry registry;
-        AddPit(registry, 3.0f);
-        SpawnDesc desc;
-        desc.count = 1500;
-        desc.regionMin = vec3(-3.0f, 0.0f, -3.0f);
-        desc.regionMax = vec3(3.0f, 8.0f, 3.0f);
-        desc.minSize = 0.1f;
-        desc.maxSize = 0.2f;
-        desc.boxFraction = 0.3f;
-        desc.maxSpeed = 2.0f;
-        const std::vector<Entity> bodies = SpawnRandomBodies(registry, desc, 7);
-        PhysicsWorld world;
-        world.Step(registry, 240);
-        *colors = world.Stats().lastColors;
-        *contacts = world.Stats().lastContacts;
-        for (const Entity e : bodies) {
-            const RigidBody& b = *registry.Get<RigidBody>(e);
-            const RigidBody::State& s = b.state;
-            state.insert(
-                state.end(),
-                {s.position.x, s.position.y, s.position.z, s.orientation.x, s.orientation.y,
-                 s.orientation.z, s.orientation.w, b.velocity.x, b.velocity.y, b.velocity.z,
-                 b.angularVelocity.x, b.angularVelocity.y, b.angularVelocity.z});
-        }
-    });
-    return state;
+PileResult RunOnThreads(int threads) {
+    SpawnDesc desc;
+    desc.count = 1500;
+    desc.regionMin = vec3(-3.0f, 0.0f, -3.0f);
+    desc.regionMax = vec3(3.0f, 8.0f, 3.0f);
+    desc.minSize = 0.1f;
+    desc.maxSize = 0.2f;
+    desc.boxFraction = 0.3f;
+    desc.maxSpeed = 2.0f;
+    return RunPile(desc, 7, 240, threads);
 }
 
 TEST(PhysicsWorldTest, SameBitsOnAnyNumberOfThreads) {
-    uint32_t colors = 0;
-    uint32_t contacts = 0;
-    const std::vector<float> one = RunOnThreads(1, &colors, &contacts);
+    const PileResult one = RunOnThreads(1);
     // A settled pile: enough manifolds per colour that a colour is split among threads.
-    EXPECT_GE(colors, 4u);
-    EXPECT_GT(contacts, 1500u);
+    EXPECT_GE(one.colors, 4u);
+    EXPECT_GT(one.contacts, 1500u);
     for (const int threads : {3, 8}) {
-        uint32_t c = 0;
-        uint32_t k = 0;
-        const std::vector<float> many = RunOnThreads(threads, &c, &k);
-        ASSERT_EQ(many.size(), one.size());
-        EXPECT_EQ(std::memcmp(many.data(), one.data(), one.size() * sizeof(float)), 0)
+        const PileResult many = RunOnThreads(threads);
+        ASSERT_EQ(many.state.size(), one.state.size());
+        EXPECT_EQ(
+            std::memcmp(many.state.data(), one.state.data(), one.state.size() * sizeof(float)), 0)
             << threads << " threads";
-        EXPECT_EQ(c, colors);
-        EXPECT_EQ(k, contacts);
+        EXPECT_EQ(many.colors, one.colors);
+        EXPECT_EQ(many.contacts, one.contacts);
     }
 }
 
