@@ -2,12 +2,7 @@
 # tree (rtrt and its GPU tests) and the baseline of .device/baseline (rtrt alone) side by side,
 # runs the GPU tests, and sets r and b (the two rtrt binaries) and bc (the baseline's commit).
 # Expects .device/ from tools/device/pack.sh (RTRT_BASELINE=...) and $OUT.
-root=$(pwd); out=$OUT
-prefix=$root/.device/prefix/usr
-export LD_LIBRARY_PATH=$prefix/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
-export RTRT_MODEL_DIR=$root/.device/models PATH=/usr/local/cuda/bin:$PATH
-export RTRT_COMMIT=$(cat .device/commit)
-base=$root/.device/baseline
+source "$(dirname "${BASH_SOURCE[0]}")/device_env.sh"
 (cd "$base" && cmake --preset gpu -DCMAKE_PREFIX_PATH="$prefix" -DRTRT_MODEL_DIR="$RTRT_MODEL_DIR" -DRTRT_BUILD_TESTS=OFF >/dev/null && cmake --build --preset gpu -j 8 --target rtrt >/dev/null) > /tmp/base_build.log 2>&1 &
 cmake --preset gpu -DCMAKE_PREFIX_PATH="$prefix" -DRTRT_MODEL_DIR="$RTRT_MODEL_DIR" > /dev/null 2>&1
 cmake --build --preset gpu -j 16 --target rtrt rtrt_gpu_tests > $out/build.log 2>&1 || { grep -m20 -A5 error $out/build.log; exit 1; }

@@ -5,12 +5,7 @@
 # Expects .device/ from tools/device/pack.sh (RTRT_BASELINE=...). RTRT_SKIP_BASELINE=1 runs this
 # tree alone; RTRT_THREADS and RTRT_PHYSICS_FRAMES change the thread counts and frames.
 set -uo pipefail
-root=$(pwd); out=$OUT
-prefix=$root/.device/prefix/usr
-export LD_LIBRARY_PATH=$prefix/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}
-export RTRT_MODEL_DIR=$root/.device/models PATH=/usr/local/cuda/bin:$PATH
-export RTRT_COMMIT=$(cat .device/commit)
-base=$root/.device/baseline
+source "$(dirname "${BASH_SOURCE[0]}")/device_env.sh"
 configure="-DCMAKE_PREFIX_PATH=$prefix -DRTRT_MODEL_DIR=$RTRT_MODEL_DIR -DRTRT_BUILD_TESTS=OFF"
 [ -n "${RTRT_SKIP_BASELINE:-}" ] || (cd "$base" && cmake --preset gpu $configure >/dev/null && cmake --build --preset gpu -j 8 --target rtrt >/dev/null) > /tmp/base_build.log 2>&1 &
 cmake --preset gpu $configure > /dev/null 2>&1
