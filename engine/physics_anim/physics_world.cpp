@@ -444,15 +444,35 @@ void PhysicsWorld::SeedFromLastStep() {
 }
 
 void PhysicsWorld::RememberImpulses() {
-    nextCache_.clear();
-    for (uint32_t k = 0; k < contacts_.size(); ++k) {
-        const Contact& c = contacts_[k];
-        if (c.normalImpulse <= 0.0f) continue;
-        const SimBody& a = bodies_[c.a];
-        nextCache_.push_back({a.entity, bodies_[c.b].entity,
-                              glm::transpose(a.rotation) * (c.point - a.position), c.normalImpulse,
-                              c.tangentImpulse1, c.tangentImpulse2, k});
-    }
+    // A compaction of the contacts that pushed, in contact order: counted per fixed chunk, then
+    // each chunk writes from its prefix, so the result does not depend on the thread count.
+    constexpr size_t kChunk = 2048;
+    const size_t chunks = (contacts_.size() + kChunk - 1) / kChunk;
+    chunkStarts_.assign(chunks + 1, 0);
+    auto pushed = [&](size_t k) { return contacts_[k].normalImpulse > 0.0f; };
+    ParallelFor(0, chunks, 1, [&](size_t chunk) {
+        uint32_t count = 0;
+        for (size_t k = chunk * kChunk; k < std::min(contacts_.size(), (chunk + 1) * kChunk); ++k)
+            count += pushed(k);
+        chunkStarts_[chunk + 1] = count;
+    });
+    for (size_t chunk = 0; chunk < chunks; ++chunk) chunkStarts_[chunk + 1] += chunkStarts_[chunk];
+    nextCache_.resize(chunkStarts_[chunks]);
+    ParallelFor(0, chunks, 1, [&](size_t chunk) {
+        uint32_t out = chunkStarts_[chunk];
+        for (size_t k = chunk * kChunk; k < std::min(contacts_.size(), (chunk + 1) * kChunk); ++k) {
+            if (!pushed(k)) continue;
+            const Contact& c = contacts_[k];
+            const SimBody& a = bodies_[c.a];
+            nextCache_[out++] = {a.entity,
+                                 bodies_[c.b].entity,
+                                 glm::transpose(a.rotation) * (c.point - a.position),
+                                 c.normalImpulse,
+                                 c.tangentImpulse1,
+                                 c.tangentImpulse2,
+                                 uint32_t(k)};
+        }
+    });
     // The contact index breaks ties, so the unstable parallel sort gives one order.
     tbb::parallel_sort(nextCache_.begin(), nextCache_.end(),
                        [](const CachedContact& x, const CachedContact& y) {

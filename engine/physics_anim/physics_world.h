@@ -173,6 +173,7 @@ class PhysicsWorld {
     };
     std::vector<CachedContact> cache_;
     std::vector<CachedContact> nextCache_;
+    std::vector<uint32_t> chunkStarts_;  // RememberImpulses's compaction
     SweepAndPrune sweep_;
 };
 
