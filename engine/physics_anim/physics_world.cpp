@@ -7,6 +7,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "engine/core/parallel_compact.h"
 #include "engine/core/parallel_for.h"
 #include "engine/core/timer.h"
 #include "engine/physics_anim/narrow_phase.h"
@@ -341,10 +342,13 @@ void PhysicsWorld::LayOutContacts() {
     // threads that found them.
     constexpr uint32_t kSlots = ContactColoring::kColors + 1;  // the colours and the overflow
     constexpr uint32_t kRegions = 256;
-    hits_.clear();
-    for (uint32_t k = 0; k < candidates_.size(); ++k) {
-        if (candidates_[k].manifold.count > 0) hits_.push_back({k, 0, 0});
-    }
+    hits_.resize(candidates_.size());
+    hits_.resize(ParallelCompact(
+        candidates_.size(), chunkStarts_,
+        [&](size_t k) { return candidates_[k].manifold.count > 0; },
+        [&](size_t k, uint32_t out) {
+            hits_[out] = {uint32_t(k), 0, 0};
+        }));
     coloring_.Reset(static_cast<uint32_t>(bodies_.size()));
     slotManifolds_.assign(kSlots * kRegions, 0);
     slotPoints_.assign(kSlots * kRegions, 0);
@@ -444,35 +448,22 @@ void PhysicsWorld::SeedFromLastStep() {
 }
 
 void PhysicsWorld::RememberImpulses() {
-    // A compaction of the contacts that pushed, in contact order: counted per fixed chunk, then
-    // each chunk writes from its prefix, so the result does not depend on the thread count.
-    constexpr size_t kChunk = 2048;
-    const size_t chunks = (contacts_.size() + kChunk - 1) / kChunk;
-    chunkStarts_.assign(chunks + 1, 0);
+    // The contacts that pushed, in contact order (the same on any number of threads).
     auto pushed = [&](size_t k) { return contacts_[k].normalImpulse > 0.0f; };
-    ParallelFor(0, chunks, 1, [&](size_t chunk) {
-        uint32_t count = 0;
-        for (size_t k = chunk * kChunk; k < std::min(contacts_.size(), (chunk + 1) * kChunk); ++k)
-            count += pushed(k);
-        chunkStarts_[chunk + 1] = count;
-    });
-    for (size_t chunk = 0; chunk < chunks; ++chunk) chunkStarts_[chunk + 1] += chunkStarts_[chunk];
-    nextCache_.resize(chunkStarts_[chunks]);
-    ParallelFor(0, chunks, 1, [&](size_t chunk) {
-        uint32_t out = chunkStarts_[chunk];
-        for (size_t k = chunk * kChunk; k < std::min(contacts_.size(), (chunk + 1) * kChunk); ++k) {
-            if (!pushed(k)) continue;
+    nextCache_.resize(contacts_.size());
+    const uint32_t kept =
+        ParallelCompact(contacts_.size(), chunkStarts_, pushed, [&](size_t k, uint32_t out) {
             const Contact& c = contacts_[k];
             const SimBody& a = bodies_[c.a];
-            nextCache_[out++] = {a.entity,
-                                 bodies_[c.b].entity,
-                                 glm::transpose(a.rotation) * (c.point - a.position),
-                                 c.normalImpulse,
-                                 c.tangentImpulse1,
-                                 c.tangentImpulse2,
-                                 uint32_t(k)};
-        }
-    });
+            nextCache_[out] = {a.entity,
+                               bodies_[c.b].entity,
+                               glm::transpose(a.rotation) * (c.point - a.position),
+                               c.normalImpulse,
+                               c.tangentImpulse1,
+                               c.tangentImpulse2,
+                               uint32_t(k)};
+        });
+    nextCache_.resize(kept);
     // The contact index breaks ties, so the unstable parallel sort gives one order.
     tbb::parallel_sort(nextCache_.begin(), nextCache_.end(),
                        [](const CachedContact& x, const CachedContact& y) {

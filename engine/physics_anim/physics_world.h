@@ -173,7 +173,7 @@ class PhysicsWorld {
     };
     std::vector<CachedContact> cache_;
     std::vector<CachedContact> nextCache_;
-    std::vector<uint32_t> chunkStarts_;  // RememberImpulses's compaction
+    std::vector<uint32_t> chunkStarts_;  // ParallelCompact's scratch
     SweepAndPrune sweep_;
 };
 
