@@ -24,27 +24,4 @@ RT_HD inline bool SlabTest(vec3 lo, vec3 hi, const RaySetup& r, float tMax, floa
     return t0 <= t1 * (1.0f + 2.0f * Gamma(3));
 }
 
-// The same test with one fused multiply-add per plane, t = p (1/d) - o/d, for the GPU, where the
-// traversal loops are bound by arithmetic: o/d is the same for every box of a ray, so the
-// compiler keeps it out of the loop. Its rounding is an absolute error of up to about
-// 2^-24 |o/d| that cancellation leaves uncovered by the relative widening, so near planes take
-// o/d + gamma(3) |o/d| and far planes o/d - gamma(3) |o/d|: the box only grows, and the test
-// enters every box SlabTest enters. A NaN plane (0 * inf, inf - inf) is dropped, as there.
-RT_HD inline bool SlabTestFused(vec3 lo, vec3 hi, const RaySetup& r, float tMax, float* tEntry) {
-    const bool nx = r.invDir.x < 0.0f, ny = r.invDir.y < 0.0f, nz = r.invDir.z < 0.0f;
-    const vec3 oInv = r.origin * r.invDir;
-    const vec3 margin = Abs(oInv) * Gamma(3);
-    const vec3 nearBias = -oInv - margin, farBias = margin - oInv;
-    const float tx0 = fmaf(nx ? hi.x : lo.x, r.invDir.x, nearBias.x);
-    const float tx1 = fmaf(nx ? lo.x : hi.x, r.invDir.x, farBias.x);
-    const float ty0 = fmaf(ny ? hi.y : lo.y, r.invDir.y, nearBias.y);
-    const float ty1 = fmaf(ny ? lo.y : hi.y, r.invDir.y, farBias.y);
-    const float tz0 = fmaf(nz ? hi.z : lo.z, r.invDir.z, nearBias.z);
-    const float tz1 = fmaf(nz ? lo.z : hi.z, r.invDir.z, farBias.z);
-    const float t0 = MaxOrKeep(tz0, MaxOrKeep(ty0, MaxOrKeep(tx0, 0.0f)));
-    const float t1 = MinOrKeep(tz1, MinOrKeep(ty1, MinOrKeep(tx1, tMax)));
-    *tEntry = t0;
-    return t0 <= t1 * (1.0f + 2.0f * Gamma(3));
-}
-
 }  // namespace rtrt

@@ -1,8 +1,7 @@
 #pragma once
 // Checks of BVHs, for the suites that check trees (bvh's own, and the real
 // models' in tests/assets): the same hit or miss, the same primitive and the same t (bit for bit:
-// both use the same intersection test), for the binary, the 4-wide and the compressed 8-wide
-// layout and both queries;
+// both use the same intersection test), for the binary and the 4-wide layout and both queries;
 // and the structure of a tree.
 #include <gtest/gtest.h>
 
@@ -14,7 +13,6 @@
 #include "engine/bvh/blas/blas.h"
 #include "engine/bvh/traversal/bvh4_traversal.h"
 #include "engine/bvh/traversal/traversal.h"
-#include "engine/bvh/traversal/wide_traversal.h"
 #include "engine/geometry/sphere_intersect.h"
 #include "engine/geometry/triangle_intersect.h"
 
@@ -99,41 +97,6 @@ inline bool Occluded4(const Blas& blas, const RaySetup& r, float tMax) {
         });
 }
 
-// The primitive test of either kind, as the traversals' callbacks take it.
-inline bool TestPrimitive(const Blas& blas, uint32_t slot, const RaySetup& r, float tMax,
-                          float* t) {
-    if (blas.kind == GeometryKind::kTriangles) {
-        TriangleHit h;
-        const bool hit = IntersectTriangle(blas.triangles[slot], r, tMax, &h);
-        *t = h.t;
-        return hit;
-    }
-    return IntersectSphere(blas.spheres[slot], r, tMax, t);
-}
-
-// The GPU's compressed 8-wide traversal (wide_traversal.h), the same portable code run here.
-inline Found IntersectWide8(const Blas& blas, const WideBvh& wide, const RaySetup& r, float tMax) {
-    Found f;
-    f.hit = TraverseWide<Query::kIntersect>(wide.nodes.data(), wide.leaves.data(), r, tMax,
-                                            [&](uint32_t slot, float& tBest) {
-                                                float t;
-                                                if (!TestPrimitive(blas, slot, r, tBest, &t))
-                                                    return false;
-                                                tBest = f.t = t;
-                                                f.slot = slot;
-                                                return true;
-                                            });
-    return f;
-}
-
-inline bool OccludedWide8(const Blas& blas, const WideBvh& wide, const RaySetup& r, float tMax) {
-    return TraverseWide<Query::kOccluded>(wide.nodes.data(), wide.leaves.data(), r, tMax,
-                                          [&](uint32_t slot, float tLimit) {
-                                              float t;
-                                              return TestPrimitive(blas, slot, r, tLimit, &t);
-                                          });
-}
-
 inline bool Occluded(const Blas& blas, const RaySetup& r, float tMax) {
     return Traverse<Query::kOccluded>(
         blas.nodes.data(), r, tMax,
@@ -179,8 +142,6 @@ inline Ray RandomRay(const Blas& blas, std::mt19937& rng) {
 
 inline void ExpectMatchesBruteForce(const Blas& blas, uint32_t seed) {
     std::mt19937 rng(seed);
-    const WideBvh wide8 = CollapseToWideBvh(blas.nodes);
-    EXPECT_FALSE(wide8.nodes.empty()) << "a tree of finite boxes collapses";
     uint32_t hits = 0, mismatches = 0;
     for (uint32_t i = 0; i < kRayCount; ++i) {
         const Ray ray = RandomRay(blas, rng);
@@ -203,19 +164,6 @@ inline void ExpectMatchesBruteForce(const Blas& blas, uint32_t seed) {
         const float tLimit = expected.hit ? expected.t * 1.001f : 1e30f;
         if (Occluded(blas, r, tLimit) != expected.hit && ++mismatches <= 5)
             ADD_FAILURE() << "ray " << i << ": the occlusion query disagrees with brute force";
-        const Found compressed = IntersectWide8(blas, wide8, r, ray.tMax);
-        const bool compressedSame =
-            compressed.hit == expected.hit &&
-            (!compressed.hit ||
-             (compressed.t == expected.t && (compressed.slot == expected.slot ||
-                                             HitsAt(blas, compressed.slot, r, compressed.t))));
-        if (!compressedSame && ++mismatches <= 5)
-            ADD_FAILURE() << "ray " << i << ": compressed 8-wide BVH " << compressed.hit
-                          << " t=" << compressed.t << ", brute force " << expected.hit
-                          << " t=" << expected.t;
-        if (OccludedWide8(blas, wide8, r, tLimit) != expected.hit && ++mismatches <= 5)
-            ADD_FAILURE() << "ray " << i
-                          << ": the compressed 8-wide occlusion query disagrees with brute force";
         if (blas.nodes4.empty()) continue;
         const Found wide = Intersect4(blas, r, ray.tMax);
         const bool wideSame =

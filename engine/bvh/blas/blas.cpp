@@ -15,8 +15,6 @@ BlasView Blas::View() const {
     view.primCount = PrimCount();
     view.uvs = uvs.empty() ? nullptr : uvs.data();
     view.tangents = tangents.empty() ? nullptr : tangents.data();
-    view.wideNodes = nullptr;  // the GPU's layout: made at upload (DeviceScene)
-    view.wideLeaves = nullptr;
     return view;
 }
 
@@ -27,10 +25,7 @@ size_t Blas::Bytes() const {
            tangents.size() * sizeof(TriangleTangents);
 }
 
-size_t Blas::DeviceBytes() const {
-    const size_t wide = kind == GeometryKind::kTriangles ? CollapseToWideBvh(nodes).Bytes() : 0;
-    return Bytes() - nodes4.size() * sizeof(Bvh4Node) + wide;
-}
+size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4Node); }
 
 DeformableMesh RestMeshOfBlas(const Blas& blas) {
     DeformableMesh mesh;

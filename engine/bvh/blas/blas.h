@@ -7,7 +7,6 @@
 
 #include "engine/bvh/build/bvh_builder.h"
 #include "engine/bvh/layout/bvh4.h"
-#include "engine/bvh/layout/wide_bvh.h"
 #include "engine/geometry/deformable_mesh.h"
 #include "engine/geometry/primitives.h"
 #include "engine/geometry/triangle_mesh.h"
@@ -25,9 +24,6 @@ struct BlasView {
     uint32_t primCount;
     const TriangleUvs* uvs;  // kTriangles: leaf order, or null without texture coordinates
     const TriangleTangents* tangents;  // kTriangles: leaf order, or null (per-face tangents)
-    // GPU only: the compressed 8-wide collapse of nodes (wide_bvh.h) and its leaf records, or null
-    const WideBvhNode* wideNodes;
-    const WideBvhLeaf* wideLeaves;
 };
 
 struct Blas {
@@ -44,10 +40,9 @@ struct Blas {
 
     uint32_t PrimCount() const { return uint32_t(primIds.size()); }
     BlasView View() const;
-    size_t Bytes() const;  // what the CPU tracer keeps of it (both node layouts too)
-    // What the GPU holds: binary nodes, for triangles their compressed 8-wide collapse,
-    // primitives, normals, uvs, tangents.
-    size_t DeviceBytes() const;
+    size_t Bytes() const;        // what the CPU tracer keeps of it (both node layouts too)
+    size_t DeviceBytes() const;  // what the GPU holds: binary nodes, primitives, normals, uvs,
+                                 // tangents
 };
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options = {});

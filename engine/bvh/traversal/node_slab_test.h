@@ -14,7 +14,7 @@ RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax, f
     // Nodes are read-only while a kernel traces.
     const float4 lo = __ldg(reinterpret_cast<const float4*>(&node));
     const float4 hi = __ldg(reinterpret_cast<const float4*>(&node) + 1);
-    return SlabTestFused(vec3(lo.x, lo.y, lo.z), vec3(hi.x, hi.y, hi.z), r, tMax, tEntry);
+    return SlabTest(vec3(lo.x, lo.y, lo.z), vec3(hi.x, hi.y, hi.z), r, tMax, tEntry);
 #else
     // Reads the near and far planes straight from the node (no copy of its bounds).
     const float* b = &node.boundsMin.x;

@@ -3,20 +3,17 @@
 // space. Object-space directions are not renormalised, so t means the same in both spaces.
 //
 // This is the nested form: a BLAS traversal in each reached TLAS leaf. The CPU uses it with the
-// triangle BLASes' 4-wide SSE collapse; the GPU uses it, with their compressed 8-wide collapse,
-// for scenes of few instances, where the ray spends its time in one tight BLAS loop. Scenes of many
-// instances run the single loop of two_level_traversal.h on the GPU (see kFeatureManyInstances);
-// both forms find the same hits.
+// triangle BLASes' 4-wide SSE collapse; the GPU uses it for scenes of few instances, where the
+// ray spends its time in one tight BLAS loop. Scenes of many instances run the single loop of
+// two_level_traversal.h on the GPU (see kFeatureManyInstances); both forms find the same hits.
 #include "engine/bvh/traversal/two_level_traversal.h"
 #include "engine/geometry/primitive_tests.h"
 
-// The CPU back end traverses triangle BLASes through their 4-wide collapse (SSE), the GPU through
-// their compressed 8-wide one; the heatmap's node counts use the binary BVH.
+// The CPU back end traverses triangle BLASes through their 4-wide collapse (SSE); the GPU and the
+// heatmap's node counts use the binary BVH.
 #if !defined(__CUDACC__)
 #include "engine/bvh/traversal/bvh4_traversal.h"
 #define RTRT_HOST_WIDE_BVH 1
-#else
-#include "engine/bvh/traversal/wide_traversal.h"
 #endif
 
 namespace rtrt {
@@ -42,10 +39,6 @@ RT_HD inline bool IntersectBlas(const BlasView& blas, const Instance& inst, cons
 #if defined(RTRT_HOST_WIDE_BVH)
         if (blas.nodes4 && !stats)
             return Traverse4<Query::kIntersect>(blas.nodes4, setup, tMax, intersect);
-#else
-        if (blas.wideNodes && !stats)
-            return TraverseWide<Query::kIntersect>(blas.wideNodes, blas.wideLeaves, setup, tMax,
-                                                   intersect);
 #endif
         return Traverse<Query::kIntersect>(blas.nodes, setup, tMax, intersect, stats);
     }
@@ -78,10 +71,6 @@ RT_HD inline bool OccludedBlas(const BlasView& blas, const Instance& inst, const
 #if defined(RTRT_HOST_WIDE_BVH)
         if (blas.nodes4 && !stats)
             return Traverse4<Query::kOccluded>(blas.nodes4, setup, tMax, occludes);
-#else
-        if (blas.wideNodes && !stats)
-            return TraverseWide<Query::kOccluded>(blas.wideNodes, blas.wideLeaves, setup, tMax,
-                                                  occludes);
 #endif
         return Traverse<Query::kOccluded>(blas.nodes, setup, tMax, occludes, stats);
     }

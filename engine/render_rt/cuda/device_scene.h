@@ -3,7 +3,6 @@
 // running scene never changes (BLASes, materials, lights, textures); the TLAS and the instances
 // belong to whoever keeps them up to date (the CUDA frame renderer), or, for an image of the scene
 // as it is, to DeviceStaticScene.
-#include <cstdlib>
 #include <unordered_map>
 #include <vector>
 
@@ -15,8 +14,6 @@ namespace rtrt {
 
 struct DeviceScene {
     std::vector<DeviceBuffer<BvhNode>> blasNodes;
-    std::vector<DeviceBuffer<WideBvhNode>> wideNodes;
-    std::vector<DeviceBuffer<WideBvhLeaf>> wideLeaves;
     std::vector<DeviceBuffer<Triangle>> triangles;
     std::vector<DeviceBuffer<TriangleNormals>> normals;
     std::vector<DeviceBuffer<Sphere>> spheres;
@@ -55,17 +52,9 @@ struct DeviceScene {
             spheres.emplace_back(std::span<const Sphere>(blas->spheres));
             uvs.emplace_back(std::span<const TriangleUvs>(blas->uvs));
             tangents.emplace_back(std::span<const TriangleTangents>(blas->tangents));
-            // Triangle BLASes are traversed through their compressed 8-wide collapse; the binary
-            // nodes serve the heatmap's counts and the many-instance loop.
-            const WideBvh wide =
-                blas->kind == GeometryKind::kTriangles ? CollapseToWideBvh(blas->nodes) : WideBvh{};
-            wideNodes.emplace_back(std::span<const WideBvhNode>(wide.nodes));
-            wideLeaves.emplace_back(std::span<const WideBvhLeaf>(wide.leaves));
             BlasView v = blas->View();
             v.nodes = blasNodes.back().Data();
-            v.nodes4 = nullptr;
-            v.wideNodes = wide.nodes.empty() ? nullptr : wideNodes.back().Data();
-            v.wideLeaves = wide.nodes.empty() ? nullptr : wideLeaves.back().Data();
+            v.nodes4 = nullptr;  // the GPU traverses the binary BVH
             v.triangles = triangles.back().Data();
             v.normals = blas->normals.empty() ? nullptr : normals.back().Data();
             v.spheres = spheres.back().Data();
