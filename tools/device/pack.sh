@@ -7,6 +7,9 @@
 # RTRT_BASELINE=<commit> tools/device/pack.sh --baseline-only adds (or replaces) .device/baseline,
 # the source of an earlier commit that round.sh then benchmarks beside the working tree, so that
 # a change is measured against what it changes in one run on one machine.
+#
+# tools/device/pack.sh --variant <commit>... adds the source of each commit under
+# .device/variants/, for round_variants.sh (--variant alone clears them).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 dest=$root/.device
@@ -17,6 +20,18 @@ add_baseline() {
     git -C "$root" rev-parse --short "$RTRT_BASELINE" >"$dest/baseline/.commit"
     echo "baseline $(cat "$dest/baseline/.commit") in $dest/baseline"
 }
+if [ "${1:-}" = "--variant" ]; then
+    shift
+    rm -rf "$dest/variants"
+    for c in "$@"; do
+        short=$(git -C "$root" rev-parse --short "$c")
+        mkdir -p "$dest/variants/$short"
+        git -C "$root" archive "$c" | tar -x -C "$dest/variants/$short"
+        echo "$short" >"$dest/variants/$short/.commit"
+        echo "variant $short in $dest/variants/$short"
+    done
+    exit 0
+fi
 if [ "${1:-}" = "--baseline-only" ]; then
     add_baseline
     exit 0

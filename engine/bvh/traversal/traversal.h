@@ -24,46 +24,42 @@ template <Query kQuery, typename TestPrim>
 RT_HD inline bool Traverse(const BvhNode* nodes, const RaySetup& ray, float& tMax, TestPrim&& test,
                            TraversalStats* stats) {
     float tRoot;
+    NodeHeader current;  // of the node in hand; the stack holds node indices
     if (stats) ++stats->nodesVisited;
-    if (!SlabTest(nodes[0], ray, tMax, &tRoot)) return false;
+    if (!SlabTest(nodes[0], ray, tMax, &tRoot, &current)) return false;
     uint32_t stack[kBvhStackSize];
     uint32_t stackSize = 0;
-    uint32_t current = 0;
     bool found = false;
     for (;;) {
-        const BvhNode& node = nodes[current];
-        if (node.IsLeaf()) {
-            for (uint32_t i = 0; i < node.primCount; ++i) {
+        if (current.IsLeaf()) {
+            for (uint32_t i = 0; i < current.primCount; ++i) {
                 if (stats) ++stats->primsTested;
-                if (test(node.leftFirst + i, tMax)) {
+                if (test(current.leftFirst + i, tMax)) {
                     if constexpr (kQuery == Query::kOccluded) return true;
                     found = true;
                 }
             }
         } else {
-            const uint32_t left = node.leftFirst;
+            const uint32_t left = current.leftFirst;
             float tLeft, tRight;
-            bool hitLeft = SlabTest(nodes[left], ray, tMax, &tLeft);
-            bool hitRight = SlabTest(nodes[left + 1], ray, tMax, &tRight);
+            NodeHeader headLeft, headRight;
+            bool hitLeft = SlabTest(nodes[left], ray, tMax, &tLeft, &headLeft);
+            bool hitRight = SlabTest(nodes[left + 1], ray, tMax, &tRight, &headRight);
             if (stats) stats->nodesVisited += 2;
             if (hitLeft && hitRight) {
-                if constexpr (kQuery == Query::kIntersect) {
-                    uint32_t nearChild = tLeft <= tRight ? left : left + 1;
-                    stack[stackSize++] = tLeft <= tRight ? left + 1 : left;
-                    current = nearChild;
-                } else {
-                    stack[stackSize++] = left + 1;
-                    current = left;
-                }
+                // kIntersect visits the nearer child first; kOccluded the builder's order.
+                const bool leftNearer = kQuery == Query::kOccluded || tLeft <= tRight;
+                stack[stackSize++] = leftNearer ? left + 1 : left;
+                current = leftNearer ? headLeft : headRight;
                 continue;
             }
             if (hitLeft || hitRight) {
-                current = hitLeft ? left : left + 1;
+                current = hitLeft ? headLeft : headRight;
                 continue;
             }
         }
         if (stackSize == 0) break;
-        current = stack[--stackSize];
+        current = LoadHeader(nodes[stack[--stackSize]]);
     }
     return found;
 }
