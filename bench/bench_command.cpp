@@ -35,6 +35,26 @@
 #include "game/scene/scene_file.h"
 
 namespace rtrt {
+
+bool LoadBenchModel(const std::string& name, TriangleMesh* mesh) {
+    const std::string dir = ModelDir();
+    std::string path;
+    if (name == "cube") {
+        *mesh = MakeBoxMesh(vec3(1.0f));
+    } else if (name == "teapot") {
+        path = dir + "/teapot.inc";
+        if (!std::filesystem::exists(path)) return false;
+        *mesh = TessellateTeapot(path, 6);
+    } else {
+        const std::string suffix = name == "dragon" ? "" : name.substr(6);  // "_res4"
+        path = dir + "/dragon_vrip" + suffix + ".ply.gz";
+        if (!std::filesystem::exists(path)) return false;
+        *mesh = LoadMesh(path);
+    }
+    FitMesh(*mesh, 5.0f);
+    return true;
+}
+
 namespace {
 
 struct BenchOptions {
@@ -71,26 +91,6 @@ nlohmann::json MachineInfo() {
     std::strftime(date, sizeof(date), "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
     m["date"] = date;
     return m;
-}
-
-// Loads a benchmark model, fitted to extent 5; false (with a note) when its file is missing.
-bool LoadBenchModel(const std::string& name, TriangleMesh* mesh) {
-    const std::string dir = ModelDir();
-    std::string path;
-    if (name == "cube") {
-        *mesh = MakeBoxMesh(vec3(1.0f));
-    } else if (name == "teapot") {
-        path = dir + "/teapot.inc";
-        if (!std::filesystem::exists(path)) return false;
-        *mesh = TessellateTeapot(path, 6);
-    } else {
-        const std::string suffix = name == "dragon" ? "" : name.substr(6);  // "_res4"
-        path = dir + "/dragon_vrip" + suffix + ".ply.gz";
-        if (!std::filesystem::exists(path)) return false;
-        *mesh = LoadMesh(path);
-    }
-    FitMesh(*mesh, 5.0f);
-    return true;
 }
 
 void RunBench(const BenchOptions& o) {
@@ -403,6 +403,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     AddSoakBench(*bench, exitCode);
     AddAccuracyBench(*bench, exitCode);
     AddMaterialsBench(*bench, exitCode);
+    AddEmbreeBench(*bench, exitCode);
     CLI::App* gpu = bench->add_subcommand(
         "gpu", "Trace time on the GPU (CUDA events) of the paper scene, median of --frames");
     gpu->add_option("--frames", options->gpuFrames,

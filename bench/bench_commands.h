@@ -3,11 +3,17 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "engine/geometry/triangle_mesh.h"
 #include "game/cli/cli_options.h"
 
 namespace rtrt {
 
 void AddBenchCommand(CLI::App& app, int* exitCode);
+// Loads a benchmark model of the paper scene (cube, teapot, dragon_res4 .. dragon), fitted to
+// extent 5; false when its file is missing (tools/fetch_models.sh fetches it).
+bool LoadBenchModel(const std::string& name, TriangleMesh* mesh);
+// `rtrt bench embree`, registered by AddBenchCommand.
+void AddEmbreeBench(CLI::App& bench, int* exitCode);
 // `rtrt bench frame`, registered by AddBenchCommand.
 void AddFrameBench(CLI::App& bench, int* exitCode);
 // `rtrt bench deform`, registered by AddBenchCommand.

@@ -23,11 +23,12 @@ case "$action" in
 esac
 
 # ffmpeg makes the videos of `rtrt farm` and `play --record`; Slurm and munge are for the farm's
-# tests, which bring up a one-host cluster of their own (tools/slurm_cluster.sh).
+# tests, which bring up a one-host cluster of their own (tools/slurm_cluster.sh). Embree 3 is for
+# `rtrt bench embree`, the CPU back end's side-by-side reference.
 packages=(g++ cmake ninja-build pkg-config git ca-certificates libglm-dev libtbb-dev libcli11-dev
     nlohmann-json3-dev libopenimageio-dev libgtest-dev zlib1g-dev libxxhash-dev
     libglfw3-dev libgl-dev libimgui-dev libdraco-dev xvfb xauth libgl1-mesa-dri clang libtinygltf-dev
-    assimp-testmodels python3 ffmpeg slurm-wlm munge)
+    assimp-testmodels python3 ffmpeg slurm-wlm munge libembree-dev)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
