@@ -100,12 +100,8 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
     uint32_t stack[kTwoLevelStackSize];
     uint32_t stackSize = 0;
     bool found = false;
-    // The node in hand (kNoNode: none) and its header, kept from the slab test that found it.
-    uint32_t current = kNoNode;
-    NodeHeader head{0, 0};
 
-    // Switches to the instance at a TLAS leaf slot if the ray meets its BLAS's root box, with
-    // its root in hand.
+    // Switches to the instance at a TLAS leaf slot if the ray meets its BLAS's root box.
     auto enterInstance = [&](uint32_t slot) {
         const uint32_t id = scene.instanceOrder[slot];
         const Instance& inst = scene.instances[id];
@@ -119,71 +115,68 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
             ++stats->nodesVisited;
         }
         float tRoot;
-        if (!SlabTest(target.nodes[0], objectSetup, tMax, &tRoot, &head)) return;
-        current = 0;
+        if (!SlabTest(target.nodes[0], objectSetup, tMax, &tRoot)) return false;
         stack[stackSize++] = kReturnToWorld;
         setup = objectSetup;
         nodes = target.nodes;
         blas = &target;
         triangles = isTriangles;
         instanceId = id;
+        return true;
     };
-    // Takes the next pending node of the level in use in hand, or none when the stack is empty or
-    // its top leaves the level (a marker or an instance entry: handled once no leaf is set aside).
+    // The next pending node of the level in use, or kNoNode when the stack is empty or its top
+    // leaves the level (a marker or an instance entry: handled once no leaf is set aside).
     auto popNode = [&]() {
-        current = kNoNode;
-        if (stackSize == 0) return;
+        if (stackSize == 0) return kNoNode;
         const uint32_t top = stack[stackSize - 1];
-        if (top == kReturnToWorld || (blas == nullptr && (top & kInstanceEntry) != 0)) return;
+        if (top == kReturnToWorld || (blas == nullptr && (top & kInstanceEntry) != 0))
+            return kNoNode;
         --stackSize;
-        current = top;
-        head = LoadHeader(nodes[top]);
+        return top;
     };
 
     float tRoot;
     if (stats) ++stats->nodesVisited;
-    if (!SlabTest(nodes[0], setup, tMax, &tRoot, &head)) return false;
-    current = 0;
-    NodeHeader postponed{0, 0};  // a leaf set aside, of the level in use (none: no primitives)
+    if (!SlabTest(nodes[0], setup, tMax, &tRoot)) return false;
+    uint32_t current = 0;
+    uint32_t postponed = kNoNode;  // a leaf set aside, of the level in use
     for (;;) {
         // Interior nodes, until this lane (and on the GPU every lane) holds a leaf.
         while (current != kNoNode) {
-            if (head.IsLeaf()) {
-                if (postponed.IsLeaf()) break;  // intersect the one set aside first
-                postponed = head;
-                popNode();
+            const BvhNode& node = nodes[current];
+            if (node.IsLeaf()) {
+                if (postponed != kNoNode) break;  // intersect the one set aside first
+                postponed = current;
+                current = popNode();
             } else {
-                const uint32_t left = head.leftFirst;
+                const uint32_t left = node.leftFirst;
                 float tLeft, tRight;
-                NodeHeader headLeft, headRight;
-                const bool hitLeft = SlabTest(nodes[left], setup, tMax, &tLeft, &headLeft);
-                const bool hitRight = SlabTest(nodes[left + 1], setup, tMax, &tRight, &headRight);
+                const bool hitLeft = SlabTest(nodes[left], setup, tMax, &tLeft);
+                const bool hitRight = SlabTest(nodes[left + 1], setup, tMax, &tRight);
                 if (stats) stats->nodesVisited += 2;
                 if (hitLeft && hitRight) {
                     // kIntersect visits the nearer child first; kOccluded the builder's order.
-                    const bool leftNearer = kQuery == Query::kOccluded || tLeft <= tRight;
-                    stack[stackSize++] = leftNearer ? left + 1 : left;
-                    current = leftNearer ? left : left + 1;
-                    head = leftNearer ? headLeft : headRight;
+                    const bool leftFirst = kQuery == Query::kOccluded || tLeft <= tRight;
+                    stack[stackSize++] = leftFirst ? left + 1 : left;
+                    current = leftFirst ? left : left + 1;
                 } else if (hitLeft || hitRight) {
                     current = hitLeft ? left : left + 1;
-                    head = hitLeft ? headLeft : headRight;
                 } else {
-                    popNode();
+                    current = popNode();
                 }
             }
-            if (!AnyLane(!postponed.IsLeaf())) break;
+            if (!AnyLane(postponed == kNoNode)) break;
         }
-        if (postponed.IsLeaf()) {
-            const NodeHeader leaf = postponed;
-            postponed = {0, 0};
+        if (postponed != kNoNode) {
+            const BvhNode& leaf = nodes[postponed];
+            postponed = kNoNode;
             if (blas == nullptr) {
                 // An instance leaf: what was pending at this level waits below the instances.
                 if (current != kNoNode) stack[stackSize++] = current;
                 current = kNoNode;
                 for (uint32_t i = leaf.primCount - 1; i >= 1; --i)
                     stack[stackSize++] = kInstanceEntry | (leaf.leftFirst + i);
-                enterInstance(leaf.leftFirst);
+                if (enterInstance(leaf.leftFirst)) current = 0;
                 continue;
             }
             for (uint32_t i = 0; i < leaf.primCount; ++i) {
@@ -220,10 +213,9 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                 nodes = scene.nodes;
                 blas = nullptr;
             } else if (blas == nullptr && (entry & kInstanceEntry) != 0) {
-                enterInstance(entry & ~kInstanceEntry);
+                if (enterInstance(entry & ~kInstanceEntry)) current = 0;
             } else {
                 current = entry;
-                head = LoadHeader(nodes[entry]);
             }
         }
     }
