@@ -19,13 +19,17 @@ namespace rtrt {
 // Scenes of many instances trace with a register cap (blocks of 64 threads that must fit per
 // SM): their time goes into long, divergent traversals that more warps in flight hide better.
 // On the H100, 16 blocks (64 registers, some spilled) made the instance grid 1.6-1.8x faster than
-// no cap (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt); the paper scene (few
-// instances) runs fastest uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N overrides it, for experiments.
+// no cap (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt). The nested kernels without
+// PBR are held to 128 registers (8 blocks, 16 warps per SM), which most need anyway: the
+// refraction and texture kernels would take 132-137 and lose two warps per SM to a few
+// registers. PBR kernels (160-175 registers) run uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N
+// overrides the many-instance cap, for experiments.
 #if !defined(RTRT_TRACE_MIN_BLOCKS)
 #define RTRT_TRACE_MIN_BLOCKS 16
 #endif
 constexpr int TraceMinBlocks(uint32_t features) {
-    return (features & kFeatureManyInstances) != 0 ? RTRT_TRACE_MIN_BLOCKS : 1;
+    if ((features & kFeatureManyInstances) != 0) return RTRT_TRACE_MIN_BLOCKS;
+    return (features & kFeaturePbr) != 0 ? 1 : 8;
 }
 
 template <uint32_t kFeatures, class Policy>
