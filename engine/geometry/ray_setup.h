@@ -16,6 +16,10 @@ struct RaySetup {
     // Watertight test (Woop, Benthin, Wald 2013): axes permuted so that kz is the dominant one.
     int kx, ky, kz;
     float shearX, shearY, shearZ;
+    // The origin in that order: the test reads the triangle's vertices by kx, ky, kz from memory
+    // but the origin from here, since indexing a ray held in GPU registers by a runtime axis
+    // would put the ray in local memory.
+    vec3 originK;
 };
 
 // What the slab test needs; enough for traversing a TLAS or a sphere BLAS.
@@ -46,6 +50,8 @@ RT_HD inline RaySetup MakeRaySetup(const Ray& ray) {
         s.ky = t;
     }
     s.shearZ = 1.0f / d[s.kz];
+    const float* o = &ray.origin.x;
+    s.originK = vec3(o[s.kx], o[s.ky], o[s.kz]);
     s.shearX = d[s.kx] * s.shearZ;
     s.shearY = d[s.ky] * s.shearZ;
     return s;
