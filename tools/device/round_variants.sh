@@ -3,8 +3,8 @@
 # of .device/variants/ (pack.sh --variant <commit>) are built at once (rtrt alone; this tree also
 # its GPU tests, which run first), then bench gpu, bench grid and bench frame run for each build
 # in turn, RTRT_ROUNDS times (default 2) interleaved, so that a drift of the machine shows as a
-# spread between rounds rather than as a difference between variants. Leaves the JSON of every
-# run and one log in $OUT.
+# spread between rounds rather than as a difference between variants. Leaves results.tar (the
+# JSON of every run) and variants.log in $OUT.
 set -uo pipefail
 source "$(dirname "$0")/device_env.sh"
 builds=("$root")
@@ -38,3 +38,5 @@ rm -f "$out/build.log"
         done
     done
 } 2>&1 | tee "$out/variants.log"
+# At most 8 files come back from $OUT: the JSON travels as one tar beside the log.
+(cd "$out" && tar -cf results.tar ./*.json && rm -f ./*.json)
