@@ -11,3 +11,11 @@
 #if defined(__CUDA_ARCH__)
 #define RT_ON_GPU 1
 #endif
+
+// Forces inlining in host code: g++ leaves some small hot functions of the traversal loops a call
+// there (bench/results/cpu-triangle-inline-2026-12-03.txt); nvcc inlines them without being told.
+#if defined(__CUDACC__)
+#define RT_HOST_ALWAYS_INLINE
+#else
+#define RT_HOST_ALWAYS_INLINE [[gnu::always_inline]]
+#endif

@@ -11,8 +11,9 @@ namespace rtrt {
 struct PrimitiveTests {
     // Forced inline as the test itself (triangle_intersect.h): else the CPU's leaf loops call
     // this wrapper.
-    RT_TRIANGLE_INLINE static RT_HD bool IntersectTriangle(const Triangle& tri, const RaySetup& r,
-                                                           float tMax, TriangleHit* hit) {
+    RT_HOST_ALWAYS_INLINE static RT_HD bool IntersectTriangle(const Triangle& tri,
+                                                              const RaySetup& r, float tMax,
+                                                              TriangleHit* hit) {
         return rtrt::IntersectTriangle(tri, r, tMax, hit);
     }
     static RT_HD bool IntersectSphere(const Sphere& s, const SphereRay& r, float tMax,

@@ -52,14 +52,9 @@ RT_HD inline bool NearHitOnPlane(const Triangle& tri, const RaySetup& r, float* 
 // self-hits either, but real hits nearer than the bound (1e-5 for a unit triangle) are lost, so a
 // contact shadow 1e-5 under an occluder is lit (the accuracy benchmark's "no plane test").
 // Inlined into the CPU's leaf loops: left to itself the compiler calls it there.
-#if defined(__CUDACC__)
-#define RT_TRIANGLE_INLINE
-#else
-#define RT_TRIANGLE_INLINE [[gnu::always_inline]]
-#endif
 template <bool kRefineNearHits = true>
-RT_TRIANGLE_INLINE RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r,
-                                                       float tMax, TriangleHit* hit) {
+RT_HOST_ALWAYS_INLINE RT_HD inline bool IntersectTriangle(const Triangle& tri, const RaySetup& r,
+                                                          float tMax, TriangleHit* hit) {
     // Vertices relative to the origin, read in the ray's permuted axis order.
     const float* v0 = &tri.v0.x;
     const float* v1 = &tri.v1.x;

@@ -23,9 +23,10 @@ RT_HD inline NodeHeader LoadHeader(const BvhNode& node) {
 #endif
 }
 
-// The test on a node of a BVH in global memory; header receives the node's header.
-RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax, float* tEntry,
-                           NodeHeader* header) {
+// The test on a node of a BVH in global memory; header receives the node's header. Forced inline
+// on the host, where g++ called it once per ray.
+RT_HOST_ALWAYS_INLINE RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax,
+                                                 float* tEntry, NodeHeader* header) {
 #if defined(__CUDA_ARCH__)
     // Two 16-byte read-only loads, then selects: six dynamically indexed loads would cost six
     // load instructions per box on the GPU, and deriving the planes from the sign of 1/d rather
@@ -53,7 +54,8 @@ RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax, f
 }
 
 // The test alone.
-RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax, float* tEntry) {
+RT_HOST_ALWAYS_INLINE RT_HD inline bool SlabTest(const BvhNode& node, const RaySetup& r, float tMax,
+                                                 float* tEntry) {
     NodeHeader unused;
     return SlabTest(node, r, tMax, tEntry, &unused);
 }
