@@ -24,10 +24,10 @@ template <Query kQuery, typename TestPrim>
 RT_HD inline bool Traverse(const BvhNode* nodes, const RaySetup& ray, float& tMax, TestPrim&& test,
                            TraversalStats* stats) {
     float tRoot;
-    NodeHeader current;  // of the node in hand; the stack holds node indices
+    NodeHeader current;  // of the node in hand; the stack holds the headers of those waiting
     if (stats) ++stats->nodesVisited;
     if (!SlabTest(nodes[0], ray, tMax, &tRoot, &current)) return false;
-    uint32_t stack[kBvhStackSize];
+    NodeHeader stack[kBvhStackSize];
     uint32_t stackSize = 0;
     bool found = false;
     for (;;) {
@@ -49,7 +49,7 @@ RT_HD inline bool Traverse(const BvhNode* nodes, const RaySetup& ray, float& tMa
             if (hitLeft && hitRight) {
                 // kIntersect visits the nearer child first; kOccluded the builder's order.
                 const bool leftNearer = kQuery == Query::kOccluded || tLeft <= tRight;
-                stack[stackSize++] = leftNearer ? left + 1 : left;
+                stack[stackSize++] = leftNearer ? headRight : headLeft;
                 current = leftNearer ? headLeft : headRight;
                 continue;
             }
@@ -59,7 +59,7 @@ RT_HD inline bool Traverse(const BvhNode* nodes, const RaySetup& ray, float& tMa
             }
         }
         if (stackSize == 0) break;
-        current = LoadHeader(nodes[stack[--stackSize]]);
+        current = stack[--stackSize];
     }
     return found;
 }
