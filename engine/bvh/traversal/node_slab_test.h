@@ -6,22 +6,14 @@
 namespace rtrt {
 
 // What a traversal needs of a node to step into it: the words the slab test's loads bring along
-// with the box. Kept from the test of a child, it spares the step into that child a dependent
-// load of its own (on the GPU a round trip to L1 or L2 on every step down the tree).
+// with the box. Kept from the test of a child (and on the stack for the children that wait), it
+// spares the step into that child a dependent load of its own (on the GPU a round trip to L1 or
+// L2 on every step down the tree).
 struct NodeHeader {
     uint32_t leftFirst;
     uint32_t primCount;
     RT_HD bool IsLeaf() const { return primCount > 0; }
 };
-
-// The header of a node taken from the stack.
-RT_HD inline NodeHeader LoadHeader(const BvhNode& node) {
-#if defined(__CUDA_ARCH__)
-    return {__ldg(&node.leftFirst), __ldg(&node.primCount)};
-#else
-    return {node.leftFirst, node.primCount};
-#endif
-}
 
 // The test on a node of a BVH in global memory; header receives the node's header. Forced inline
 // on the host, where g++ called it once per ray.
