@@ -55,6 +55,15 @@ bool LoadBenchModel(const std::string& name, TriangleMesh* mesh) {
     return true;
 }
 
+CLI::Option* AddModelsOption(CLI::App* command, std::vector<std::string>* models) {
+    return command
+        ->add_option("--models", *models,
+                     "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
+        ->check(CLI::IsMember(
+            {"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
+        ->delimiter(',');
+}
+
 namespace {
 
 struct BenchOptions {
@@ -329,11 +338,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     cpu->add_option("--frames", options->frames, "Timed frames per model (median reported)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
-    cpu->add_option("--models", options->models,
-                    "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
-        ->check(CLI::IsMember(
-            {"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
-        ->delimiter(',');
+    AddModelsOption(cpu, &options->models);
     cpu->add_option("--builders", options->builders, "binned, sweep, centroid")
         ->check(CLI::IsMember({"binned", "sweep", "centroid"}))
         ->delimiter(',');
@@ -410,11 +415,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
                     "Timed frames per model after 20 warm-up frames")
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();
-    gpu->add_option("--models", options->models,
-                    "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
-        ->check(CLI::IsMember(
-            {"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
-        ->delimiter(',');
+    AddModelsOption(gpu, &options->models);
     gpu->add_option("-o,--output", options->output, "Write the results as JSON here");
     gpu->callback([options, exitCode] {
         std::string why;

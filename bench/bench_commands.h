@@ -12,6 +12,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode);
 // Loads a benchmark model of the paper scene (cube, teapot, dragon_res4 .. dragon), fitted to
 // extent 5; false when its file is missing (tools/fetch_models.sh fetches it).
 bool LoadBenchModel(const std::string& name, TriangleMesh* mesh);
+// The --models option of the paper-scene benchmarks: a comma-separated subset of those models.
+CLI::Option* AddModelsOption(CLI::App* command, std::vector<std::string>* models);
 // `rtrt bench embree`, registered by AddBenchCommand.
 void AddEmbreeBench(CLI::App& bench, int* exitCode);
 // `rtrt bench frame`, registered by AddBenchCommand.

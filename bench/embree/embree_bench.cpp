@@ -146,12 +146,7 @@ void AddEmbreeBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("--pairs", options->pairs, "Timed pairs per model (medians reported)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
-    cmd->add_option("--models", options->models,
-                    "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
-        ->check(CLI::IsMember(
-            {"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
-        ->delimiter(',')
-        ->capture_default_str();
+    AddModelsOption(cmd, &options->models)->capture_default_str();
     cmd->add_option("-o,--output", options->output, "Write the results as JSON here");
     cmd->callback([options, exitCode] {
         RunEmbreeBench(*options);
