@@ -70,8 +70,8 @@ void RunEmbreeBench(const EmbreeBenchOptions& o) {
     std::printf("rtrt bench embree: %s, %u threads, Embree %s\n",
                 report["machine"]["cpu"].get<std::string>().c_str(),
                 std::thread::hardware_concurrency(), RTC_VERSION_STRING);
-    std::printf("%-12s %10s %9s | %10s %10s %10s | %8s %9s %9s\n", "model", "triangles",
-                "embree ms", "rtrt ms", "embree ms", "rtrt/emb", "M rays", "diff px", "max lvl");
+    std::printf("%-12s %10s %9s | %10s %10s %10s | %8s %9s %9s\n", "model", "triangles", "build ms",
+                "rtrt ms", "embree ms", "rtrt/emb", "M rays", "diff px", "max lvl");
     for (const std::string& name : o.models) {
         TriangleMesh mesh;
         if (!LoadBenchModel(name, &mesh)) {

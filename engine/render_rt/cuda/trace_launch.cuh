@@ -22,8 +22,9 @@ namespace rtrt {
 // no cap (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt). The nested kernels without
 // PBR are held to 128 registers (8 blocks, 16 warps per SM), which most need anyway: the
 // refraction and texture kernels would take 132-137 and lose two warps per SM to a few
-// registers. PBR kernels (160-175 registers) run uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N
-// overrides the many-instance cap, for experiments.
+// registers (bench/results/gpu-header-carry-h200-2026-12-03.txt). PBR kernels (160-175
+// registers) run uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N overrides the many-instance cap, for
+// experiments.
 #if !defined(RTRT_TRACE_MIN_BLOCKS)
 #define RTRT_TRACE_MIN_BLOCKS 16
 #endif
