@@ -57,13 +57,16 @@ void PushAlong(SolverBody& a, SolverBody& b, const ContactAxis& axis, float impu
 constexpr uint32_t kParallelManifolds = 1024;
 // The smallest slice of a colour that a thread claims at once.
 constexpr uint32_t kMinBlockManifolds = 32;
+// Blocks per share: what is left for the other threads to take when one is behind.
+constexpr uint32_t kBlocksPerShare = 4;
 
 }  // namespace
 
-void GatherSolverBodies(std::span<const SimBody> bodies, std::span<SolverBody> out) {
+void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
+                        std::span<SolverBody> out) {
     ParallelFor(0, bodies.size(), 1024, [&](size_t i) {
         const SimBody& s = bodies[i];
-        SolverBody& b = out[i];
+        SolverBody& b = out[slotOfBody[i]];
         b.velocity = s.velocity;
         b.angularVelocity = s.angularVelocity;
         b.invMass = s.awake ? s.invMass : 0.0f;
@@ -71,14 +74,17 @@ void GatherSolverBodies(std::span<const SimBody> bodies, std::span<SolverBody> o
     });
 }
 
-void PrepareContacts(std::span<const SimBody> bodies, std::span<const SolverBody> solverBodies,
-                     std::span<Contact> contacts, const SolverSettings& settings) {
+void PrepareContacts(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
+                     std::span<const SolverBody> solverBodies, std::span<Contact> contacts,
+                     const SolverSettings& settings) {
     ParallelFor(0, contacts.size(), 512, [&](size_t k) {
         Contact& c = contacts[k];
         const SimBody& a = bodies[c.a];
         const SimBody& b = bodies[c.b];
-        const SolverBody& sa = solverBodies[c.a];
-        const SolverBody& sb = solverBodies[c.b];
+        c.slotA = slotOfBody[c.a];
+        c.slotB = slotOfBody[c.b];
+        const SolverBody& sa = solverBodies[c.slotA];
+        const SolverBody& sb = solverBodies[c.slotB];
         const vec3 rA = c.point - a.position;
         const vec3 rB = c.point - b.position;
         vec3 t1;
@@ -116,7 +122,7 @@ void WarmStartContact(std::span<SolverBody> bodies, const Contact& c) {
     const ContactAxis& n = c.normalAxis;
     const ContactAxis& t1 = c.tangentAxis1;
     const ContactAxis& t2 = c.tangentAxis2;
-    Push(bodies[c.a], bodies[c.b],
+    Push(bodies[c.slotA], bodies[c.slotB],
          c.normalImpulse * n.direction + c.tangentImpulse1 * t1.direction +
              c.tangentImpulse2 * t2.direction,
          c.normalImpulse * n.armA + c.tangentImpulse1 * t1.armA + c.tangentImpulse2 * t2.armA,
@@ -124,8 +130,8 @@ void WarmStartContact(std::span<SolverBody> bodies, const Contact& c) {
 }
 
 void SolveVelocityContact(std::span<SolverBody> bodies, Contact& c, float invDt) {
-    SolverBody& a = bodies[c.a];
-    SolverBody& b = bodies[c.b];
+    SolverBody& a = bodies[c.slotA];
+    SolverBody& b = bodies[c.slotB];
     if (c.rollingLimit > 0.0f && c.normalImpulse > 0.0f) {
         const vec3 spin = b.angularVelocity - a.angularVelocity;
         vec3 rolling = c.rollingImpulse - c.rollingMass * spin;
@@ -169,8 +175,8 @@ void RestituteContact(std::span<SolverBody> bodies, Contact& c, const SolverSett
     if (c.normalImpulse <= 0.0f || c.approachSpeed <= settings.restitutionThreshold) return;
     const float target = c.restitution * c.approachSpeed - c.gravitySpeed;
     if (target <= 0.0f) return;
-    SolverBody& a = bodies[c.a];
-    SolverBody& b = bodies[c.b];
+    SolverBody& a = bodies[c.slotA];
+    SolverBody& b = bodies[c.slotB];
     const float vn = Speed(a, b, c.normalAxis);
     const float impulse = std::max(c.normalImpulse - c.normalAxis.mass * (vn - target), 0.0f);
     PushAlong(a, b, c.normalAxis, impulse - c.normalImpulse);
@@ -181,10 +187,10 @@ void SolvePositionContact(std::span<const SolverBody> bodies, std::span<PseudoVe
                           Contact& c, float rate, float linearSlop) {
     const float overlap = -c.separation - linearSlop;
     if (overlap <= 0.0f) return;
-    const SolverBody& a = bodies[c.a];
-    const SolverBody& b = bodies[c.b];
-    PseudoVelocity& pa = pseudo[c.a];
-    PseudoVelocity& pb = pseudo[c.b];
+    const SolverBody& a = bodies[c.slotA];
+    const SolverBody& b = bodies[c.slotB];
+    PseudoVelocity& pa = pseudo[c.slotA];
+    PseudoVelocity& pb = pseudo[c.slotB];
     const ContactAxis& axis = c.normalAxis;
     const float vn = PseudoSpeed(pa, pb, axis);
     const float impulse = std::max(c.pseudoImpulse - axis.mass * (vn - rate * overlap), 0.0f);
@@ -209,24 +215,48 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
                    const SolverSettings& settings, ContactSolverScratch& scratch) {
     const uint32_t colors = batches.Colors();
     if (colors == 0) return;
-    // A stage is one pass over one colour; its blocks are slices of the colour's manifolds. The
+    // A stage is one pass over one colour. Each colour is cut into one share per thread, by
+    // region when the batches have regions (else evenly), and each share into blocks. The
     // overflow colour is a single block, solved in order by one thread.
     const int threads =
         batches.Manifolds() < kParallelManifolds ? 1 : StageRunner::AvailableThreads();
-    const auto blockSize = [&](uint32_t color) -> uint32_t {
-        const uint32_t manifolds = batches.colorBegin[color + 1] - batches.colorBegin[color];
-        if (batches.lastIsOverflow && color + 1 == colors) return std::max(1u, manifolds);
-        const uint32_t perThread = manifolds / (4 * static_cast<uint32_t>(threads));
-        return std::max(kMinBlockManifolds, perThread);
-    };
+    const auto shareCount = static_cast<uint32_t>(threads);
+    scratch.shares.clear();
+    for (uint32_t color = 0; color < colors; ++color) {
+        const uint32_t colorBegin = batches.colorBegin[color];
+        const uint32_t colorEnd = batches.colorBegin[color + 1];
+        const uint32_t manifolds = colorEnd - colorBegin;
+        if (batches.lastIsOverflow && color + 1 == colors) {
+            scratch.shares.push_back({colorBegin, colorEnd, std::max(1u, manifolds)});
+            for (uint32_t s = 1; s < shareCount; ++s) {
+                scratch.shares.push_back({colorEnd, colorEnd, 1});
+            }
+            continue;
+        }
+        const uint32_t blockSize =
+            std::max(kMinBlockManifolds, manifolds / (kBlocksPerShare * shareCount));
+        for (uint32_t s = 0; s < shareCount; ++s) {
+            uint32_t begin =
+                colorBegin + static_cast<uint32_t>(uint64_t{manifolds} * s / shareCount);
+            uint32_t end =
+                colorBegin + static_cast<uint32_t>(uint64_t{manifolds} * (s + 1) / shareCount);
+            if (batches.regions > 0) {
+                begin = batches.RegionBegin(color, s * batches.regions / shareCount);
+                end = batches.RegionBegin(color, (s + 1) * batches.regions / shareCount);
+            }
+            scratch.shares.push_back({begin, end, blockSize});
+        }
+    }
     scratch.stages.clear();
     scratch.blocks.clear();
     const auto addPass = [&](Pass pass) {
         for (uint32_t color = 0; color < colors; ++color) {
-            const uint32_t manifolds = batches.colorBegin[color + 1] - batches.colorBegin[color];
-            const uint32_t size = blockSize(color);
-            scratch.stages.push_back({static_cast<uint8_t>(pass), color, size});
-            scratch.blocks.push_back((manifolds + size - 1) / size);
+            scratch.stages.push_back({static_cast<uint8_t>(pass), color});
+            for (uint32_t s = 0; s < shareCount; ++s) {
+                const ContactSolverScratch::Share& share = scratch.shares[color * shareCount + s];
+                scratch.blocks.push_back((share.end - share.begin + share.blockSize - 1) /
+                                         share.blockSize);
+            }
         }
     };
     addPass(Pass::kWarmStart);
@@ -236,11 +266,11 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
 
     const float invDt = 1.0f / settings.dt;
     const float rate = settings.positionCorrection / settings.dt;
-    scratch.runner.Run(scratch.blocks, threads, [&](size_t stageIndex, uint32_t block) {
+    scratch.runner.Run(scratch.blocks, threads, [&](size_t stageIndex, uint32_t s, uint32_t block) {
         const ContactSolverScratch::Stage& stage = scratch.stages[stageIndex];
-        const uint32_t colorEnd = batches.colorBegin[stage.color + 1];
-        const uint32_t first = batches.colorBegin[stage.color] + block * stage.blockSize;
-        const uint32_t last = std::min(colorEnd, first + stage.blockSize);
+        const ContactSolverScratch::Share& share = scratch.shares[stage.color * shareCount + s];
+        const uint32_t first = share.begin + block * share.blockSize;
+        const uint32_t last = std::min(share.end, first + share.blockSize);
         const uint32_t begin = batches.manifoldBegin[first];
         const uint32_t end = batches.manifoldBegin[last];
         switch (static_cast<Pass>(stage.pass)) {

@@ -45,6 +45,8 @@ struct ContactAxis {
 struct Contact {
     uint32_t a;  // body indices; the normal points from a to b
     uint32_t b;
+    uint32_t slotA;  // the bodies' places among the solver bodies (set by PrepareContacts)
+    uint32_t slotB;
     vec3 normal;
     vec3 point;
     float separation;    // at the start of the step; negative when overlapping
@@ -76,23 +78,34 @@ struct SolverSettings {
     float positionCorrection;
 };
 
-// The solver's view of the bodies at the start of the contact passes.
-void GatherSolverBodies(std::span<const SimBody> bodies, std::span<SolverBody> out);
+// The solver's view of the bodies at the start of the contact passes: body i goes to
+// out[slotOfBody[i]]. The caller orders the slots by place, so that the bodies that one thread
+// solves (a run of regions, see ContactBatches) lie together in memory and share no cache line
+// with another thread's.
+void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
+                        std::span<SolverBody> out);
 
-// Fills the contacts' axes and effective masses and zeroes their impulses (the caller may then
-// seed them from the last step: see SolveContacts).
-void PrepareContacts(std::span<const SimBody> bodies, std::span<const SolverBody> solverBodies,
-                     std::span<Contact> contacts, const SolverSettings& settings);
+// Fills the contacts' slots, axes and effective masses and zeroes their impulses (the caller may
+// then seed them from the last step: see SolveContacts).
+void PrepareContacts(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
+                     std::span<const SolverBody> solverBodies, std::span<Contact> contacts,
+                     const SolverSettings& settings);
 
 // What SolveContacts keeps between steps, so that a step allocates nothing.
 struct ContactSolverScratch {
     struct Stage {
         uint8_t pass;
         uint32_t color;
+    };
+    // A share of a colour: the manifolds of some of its regions, cut into blocks.
+    struct Share {
+        uint32_t begin;      // first manifold
+        uint32_t end;        // one past the last
         uint32_t blockSize;  // manifolds per block
     };
     std::vector<Stage> stages;
-    std::vector<uint32_t> blocks;  // per stage
+    std::vector<Share> shares;     // per colour and share
+    std::vector<uint32_t> blocks;  // per stage and share
     StageRunner runner;
 };
 
@@ -113,6 +126,7 @@ struct ContactSolverScratch {
 //    positionCorrection of the overlap beyond linearSlop per step; they move the bodies but are
 //    discarded afterwards, so the correction adds no kinetic energy (unlike Baumgarte
 //    stabilisation of the velocities).
+// bodies and pseudo are indexed by slot.
 void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,
                    std::span<Contact> contacts, const ContactBatches& batches,
                    const SolverSettings& settings, ContactSolverScratch& scratch);

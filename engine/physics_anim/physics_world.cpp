@@ -157,8 +157,8 @@ void PhysicsWorld::TakeStep() {
     times.narrowPhaseMs += clock.Milliseconds();
     clock.Restart();
     solverBodies_.resize(bodies_.size());
-    GatherSolverBodies(bodies_, solverBodies_);
-    PrepareContacts(bodies_, solverBodies_, contacts_, solver_);
+    GatherSolverBodies(bodies_, solverSlots_, solverBodies_);
+    PrepareContacts(bodies_, solverSlots_, solverBodies_, contacts_, solver_);
     SeedFromLastStep();
     pseudoVelocities_.assign(bodies_.size(), PseudoVelocity{});
     SolveContacts(solverBodies_, pseudoVelocities_, contacts_, batches_, solver_, solverScratch_);
@@ -205,6 +205,14 @@ void PhysicsWorld::FindPairs() {
     sweep_.Ranks(boxRanks_);
     bodyRanks_.assign(bodies_.size(), 0);
     for (size_t k = 0; k < broadBodies_.size(); ++k) bodyRanks_[broadBodies_[k]] = boxRanks_[k];
+    // Solver slots in sweep order, then the bodies outside the broad phase (planes, bodies
+    // without a collider) in body order.
+    solverSlots_.resize(bodies_.size());
+    auto outside = static_cast<uint32_t>(broadBodies_.size());
+    for (uint32_t i = 0, k = 0; i < bodies_.size(); ++i) {
+        const bool inBroadPhase = k < broadBodies_.size() && broadBodies_[k] == i;
+        solverSlots_[i] = inBroadPhase ? boxRanks_[k++] : outside++;
+    }
     ParallelFor(0, pairs_.size(), kPairGrain, [&](size_t k) {
         pairs_[k] = {broadBodies_[pairs_[k].first], broadBodies_[pairs_[k].second]};
     });
@@ -366,17 +374,20 @@ void PhysicsWorld::LayOutContacts() {
         ++colorManifolds[color];
     }
     batches_.colorBegin.assign(1, 0);
+    batches_.regionBegin.clear();
+    batches_.regions = kRegions;
     batches_.lastIsOverflow = colorManifolds[ContactColoring::kOverflow] > 0;
     uint32_t manifoldTotal = 0;
     uint32_t pointTotal = 0;
     for (uint32_t slot = 0; slot < kSlots * kRegions; ++slot) {
         const uint32_t manifolds = slotManifolds_[slot];
         const uint32_t points = slotPoints_[slot];
+        const uint32_t color = slot / kRegions;
+        if (colorManifolds[color] > 0) batches_.regionBegin.push_back(manifoldTotal);
         slotManifolds_[slot] = manifoldTotal;  // now where the slot's manifolds start
         slotPoints_[slot] = pointTotal;
         manifoldTotal += manifolds;
         pointTotal += points;
-        const uint32_t color = slot / kRegions;
         if (slot % kRegions == kRegions - 1 && colorManifolds[color] > 0) {
             batches_.colorBegin.push_back(manifoldTotal);
         }
@@ -478,9 +489,10 @@ void PhysicsWorld::IntegratePositions() {
     ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
         SimBody& s = bodies_[i];
         if (!s.awake) return;
-        s.velocity = solverBodies_[i].velocity;
-        s.angularVelocity = solverBodies_[i].angularVelocity;
-        const PseudoVelocity& pseudo = pseudoVelocities_[i];
+        const uint32_t slot = solverSlots_[i];
+        s.velocity = solverBodies_[slot].velocity;
+        s.angularVelocity = solverBodies_[slot].angularVelocity;
+        const PseudoVelocity& pseudo = pseudoVelocities_[slot];
         s.position += (s.velocity + pseudo.linear) * h;
         const vec3 w = s.angularVelocity + pseudo.angular;
         // dq/dt = 1/2 (0, w) q, then renormalised.

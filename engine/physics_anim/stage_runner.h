@@ -8,6 +8,7 @@
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -29,49 +30,68 @@ class StageRunner {
         return std::max(1, std::min(tbb::this_task_arena::max_concurrency(), limit));
     }
 
-    // Calls work(stage, block) once for every block of every stage, all blocks of a stage before
-    // any of the next. Blocks are claimed by whichever thread is free, so work must not depend
-    // on which thread runs it. threads <= 1 runs everything in order on the calling thread.
+    // Calls work(stage, share, block) once for every block of every share of every stage, all
+    // blocks of a stage before any of the next; share s of stage t has
+    // blocksPerShare[t * shares + s] blocks. threads <= 1 runs everything in order on the calling
+    // thread.
+    //
+    // There are as many shares as threads, and each thread works through the same share in every
+    // stage before it takes blocks of the others' (when it runs out, or a helper is late): the
+    // solver cuts each colour into shares by region, so a body's cache line stays with one core
+    // from colour to colour instead of moving at every stage. Any thread may still run any block,
+    // so work must not depend on which thread runs it.
     //
     // Never deadlocks, however many threads TBB actually lends: a thread waits only for blocks
-    // that other threads have already claimed and are running, and a helper that starts late
-    // (or never, leaving its task to the caller's wait) finds the finished stages empty.
+    // that other threads have already claimed and are running, and the share of a helper that
+    // starts late (or never, leaving its task to the caller's wait) is taken by the others.
     template <typename Work>
-    void Run(std::span<const uint32_t> blocksPerStage, int threads, const Work& work) {
-        const size_t stages = blocksPerStage.size();
+    void Run(std::span<const uint32_t> blocksPerShare, int threads, const Work& work) {
+        const auto shares = static_cast<uint32_t>(std::max(threads, 1));
+        const size_t stages = blocksPerShare.size() / shares;
         if (threads <= 1) {
-            for (size_t s = 0; s < stages; ++s) {
-                for (uint32_t b = 0; b < blocksPerStage[s]; ++b) work(s, b);
+            for (size_t t = 0; t < stages; ++t) {
+                for (uint32_t b = 0; b < blocksPerShare[t]; ++b) work(t, 0u, b);
             }
             return;
         }
-        if (capacity_ < stages) {
-            claimed_ = std::make_unique<Counter[]>(stages);
+        if (claimedCapacity_ < stages * shares) {
+            claimed_ = std::make_unique<Counter[]>(stages * shares);
+            claimedCapacity_ = stages * shares;
+        }
+        if (completedCapacity_ < stages) {
             completed_ = std::make_unique<Counter[]>(stages);
-            capacity_ = stages;
+            completedCapacity_ = stages;
         }
-        for (size_t s = 0; s < stages; ++s) {
-            claimed_[s].value.store(0, std::memory_order_relaxed);
-            completed_[s].value.store(0, std::memory_order_relaxed);
+        for (size_t i = 0; i < stages * shares; ++i) {
+            claimed_[i].value.store(0, std::memory_order_relaxed);
         }
+        for (size_t t = 0; t < stages; ++t) completed_[t].value.store(0, std::memory_order_relaxed);
+        std::atomic<uint32_t> nextHome{0};
         const auto participate = [&] {
-            for (size_t s = 0; s < stages; ++s) {
-                const uint32_t blocks = blocksPerStage[s];
-                std::atomic<uint32_t>& claimed = claimed_[s].value;
-                std::atomic<uint32_t>& completed = completed_[s].value;
-                for (uint32_t b = claimed.fetch_add(1, std::memory_order_relaxed); b < blocks;
-                     b = claimed.fetch_add(1, std::memory_order_relaxed)) {
-                    work(s, b);
-                    // Release: the next stage's readers see this block's writes.
-                    completed.fetch_add(1, std::memory_order_acq_rel);
+            const uint32_t home = nextHome.fetch_add(1, std::memory_order_relaxed) % shares;
+            for (size_t t = 0; t < stages; ++t) {
+                const uint32_t* blocks = blocksPerShare.data() + t * shares;
+                uint32_t stageBlocks = 0;
+                for (uint32_t s = 0; s < shares; ++s) stageBlocks += blocks[s];
+                std::atomic<uint32_t>& completed = completed_[t].value;
+                for (uint32_t k = 0; k < shares; ++k) {
+                    const uint32_t share = (home + k) % shares;
+                    std::atomic<uint32_t>& claimed = claimed_[t * shares + share].value;
+                    for (uint32_t b = claimed.fetch_add(1, std::memory_order_relaxed);
+                         b < blocks[share]; b = claimed.fetch_add(1, std::memory_order_relaxed)) {
+                        work(t, share, b);
+                        // Release: the next stage's readers see this block's writes.
+                        completed.fetch_add(1, std::memory_order_acq_rel);
+                    }
                 }
-                for (int spins = 0; completed.load(std::memory_order_acquire) < blocks; ++spins) {
+                for (int spins = 0; completed.load(std::memory_order_acquire) < stageBlocks;
+                     ++spins) {
                     Pause(spins);
                 }
             }
         };
         tbb::task_group helpers;
-        for (int t = 1; t < threads; ++t) helpers.run(participate);
+        for (uint32_t t = 1; t < shares; ++t) helpers.run(participate);
         participate();
         helpers.wait();
     }
@@ -92,9 +112,10 @@ class StageRunner {
         }
     }
 
-    std::unique_ptr<Counter[]> claimed_;
-    std::unique_ptr<Counter[]> completed_;
-    size_t capacity_ = 0;
+    std::unique_ptr<Counter[]> claimed_;    // per stage and share
+    std::unique_ptr<Counter[]> completed_;  // per stage
+    size_t claimedCapacity_ = 0;
+    size_t completedCapacity_ = 0;
 };
 
 }  // namespace rtrt::physics
