@@ -4,14 +4,16 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 namespace rtrt::physics {
 
 namespace {
 
-// The axis with the largest variance of box centres (computed in double: many boxes far from the
-// origin would lose the variance to cancellation in float).
-int SweepAxis(std::span<const BroadPhaseBox> boxes) {
+// The axes ordered by the variance of the box centres, largest first (computed in double: many
+// boxes far from the origin would lose the variance to cancellation in float).
+std::array<int, 3> AxesBySpread(std::span<const BroadPhaseBox> boxes) {
     double sum[3] = {0.0, 0.0, 0.0};
     double sumSquares[3] = {0.0, 0.0, 0.0};
     for (const BroadPhaseBox& box : boxes) {
@@ -21,18 +23,22 @@ int SweepAxis(std::span<const BroadPhaseBox> boxes) {
             sumSquares[k] += c * c;
         }
     }
-    int best = 0;
-    double bestVariance = -1.0;
     const auto n = static_cast<double>(boxes.size());
-    for (int k = 0; k < 3; ++k) {
-        const double variance = sumSquares[k] / n - (sum[k] / n) * (sum[k] / n);
-        if (variance > bestVariance) {
-            bestVariance = variance;
-            best = k;
-        }
-    }
-    return best;
+    double variance[3];
+    for (int k = 0; k < 3; ++k) variance[k] = sumSquares[k] / n - (sum[k] / n) * (sum[k] / n);
+    std::array<int, 3> axes{0, 1, 2};
+    std::stable_sort(axes.begin(), axes.end(),
+                     [&](int a, int b) { return variance[a] > variance[b]; });
+    return axes;
 }
+
+// Strips of at least this many boxes on average: fewer would cost more in bookkeeping than
+// they save in tests.
+constexpr size_t kMinBoxesPerStrip = 16;
+constexpr uint32_t kMaxStrips = 4096;
+// A layout whose boxes span more than this many strips each on average (many boxes much
+// larger than the typical one) falls back to one strip.
+constexpr size_t kMaxStripsPerBox = 4;
 
 }  // namespace
 
@@ -43,44 +49,91 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
         order_.assign(boxes.size(), {0.0f, 0});
         return;
     }
-    const int axis = SweepAxis(boxes);
-    const int other1 = (axis + 1) % 3;
-    const int other2 = (axis + 2) % 3;
+    const std::array<int, 3> axes = AxesBySpread(boxes);
+    const int axis = axes[0];
+    const int stripAxis = axes[1];
+    const int other2 = axes[2];
     order_.resize(boxes.size());
     for (uint32_t i = 0; i < boxes.size(); ++i) order_[i] = {boxes[i].min[axis], i};
     // Ties broken by index, so the order (and the pairs' order) never depends on the sort.
     tbb::parallel_sort(order_.begin(), order_.end(), [](const Entry& a, const Entry& b) {
         return a.min != b.min ? a.min < b.min : a.box < b.box;
     });
-    // The inner loop reads the boxes in sweep order, with the sweep axis first: copied so, they
-    // are read sequentially and at fixed offsets.
-    sorted_.resize(boxes.size());
-    for (size_t i = 0; i < order_.size(); ++i) {
-        const BroadPhaseBox& box = boxes[order_[i].box];
-        sorted_[i] = {box.min[axis],   box.max[axis],   box.min[other1], box.max[other1],
-                      box.min[other2], box.max[other2], order_[i].box,   box.isStatic};
+    const Strips strips = PlanStrips(boxes, stripAxis);
+    // Each strip's boxes in sweep order, with the sweep axis first, so that the inner loop reads
+    // them sequentially and at fixed offsets. A box is in every strip it overlaps.
+    stripBegin_.assign(strips.count + 1, 0);
+    for (const Entry& entry : order_) {
+        const BroadPhaseBox& box = boxes[entry.box];
+        const uint32_t last = strips.Of(box.max[stripAxis]);
+        for (uint32_t k = strips.Of(box.min[stripAxis]); k <= last; ++k) ++stripBegin_[k + 1];
     }
-    // Fixed slices of the sweep, each with its own pairs, joined in slice order: the same pairs in
-    // the same order as one serial sweep, on any number of threads.
-    const size_t slices = (sorted_.size() + kSlice - 1) / kSlice;
-    if (slicePairs_.size() < slices) slicePairs_.resize(slices);
-    tbb::parallel_for(size_t{0}, slices, [&](size_t slice) {
-        std::vector<std::pair<uint32_t, uint32_t>>& out = slicePairs_[slice];
+    for (uint32_t k = 0; k < strips.count; ++k) stripBegin_[k + 1] += stripBegin_[k];
+    sorted_.resize(stripBegin_[strips.count]);
+    stripFill_.assign(stripBegin_.begin(), stripBegin_.end() - 1);
+    for (const Entry& entry : order_) {
+        const BroadPhaseBox& box = boxes[entry.box];
+        const SweptBox swept{box.min[axis],      box.max[axis],   box.min[stripAxis],
+                             box.max[stripAxis], box.min[other2], box.max[other2],
+                             entry.box,          box.isStatic};
+        const uint32_t last = strips.Of(box.max[stripAxis]);
+        for (uint32_t k = strips.Of(box.min[stripAxis]); k <= last; ++k) {
+            sorted_[stripFill_[k]++] = swept;
+        }
+    }
+    // Each strip swept on its own, its pairs kept apart and joined in strip order: the same pairs
+    // in the same order on any number of threads. Two boxes that share several strips are paired
+    // only in the strip that holds the larger of their lower bounds on the strip axis.
+    if (stripPairs_.size() < strips.count) stripPairs_.resize(strips.count);
+    tbb::parallel_for(uint32_t{0}, strips.count, [&](uint32_t strip) {
+        std::vector<std::pair<uint32_t, uint32_t>>& out = stripPairs_[strip];
         out.clear();
-        const size_t end = std::min(sorted_.size(), (slice + 1) * kSlice);
-        for (size_t i = slice * kSlice; i < end; ++i) {
+        const uint32_t begin = stripBegin_[strip];
+        const uint32_t end = stripBegin_[strip + 1];
+        for (uint32_t i = begin; i < end; ++i) {
             const SweptBox& a = sorted_[i];
-            for (size_t j = i + 1; j < sorted_.size() && sorted_[j].min0 <= a.max0; ++j) {
+            for (uint32_t j = i + 1; j < end && sorted_[j].min0 <= a.max0; ++j) {
                 const SweptBox& b = sorted_[j];
                 const bool overlap = a.min1 <= b.max1 && b.min1 <= a.max1 && a.min2 <= b.max2 &&
                                      b.min2 <= a.max2 && !(a.isStatic && b.isStatic);
-                if (overlap) out.emplace_back(std::min(a.box, b.box), std::max(a.box, b.box));
+                if (overlap && strips.Of(std::max(a.min1, b.min1)) == strip) {
+                    out.emplace_back(std::min(a.box, b.box), std::max(a.box, b.box));
+                }
             }
         }
     });
-    for (size_t slice = 0; slice < slices; ++slice) {
-        pairs.insert(pairs.end(), slicePairs_[slice].begin(), slicePairs_[slice].end());
+    for (uint32_t strip = 0; strip < strips.count; ++strip) {
+        pairs.insert(pairs.end(), stripPairs_[strip].begin(), stripPairs_[strip].end());
     }
+}
+
+SweepAndPrune::Strips SweepAndPrune::PlanStrips(std::span<const BroadPhaseBox> boxes,
+                                                int stripAxis) {
+    Strips one;
+    const size_t n = boxes.size();
+    float low = boxes[0].min[stripAxis];
+    float high = boxes[0].max[stripAxis];
+    extents_.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        low = std::min(low, boxes[i].min[stripAxis]);
+        high = std::max(high, boxes[i].max[stripAxis]);
+        const float extent = boxes[i].max[stripAxis] - boxes[i].min[stripAxis];
+        extents_[i] = std::isnan(extent) ? 0.0f : extent;  // nth_element needs an order
+    }
+    // Strips twice as wide as the median box, so that most boxes lie in one or two.
+    std::nth_element(extents_.begin(), extents_.begin() + n / 2, extents_.end());
+    const float width = 2.0f * extents_[n / 2];
+    if (!(width > 0.0f) || !(high - low > width) || !std::isfinite(high - low)) return one;
+    const double wanted = std::ceil(static_cast<double>(high - low) / width);
+    const auto count = static_cast<uint32_t>(
+        std::min<double>({wanted, double(kMaxStrips), double(n / kMinBoxesPerStrip)}));
+    if (count <= 1) return one;
+    Strips strips{count, low, static_cast<float>(count / static_cast<double>(high - low))};
+    size_t spans = 0;
+    for (const BroadPhaseBox& box : boxes) {
+        spans += strips.Of(box.max[stripAxis]) - strips.Of(box.min[stripAxis]) + 1;
+    }
+    return spans <= kMaxStripsPerBox * n ? strips : one;
 }
 
 void SweepAndPrune::Ranks(std::vector<uint32_t>& rankOfBox) const {

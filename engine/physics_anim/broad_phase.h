@@ -15,11 +15,14 @@ struct BroadPhaseBox {
     bool isStatic;  // two static boxes never make a pair
 };
 
-// Sort and sweep (Baraff 1992, "Dynamic Simulation of Non-Penetrating Rigid Bodies", ch. 7): the
-// boxes sorted by their lower bound on the axis along which their centres spread most; each box
-// is tested against the following ones until their lower bound passes its upper bound. Cost is
-// O(n log n) plus the overlaps on that axis, in parallel on TBB. The order of the pairs depends
-// only on the boxes.
+// Sort and sweep (Baraff 1992, "Dynamic Simulation of Non-Penetrating Rigid Bodies", ch. 7) in
+// strips: the boxes sorted by their lower bound on the axis along which their centres spread
+// most, and dealt into strips across the axis of the second spread (a box into every strip it
+// overlaps); within a strip each box is tested against the following ones until their lower
+// bound passes its upper bound. On a floor covered in bodies a plain sweep tests each box against
+// every box in its slab across the whole floor; strips cut that to the boxes of its neighbourhood.
+// Cost is O(n log n) plus the overlaps on the sweep axis within strips, in parallel on TBB. The
+// pairs and their order depend only on the boxes.
 class SweepAndPrune {
   public:
     // Replaces pairs with every overlapping (i, j), i < j, that is not static-static; touching
@@ -35,16 +38,31 @@ class SweepAndPrune {
         float min;
         uint32_t box;
     };
-    // A box with its bounds on the sweep axis (0) and the two others (1, 2); 32 bytes.
+    // A box with its bounds on the sweep axis (0), the strip axis (1) and the third (2); 32 bytes.
     struct SweptBox {
         float min0, max0, min1, max1, min2, max2;
         uint32_t box;
         uint32_t isStatic;
     };
-    static constexpr size_t kSlice = 256;  // boxes per parallel task of the sweep
+    // Strips across the strip axis, of equal width from `low`; one strip holds every box.
+    struct Strips {
+        uint32_t count = 1;
+        float low = 0.0f;
+        float perUnit = 0.0f;  // strips per unit of length
+        uint32_t Of(float x) const {
+            const float k = (x - low) * perUnit;
+            if (!(k > 0.0f)) return 0;  // NaN too
+            return k >= static_cast<float>(count) ? count - 1 : static_cast<uint32_t>(k);
+        }
+    };
+    Strips PlanStrips(std::span<const BroadPhaseBox> boxes, int stripAxis);
+
     std::vector<Entry> order_;
-    std::vector<SweptBox> sorted_;  // in sweep order
-    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> slicePairs_;
+    std::vector<float> extents_;        // PlanStrips' scratch
+    std::vector<uint32_t> stripBegin_;  // each strip's boxes in sorted_
+    std::vector<uint32_t> stripFill_;
+    std::vector<SweptBox> sorted_;  // strip by strip, each in sweep order
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> stripPairs_;
 };
 
 }  // namespace rtrt::physics

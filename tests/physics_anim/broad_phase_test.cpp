@@ -1,4 +1,4 @@
-// Sort and sweep finds exactly the overlapping pairs that brute force finds.
+// Sort and sweep (in strips) finds exactly the overlapping pairs that brute force finds.
 #include "engine/physics_anim/broad_phase.h"
 
 #include <gtest/gtest.h>
@@ -52,6 +52,35 @@ TEST(BroadPhaseTest, SweepFindsTheSamePairsAsBruteForce) {
         EXPECT_FALSE(expected.empty());
         EXPECT_EQ(found, expected) << "seed " << seed;
     }
+}
+
+// A floor's worth of small boxes (many strips) with a few walls that cross every strip, boxes
+// that touch exactly on strip boundaries, and a box far away: still exactly brute force's pairs,
+// each once, and the same order on a second call.
+TEST(BroadPhaseTest, StripsFindEachPairOnceAmongLargeAndTouchingBoxes) {
+    std::vector<BroadPhaseBox> boxes = RandomBoxes(3000, 9);
+    for (BroadPhaseBox& box : boxes) {  // flatten onto a 40 x 40 floor
+        box.min.x *= 2.0f;
+        box.max.x = box.min.x + 0.5f;
+        box.min.z *= 2.0f;
+        box.max.z = box.min.z + 0.5f;
+    }
+    boxes.push_back({vec3(-1.0f, 0.0f, -1.0f), vec3(41.0f, 2.0f, 0.0f), true});
+    boxes.push_back({vec3(-1.0f, 0.0f, -1.0f), vec3(0.0f, 2.0f, 41.0f), true});
+    boxes.push_back({vec3(0.0f, 0.0f, 0.0f), vec3(41.0f, 4.0f, 41.0f), false});
+    for (float z = 0.0f; z < 40.0f; z += 0.25f) {  // edge to edge along z
+        boxes.push_back({vec3(7.0f, 1.0f, z), vec3(7.5f, 1.5f, z + 0.25f), false});
+    }
+    boxes.push_back({vec3(1000.0f), vec3(1001.0f), false});
+    SweepAndPrune sweep;
+    Pairs found;
+    sweep.FindPairs(boxes, found);
+    Pairs again;
+    sweep.FindPairs(boxes, again);
+    EXPECT_EQ(found, again);
+    std::sort(found.begin(), found.end());
+    EXPECT_EQ(std::adjacent_find(found.begin(), found.end()), found.end()) << "a pair twice";
+    EXPECT_EQ(found, BruteForce(boxes));
 }
 
 TEST(BroadPhaseTest, TouchingBoxesPairButStaticPairsDoNot) {
