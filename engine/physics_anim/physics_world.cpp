@@ -1,11 +1,8 @@
 #include "engine/physics_anim/physics_world.h"
 
-#include <tbb/parallel_sort.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <tuple>
 
 #include "engine/core/parallel_compact.h"
 #include "engine/core/parallel_for.h"
@@ -30,11 +27,6 @@ glm::mat3 WorldInverseInertia(const glm::mat3& rotation, vec3 invInertiaLocal) {
 
 OrientedBox BoxOf(const SimBody& body) {
     return {body.position, body.rotation, body.collider.halfExtents};
-}
-
-bool PairLess(Entity a1, Entity b1, Entity a2, Entity b2) {
-    return std::tie(a1.index, a1.generation, b1.index, b1.generation) <
-           std::tie(a2.index, a2.generation, b2.index, b2.generation);
 }
 
 // Work per TBB task: each element is a few dozen to a few hundred flops.
@@ -430,24 +422,21 @@ void PhysicsWorld::SeedFromLastStep() {
         const uint32_t begin = batches_.manifoldBegin[m];
         const uint32_t end = batches_.manifoldBegin[m + 1];
         const SimBody& a = bodies_[contacts_[begin].a];
-        const Entity ea = a.entity;
-        const Entity eb = bodies_[contacts_[begin].b].entity;
-        const auto first = std::lower_bound(
-            cache_.begin(), cache_.end(), ea,
-            [&](const CachedContact& k, Entity) { return PairLess(k.a, k.b, ea, eb); });
-        if (first == cache_.end() || first->a != ea || first->b != eb) return;
+        const std::span<const CachedContact> cached =
+            cache_.Find(a.entity, bodies_[contacts_[begin].b].entity);
+        if (cached.empty()) return;
         const glm::mat3 toLocal = glm::transpose(a.rotation);
         for (uint32_t k = begin; k < end; ++k) {
             Contact& c = contacts_[k];
             const vec3 local = toLocal * (c.point - a.position);
             const CachedContact* best = nullptr;
             float bestDistance2 = maxDistance2;
-            for (auto it = first; it != cache_.end() && it->a == ea && it->b == eb; ++it) {
-                const vec3 d = it->localPoint - local;
+            for (const CachedContact& old : cached) {
+                const vec3 d = old.localPoint - local;
                 const float distance2 = glm::dot(d, d);
                 if (distance2 < bestDistance2) {
                     bestDistance2 = distance2;
-                    best = &*it;
+                    best = &old;
                 }
             }
             if (best == nullptr) continue;
@@ -459,28 +448,24 @@ void PhysicsWorld::SeedFromLastStep() {
 }
 
 void PhysicsWorld::RememberImpulses() {
-    // The contacts that pushed, in contact order (the same on any number of threads).
+    // The contacts that pushed, in contact order (the same on any number of threads), so each
+    // manifold's stay together.
     auto pushed = [&](size_t k) { return contacts_[k].normalImpulse > 0.0f; };
-    nextCache_.resize(contacts_.size());
+    std::vector<CachedContact>& entries = nextCache_.Entries();
+    entries.resize(contacts_.size());
     const uint32_t kept =
         ParallelCompact(contacts_.size(), chunkStarts_, pushed, [&](size_t k, uint32_t out) {
             const Contact& c = contacts_[k];
             const SimBody& a = bodies_[c.a];
-            nextCache_[out] = {a.entity,
-                               bodies_[c.b].entity,
-                               glm::transpose(a.rotation) * (c.point - a.position),
-                               c.normalImpulse,
-                               c.tangentImpulse1,
-                               c.tangentImpulse2,
-                               uint32_t(k)};
+            entries[out] = {a.entity,
+                            bodies_[c.b].entity,
+                            glm::transpose(a.rotation) * (c.point - a.position),
+                            c.normalImpulse,
+                            c.tangentImpulse1,
+                            c.tangentImpulse2};
         });
-    nextCache_.resize(kept);
-    // The contact index breaks ties, so the unstable parallel sort gives one order.
-    tbb::parallel_sort(nextCache_.begin(), nextCache_.end(),
-                       [](const CachedContact& x, const CachedContact& y) {
-                           if (x.a != y.a || x.b != y.b) return PairLess(x.a, x.b, y.a, y.b);
-                           return x.contact < y.contact;
-                       });
+    entries.resize(kept);
+    nextCache_.Index();
     std::swap(cache_, nextCache_);
 }
 

@@ -7,6 +7,7 @@
 #include "engine/ecs/registry.h"
 #include "engine/ecs/scheduler.h"
 #include "engine/physics_anim/broad_phase.h"
+#include "engine/physics_anim/contact_cache.h"
 #include "engine/physics_anim/contact_solver.h"
 #include "engine/physics_anim/narrow_phase.h"
 #include "engine/physics_anim/sim_body.h"
@@ -161,19 +162,8 @@ class PhysicsWorld {
     std::vector<PseudoVelocity> pseudoVelocities_;
     ContactSolverScratch solverScratch_;
 
-    // Last step's touching contacts, sorted by body pair, for warm starting. Keyed by entity, so
-    // they survive the per-frame gathering of bodies.
-    struct CachedContact {
-        Entity a;
-        Entity b;
-        vec3 localPoint;  // in a's frame
-        float normalImpulse;
-        float tangentImpulse1;
-        float tangentImpulse2;
-        uint32_t contact;  // index in the step's contacts: orders the sort
-    };
-    std::vector<CachedContact> cache_;
-    std::vector<CachedContact> nextCache_;
+    ContactCache cache_;  // last step's touching contacts, for warm starting
+    ContactCache nextCache_;
     std::vector<uint32_t> chunkStarts_;  // ParallelCompact's scratch
     SweepAndPrune sweep_;
 };
