@@ -125,7 +125,8 @@ struct ContactSolverScratch {
 // 4. positionIterations of split impulse: pseudo velocities push overlapping bodies apart by
 //    positionCorrection of the overlap beyond linearSlop per step; they move the bodies but are
 //    discarded afterwards, so the correction adds no kinetic energy (unlike Baumgarte
-//    stabilisation of the velocities).
+//    stabilisation of the velocities). They touch nothing that 1 to 3 touch, so they run in the
+//    same stages as the first velocity iterations, with the same result.
 // bodies and pseudo are indexed by slot.
 void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,
                    std::span<Contact> contacts, const ContactBatches& batches,
