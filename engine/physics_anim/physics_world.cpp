@@ -404,15 +404,15 @@ void PhysicsWorld::WriteContacts(const Candidate& candidate, Contact* out) const
     const Manifold& manifold = candidate.manifold;
     const float rolling = candidate.lever * std::max(bodies_[candidate.first].rollingResistance,
                                                      bodies_[candidate.second].rollingResistance);
+    // Only what PrepareContacts reads: it fills the rest.
     for (int k = 0; k < manifold.count; ++k) {
-        Contact c{};
+        Contact& c = out[k];
         c.a = candidate.first;
         c.b = candidate.second;
         c.normal = manifold.normal;
         c.point = manifold.points[k].point;
         c.separation = manifold.points[k].separation;
         c.rollingLimit = rolling;
-        out[k] = c;
     }
 }
 
