@@ -33,6 +33,12 @@ OrientedBox BoxOf(const SimBody& body) {
 constexpr size_t kBodyGrain = 1024;
 constexpr size_t kPairGrain = 128;
 
+uint8_t MotionOf(const SimBody& s) {
+    return static_cast<uint8_t>((s.dynamic ? PhysicsWorld::kDynamic : 0) |
+                                (s.awake ? PhysicsWorld::kAwake : 0) |
+                                (s.restingTime > 0.0f ? PhysicsWorld::kResting : 0));
+}
+
 void ClampLength(vec3& v, float maxLength) {
     const float length2 = glm::dot(v, v);
     if (length2 > maxLength * maxLength) v *= maxLength / std::sqrt(length2);
@@ -128,8 +134,10 @@ void PhysicsWorld::TakeStep() {
     ++stats_.steps;
     stats_.bodySteps += bodies_.size();
     stats_.lastBodies = static_cast<uint32_t>(bodies_.size());
+    motion_.resize(bodies_.size());
     ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
         SimBody& s = bodies_[i];
+        motion_[i] = MotionOf(s);
         s.previousPosition = s.position;
         s.previousOrientation = s.orientation;
         s.rotation = glm::mat3_cast(s.orientation);
@@ -214,15 +222,21 @@ void PhysicsWorld::FindPairs() {
 void PhysicsWorld::WakeTouched() {
     // A sleeper near a body that moved during the last step wakes; one it wakes counts as moving,
     // so a disturbance spreads through a resting pile (within this pass, or over the next steps).
-    auto wake = [&](SimBody& sleeper, const SimBody& other) {
-        if (!sleeper.dynamic || sleeper.awake || !other.awake || other.restingTime > 0.0f) return;
-        sleeper.awake = true;
-        sleeper.restingTime = 0.0f;
-        sleeper.invInertiaWorld = WorldInverseInertia(sleeper.rotation, sleeper.invInertiaLocal);
+    // The pass is serial (its order matters) and reads only the dense motion flags, which stay in
+    // the core's cache where the bodies would not.
+    auto wake = [&](uint32_t sleeper, uint32_t other) {
+        const uint8_t s = motion_[sleeper];
+        const uint8_t o = motion_[other];
+        if ((s & (kDynamic | kAwake)) != kDynamic || (o & (kAwake | kResting)) != kAwake) return;
+        motion_[sleeper] = kDynamic | kAwake;
+        SimBody& body = bodies_[sleeper];
+        body.awake = true;
+        body.restingTime = 0.0f;
+        body.invInertiaWorld = WorldInverseInertia(body.rotation, body.invInertiaLocal);
     };
     for (const auto& [a, b] : pairs_) {
-        wake(bodies_[a], bodies_[b]);
-        wake(bodies_[b], bodies_[a]);
+        wake(a, b);
+        wake(b, a);
     }
 }
 
@@ -356,9 +370,9 @@ void PhysicsWorld::LayOutContacts() {
     std::array<uint32_t, kSlots> colorManifolds{};
     for (Hit& hit : hits_) {
         const Candidate& c = candidates_[hit.candidate];
-        const bool firstMoves = bodies_[c.first].awake;
+        const bool firstMoves = (motion_[c.first] & kAwake) != 0;
         const uint32_t color =
-            coloring_.Assign(c.first, firstMoves, c.second, bodies_[c.second].awake);
+            coloring_.Assign(c.first, firstMoves, c.second, (motion_[c.second] & kAwake) != 0);
         const uint64_t rank = bodyRanks_[firstMoves ? c.first : c.second];
         hit.slot = color * kRegions + static_cast<uint32_t>(rank * kRegions / ranks);
         ++slotManifolds_[hit.slot];

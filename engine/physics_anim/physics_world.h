@@ -101,6 +101,11 @@ class PhysicsWorld {
     // in joules, with potential 0 at the origin.
     double MechanicalEnergy(const ecs::Registry& registry) const;
 
+    // A body's motion flags (motion_).
+    static constexpr uint8_t kDynamic = 1;
+    static constexpr uint8_t kAwake = 2;
+    static constexpr uint8_t kResting = 4;  // restingTime > 0
+
     const PhysicsSettings& Settings() const { return settings_; }
     const PhysicsStats& Stats() const { return stats_; }
     // Where between the last two steps the rendered poses are, in [0, 1).
@@ -139,6 +144,9 @@ class PhysicsWorld {
     PhysicsStats stats_;
 
     std::vector<SimBody> bodies_;
+    // Per body, kDynamic | kAwake | kResting as the step's serial passes need them (WakeTouched,
+    // the colouring): 1 byte each instead of a cache miss on the body.
+    std::vector<uint8_t> motion_;
     std::vector<uint32_t> planes_;       // bodies with a plane collider
     std::vector<uint32_t> broadBodies_;  // body of each broad-phase box
     std::vector<BroadPhaseBox> boxes_;
