@@ -156,6 +156,11 @@ class PhysicsWorld {
         uint32_t candidate;  // that has contacts
         uint32_t slot;       // colour * regions + region (LayOutContacts)
         uint32_t manifold;   // its place in batches_
+        uint32_t first;      // the candidate's bodies and points, for the serial passes
+        uint32_t second;
+        uint8_t points;
+        bool firstMoves;
+        bool secondMoves;
     };
     std::vector<Hit> hits_;
     std::vector<uint32_t> slotManifolds_;
