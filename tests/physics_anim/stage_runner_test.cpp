@@ -6,7 +6,9 @@
 #include <tbb/global_control.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <thread>
 #include <vector>
 
 namespace rtrt::physics {
@@ -38,6 +40,8 @@ void RunAndCheck(int threads) {
         const size_t id = (stage * shares + share) * 8 + block;
         finishedBefore[id] = finished.load();
         runs[id].fetch_add(1);
+        // Long enough for the threads to overlap, so that a missing wait shows.
+        std::this_thread::sleep_for(std::chrono::microseconds(20));
         finished.fetch_add(1);
     });
     EXPECT_EQ(finished.load(), total);
