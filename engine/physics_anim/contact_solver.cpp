@@ -218,9 +218,8 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
     // A stage is one pass over one colour. Each colour is cut into one share per thread, by
     // region when the batches have regions (else evenly), and each share into blocks. The
     // overflow colour is a single block, solved in order by one thread.
-    const int threads = batches.Manifolds() < kParallelManifolds
-                            ? 1
-                            : std::min(StageRunner::AvailableThreads(), StageRunner::kMaxShares);
+    const int threads =
+        batches.Manifolds() < kParallelManifolds ? 1 : StageRunner::AvailableThreads();
     const auto shareCount = static_cast<uint32_t>(threads);
     scratch.shares.clear();
     for (uint32_t color = 0; color < colors; ++color) {
@@ -248,42 +247,12 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
             scratch.shares.push_back({begin, end, blockSize});
         }
     }
-    // Which shares of the colour before each share must wait for: those that move a body in the
-    // range of slots it moves (a share's bodies lie together, so mostly its two neighbours).
-    // Bodies that are not awake are only read, so they make no dependency.
-    scratch.touched.assign(colors * shareCount, {UINT32_MAX, 0});
-    ParallelFor(0, scratch.touched.size(), 1, [&](size_t cell) {
-        const ContactSolverScratch::Share& share = scratch.shares[cell];
-        auto& [low, high] = scratch.touched[cell];
-        for (uint32_t m = share.begin; m < share.end; ++m) {
-            const Contact& c = contacts[batches.manifoldBegin[m]];
-            for (const uint32_t slot : {c.slotA, c.slotB}) {
-                if (bodies[slot].invMass <= 0.0f) continue;
-                low = std::min(low, slot);
-                high = std::max(high, slot);
-            }
-        }
-    });
-    scratch.colorWaitFor.assign(colors * shareCount, 0);
-    for (uint32_t color = 0; color < colors; ++color) {
-        const uint32_t before = (color + colors - 1) % colors;
-        for (uint32_t s = 0; s < shareCount; ++s) {
-            const auto [low, high] = scratch.touched[color * shareCount + s];
-            uint64_t& mask = scratch.colorWaitFor[color * shareCount + s];
-            for (uint32_t o = 0; o < shareCount; ++o) {
-                const auto [otherLow, otherHigh] = scratch.touched[before * shareCount + o];
-                if (low <= otherHigh && otherLow <= high) mask |= uint64_t{1} << o;
-            }
-        }
-    }
     scratch.stages.clear();
     scratch.blocks.clear();
-    scratch.waitFor.clear();
     const auto addPass = [&](Pass pass) {
         for (uint32_t color = 0; color < colors; ++color) {
             scratch.stages.push_back({static_cast<uint8_t>(pass), color});
             for (uint32_t s = 0; s < shareCount; ++s) {
-                scratch.waitFor.push_back(scratch.colorWaitFor[color * shareCount + s]);
                 const ContactSolverScratch::Share& share = scratch.shares[color * shareCount + s];
                 scratch.blocks.push_back((share.end - share.begin + share.blockSize - 1) /
                                          share.blockSize);
@@ -302,7 +271,7 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
 
     const float invDt = 1.0f / settings.dt;
     const float rate = settings.positionCorrection / settings.dt;
-    const auto solveBlock = [&](size_t stageIndex, uint32_t s, uint32_t block) {
+    scratch.runner.Run(scratch.blocks, threads, [&](size_t stageIndex, uint32_t s, uint32_t block) {
         const ContactSolverScratch::Stage& stage = scratch.stages[stageIndex];
         const ContactSolverScratch::Share& share = scratch.shares[stage.color * shareCount + s];
         const uint32_t first = share.begin + block * share.blockSize;
@@ -334,8 +303,7 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
                 }
                 break;
         }
-    };
-    scratch.runner.Run(scratch.blocks, scratch.waitFor, threads, solveBlock);
+    });
 }
 
 }  // namespace rtrt::physics

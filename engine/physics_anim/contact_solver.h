@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <glm/mat3x3.hpp>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "engine/physics_anim/contact_coloring.h"
@@ -107,11 +106,6 @@ struct ContactSolverScratch {
     std::vector<Stage> stages;
     std::vector<Share> shares;     // per colour and share
     std::vector<uint32_t> blocks;  // per stage and share
-    // Per colour and share: the lowest and highest slot of an awake body it solves (first >
-    // second when none), and the shares of the colour before it that it must wait for.
-    std::vector<std::pair<uint32_t, uint32_t>> touched;
-    std::vector<uint64_t> colorWaitFor;
-    std::vector<uint64_t> waitFor;  // per stage and share, for StageRunner
     StageRunner runner;
 };
 
