@@ -72,16 +72,17 @@ struct PhysicsStats {
 // Simulates the entities that have a RigidBody and a LocalTransform (rigid_body.h), over the
 // RigidBody pool only: a registry without rigid bodies costs one pool-size check per frame.
 //
-// A step: sort-and-sweep broad phase over speed-expanded boxes; waking; gravity; contacts
+// A step: sort-and-sweep broad phase in strips over speed-expanded boxes; waking; gravity; contacts
 // (speculative, narrow_phase.h); warm-started sequential impulses (contact_solver.h) with
 // friction, rolling resistance, restitution and split-impulse correction; symplectic Euler
 // positions; sleeping. Gyroscopic torque is ignored (a tumbling box keeps its angular velocity).
 // Parallel on TBB: per-body passes, the sweep and the narrow phase split their arrays; the solver
-// runs the manifolds of one colour (contact_coloring.h) at once.
-// Deterministic whatever the number of threads: bodies are visited in pool order, pairs in sweep
-// order with index tie-breaks, the colours are assigned serially in that order, and parallel
-// passes write disjoint data, so the same registry contents and calls give bit-identical results
-// on one build and machine, on 1 thread or 16.
+// runs the manifolds of one colour (contact_coloring.h) at once, each thread on the same region
+// (a run of solver bodies laid out in sweep order) in every colour.
+// Deterministic whatever the number of threads: bodies are visited in pool order, pairs in strip
+// and sweep order with index tie-breaks, the colours are assigned serially in that order, and
+// parallel passes write disjoint data, so the same registry contents and calls give bit-identical
+// results on one build and machine, on 1 thread or 16.
 class PhysicsWorld {
     using Entity = ecs::Entity;
 
