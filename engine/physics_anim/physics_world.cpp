@@ -203,8 +203,6 @@ void PhysicsWorld::FindPairs() {
     });
     sweep_.FindPairs(boxes_, pairs_);
     sweep_.Ranks(boxRanks_);
-    bodyRanks_.assign(bodies_.size(), 0);
-    for (size_t k = 0; k < broadBodies_.size(); ++k) bodyRanks_[broadBodies_[k]] = boxRanks_[k];
     // Solver slots in sweep order, then the bodies outside the broad phase (planes, bodies
     // without a collider) in body order.
     solverSlots_.resize(bodies_.size());
@@ -367,7 +365,8 @@ void PhysicsWorld::LayOutContacts() {
             const Candidate& c = candidates_[k];
             const bool firstMoves = (motion_[c.first] & kAwake) != 0;
             const bool secondMoves = (motion_[c.second] & kAwake) != 0;
-            const uint64_t rank = bodyRanks_[firstMoves ? c.first : c.second];
+            // A moving body has a collider, so its slot is its sweep rank.
+            const uint64_t rank = solverSlots_[firstMoves ? c.first : c.second];
             hits_[out] = {uint32_t(k), static_cast<uint32_t>(rank * kRegions / ranks),
                           0,           c.first,
                           c.second,    static_cast<uint8_t>(c.manifold.count),

@@ -167,7 +167,6 @@ class PhysicsWorld {
     std::vector<uint32_t> slotManifolds_;
     std::vector<uint32_t> slotPoints_;
     std::vector<uint32_t> boxRanks_;     // each broad-phase box's place in the sweep
-    std::vector<uint32_t> bodyRanks_;    // the same per body (0 for planes)
     std::vector<uint32_t> solverSlots_;  // each body's place among the solver bodies
     ContactColoring coloring_;
     std::vector<Contact> contacts_;  // colour by colour, as batches_ says
