@@ -87,6 +87,8 @@ void PrepareContacts(std::span<const SimBody> bodies, std::span<const uint32_t> 
         const SolverBody& sb = solverBodies[c.slotB];
         const vec3 rA = c.point - a.position;
         const vec3 rB = c.point - b.position;
+        c.anchorA = rA;
+        c.anchorB = rB;
         vec3 t1;
         vec3 t2;
         OrthonormalBasis(c.normal, t1, t2);
@@ -127,48 +129,6 @@ void WarmStartContact(std::span<SolverBody> bodies, const Contact& c) {
              c.tangentImpulse2 * t2.direction,
          c.normalImpulse * n.armA + c.tangentImpulse1 * t1.armA + c.tangentImpulse2 * t2.armA,
          c.normalImpulse * n.armB + c.tangentImpulse1 * t1.armB + c.tangentImpulse2 * t2.armB);
-}
-
-void SolveVelocityContact(std::span<SolverBody> bodies, Contact& c, float invDt) {
-    SolverBody& a = bodies[c.slotA];
-    SolverBody& b = bodies[c.slotB];
-    if (c.rollingLimit > 0.0f && c.normalImpulse > 0.0f) {
-        const vec3 spin = b.angularVelocity - a.angularVelocity;
-        vec3 rolling = c.rollingImpulse - c.rollingMass * spin;
-        const float maxRolling = c.rollingLimit * c.normalImpulse;
-        const float length = glm::length(rolling);
-        if (length > maxRolling) rolling *= maxRolling / length;
-        const vec3 delta = rolling - c.rollingImpulse;
-        c.rollingImpulse = rolling;
-        if (a.invMass > 0.0f) a.angularVelocity -= a.invInertia * delta;
-        if (b.invMass > 0.0f) b.angularVelocity += b.invInertia * delta;
-    }
-    // Friction before the normal, so that the normal constraint, which matters more, is solved
-    // last.
-    const float maxFriction = c.friction * c.normalImpulse;
-    if (maxFriction > 0.0f) {
-        const ContactAxis& axis1 = c.tangentAxis1;
-        const ContactAxis& axis2 = c.tangentAxis2;
-        float t1 = c.tangentImpulse1 - axis1.mass * Speed(a, b, axis1);
-        float t2 = c.tangentImpulse2 - axis2.mass * Speed(a, b, axis2);
-        const float length = std::sqrt(t1 * t1 + t2 * t2);
-        if (length > maxFriction) {  // clamp to the friction cone
-            t1 *= maxFriction / length;
-            t2 *= maxFriction / length;
-        }
-        const float d1 = t1 - c.tangentImpulse1;
-        const float d2 = t2 - c.tangentImpulse2;
-        Push(a, b, d1 * axis1.direction + d2 * axis2.direction, d1 * axis1.armA + d2 * axis2.armA,
-             d1 * axis1.armB + d2 * axis2.armB);
-        c.tangentImpulse1 = t1;
-        c.tangentImpulse2 = t2;
-    }
-    const float vn = Speed(a, b, c.normalAxis);
-    const float allowedApproach = c.separation > 0.0f ? c.separation * invDt : 0.0f;
-    const float impulse =
-        std::max(c.normalImpulse - c.normalAxis.mass * (vn + allowedApproach), 0.0f);
-    PushAlong(a, b, c.normalAxis, impulse - c.normalImpulse);
-    c.normalImpulse = impulse;
 }
 
 void RestituteContact(std::span<SolverBody> bodies, Contact& c, const SolverSettings& settings) {
@@ -218,6 +178,9 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
     // A stage is one pass over one colour. Each colour is cut into one share per thread, by
     // region when the batches have regions (else evenly), and each share into blocks. The
     // overflow colour is a single block, solved in order by one thread.
+    const float invDt = 1.0f / settings.dt;
+    ContactRows& rows = scratch.rows;
+    rows.Build(contacts, batches, invDt);
     const int threads =
         batches.Manifolds() < kParallelManifolds ? 1 : StageRunner::AvailableThreads();
     const auto shareCount = static_cast<uint32_t>(threads);
@@ -233,8 +196,12 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
             }
             continue;
         }
+        // Shares and blocks start at the rows' groups.
+        constexpr uint32_t kGroup = ContactRows::kGroupManifolds;
         const uint32_t blockSize =
-            std::max(kMinBlockManifolds, manifolds / (kBlocksPerShare * shareCount));
+            (std::max(kMinBlockManifolds, manifolds / (kBlocksPerShare * shareCount)) + kGroup -
+             1) /
+            kGroup * kGroup;
         for (uint32_t s = 0; s < shareCount; ++s) {
             uint32_t begin =
                 colorBegin + static_cast<uint32_t>(uint64_t{manifolds} * s / shareCount);
@@ -244,14 +211,15 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
                 begin = batches.RegionBegin(color, s * batches.regions / shareCount);
                 end = batches.RegionBegin(color, (s + 1) * batches.regions / shareCount);
             }
-            scratch.shares.push_back({begin, end, blockSize});
+            scratch.shares.push_back(
+                {rows.GroupStart(color, begin), rows.GroupStart(color, end), blockSize});
         }
     }
     scratch.stages.clear();
     scratch.blocks.clear();
-    const auto addPass = [&](Pass pass) {
+    const auto addPass = [&](Pass pass, bool writeBack = false) {
         for (uint32_t color = 0; color < colors; ++color) {
-            scratch.stages.push_back({static_cast<uint8_t>(pass), color});
+            scratch.stages.push_back({static_cast<uint8_t>(pass), writeBack, color});
             for (uint32_t s = 0; s < shareCount; ++s) {
                 const ContactSolverScratch::Share& share = scratch.shares[color * shareCount + s];
                 scratch.blocks.push_back((share.end - share.begin + share.blockSize - 1) /
@@ -264,12 +232,15 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
     // each contact read once for both.
     const int shared = std::min(settings.velocityIterations, settings.positionIterations);
     addPass(Pass::kWarmStart);
-    for (int i = 0; i < shared; ++i) addPass(Pass::kVelocityAndPosition);
-    for (int i = shared; i < settings.velocityIterations; ++i) addPass(Pass::kVelocity);
+    for (int i = 0; i < shared; ++i) {
+        addPass(Pass::kVelocityAndPosition, i + 1 == settings.velocityIterations);
+    }
+    for (int i = shared; i < settings.velocityIterations; ++i) {
+        addPass(Pass::kVelocity, i + 1 == settings.velocityIterations);
+    }
     addPass(Pass::kRestitution);
     for (int i = shared; i < settings.positionIterations; ++i) addPass(Pass::kPosition);
 
-    const float invDt = 1.0f / settings.dt;
     const float rate = settings.positionCorrection / settings.dt;
     scratch.runner.Run(scratch.blocks, threads, [&](size_t stageIndex, uint32_t s, uint32_t block) {
         const ContactSolverScratch::Stage& stage = scratch.stages[stageIndex];
@@ -278,18 +249,22 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
         const uint32_t last = std::min(share.end, first + share.blockSize);
         const uint32_t begin = batches.manifoldBegin[first];
         const uint32_t end = batches.manifoldBegin[last];
+        const auto solveRows = [&] {
+            const uint32_t rowBegin = rows.RowBegin(stage.color, first);
+            const uint32_t rowEnd = rows.RowBegin(stage.color, last);
+            rows.Solve(bodies, rowBegin, rowEnd);
+            if (stage.writeBack) rows.WriteBack(contacts, rowBegin, rowEnd);
+        };
         switch (static_cast<Pass>(stage.pass)) {
             case Pass::kWarmStart:
                 for (uint32_t k = begin; k < end; ++k) WarmStartContact(bodies, contacts[k]);
                 break;
             case Pass::kVelocity:
-                for (uint32_t k = begin; k < end; ++k) {
-                    SolveVelocityContact(bodies, contacts[k], invDt);
-                }
+                solveRows();
                 break;
             case Pass::kVelocityAndPosition:
+                solveRows();
                 for (uint32_t k = begin; k < end; ++k) {
-                    SolveVelocityContact(bodies, contacts[k], invDt);
                     SolvePositionContact(bodies, pseudo, contacts[k], rate, settings.linearSlop);
                 }
                 break;

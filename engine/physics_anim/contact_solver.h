@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/physics_anim/contact_coloring.h"
+#include "engine/physics_anim/contact_rows.h"
 #include "engine/physics_anim/sim_body.h"
 #include "engine/physics_anim/stage_runner.h"
 
@@ -53,6 +54,8 @@ struct Contact {
     float rollingLimit;  // max rolling impulse per unit normal impulse, in metres (0: none)
 
     // Filled by PrepareContacts (the impulses zeroed; the caller may seed them).
+    vec3 anchorA;  // point less a's centre
+    vec3 anchorB;
     ContactAxis normalAxis;
     ContactAxis tangentAxis1;
     ContactAxis tangentAxis2;
@@ -95,6 +98,7 @@ void PrepareContacts(std::span<const SimBody> bodies, std::span<const uint32_t> 
 struct ContactSolverScratch {
     struct Stage {
         uint8_t pass;
+        bool writeBack;  // the last velocity iteration: its impulses go back to the contacts
         uint32_t color;
     };
     // A share of a colour: the manifolds of some of its regions, cut into blocks.
@@ -106,6 +110,7 @@ struct ContactSolverScratch {
     std::vector<Stage> stages;
     std::vector<Share> shares;     // per colour and share
     std::vector<uint32_t> blocks;  // per stage and share
+    ContactRows rows;              // what the velocity iterations read and write
     StageRunner runner;
 };
 
@@ -117,7 +122,7 @@ struct ContactSolverScratch {
 //    sinking.
 // 2. velocityIterations of rolling resistance, friction within the Coulomb cone and a
 //    non-negative normal impulse that lets a speculative contact (separation > 0) close its gap
-//    within the step but not overshoot it.
+//    within the step but not overshoot it, eight manifolds at a time (ContactRows).
 // 3. Restitution, one pass (as Box2D v3 does): a touching contact whose approach speed u exceeds
 //    the threshold leaves at e * u - |g . n| * dt. Dropping one step's worth of gravity from the
 //    rebound means that a bounce never gains energy (a ball that reached the contact at the

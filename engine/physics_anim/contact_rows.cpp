@@ -1,0 +1,333 @@
+#include "engine/physics_anim/contact_rows.h"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+
+#include "engine/core/parallel_for.h"
+#include "engine/physics_anim/contact_solver.h"
+
+namespace rtrt::physics {
+
+namespace {
+
+// The velocities and inverse masses of one body per lane.
+struct BodyLanes {
+    Lanes3 velocity;
+    Lanes3 angularVelocity;
+    Lanes invMass;
+    Lanes33 invInertia;
+};
+
+// A SolverBody is 16 floats: velocity, invMass, angularVelocity, then the inertia's columns.
+static_assert(sizeof(SolverBody) == 16 * sizeof(float));
+static_assert(offsetof(SolverBody, angularVelocity) == 4 * sizeof(float));
+static_assert(offsetof(SolverBody, invInertia) == 7 * sizeof(float));
+
+#if defined(__AVX__)
+// rows[i][j] -> rows[j][i], for eight rows of eight floats.
+[[gnu::always_inline]] inline void Transpose8(__m256 (&rows)[8]) {
+    __m256 t[8];
+    __m256 s[8];
+    for (int i = 0; i < 4; ++i) {
+        t[2 * i] = _mm256_unpacklo_ps(rows[2 * i], rows[2 * i + 1]);
+        t[2 * i + 1] = _mm256_unpackhi_ps(rows[2 * i], rows[2 * i + 1]);
+    }
+    for (int i = 0; i < 2; ++i) {
+        s[4 * i] = _mm256_shuffle_ps(t[4 * i], t[4 * i + 2], _MM_SHUFFLE(1, 0, 1, 0));
+        s[4 * i + 1] = _mm256_shuffle_ps(t[4 * i], t[4 * i + 2], _MM_SHUFFLE(3, 2, 3, 2));
+        s[4 * i + 2] = _mm256_shuffle_ps(t[4 * i + 1], t[4 * i + 3], _MM_SHUFFLE(1, 0, 1, 0));
+        s[4 * i + 3] = _mm256_shuffle_ps(t[4 * i + 1], t[4 * i + 3], _MM_SHUFFLE(3, 2, 3, 2));
+    }
+    for (int i = 0; i < 4; ++i) {
+        rows[i] = _mm256_permute2f128_ps(s[i], s[i + 4], 0x20);
+        rows[i + 4] = _mm256_permute2f128_ps(s[i], s[i + 4], 0x31);
+    }
+}
+#endif
+
+// The bodies' 16 floats as 16 lanes vectors: element f of lane l is float f of body slots[l].
+[[gnu::always_inline]] inline void GatherFloats(std::span<const SolverBody> bodies,
+                                                const uint32_t (&slots)[kLanes], Lanes (&out)[16]) {
+#if defined(__AVX__)
+    for (int half = 0; half < 2; ++half) {
+        __m256 rows[8];
+        for (int l = 0; l < kLanes; ++l) {
+            rows[l] = _mm256_load_ps(reinterpret_cast<const float*>(&bodies[slots[l]]) + 8 * half);
+        }
+        Transpose8(rows);
+        for (int f = 0; f < 8; ++f) out[8 * half + f] = reinterpret_cast<const Lanes&>(rows[f]);
+    }
+#else
+    for (int l = 0; l < kLanes; ++l) {
+        const float* body = reinterpret_cast<const float*>(&bodies[slots[l]]);
+        for (int f = 0; f < 16; ++f) out[f][l] = body[f];
+    }
+#endif
+}
+
+[[gnu::always_inline]] inline BodyLanes Gather(std::span<const SolverBody> bodies,
+                                               const uint32_t (&slots)[kLanes]) {
+    Lanes f[16];
+    GatherFloats(bodies, slots, f);
+    BodyLanes out;
+    out.velocity = {f[0], f[1], f[2]};
+    out.invMass = f[3];
+    out.angularVelocity = {f[4], f[5], f[6]};
+    for (int c = 0; c < 3; ++c)
+        out.invInertia.column[c] = {f[7 + 3 * c], f[8 + 3 * c], f[9 + 3 * c]};
+    return out;
+}
+
+// Writes the velocities of the active lanes' moving bodies (a body that does not move may be read
+// by other threads at the same time, and its velocities did not change). The first eight floats
+// of a body go back whole: its inverse mass and first inertia entry are unchanged.
+[[gnu::always_inline]] inline void Scatter(std::span<SolverBody> bodies,
+                                           const uint32_t (&slots)[kLanes], uint32_t activeLanes,
+                                           const BodyLanes& in) {
+#if defined(__AVX__)
+    const Lanes first[8] = {in.velocity.x,        in.velocity.y,
+                            in.velocity.z,        in.invMass,
+                            in.angularVelocity.x, in.angularVelocity.y,
+                            in.angularVelocity.z, in.invInertia.column[0].x};
+    __m256 rows[8];
+    for (int f = 0; f < 8; ++f) rows[f] = reinterpret_cast<const __m256&>(first[f]);
+    Transpose8(rows);
+    for (int l = 0; l < kLanes; ++l) {
+        if ((activeLanes >> l & 1u) == 0 || !(in.invMass[l] > 0.0f)) continue;
+        _mm256_store_ps(reinterpret_cast<float*>(&bodies[slots[l]]), rows[l]);
+    }
+#else
+    for (int l = 0; l < kLanes; ++l) {
+        if ((activeLanes >> l & 1u) == 0 || !(in.invMass[l] > 0.0f)) continue;
+        SolverBody& s = bodies[slots[l]];
+        s.velocity = vec3(in.velocity.x[l], in.velocity.y[l], in.velocity.z[l]);
+        s.angularVelocity =
+            vec3(in.angularVelocity.x[l], in.angularVelocity.y[l], in.angularVelocity.z[l]);
+    }
+#endif
+}
+
+// The velocity of b's point of contact relative to a's.
+[[gnu::always_inline]] inline Lanes3 RelativeVelocity(const BodyLanes& a, const BodyLanes& b,
+                                                      const ContactRow& row) {
+    return b.velocity + Cross(b.angularVelocity, row.anchorB) - a.velocity -
+           Cross(a.angularVelocity, row.anchorA);
+}
+
+// b gains the impulse at the contact point, a loses it. A body that does not move has zero
+// inverse mass and inertia, so its lanes keep their values exactly.
+[[gnu::always_inline]] inline void Push(BodyLanes& a, BodyLanes& b, const ContactRow& row,
+                                        const Lanes3& impulse) {
+    a.velocity = a.velocity - a.invMass * impulse;
+    a.angularVelocity = a.angularVelocity - a.invInertia * Cross(row.anchorA, impulse);
+    b.velocity = b.velocity + b.invMass * impulse;
+    b.angularVelocity = b.angularVelocity + b.invInertia * Cross(row.anchorB, impulse);
+}
+
+[[gnu::always_inline]] inline Lanes3 Select3(LaneMask mask, const Lanes3& yes, const Lanes3& no) {
+    return {Select(mask, yes.x, no.x), Select(mask, yes.y, no.y), Select(mask, yes.z, no.z)};
+}
+
+void SetLane(Lanes3& lanes, int l, vec3 v) {
+    lanes.x[l] = v.x;
+    lanes.y[l] = v.y;
+    lanes.z[l] = v.z;
+}
+
+}  // namespace
+
+uint32_t ContactRows::GroupSize(uint32_t color) const {
+    return batches_->lastIsOverflow && color + 1 == batches_->Colors() ? 1u : kGroupManifolds;
+}
+
+uint32_t ContactRows::GroupStart(uint32_t color, uint32_t manifold) const {
+    const uint32_t begin = batches_->colorBegin[color];
+    const uint32_t end = batches_->colorBegin[color + 1];
+    const uint32_t size = GroupSize(color);
+    if (manifold <= begin) return begin;
+    return std::min(end, begin + (manifold - begin + size - 1) / size * size);
+}
+
+uint32_t ContactRows::RowBegin(uint32_t color, uint32_t manifold) const {
+    const uint32_t begin = batches_->colorBegin[color];
+    if (manifold >= batches_->colorBegin[color + 1]) {
+        return groupRowBegin_[colorGroupBegin_[color + 1]];
+    }
+    return groupRowBegin_[colorGroupBegin_[color] + (manifold - begin) / GroupSize(color)];
+}
+
+uint32_t ContactRows::Deal(uint32_t group, std::span<uint8_t> laneOf) const {
+    const uint32_t color = groupColor_[group];
+    const uint32_t size = GroupSize(color);
+    const uint32_t first = batches_->colorBegin[color] + (group - colorGroupBegin_[color]) * size;
+    const uint32_t last = std::min(batches_->colorBegin[color + 1], first + size);
+    const auto points = [&](uint32_t m) {
+        return batches_->manifoldBegin[m + 1] - batches_->manifoldBegin[m];
+    };
+    std::array<uint32_t, kGroupManifolds> order;
+    for (uint32_t m = first; m < last; ++m) order[m - first] = m;
+    std::stable_sort(order.begin(), order.begin() + (last - first),
+                     [&](uint32_t x, uint32_t y) { return points(x) > points(y); });
+    std::array<uint32_t, kLanes> load{};
+    for (uint32_t i = 0; i < last - first; ++i) {
+        const auto lane =
+            static_cast<uint8_t>(std::min_element(load.begin(), load.end()) - load.begin());
+        laneOf[order[i] - first] = lane;
+        load[lane] += points(order[i]);
+    }
+    return *std::max_element(load.begin(), load.end());
+}
+
+void ContactRows::Build(std::span<const Contact> contacts, const ContactBatches& batches,
+                        float invDt) {
+    batches_ = &batches;
+    const uint32_t colors = batches.Colors();
+    colorGroupBegin_.assign(1, 0);
+    groupColor_.clear();
+    for (uint32_t color = 0; color < colors; ++color) {
+        const uint32_t manifolds = batches.colorBegin[color + 1] - batches.colorBegin[color];
+        const uint32_t size = GroupSize(color);
+        const uint32_t groups = (manifolds + size - 1) / size;
+        groupColor_.insert(groupColor_.end(), groups, color);
+        colorGroupBegin_.push_back(colorGroupBegin_.back() + groups);
+    }
+    const uint32_t groups = colorGroupBegin_.back();
+    groupRowBegin_.resize(groups + 1);
+    ParallelFor(0, groups, 64, [&](size_t g) {
+        std::array<uint8_t, kGroupManifolds> laneOf;
+        groupRowBegin_[g + 1] = Deal(static_cast<uint32_t>(g), laneOf);
+    });
+    groupRowBegin_[0] = 0;
+    for (uint32_t g = 0; g < groups; ++g) groupRowBegin_[g + 1] += groupRowBegin_[g];
+    rows_.resize(groupRowBegin_[groups]);
+    rolling_.resize(rows_.size());
+
+    ParallelFor(0, groups, 64, [&](size_t g) {
+        const auto group = static_cast<uint32_t>(g);
+        std::array<uint8_t, kGroupManifolds> laneOf;
+        Deal(group, laneOf);
+        const uint32_t color = groupColor_[group];
+        const uint32_t first =
+            batches.colorBegin[color] + (group - colorGroupBegin_[color]) * GroupSize(color);
+        const uint32_t last = std::min(batches.colorBegin[color + 1], first + GroupSize(color));
+        const uint32_t rowBegin = groupRowBegin_[group];
+        const uint32_t rowEnd = groupRowBegin_[group + 1];
+        for (uint32_t r = rowBegin; r < rowEnd; ++r) {
+            rows_[r] = ContactRow{};
+            rolling_[r] = RollingLanes{};
+        }
+        std::array<uint32_t, kLanes> next{};
+        for (uint32_t m = first; m < last; ++m) {
+            const uint8_t l = laneOf[m - first];
+            for (uint32_t k = batches.manifoldBegin[m]; k < batches.manifoldBegin[m + 1]; ++k) {
+                const Contact& c = contacts[k];
+                const uint32_t r = rowBegin + next[l]++;
+                ContactRow& row = rows_[r];
+                row.slotA[l] = c.slotA;
+                row.slotB[l] = c.slotB;
+                row.contact[l] = k;
+                row.activeLanes |= 1u << l;
+                SetLane(row.normal, l, c.normalAxis.direction);
+                SetLane(row.tangent1, l, c.tangentAxis1.direction);
+                SetLane(row.tangent2, l, c.tangentAxis2.direction);
+                SetLane(row.anchorA, l, c.anchorA);
+                SetLane(row.anchorB, l, c.anchorB);
+                row.normalMass[l] = c.normalAxis.mass;
+                row.tangentMass1[l] = c.tangentAxis1.mass;
+                row.tangentMass2[l] = c.tangentAxis2.mass;
+                row.normalImpulse[l] = c.normalImpulse;
+                row.tangentImpulse1[l] = c.tangentImpulse1;
+                row.tangentImpulse2[l] = c.tangentImpulse2;
+                row.friction[l] = c.friction;
+                row.allowedApproach[l] = c.separation > 0.0f ? c.separation * invDt : 0.0f;
+                if (c.rollingLimit > 0.0f) {
+                    RollingLanes& rolling = rolling_[r];
+                    row.rolling = true;
+                    rolling.limit[l] = c.rollingLimit;
+                    SetLane(rolling.impulse, l, c.rollingImpulse);
+                    for (int i = 0; i < 3; ++i)
+                        SetLane(rolling.mass.column[i], l, c.rollingMass[i]);
+                }
+            }
+        }
+        // Empty lanes read the bodies of an active one: real memory, never written.
+        for (uint32_t r = rowBegin; r < rowEnd; ++r) {
+            ContactRow& row = rows_[r];
+            const int active = __builtin_ctz(row.activeLanes);
+            for (int l = 0; l < kLanes; ++l) {
+                if ((row.activeLanes >> l & 1u) != 0) continue;
+                row.slotA[l] = row.slotA[active];
+                row.slotB[l] = row.slotB[active];
+            }
+        }
+    });
+}
+
+void ContactRows::Solve(std::span<SolverBody> bodies, uint32_t begin, uint32_t end) {
+    const Lanes zero = Splat(0.0f);
+    const Lanes one = Splat(1.0f);
+    for (uint32_t r = begin; r < end; ++r) {
+        ContactRow& row = rows_[r];
+        BodyLanes a = Gather(bodies, row.slotA);
+        BodyLanes b = Gather(bodies, row.slotB);
+        if (row.rolling) {
+            RollingLanes& rolling = rolling_[r];
+            const LaneMask on = (rolling.limit > zero) & (row.normalImpulse > zero);
+            const Lanes3 spin = b.angularVelocity - a.angularVelocity;
+            Lanes3 impulse = rolling.impulse - rolling.mass * spin;
+            const Lanes maxRolling = rolling.limit * row.normalImpulse;
+            const Lanes length = Sqrt(Dot(impulse, impulse));
+            impulse = Select(length > maxRolling, maxRolling / length, one) * impulse;
+            const Lanes3 delta = Select3(on, impulse - rolling.impulse, Lanes3{zero, zero, zero});
+            rolling.impulse = Select3(on, impulse, rolling.impulse);
+            a.angularVelocity = a.angularVelocity - a.invInertia * delta;
+            b.angularVelocity = b.angularVelocity + b.invInertia * delta;
+        }
+        // Friction before the normal, so that the normal constraint, which matters more, is
+        // solved last.
+        const Lanes maxFriction = row.friction * row.normalImpulse;
+        const LaneMask rubs = maxFriction > zero;
+        if (AnyLane(rubs)) {
+            const Lanes3 dv = RelativeVelocity(a, b, row);
+            Lanes t1 = row.tangentImpulse1 - row.tangentMass1 * Dot(row.tangent1, dv);
+            Lanes t2 = row.tangentImpulse2 - row.tangentMass2 * Dot(row.tangent2, dv);
+            const Lanes length = Sqrt(t1 * t1 + t2 * t2);
+            const Lanes clamp = Select(length > maxFriction, maxFriction / length, one);
+            t1 = t1 * clamp;
+            t2 = t2 * clamp;
+            const Lanes d1 = Select(rubs, t1 - row.tangentImpulse1, zero);
+            const Lanes d2 = Select(rubs, t2 - row.tangentImpulse2, zero);
+            Push(a, b, row, d1 * row.tangent1 + d2 * row.tangent2);
+            row.tangentImpulse1 = Select(rubs, t1, row.tangentImpulse1);
+            row.tangentImpulse2 = Select(rubs, t2, row.tangentImpulse2);
+        }
+        const Lanes vn = Dot(row.normal, RelativeVelocity(a, b, row));
+        const Lanes impulse =
+            Max(row.normalImpulse - row.normalMass * (vn + row.allowedApproach), zero);
+        Push(a, b, row, (impulse - row.normalImpulse) * row.normal);
+        row.normalImpulse = impulse;
+        Scatter(bodies, row.slotA, row.activeLanes, a);
+        Scatter(bodies, row.slotB, row.activeLanes, b);
+    }
+}
+
+void ContactRows::WriteBack(std::span<Contact> contacts, uint32_t begin, uint32_t end) const {
+    for (uint32_t r = begin; r < end; ++r) {
+        const ContactRow& row = rows_[r];
+        for (int l = 0; l < kLanes; ++l) {
+            if ((row.activeLanes >> l & 1u) == 0) continue;
+            Contact& c = contacts[row.contact[l]];
+            c.normalImpulse = row.normalImpulse[l];
+            c.tangentImpulse1 = row.tangentImpulse1[l];
+            c.tangentImpulse2 = row.tangentImpulse2[l];
+            if (row.rolling) {
+                const RollingLanes& rolling = rolling_[r];
+                c.rollingImpulse =
+                    vec3(rolling.impulse.x[l], rolling.impulse.y[l], rolling.impulse.z[l]);
+            }
+        }
+    }
+}
+
+}  // namespace rtrt::physics

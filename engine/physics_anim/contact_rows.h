@@ -1,0 +1,90 @@
+#pragma once
+// The velocity iterations' layout of a step's contacts: rows of eight contacts, one per lane,
+// solved at once (lanes.h). The manifolds of one colour share no moving body, so eight of them can
+// be solved side by side and give exactly what solving them one after another gives: each lane
+// does the scalar solver's arithmetic on bodies no other lane writes.
+//
+// A colour's manifolds are taken in groups of kGroupManifolds, in layout order. A group's
+// manifolds are dealt to the lanes, the ones with most contacts first, each to the lane with the
+// fewest contacts so far, and a lane walks through its manifolds' contacts in order, one per row:
+// a manifold's contacts are solved in their own order, as before, and a group of spheres (one
+// contact) and boxes (up to eight) fills most lanes of most rows. The overflow colour, whose
+// manifolds may share bodies, has groups of one manifold: one lane per row, in order.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/physics_anim/contact_coloring.h"
+#include "engine/physics_anim/lanes.h"
+
+namespace rtrt::physics {
+
+struct Contact;
+struct SolverBody;
+
+// Eight contacts of eight different manifolds of one colour. A lane without a contact (bit clear
+// in activeLanes) has zero masses and impulses and the bodies of an active lane; it is never
+// written back. The rows keep the contact points' offsets from the bodies and compute the lever
+// arms: a row is then 864 bytes instead of 1,248, and the iterations stream the rows.
+struct ContactRow {
+    uint32_t slotA[kLanes];
+    uint32_t slotB[kLanes];
+    uint32_t contact[kLanes];  // index in the step's contacts
+    uint32_t activeLanes;      // bit per lane
+    bool rolling;              // some lane has rolling resistance (RollingLanes)
+    Lanes3 normal;
+    Lanes3 tangent1;
+    Lanes3 tangent2;
+    Lanes3 anchorA;  // the contact point less body a's centre
+    Lanes3 anchorB;
+    Lanes normalMass;
+    Lanes tangentMass1;
+    Lanes tangentMass2;
+    Lanes normalImpulse;
+    Lanes tangentImpulse1;
+    Lanes tangentImpulse2;
+    Lanes friction;
+    Lanes allowedApproach;  // speed at which a speculative contact may close: separation / dt
+};
+
+// Rolling resistance of a row's lanes, apart: most rows have none and never read it.
+struct RollingLanes {
+    Lanes limit;
+    Lanes3 impulse;
+    Lanes33 mass;
+};
+
+class ContactRows {
+  public:
+    static constexpr uint32_t kGroupManifolds = 4 * kLanes;
+
+    // Lays out the prepared and seeded contacts of batches.
+    void Build(std::span<const Contact> contacts, const ContactBatches& batches, float invDt);
+
+    // The rows of manifolds [first, last) of colour color; first and last are group boundaries
+    // of that colour (GroupStart) or its end.
+    uint32_t RowBegin(uint32_t color, uint32_t manifold) const;
+    // The first group boundary at or after manifold in colour color (its end if none).
+    uint32_t GroupStart(uint32_t color, uint32_t manifold) const;
+
+    // One velocity iteration of rows [begin, end), bodies indexed by slot.
+    void Solve(std::span<SolverBody> bodies, uint32_t begin, uint32_t end);
+    // Copies the impulses of rows [begin, end) back to their contacts.
+    void WriteBack(std::span<Contact> contacts, uint32_t begin, uint32_t end) const;
+
+    uint32_t Rows() const { return static_cast<uint32_t>(rows_.size()); }
+
+  private:
+    uint32_t GroupSize(uint32_t color) const;
+    // Deals group g's manifolds to lanes: lane of each manifold in laneOf, returns the rows.
+    uint32_t Deal(uint32_t group, std::span<uint8_t> laneOf) const;
+
+    const ContactBatches* batches_ = nullptr;
+    std::vector<uint32_t> colorGroupBegin_;  // per colour, and the total at the end
+    std::vector<uint32_t> groupColor_;
+    std::vector<uint32_t> groupRowBegin_;  // per group, and the total at the end
+    std::vector<ContactRow> rows_;
+    std::vector<RollingLanes> rolling_;  // per row
+};
+
+}  // namespace rtrt::physics

@@ -1,0 +1,64 @@
+#pragma once
+// Eight floats computed as one: the contact solver's rows (contact_rows.h) solve eight contacts
+// of eight different manifolds at once. GCC's vector extension gives the arithmetic (+ - * / and
+// comparisons lane by lane, ?: as a per-lane select) on any x86 target: AVX registers where the
+// build has them, pairs of SSE registers where it does not.
+#include <immintrin.h>
+
+#include <cstdint>
+
+namespace rtrt::physics {
+
+inline constexpr int kLanes = 8;
+using Lanes = float __attribute__((vector_size(kLanes * sizeof(float))));
+using LaneMask = int32_t __attribute__((vector_size(kLanes * sizeof(int32_t))));
+
+inline Lanes Splat(float x) { return Lanes{x, x, x, x, x, x, x, x}; }
+
+inline Lanes Select(LaneMask mask, Lanes yes, Lanes no) { return mask ? yes : no; }
+
+inline Lanes Max(Lanes a, Lanes b) { return a > b ? a : b; }
+
+inline Lanes Sqrt(Lanes x) {
+#if defined(__AVX__)
+    return reinterpret_cast<Lanes>(_mm256_sqrt_ps(reinterpret_cast<__m256>(x)));
+#else
+    Lanes out;
+    for (int l = 0; l < kLanes; ++l) out[l] = __builtin_sqrtf(x[l]);
+    return out;
+#endif
+}
+
+inline bool AnyLane(LaneMask mask) {
+    for (int l = 0; l < kLanes; ++l) {
+        if (mask[l] != 0) return true;
+    }
+    return false;
+}
+
+// A vector of lanes, and a column-major 3x3 matrix of lanes (m[column][row], as glm).
+struct Lanes3 {
+    Lanes x, y, z;
+};
+struct Lanes33 {
+    Lanes3 column[3];
+};
+
+inline Lanes3 operator+(const Lanes3& a, const Lanes3& b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline Lanes3 operator-(const Lanes3& a, const Lanes3& b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline Lanes3 operator*(Lanes s, const Lanes3& a) { return {s * a.x, s * a.y, s * a.z}; }
+inline Lanes Dot(const Lanes3& a, const Lanes3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Lanes3 Cross(const Lanes3& a, const Lanes3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline Lanes3 operator*(const Lanes33& m, const Lanes3& v) {
+    return {m.column[0].x * v.x + m.column[1].x * v.y + m.column[2].x * v.z,
+            m.column[0].y * v.x + m.column[1].y * v.y + m.column[2].y * v.z,
+            m.column[0].z * v.x + m.column[1].z * v.y + m.column[2].z * v.z};
+}
+
+}  // namespace rtrt::physics
