@@ -109,6 +109,61 @@ static_assert(offsetof(SolverBody, invInertia) == 7 * sizeof(float));
 }
 
 // The velocity of b's point of contact relative to a's.
+// A PseudoVelocity is 8 floats: linear, angular, two of padding.
+static_assert(sizeof(PseudoVelocity) == 8 * sizeof(float));
+static_assert(offsetof(PseudoVelocity, angular) == 3 * sizeof(float));
+
+struct PseudoLanes {
+    Lanes3 linear;
+    Lanes3 angular;
+};
+
+[[gnu::always_inline]] inline PseudoLanes GatherPseudo(std::span<const PseudoVelocity> pseudo,
+                                                       const uint32_t (&slots)[kLanes]) {
+#if defined(__AVX__)
+    __m256 rows[8];
+    for (int l = 0; l < kLanes; ++l) {
+        rows[l] = _mm256_load_ps(reinterpret_cast<const float*>(&pseudo[slots[l]]));
+    }
+    Transpose8(rows);
+    Lanes f[8];
+    for (int i = 0; i < 8; ++i) f[i] = reinterpret_cast<const Lanes&>(rows[i]);
+#else
+    Lanes f[8];
+    for (int l = 0; l < kLanes; ++l) {
+        const float* p = reinterpret_cast<const float*>(&pseudo[slots[l]]);
+        for (int i = 0; i < 6; ++i) f[i][l] = p[i];
+    }
+#endif
+    return {{f[0], f[1], f[2]}, {f[3], f[4], f[5]}};
+}
+
+// Writes the pseudo velocities of the active lanes' moving bodies (moving: invMass > 0).
+[[gnu::always_inline]] inline void ScatterPseudo(std::span<PseudoVelocity> pseudo,
+                                                 const uint32_t (&slots)[kLanes],
+                                                 uint32_t activeLanes, const Lanes& invMass,
+                                                 const PseudoLanes& in) {
+#if defined(__AVX__)
+    const Lanes zero = Splat(0.0f);
+    const Lanes f[8] = {in.linear.x,  in.linear.y,  in.linear.z, in.angular.x,
+                        in.angular.y, in.angular.z, zero,        zero};
+    __m256 rows[8];
+    for (int i = 0; i < 8; ++i) rows[i] = reinterpret_cast<const __m256&>(f[i]);
+    Transpose8(rows);
+    for (int l = 0; l < kLanes; ++l) {
+        if ((activeLanes >> l & 1u) == 0 || !(invMass[l] > 0.0f)) continue;
+        _mm256_store_ps(reinterpret_cast<float*>(&pseudo[slots[l]]), rows[l]);
+    }
+#else
+    for (int l = 0; l < kLanes; ++l) {
+        if ((activeLanes >> l & 1u) == 0 || !(invMass[l] > 0.0f)) continue;
+        PseudoVelocity& p = pseudo[slots[l]];
+        p.linear = vec3(in.linear.x[l], in.linear.y[l], in.linear.z[l]);
+        p.angular = vec3(in.angular.x[l], in.angular.y[l], in.angular.z[l]);
+    }
+#endif
+}
+
 [[gnu::always_inline]] inline Lanes3 RelativeVelocity(const BodyLanes& a, const BodyLanes& b,
                                                       const ContactRow& row) {
     return b.velocity + Cross(b.angularVelocity, row.anchorB) - a.velocity -
@@ -133,6 +188,73 @@ void SetLane(Lanes3& lanes, int l, vec3 v) {
     lanes.x[l] = v.x;
     lanes.y[l] = v.y;
     lanes.z[l] = v.z;
+}
+
+// Rolling resistance, friction and the normal impulse of one row, on the bodies' lanes.
+[[gnu::always_inline]] inline void SolveVelocity(BodyLanes& a, BodyLanes& b, ContactRow& row,
+                                                 RollingLanes* rolling) {
+    const Lanes zero = Splat(0.0f);
+    const Lanes one = Splat(1.0f);
+    if (rolling != nullptr) {
+        const LaneMask on = (rolling->limit > zero) & (row.normalImpulse > zero);
+        const Lanes3 spin = b.angularVelocity - a.angularVelocity;
+        Lanes3 impulse = rolling->impulse - rolling->mass * spin;
+        const Lanes maxRolling = rolling->limit * row.normalImpulse;
+        const Lanes length = Sqrt(Dot(impulse, impulse));
+        impulse = Select(length > maxRolling, maxRolling / length, one) * impulse;
+        const Lanes3 delta = Select3(on, impulse - rolling->impulse, Lanes3{zero, zero, zero});
+        rolling->impulse = Select3(on, impulse, rolling->impulse);
+        a.angularVelocity = a.angularVelocity - a.invInertia * delta;
+        b.angularVelocity = b.angularVelocity + b.invInertia * delta;
+    }
+    // Friction before the normal, so that the normal constraint, which matters more, is solved
+    // last.
+    const Lanes maxFriction = row.friction * row.normalImpulse;
+    const LaneMask rubs = maxFriction > zero;
+    if (AnyLane(rubs)) {
+        const Lanes3 dv = RelativeVelocity(a, b, row);
+        Lanes t1 = row.tangentImpulse1 - row.tangentMass1 * Dot(row.tangent1, dv);
+        Lanes t2 = row.tangentImpulse2 - row.tangentMass2 * Dot(row.tangent2, dv);
+        const Lanes length = Sqrt(t1 * t1 + t2 * t2);
+        const Lanes clamp = Select(length > maxFriction, maxFriction / length, one);
+        t1 = t1 * clamp;
+        t2 = t2 * clamp;
+        const Lanes d1 = Select(rubs, t1 - row.tangentImpulse1, zero);
+        const Lanes d2 = Select(rubs, t2 - row.tangentImpulse2, zero);
+        Push(a, b, row, d1 * row.tangent1 + d2 * row.tangent2);
+        row.tangentImpulse1 = Select(rubs, t1, row.tangentImpulse1);
+        row.tangentImpulse2 = Select(rubs, t2, row.tangentImpulse2);
+    }
+    const Lanes vn = Dot(row.normal, RelativeVelocity(a, b, row));
+    const Lanes impulse =
+        Max(row.normalImpulse - row.normalMass * (vn + row.allowedApproach), zero);
+    Push(a, b, row, (impulse - row.normalImpulse) * row.normal);
+    row.normalImpulse = impulse;
+}
+
+// One split-impulse iteration of a row: pushes overlapping bodies apart through their pseudo
+// velocities, by rate of the overlap per second. Rows without overlap beyond the slop (most of
+// them) read no pseudo velocities.
+[[gnu::always_inline]] inline void SolvePosition(std::span<PseudoVelocity> pseudo,
+                                                 const BodyLanes& a, const BodyLanes& b,
+                                                 ContactRow& row, float rate) {
+    const Lanes zero = Splat(0.0f);
+    const LaneMask overlaps = row.overlap > zero;
+    if (!AnyLane(overlaps)) return;
+    PseudoLanes pa = GatherPseudo(pseudo, row.slotA);
+    PseudoLanes pb = GatherPseudo(pseudo, row.slotB);
+    const Lanes vn = Dot(row.normal, pb.linear + Cross(pb.angular, row.anchorB) - pa.linear -
+                                         Cross(pa.angular, row.anchorA));
+    const Lanes impulse =
+        Max(row.pseudoImpulse - row.normalMass * (vn - Splat(rate) * row.overlap), zero);
+    const Lanes3 push = Select(overlaps, impulse - row.pseudoImpulse, zero) * row.normal;
+    row.pseudoImpulse = Select(overlaps, impulse, row.pseudoImpulse);
+    pa.linear = pa.linear - a.invMass * push;
+    pa.angular = pa.angular - a.invInertia * Cross(row.anchorA, push);
+    pb.linear = pb.linear + b.invMass * push;
+    pb.angular = pb.angular + b.invInertia * Cross(row.anchorB, push);
+    ScatterPseudo(pseudo, row.slotA, row.activeLanes, a.invMass, pa);
+    ScatterPseudo(pseudo, row.slotB, row.activeLanes, b.invMass, pb);
 }
 
 }  // namespace
@@ -180,7 +302,7 @@ uint32_t ContactRows::Deal(uint32_t group, std::span<uint8_t> laneOf) const {
 }
 
 void ContactRows::Build(std::span<const Contact> contacts, const ContactBatches& batches,
-                        float invDt) {
+                        float invDt, float linearSlop) {
     batches_ = &batches;
     const uint32_t colors = batches.Colors();
     colorGroupBegin_.assign(1, 0);
@@ -241,6 +363,7 @@ void ContactRows::Build(std::span<const Contact> contacts, const ContactBatches&
                 row.tangentImpulse2[l] = c.tangentImpulse2;
                 row.friction[l] = c.friction;
                 row.allowedApproach[l] = c.separation > 0.0f ? c.separation * invDt : 0.0f;
+                row.overlap[l] = -c.separation - linearSlop;
                 if (c.rollingLimit > 0.0f) {
                     RollingLanes& rolling = rolling_[r];
                     row.rolling = true;
@@ -264,51 +387,34 @@ void ContactRows::Build(std::span<const Contact> contacts, const ContactBatches&
     });
 }
 
-void ContactRows::Solve(std::span<SolverBody> bodies, uint32_t begin, uint32_t end) {
-    const Lanes zero = Splat(0.0f);
-    const Lanes one = Splat(1.0f);
+void ContactRows::Solve(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,
+                        uint32_t begin, uint32_t end, RowPass pass, float positionRate) {
+    switch (pass) {
+        case RowPass::kVelocity:
+            SolveRows<true, false>(bodies, pseudo, begin, end, positionRate);
+            break;
+        case RowPass::kPosition:
+            SolveRows<false, true>(bodies, pseudo, begin, end, positionRate);
+            break;
+        case RowPass::kVelocityAndPosition:
+            SolveRows<true, true>(bodies, pseudo, begin, end, positionRate);
+            break;
+    }
+}
+
+template <bool kVelocity, bool kPosition>
+void ContactRows::SolveRows(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,
+                            uint32_t begin, uint32_t end, float positionRate) {
     for (uint32_t r = begin; r < end; ++r) {
         ContactRow& row = rows_[r];
         BodyLanes a = Gather(bodies, row.slotA);
         BodyLanes b = Gather(bodies, row.slotB);
-        if (row.rolling) {
-            RollingLanes& rolling = rolling_[r];
-            const LaneMask on = (rolling.limit > zero) & (row.normalImpulse > zero);
-            const Lanes3 spin = b.angularVelocity - a.angularVelocity;
-            Lanes3 impulse = rolling.impulse - rolling.mass * spin;
-            const Lanes maxRolling = rolling.limit * row.normalImpulse;
-            const Lanes length = Sqrt(Dot(impulse, impulse));
-            impulse = Select(length > maxRolling, maxRolling / length, one) * impulse;
-            const Lanes3 delta = Select3(on, impulse - rolling.impulse, Lanes3{zero, zero, zero});
-            rolling.impulse = Select3(on, impulse, rolling.impulse);
-            a.angularVelocity = a.angularVelocity - a.invInertia * delta;
-            b.angularVelocity = b.angularVelocity + b.invInertia * delta;
+        if constexpr (kVelocity) {
+            SolveVelocity(a, b, row, row.rolling ? &rolling_[r] : nullptr);
+            Scatter(bodies, row.slotA, row.activeLanes, a);
+            Scatter(bodies, row.slotB, row.activeLanes, b);
         }
-        // Friction before the normal, so that the normal constraint, which matters more, is
-        // solved last.
-        const Lanes maxFriction = row.friction * row.normalImpulse;
-        const LaneMask rubs = maxFriction > zero;
-        if (AnyLane(rubs)) {
-            const Lanes3 dv = RelativeVelocity(a, b, row);
-            Lanes t1 = row.tangentImpulse1 - row.tangentMass1 * Dot(row.tangent1, dv);
-            Lanes t2 = row.tangentImpulse2 - row.tangentMass2 * Dot(row.tangent2, dv);
-            const Lanes length = Sqrt(t1 * t1 + t2 * t2);
-            const Lanes clamp = Select(length > maxFriction, maxFriction / length, one);
-            t1 = t1 * clamp;
-            t2 = t2 * clamp;
-            const Lanes d1 = Select(rubs, t1 - row.tangentImpulse1, zero);
-            const Lanes d2 = Select(rubs, t2 - row.tangentImpulse2, zero);
-            Push(a, b, row, d1 * row.tangent1 + d2 * row.tangent2);
-            row.tangentImpulse1 = Select(rubs, t1, row.tangentImpulse1);
-            row.tangentImpulse2 = Select(rubs, t2, row.tangentImpulse2);
-        }
-        const Lanes vn = Dot(row.normal, RelativeVelocity(a, b, row));
-        const Lanes impulse =
-            Max(row.normalImpulse - row.normalMass * (vn + row.allowedApproach), zero);
-        Push(a, b, row, (impulse - row.normalImpulse) * row.normal);
-        row.normalImpulse = impulse;
-        Scatter(bodies, row.slotA, row.activeLanes, a);
-        Scatter(bodies, row.slotB, row.activeLanes, b);
+        if constexpr (kPosition) SolvePosition(pseudo, a, b, row, positionRate);
     }
 }
 

@@ -21,6 +21,11 @@ namespace rtrt::physics {
 
 struct Contact;
 struct SolverBody;
+struct PseudoVelocity;
+
+// What an iteration over rows solves: velocities, the split impulse's pseudo velocities, or both
+// (they touch different state, so one pass may do both).
+enum class RowPass : uint8_t { kVelocity, kPosition, kVelocityAndPosition };
 
 // Eight contacts of eight different manifolds of one colour. A lane without a contact (bit clear
 // in activeLanes) has zero masses and impulses and the bodies of an active lane; it is never
@@ -45,6 +50,8 @@ struct ContactRow {
     Lanes tangentImpulse2;
     Lanes friction;
     Lanes allowedApproach;  // speed at which a speculative contact may close: separation / dt
+    Lanes overlap;          // beyond the linear slop, for the position iterations
+    Lanes pseudoImpulse;
 };
 
 // Rolling resistance of a row's lanes, apart: most rows have none and never read it.
@@ -59,7 +66,8 @@ class ContactRows {
     static constexpr uint32_t kGroupManifolds = 4 * kLanes;
 
     // Lays out the prepared and seeded contacts of batches.
-    void Build(std::span<const Contact> contacts, const ContactBatches& batches, float invDt);
+    void Build(std::span<const Contact> contacts, const ContactBatches& batches, float invDt,
+               float linearSlop);
 
     // The rows of manifolds [first, last) of colour color; first and last are group boundaries
     // of that colour (GroupStart) or its end.
@@ -67,14 +75,19 @@ class ContactRows {
     // The first group boundary at or after manifold in colour color (its end if none).
     uint32_t GroupStart(uint32_t color, uint32_t manifold) const;
 
-    // One velocity iteration of rows [begin, end), bodies indexed by slot.
-    void Solve(std::span<SolverBody> bodies, uint32_t begin, uint32_t end);
+    // One iteration of rows [begin, end), bodies and pseudo velocities indexed by slot;
+    // positionRate: the share of the overlap that the pseudo velocities remove per second.
+    void Solve(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo, uint32_t begin,
+               uint32_t end, RowPass pass, float positionRate);
     // Copies the impulses of rows [begin, end) back to their contacts.
     void WriteBack(std::span<Contact> contacts, uint32_t begin, uint32_t end) const;
 
     uint32_t Rows() const { return static_cast<uint32_t>(rows_.size()); }
 
   private:
+    template <bool kVelocity, bool kPosition>
+    void SolveRows(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo, uint32_t begin,
+                   uint32_t end, float positionRate);
     uint32_t GroupSize(uint32_t color) const;
     // Deals group g's manifolds to lanes: lane of each manifold in laneOf, returns the rows.
     uint32_t Deal(uint32_t group, std::span<uint8_t> laneOf) const;

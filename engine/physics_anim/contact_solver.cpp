@@ -30,11 +30,6 @@ float Speed(const SolverBody& a, const SolverBody& b, const ContactAxis& axis) {
            glm::dot(b.angularVelocity, axis.armB) - glm::dot(a.angularVelocity, axis.armA);
 }
 
-float PseudoSpeed(const PseudoVelocity& a, const PseudoVelocity& b, const ContactAxis& axis) {
-    return glm::dot(axis.direction, b.linear - a.linear) + glm::dot(b.angular, axis.armB) -
-           glm::dot(a.angular, axis.armA);
-}
-
 // Applies the impulse `linear` (a vector) with angular lever sums armA and armB: b gains it, a
 // loses it. A body that is not awake (zero inverse mass) is not written: other manifolds of the
 // same colour may read it at the same time.
@@ -143,29 +138,6 @@ void RestituteContact(std::span<SolverBody> bodies, Contact& c, const SolverSett
     c.normalImpulse = impulse;
 }
 
-void SolvePositionContact(std::span<const SolverBody> bodies, std::span<PseudoVelocity> pseudo,
-                          Contact& c, float rate, float linearSlop) {
-    const float overlap = -c.separation - linearSlop;
-    if (overlap <= 0.0f) return;
-    const SolverBody& a = bodies[c.slotA];
-    const SolverBody& b = bodies[c.slotB];
-    PseudoVelocity& pa = pseudo[c.slotA];
-    PseudoVelocity& pb = pseudo[c.slotB];
-    const ContactAxis& axis = c.normalAxis;
-    const float vn = PseudoSpeed(pa, pb, axis);
-    const float impulse = std::max(c.pseudoImpulse - axis.mass * (vn - rate * overlap), 0.0f);
-    const float delta = impulse - c.pseudoImpulse;
-    c.pseudoImpulse = impulse;
-    if (a.invMass > 0.0f) {
-        pa.linear -= (a.invMass * delta) * axis.direction;
-        pa.angular -= a.invInertia * (delta * axis.armA);
-    }
-    if (b.invMass > 0.0f) {
-        pb.linear += (b.invMass * delta) * axis.direction;
-        pb.angular += b.invInertia * (delta * axis.armB);
-    }
-}
-
 enum class Pass : uint8_t { kWarmStart, kVelocity, kVelocityAndPosition, kRestitution, kPosition };
 
 }  // namespace
@@ -180,7 +152,7 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
     // overflow colour is a single block, solved in order by one thread.
     const float invDt = 1.0f / settings.dt;
     ContactRows& rows = scratch.rows;
-    rows.Build(contacts, batches, invDt);
+    rows.Build(contacts, batches, invDt, settings.linearSlop);
     const int threads =
         batches.Manifolds() < kParallelManifolds ? 1 : StageRunner::AvailableThreads();
     const auto shareCount = static_cast<uint32_t>(threads);
@@ -249,10 +221,10 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
         const uint32_t last = std::min(share.end, first + share.blockSize);
         const uint32_t begin = batches.manifoldBegin[first];
         const uint32_t end = batches.manifoldBegin[last];
-        const auto solveRows = [&] {
+        const auto solveRows = [&](RowPass pass) {
             const uint32_t rowBegin = rows.RowBegin(stage.color, first);
             const uint32_t rowEnd = rows.RowBegin(stage.color, last);
-            rows.Solve(bodies, rowBegin, rowEnd);
+            rows.Solve(bodies, pseudo, rowBegin, rowEnd, pass, rate);
             if (stage.writeBack) rows.WriteBack(contacts, rowBegin, rowEnd);
         };
         switch (static_cast<Pass>(stage.pass)) {
@@ -260,22 +232,17 @@ void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseud
                 for (uint32_t k = begin; k < end; ++k) WarmStartContact(bodies, contacts[k]);
                 break;
             case Pass::kVelocity:
-                solveRows();
+                solveRows(RowPass::kVelocity);
                 break;
             case Pass::kVelocityAndPosition:
-                solveRows();
-                for (uint32_t k = begin; k < end; ++k) {
-                    SolvePositionContact(bodies, pseudo, contacts[k], rate, settings.linearSlop);
-                }
+                solveRows(RowPass::kVelocityAndPosition);
                 break;
             case Pass::kRestitution:
                 for (uint32_t k = begin; k < end; ++k)
                     RestituteContact(bodies, contacts[k], settings);
                 break;
             case Pass::kPosition:
-                for (uint32_t k = begin; k < end; ++k) {
-                    SolvePositionContact(bodies, pseudo, contacts[k], rate, settings.linearSlop);
-                }
+                solveRows(RowPass::kPosition);
                 break;
         }
     });
