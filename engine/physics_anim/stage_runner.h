@@ -74,16 +74,20 @@ class StageRunner {
                 uint32_t stageBlocks = 0;
                 for (uint32_t s = 0; s < shares; ++s) stageBlocks += blocks[s];
                 std::atomic<uint32_t>& completed = completed_[t].value;
+                uint32_t done = 0;
                 for (uint32_t k = 0; k < shares; ++k) {
                     const uint32_t share = (home + k) % shares;
                     std::atomic<uint32_t>& claimed = claimed_[t * shares + share].value;
                     for (uint32_t b = claimed.fetch_add(1, std::memory_order_relaxed);
                          b < blocks[share]; b = claimed.fetch_add(1, std::memory_order_relaxed)) {
                         work(t, share, b);
-                        // Release: the next stage's readers see this block's writes.
-                        completed.fetch_add(1, std::memory_order_acq_rel);
+                        ++done;
                     }
                 }
+                // One count per thread and stage, once it has nothing left to claim: the counter
+                // is the line every thread spins on. Release: the next stage's readers see this
+                // thread's writes.
+                if (done > 0) completed.fetch_add(done, std::memory_order_acq_rel);
                 for (int spins = 0; completed.load(std::memory_order_acquire) < stageBlocks;
                      ++spins) {
                     Pause(spins);
