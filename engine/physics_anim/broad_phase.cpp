@@ -1,5 +1,6 @@
 #include "engine/physics_anim/broad_phase.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -39,6 +40,10 @@ constexpr uint32_t kMaxStrips = 4096;
 // A layout whose boxes span more than this many strips each on average (many boxes much
 // larger than the typical one) falls back to one strip.
 constexpr size_t kMaxStripsPerBox = 4;
+// The strip dealing's chunks of the sweep order: few enough that their per-strip counts stay
+// small, large enough to be worth a task.
+constexpr size_t kMinDealChunk = 2048;
+constexpr size_t kMaxDealChunks = 64;
 
 }  // namespace
 
@@ -60,27 +65,7 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
         return a.min != b.min ? a.min < b.min : a.box < b.box;
     });
     const Strips strips = PlanStrips(boxes, stripAxis);
-    // Each strip's boxes in sweep order, with the sweep axis first, so that the inner loop reads
-    // them sequentially and at fixed offsets. A box is in every strip it overlaps.
-    stripBegin_.assign(strips.count + 1, 0);
-    for (const Entry& entry : order_) {
-        const BroadPhaseBox& box = boxes[entry.box];
-        const uint32_t last = strips.Of(box.max[stripAxis]);
-        for (uint32_t k = strips.Of(box.min[stripAxis]); k <= last; ++k) ++stripBegin_[k + 1];
-    }
-    for (uint32_t k = 0; k < strips.count; ++k) stripBegin_[k + 1] += stripBegin_[k];
-    sorted_.resize(stripBegin_[strips.count]);
-    stripFill_.assign(stripBegin_.begin(), stripBegin_.end() - 1);
-    for (const Entry& entry : order_) {
-        const BroadPhaseBox& box = boxes[entry.box];
-        const SweptBox swept{box.min[axis],      box.max[axis],   box.min[stripAxis],
-                             box.max[stripAxis], box.min[other2], box.max[other2],
-                             entry.box,          box.isStatic};
-        const uint32_t last = strips.Of(box.max[stripAxis]);
-        for (uint32_t k = strips.Of(box.min[stripAxis]); k <= last; ++k) {
-            sorted_[stripFill_[k]++] = swept;
-        }
-    }
+    DealIntoStrips(boxes, strips, axis, stripAxis, other2);
     // Each strip swept on its own, its pairs kept apart and joined in strip order: the same pairs
     // in the same order on any number of threads. Two boxes that share several strips are paired
     // only in the strip that holds the larger of their lower bounds on the strip axis.
@@ -102,9 +87,63 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
             }
         }
     });
+    pairStart_.assign(strips.count + 1, 0);
     for (uint32_t strip = 0; strip < strips.count; ++strip) {
-        pairs.insert(pairs.end(), stripPairs_[strip].begin(), stripPairs_[strip].end());
+        pairStart_[strip + 1] =
+            pairStart_[strip] + static_cast<uint32_t>(stripPairs_[strip].size());
     }
+    pairs.resize(pairStart_[strips.count]);
+    tbb::parallel_for(uint32_t{0}, strips.count, [&](uint32_t strip) {
+        std::copy(stripPairs_[strip].begin(), stripPairs_[strip].end(),
+                  pairs.begin() + pairStart_[strip]);
+    });
+}
+
+void SweepAndPrune::DealIntoStrips(std::span<const BroadPhaseBox> boxes, const Strips& strips,
+                                   int axis, int stripAxis, int other2) {
+    // A counting sort by strip that keeps sweep order within each strip, in parallel over
+    // chunks of the sweep order: each chunk counts its boxes per strip, the counts give every
+    // chunk its place in every strip, and the chunks fill their places at once.
+    const size_t n = order_.size();
+    const size_t chunkSize =
+        std::max<size_t>(kMinDealChunk, (n + kMaxDealChunks - 1) / kMaxDealChunks);
+    const auto chunks = static_cast<uint32_t>((n + chunkSize - 1) / chunkSize);
+    const uint32_t count = strips.count;
+    chunkStripCount_.assign(size_t{chunks} * count, 0);
+    const auto forChunk = [&](uint32_t chunk, auto&& visit) {
+        const size_t end = std::min(n, (chunk + 1) * chunkSize);
+        for (size_t i = chunk * chunkSize; i < end; ++i) {
+            const BroadPhaseBox& box = boxes[order_[i].box];
+            const uint32_t last = strips.Of(box.max[stripAxis]);
+            for (uint32_t k = strips.Of(box.min[stripAxis]); k <= last; ++k) visit(k, i, box);
+        }
+    };
+    tbb::parallel_for(uint32_t{0}, chunks, [&](uint32_t chunk) {
+        uint32_t* counts = chunkStripCount_.data() + size_t{chunk} * count;
+        forChunk(chunk, [&](uint32_t k, size_t, const BroadPhaseBox&) { ++counts[k]; });
+    });
+    // Now each (chunk, strip)'s first place in sorted_, strip by strip, chunk by chunk.
+    stripBegin_.assign(count + 1, 0);
+    uint32_t place = 0;
+    for (uint32_t k = 0; k < count; ++k) {
+        stripBegin_[k] = place;
+        for (uint32_t chunk = 0; chunk < chunks; ++chunk) {
+            uint32_t& at = chunkStripCount_[size_t{chunk} * count + k];
+            const uint32_t boxesHere = at;
+            at = place;
+            place += boxesHere;
+        }
+    }
+    stripBegin_[count] = place;
+    sorted_.resize(place);
+    tbb::parallel_for(uint32_t{0}, chunks, [&](uint32_t chunk) {
+        uint32_t* next = chunkStripCount_.data() + size_t{chunk} * count;
+        forChunk(chunk, [&](uint32_t k, size_t i, const BroadPhaseBox& box) {
+            sorted_[next[k]++] = {box.min[axis],      box.max[axis],   box.min[stripAxis],
+                                  box.max[stripAxis], box.min[other2], box.max[other2],
+                                  order_[i].box,      box.isStatic};
+        });
+    });
 }
 
 SweepAndPrune::Strips SweepAndPrune::PlanStrips(std::span<const BroadPhaseBox> boxes,
@@ -138,7 +177,12 @@ SweepAndPrune::Strips SweepAndPrune::PlanStrips(std::span<const BroadPhaseBox> b
 
 void SweepAndPrune::Ranks(std::vector<uint32_t>& rankOfBox) const {
     rankOfBox.resize(order_.size());
-    for (uint32_t rank = 0; rank < order_.size(); ++rank) rankOfBox[order_[rank].box] = rank;
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(order_.size()), 4096),
+                      [&](const tbb::blocked_range<uint32_t>& r) {
+                          for (uint32_t rank = r.begin(); rank < r.end(); ++rank) {
+                              rankOfBox[order_[rank].box] = rank;
+                          }
+                      });
 }
 
 }  // namespace rtrt::physics

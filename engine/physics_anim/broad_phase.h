@@ -56,12 +56,16 @@ class SweepAndPrune {
         }
     };
     Strips PlanStrips(std::span<const BroadPhaseBox> boxes, int stripAxis);
+    // Fills sorted_ and stripBegin_ from order_.
+    void DealIntoStrips(std::span<const BroadPhaseBox> boxes, const Strips& strips, int axis,
+                        int stripAxis, int other2);
 
     std::vector<Entry> order_;
-    std::vector<float> extents_;        // PlanStrips' scratch
-    std::vector<uint32_t> stripBegin_;  // each strip's boxes in sorted_
-    std::vector<uint32_t> stripFill_;
-    std::vector<SweptBox> sorted_;  // strip by strip, each in sweep order
+    std::vector<float> extents_;             // PlanStrips' scratch
+    std::vector<uint32_t> stripBegin_;       // each strip's boxes in sorted_
+    std::vector<uint32_t> chunkStripCount_;  // DealIntoStrips' scratch
+    std::vector<uint32_t> pairStart_;        // each strip's pairs in the output
+    std::vector<SweptBox> sorted_;           // strip by strip, each in sweep order
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> stripPairs_;
 };
 
