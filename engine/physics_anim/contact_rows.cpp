@@ -6,6 +6,8 @@
 
 #include "engine/core/parallel_for.h"
 #include "engine/physics_anim/contact_solver.h"
+#include "engine/physics_anim/procedural_motion.h"
+#include "engine/physics_anim/sim_body.h"
 
 namespace rtrt::physics {
 
@@ -257,6 +259,86 @@ void SetLane(Lanes3& lanes, int l, vec3 v) {
     ScatterPseudo(pseudo, row.slotB, row.activeLanes, b.invMass, pb);
 }
 
+// Effective mass of the contact along direction: the inverse of the relative speed along it that
+// a unit impulse along it makes.
+float AxisMass(const SolverBody& a, const SolverBody& b, vec3 rA, vec3 rB, vec3 direction) {
+    const vec3 armA = glm::cross(rA, direction);
+    const vec3 armB = glm::cross(rB, direction);
+    const float k = a.invMass + b.invMass + glm::dot(armA, a.invInertia * armA) +
+                    glm::dot(armB, b.invInertia * armB);
+    return k > 0.0f ? 1.0f / k : 0.0f;
+}
+
+// Lane l of row (and of its rolling lanes) from contact k.
+void FillLane(ContactRow& row, RollingLanes& rolling, int l, uint32_t k, const Contact& c,
+              std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
+              std::span<const SolverBody> solverBodies, const SolverSettings& settings) {
+    const SimBody& a = bodies[c.a];
+    const SimBody& b = bodies[c.b];
+    row.slotA[l] = slotOfBody[c.a];
+    row.slotB[l] = slotOfBody[c.b];
+    row.contact[l] = k;
+    row.activeLanes |= 1u << l;
+    const SolverBody& sa = solverBodies[row.slotA[l]];
+    const SolverBody& sb = solverBodies[row.slotB[l]];
+    const vec3 rA = c.point - a.position;
+    const vec3 rB = c.point - b.position;
+    vec3 t1;
+    vec3 t2;
+    OrthonormalBasis(c.normal, t1, t2);
+    SetLane(row.normal, l, c.normal);
+    SetLane(row.tangent1, l, t1);
+    SetLane(row.tangent2, l, t2);
+    SetLane(row.anchorA, l, rA);
+    SetLane(row.anchorB, l, rB);
+    row.normalMass[l] = AxisMass(sa, sb, rA, rB, c.normal);
+    row.tangentMass1[l] = AxisMass(sa, sb, rA, rB, t1);
+    row.tangentMass2[l] = AxisMass(sa, sb, rA, rB, t2);
+    row.normalImpulse[l] = c.normalImpulse;
+    row.tangentImpulse1[l] = c.tangentImpulse1;
+    row.tangentImpulse2[l] = c.tangentImpulse2;
+    row.friction[l] = std::sqrt(a.friction * b.friction);
+    row.allowedApproach[l] = c.separation > 0.0f ? c.separation / settings.dt : 0.0f;
+    row.overlap[l] = -c.separation - settings.linearSlop;
+    // Restitution: the approach speed at the start of the step, before gravity.
+    const vec3 startRelative = b.startVelocity + glm::cross(b.startAngularVelocity, rB) -
+                               a.startVelocity - glm::cross(a.startAngularVelocity, rA);
+    const float approach = -glm::dot(startRelative, c.normal);
+    if (approach > settings.restitutionThreshold) {
+        const float gravitySpeed = std::fabs(glm::dot(settings.gravity, c.normal)) * settings.dt;
+        row.bounce[l] =
+            std::max(std::max(a.restitution, b.restitution) * approach - gravitySpeed, 0.0f);
+    }
+    if (c.rollingLimit > 0.0f) {
+        const glm::mat3 inverse = sa.invInertia + sb.invInertia;
+        if (glm::determinant(inverse) > 0.0f) {  // else neither body can turn
+            if (!row.rolling) rolling = RollingLanes{};
+            row.rolling = true;
+            rolling.limit[l] = c.rollingLimit;
+            const glm::mat3 mass = glm::inverse(inverse);
+            for (int i = 0; i < 3; ++i) SetLane(rolling.mass.column[i], l, mass[i]);
+        }
+    }
+}
+
+// Applies the seeded impulses.
+[[gnu::always_inline]] inline void WarmStart(BodyLanes& a, BodyLanes& b, const ContactRow& row) {
+    Push(a, b, row,
+         row.normalImpulse * row.normal + row.tangentImpulse1 * row.tangent1 +
+             row.tangentImpulse2 * row.tangent2);
+}
+
+// A touching contact that approached faster than the threshold leaves at its bounce speed.
+[[gnu::always_inline]] inline void Restitute(BodyLanes& a, BodyLanes& b, ContactRow& row) {
+    const Lanes zero = Splat(0.0f);
+    const LaneMask bounces = (row.bounce > zero) & (row.normalImpulse > zero);
+    if (!AnyLane(bounces)) return;
+    const Lanes vn = Dot(row.normal, RelativeVelocity(a, b, row));
+    const Lanes impulse = Max(row.normalImpulse - row.normalMass * (vn - row.bounce), zero);
+    Push(a, b, row, Select(bounces, impulse - row.normalImpulse, zero) * row.normal);
+    row.normalImpulse = Select(bounces, impulse, row.normalImpulse);
+}
+
 }  // namespace
 
 uint32_t ContactRows::GroupSize(uint32_t color) const {
@@ -301,8 +383,10 @@ uint32_t ContactRows::Deal(uint32_t group, std::span<uint8_t> laneOf) const {
     return *std::max_element(load.begin(), load.end());
 }
 
-void ContactRows::Build(std::span<const Contact> contacts, const ContactBatches& batches,
-                        float invDt, float linearSlop) {
+void ContactRows::Build(std::span<const Contact> contacts, std::span<const SimBody> bodies,
+                        std::span<const uint32_t> slotOfBody,
+                        std::span<const SolverBody> solverBodies, const ContactBatches& batches,
+                        const SolverSettings& settings) {
     batches_ = &batches;
     const uint32_t colors = batches.Colors();
     colorGroupBegin_.assign(1, 0);
@@ -335,43 +419,14 @@ void ContactRows::Build(std::span<const Contact> contacts, const ContactBatches&
         const uint32_t last = std::min(batches.colorBegin[color + 1], first + GroupSize(color));
         const uint32_t rowBegin = groupRowBegin_[group];
         const uint32_t rowEnd = groupRowBegin_[group + 1];
-        for (uint32_t r = rowBegin; r < rowEnd; ++r) {
-            rows_[r] = ContactRow{};
-            rolling_[r] = RollingLanes{};
-        }
+        for (uint32_t r = rowBegin; r < rowEnd; ++r) rows_[r] = ContactRow{};
         std::array<uint32_t, kLanes> next{};
         for (uint32_t m = first; m < last; ++m) {
             const uint8_t l = laneOf[m - first];
             for (uint32_t k = batches.manifoldBegin[m]; k < batches.manifoldBegin[m + 1]; ++k) {
-                const Contact& c = contacts[k];
                 const uint32_t r = rowBegin + next[l]++;
-                ContactRow& row = rows_[r];
-                row.slotA[l] = c.slotA;
-                row.slotB[l] = c.slotB;
-                row.contact[l] = k;
-                row.activeLanes |= 1u << l;
-                SetLane(row.normal, l, c.normalAxis.direction);
-                SetLane(row.tangent1, l, c.tangentAxis1.direction);
-                SetLane(row.tangent2, l, c.tangentAxis2.direction);
-                SetLane(row.anchorA, l, c.anchorA);
-                SetLane(row.anchorB, l, c.anchorB);
-                row.normalMass[l] = c.normalAxis.mass;
-                row.tangentMass1[l] = c.tangentAxis1.mass;
-                row.tangentMass2[l] = c.tangentAxis2.mass;
-                row.normalImpulse[l] = c.normalImpulse;
-                row.tangentImpulse1[l] = c.tangentImpulse1;
-                row.tangentImpulse2[l] = c.tangentImpulse2;
-                row.friction[l] = c.friction;
-                row.allowedApproach[l] = c.separation > 0.0f ? c.separation * invDt : 0.0f;
-                row.overlap[l] = -c.separation - linearSlop;
-                if (c.rollingLimit > 0.0f) {
-                    RollingLanes& rolling = rolling_[r];
-                    row.rolling = true;
-                    rolling.limit[l] = c.rollingLimit;
-                    SetLane(rolling.impulse, l, c.rollingImpulse);
-                    for (int i = 0; i < 3; ++i)
-                        SetLane(rolling.mass.column[i], l, c.rollingMass[i]);
-                }
+                FillLane(rows_[r], rolling_[r], l, k, contacts[k], bodies, slotOfBody, solverBodies,
+                         settings);
             }
         }
         // Empty lanes read the bodies of an active one: real memory, never written.
@@ -390,27 +445,39 @@ void ContactRows::Build(std::span<const Contact> contacts, const ContactBatches&
 void ContactRows::Solve(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,
                         uint32_t begin, uint32_t end, RowPass pass, float positionRate) {
     switch (pass) {
-        case RowPass::kVelocity:
-            SolveRows<true, false>(bodies, pseudo, begin, end, positionRate);
+        case RowPass::kWarmStart:
+            SolveRows<RowPass::kWarmStart>(bodies, pseudo, begin, end, positionRate);
             break;
-        case RowPass::kPosition:
-            SolveRows<false, true>(bodies, pseudo, begin, end, positionRate);
+        case RowPass::kVelocity:
+            SolveRows<RowPass::kVelocity>(bodies, pseudo, begin, end, positionRate);
             break;
         case RowPass::kVelocityAndPosition:
-            SolveRows<true, true>(bodies, pseudo, begin, end, positionRate);
+            SolveRows<RowPass::kVelocityAndPosition>(bodies, pseudo, begin, end, positionRate);
+            break;
+        case RowPass::kRestitution:
+            SolveRows<RowPass::kRestitution>(bodies, pseudo, begin, end, positionRate);
+            break;
+        case RowPass::kPosition:
+            SolveRows<RowPass::kPosition>(bodies, pseudo, begin, end, positionRate);
             break;
     }
 }
 
-template <bool kVelocity, bool kPosition>
+template <RowPass kPass>
 void ContactRows::SolveRows(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,
                             uint32_t begin, uint32_t end, float positionRate) {
+    constexpr bool kVelocity =
+        kPass == RowPass::kVelocity || kPass == RowPass::kVelocityAndPosition;
+    constexpr bool kPosition =
+        kPass == RowPass::kPosition || kPass == RowPass::kVelocityAndPosition;
     for (uint32_t r = begin; r < end; ++r) {
         ContactRow& row = rows_[r];
         BodyLanes a = Gather(bodies, row.slotA);
         BodyLanes b = Gather(bodies, row.slotB);
-        if constexpr (kVelocity) {
-            SolveVelocity(a, b, row, row.rolling ? &rolling_[r] : nullptr);
+        if constexpr (kPass == RowPass::kWarmStart) WarmStart(a, b, row);
+        if constexpr (kVelocity) SolveVelocity(a, b, row, row.rolling ? &rolling_[r] : nullptr);
+        if constexpr (kPass == RowPass::kRestitution) Restitute(a, b, row);
+        if constexpr (kPass != RowPass::kPosition) {
             Scatter(bodies, row.slotA, row.activeLanes, a);
             Scatter(bodies, row.slotB, row.activeLanes, b);
         }
@@ -427,11 +494,6 @@ void ContactRows::WriteBack(std::span<Contact> contacts, uint32_t begin, uint32_
             c.normalImpulse = row.normalImpulse[l];
             c.tangentImpulse1 = row.tangentImpulse1[l];
             c.tangentImpulse2 = row.tangentImpulse2[l];
-            if (row.rolling) {
-                const RollingLanes& rolling = rolling_[r];
-                c.rollingImpulse =
-                    vec3(rolling.impulse.x[l], rolling.impulse.y[l], rolling.impulse.z[l]);
-            }
         }
     }
 }

@@ -20,17 +20,25 @@
 namespace rtrt::physics {
 
 struct Contact;
-struct SolverBody;
 struct PseudoVelocity;
+struct SimBody;
+struct SolverBody;
+struct SolverSettings;
 
-// What an iteration over rows solves: velocities, the split impulse's pseudo velocities, or both
-// (they touch different state, so one pass may do both).
-enum class RowPass : uint8_t { kVelocity, kPosition, kVelocityAndPosition };
+// A pass over rows (contact_solver.h describes them). The position iterations touch only pseudo
+// velocities, so one pass may do a velocity and a position iteration.
+enum class RowPass : uint8_t {
+    kWarmStart,
+    kVelocity,
+    kVelocityAndPosition,
+    kRestitution,
+    kPosition
+};
 
 // Eight contacts of eight different manifolds of one colour. A lane without a contact (bit clear
 // in activeLanes) has zero masses and impulses and the bodies of an active lane; it is never
 // written back. The rows keep the contact points' offsets from the bodies and compute the lever
-// arms: a row is then 864 bytes instead of 1,248, and the iterations stream the rows.
+// arms: the passes stream the rows, and arms would make them half as large again.
 struct ContactRow {
     uint32_t slotA[kLanes];
     uint32_t slotB[kLanes];
@@ -50,6 +58,7 @@ struct ContactRow {
     Lanes tangentImpulse2;
     Lanes friction;
     Lanes allowedApproach;  // speed at which a speculative contact may close: separation / dt
+    Lanes bounce;           // the speed restitution leaves at (0: none)
     Lanes overlap;          // beyond the linear slop, for the position iterations
     Lanes pseudoImpulse;
 };
@@ -65,9 +74,11 @@ class ContactRows {
   public:
     static constexpr uint32_t kGroupManifolds = 4 * kLanes;
 
-    // Lays out the prepared and seeded contacts of batches.
-    void Build(std::span<const Contact> contacts, const ContactBatches& batches, float invDt,
-               float linearSlop);
+    // Lays out the contacts of batches, with their effective masses and targets from bodies and
+    // the solver bodies (indexed by slotOfBody) at the start of the passes.
+    void Build(std::span<const Contact> contacts, std::span<const SimBody> bodies,
+               std::span<const uint32_t> slotOfBody, std::span<const SolverBody> solverBodies,
+               const ContactBatches& batches, const SolverSettings& settings);
 
     // The rows of manifolds [first, last) of colour color; first and last are group boundaries
     // of that colour (GroupStart) or its end.
@@ -75,7 +86,7 @@ class ContactRows {
     // The first group boundary at or after manifold in colour color (its end if none).
     uint32_t GroupStart(uint32_t color, uint32_t manifold) const;
 
-    // One iteration of rows [begin, end), bodies and pseudo velocities indexed by slot;
+    // One pass over rows [begin, end), bodies and pseudo velocities indexed by slot;
     // positionRate: the share of the overlap that the pseudo velocities remove per second.
     void Solve(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo, uint32_t begin,
                uint32_t end, RowPass pass, float positionRate);
@@ -85,7 +96,7 @@ class ContactRows {
     uint32_t Rows() const { return static_cast<uint32_t>(rows_.size()); }
 
   private:
-    template <bool kVelocity, bool kPosition>
+    template <RowPass kPass>
     void SolveRows(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo, uint32_t begin,
                    uint32_t end, float positionRate);
     uint32_t GroupSize(uint32_t color) const;

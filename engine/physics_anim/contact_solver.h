@@ -1,7 +1,7 @@
 #pragma once
 // Sequential impulses over the step's contacts (Catto 2005, "Iterative Dynamics with Temporal
 // Coherence"): warm starting, Coulomb friction, rolling resistance, speculative contacts,
-// restitution, and split-impulse position correction.
+// restitution, and split-impulse position correction. The arithmetic is in contact_rows.h.
 #include <cstdint>
 #include <glm/mat3x3.hpp>
 #include <span>
@@ -32,43 +32,18 @@ struct alignas(32) PseudoVelocity {
     vec3 angular{0.0f};
 };
 
-// One direction of a contact's constraint: the relative speed along it is
-// dot(direction, vB - vA) + dot(wB, armB) - dot(wA, armA), and an impulse p along it changes wA
-// by -p * invInertiaA * armA. The arms are kept and the turns computed: it halves the bytes an
-// iteration streams, which is what bounds it on many cores.
-struct ContactAxis {
-    vec3 direction;
-    vec3 armA;   // rA x direction
-    vec3 armB;   // rB x direction
-    float mass;  // effective mass along the direction
-};
-
+// A contact point as the narrow phase finds it, with the impulses that warm-start it (seeded
+// from the last step, zero otherwise) and, after SolveContacts, the impulses it solved to.
 struct Contact {
     uint32_t a;  // body indices; the normal points from a to b
     uint32_t b;
-    uint32_t slotA;  // the bodies' places among the solver bodies (set by PrepareContacts)
-    uint32_t slotB;
     vec3 normal;
     vec3 point;
     float separation;    // at the start of the step; negative when overlapping
     float rollingLimit;  // max rolling impulse per unit normal impulse, in metres (0: none)
-
-    // Filled by PrepareContacts (the impulses zeroed; the caller may seed them).
-    vec3 anchorA;  // point less a's centre
-    vec3 anchorB;
-    ContactAxis normalAxis;
-    ContactAxis tangentAxis1;
-    ContactAxis tangentAxis2;
     float normalImpulse;
     float tangentImpulse1;
     float tangentImpulse2;
-    float pseudoImpulse;
-    float friction;
-    vec3 rollingImpulse;
-    glm::mat3 rollingMass;  // inverse of the summed inverse inertias
-    float approachSpeed;    // normal speed of approach at the start of the step, before gravity
-    float gravitySpeed;  // |gravity . normal| * dt: what gravity can add to the approach in a step
-    float restitution;
 };
 
 struct SolverSettings {
@@ -88,17 +63,11 @@ struct SolverSettings {
 void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
                         std::span<SolverBody> out);
 
-// Fills the contacts' slots, axes and effective masses and zeroes their impulses (the caller may
-// then seed them from the last step: see SolveContacts).
-void PrepareContacts(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
-                     std::span<const SolverBody> solverBodies, std::span<Contact> contacts,
-                     const SolverSettings& settings);
-
 // What SolveContacts keeps between steps, so that a step allocates nothing.
 struct ContactSolverScratch {
     struct Stage {
-        uint8_t pass;
-        bool writeBack;  // the last velocity iteration: its impulses go back to the contacts
+        RowPass pass;
+        bool writeBack;  // the last pass that changes impulses: they go back to the contacts
         uint32_t color;
     };
     // A share of a colour: the manifolds of some of its regions, cut into blocks.
@@ -110,19 +79,19 @@ struct ContactSolverScratch {
     std::vector<Stage> stages;
     std::vector<Share> shares;     // per colour and share
     std::vector<uint32_t> blocks;  // per stage and share
-    ContactRows rows;              // what the velocity iterations read and write
+    ContactRows rows;              // what the passes read and write
     StageRunner runner;
 };
 
-// The contact passes of a step, each colour by colour (the manifolds of a colour at once, on
-// every thread TBB lends; only awake bodies are written, so the result does not depend on the
-// number of threads):
+// The contact passes of a step, each colour by colour (the manifolds of a colour at once, eight
+// at a time in ContactRows' lanes, on every thread TBB lends; only awake bodies are written, so
+// the result does not depend on the number of threads):
 // 1. Warm start: the contacts' seeded impulses are applied, so that the iterations start from
 //    the last step's solution and resting stacks converge in a few iterations instead of
 //    sinking.
 // 2. velocityIterations of rolling resistance, friction within the Coulomb cone and a
 //    non-negative normal impulse that lets a speculative contact (separation > 0) close its gap
-//    within the step but not overshoot it, eight manifolds at a time (ContactRows).
+//    within the step but not overshoot it.
 // 3. Restitution, one pass (as Box2D v3 does): a touching contact whose approach speed u exceeds
 //    the threshold leaves at e * u - |g . n| * dt. Dropping one step's worth of gravity from the
 //    rebound means that a bounce never gains energy (a ball that reached the contact at the
@@ -132,8 +101,10 @@ struct ContactSolverScratch {
 //    discarded afterwards, so the correction adds no kinetic energy (unlike Baumgarte
 //    stabilisation of the velocities). They touch nothing that 1 to 3 touch, so they run in the
 //    same stages as the first velocity iterations, with the same result.
-// bodies and pseudo are indexed by slot.
-void SolveContacts(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,
+// The contacts' impulses are replaced by the solved ones. solverBodies and pseudo are indexed by
+// slot (slotOfBody); bodies gives the contacts' positions, start velocities and materials.
+void SolveContacts(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
+                   std::span<SolverBody> solverBodies, std::span<PseudoVelocity> pseudo,
                    std::span<Contact> contacts, const ContactBatches& batches,
                    const SolverSettings& settings, ContactSolverScratch& scratch);
 

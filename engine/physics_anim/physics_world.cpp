@@ -158,10 +158,10 @@ void PhysicsWorld::TakeStep() {
     clock.Restart();
     solverBodies_.resize(bodies_.size());
     GatherSolverBodies(bodies_, solverSlots_, solverBodies_);
-    PrepareContacts(bodies_, solverSlots_, solverBodies_, contacts_, solver_);
     SeedFromLastStep();
     pseudoVelocities_.assign(bodies_.size(), PseudoVelocity{});
-    SolveContacts(solverBodies_, pseudoVelocities_, contacts_, batches_, solver_, solverScratch_);
+    SolveContacts(bodies_, solverSlots_, solverBodies_, pseudoVelocities_, contacts_, batches_,
+                  solver_, solverScratch_);
     RememberImpulses();
     times.solverMs += clock.Milliseconds();
     clock.Restart();
@@ -423,15 +423,16 @@ void PhysicsWorld::WriteContacts(const Candidate& candidate, Contact* out) const
     const Manifold& manifold = candidate.manifold;
     const float rolling = candidate.lever * std::max(bodies_[candidate.first].rollingResistance,
                                                      bodies_[candidate.second].rollingResistance);
-    // Only what PrepareContacts reads: it fills the rest.
     for (int k = 0; k < manifold.count; ++k) {
-        Contact& c = out[k];
-        c.a = candidate.first;
-        c.b = candidate.second;
-        c.normal = manifold.normal;
-        c.point = manifold.points[k].point;
-        c.separation = manifold.points[k].separation;
-        c.rollingLimit = rolling;
+        out[k] = {candidate.first,
+                  candidate.second,
+                  manifold.normal,
+                  manifold.points[k].point,
+                  manifold.points[k].separation,
+                  rolling,
+                  0.0f,
+                  0.0f,
+                  0.0f};
     }
 }
 
