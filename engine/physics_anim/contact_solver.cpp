@@ -19,6 +19,83 @@ constexpr uint32_t kParallelManifolds = 1024;
 constexpr uint32_t kMinBlockManifolds = 32;
 // Blocks per share: what is left for the other threads to take when one is behind.
 constexpr uint32_t kBlocksPerShare = 4;
+// Colours with fewer manifolds than this are solved in runs of at most kSmallSpanManifolds, one
+// thread per run.
+constexpr uint32_t kSmallColorManifolds = 256;
+constexpr uint32_t kSmallSpanManifolds = 512;
+
+// Cuts the colours into stages' spans, and each span into one share per thread and each share
+// into blocks of rows. A colour of many manifolds is a span of its own, cut into shares by region
+// when the batches have regions (else evenly); a run of small colours is one span of one block,
+// solved by one thread in colour order: the same arithmetic in the same order as one stage per
+// colour, without a stage's wait for every thread. The overflow colour is always in such a run.
+void PlanBlocks(const ContactBatches& batches, const ContactRows& rows, uint32_t shareCount,
+                ContactSolverScratch& scratch) {
+    const uint32_t colors = batches.Colors();
+    const auto manifoldsOf = [&](uint32_t color) {
+        return batches.colorBegin[color + 1] - batches.colorBegin[color];
+    };
+    const auto small = [&](uint32_t color) {
+        return manifoldsOf(color) < kSmallColorManifolds ||
+               (batches.lastIsOverflow && color + 1 == colors);
+    };
+    scratch.spans.clear();
+    for (uint32_t color = 0; color < colors;) {
+        uint32_t last = color;
+        if (small(color)) {
+            uint32_t total = manifoldsOf(color);
+            while (last + 1 < colors && small(last + 1) &&
+                   total + manifoldsOf(last + 1) <= kSmallSpanManifolds) {
+                total += manifoldsOf(++last);
+            }
+        }
+        scratch.spans.push_back({color, last});
+        color = last + 1;
+    }
+    scratch.firstBlock.assign(1, 0);
+    scratch.blockRows.clear();
+    const auto addBlocks = [&](uint32_t color, uint32_t begin, uint32_t end, uint32_t blockSize) {
+        for (uint32_t first = begin; first < end; first += blockSize) {
+            const uint32_t last = std::min(end, first + blockSize);
+            scratch.blockRows.push_back({rows.RowBegin(color, first), rows.RowBegin(color, last)});
+        }
+        scratch.firstBlock.push_back(static_cast<uint32_t>(scratch.blockRows.size()));
+    };
+    for (const ContactSolverScratch::Span& span : scratch.spans) {
+        const uint32_t color = span.firstColor;
+        const uint32_t colorBegin = batches.colorBegin[color];
+        const uint32_t colorEnd = batches.colorBegin[color + 1];
+        if (span.lastColor != color || small(color)) {
+            const uint32_t rowBegin = rows.RowBegin(color, colorBegin);
+            const uint32_t rowEnd =
+                rows.RowBegin(span.lastColor, batches.colorBegin[span.lastColor + 1]);
+            scratch.blockRows.push_back({rowBegin, rowEnd});
+            scratch.firstBlock.push_back(static_cast<uint32_t>(scratch.blockRows.size()));
+            for (uint32_t s = 1; s < shareCount; ++s) {
+                scratch.firstBlock.push_back(scratch.firstBlock.back());
+            }
+            continue;
+        }
+        // Shares and blocks start at the rows' groups.
+        const uint32_t manifolds = colorEnd - colorBegin;
+        constexpr uint32_t kGroup = ContactRows::kGroupManifolds;
+        const uint32_t blockSize =
+            (std::max(kMinBlockManifolds, manifolds / (kBlocksPerShare * shareCount)) + kGroup -
+             1) /
+            kGroup * kGroup;
+        for (uint32_t s = 0; s < shareCount; ++s) {
+            uint32_t begin =
+                colorBegin + static_cast<uint32_t>(uint64_t{manifolds} * s / shareCount);
+            uint32_t end =
+                colorBegin + static_cast<uint32_t>(uint64_t{manifolds} * (s + 1) / shareCount);
+            if (batches.regions > 0) {
+                begin = batches.RegionBegin(color, s * batches.regions / shareCount);
+                end = batches.RegionBegin(color, (s + 1) * batches.regions / shareCount);
+            }
+            addBlocks(color, rows.GroupStart(color, begin), rows.GroupStart(color, end), blockSize);
+        }
+    }
+}
 
 }  // namespace
 
@@ -40,54 +117,20 @@ void SolveContacts(std::span<const SimBody> bodies, std::span<const uint32_t> sl
                    const SolverSettings& settings, ContactSolverScratch& scratch) {
     const uint32_t colors = batches.Colors();
     if (colors == 0) return;
-    // A stage is one pass over one colour. Each colour is cut into one share per thread, by
-    // region when the batches have regions (else evenly), and each share into blocks. The
-    // overflow colour is a single block, solved in order by one thread.
     ContactRows& rows = scratch.rows;
     rows.Build(contacts, bodies, slotOfBody, solverBodies, batches, settings);
     const int threads =
         batches.Manifolds() < kParallelManifolds ? 1 : StageRunner::AvailableThreads();
     const auto shareCount = static_cast<uint32_t>(threads);
-    scratch.shares.clear();
-    for (uint32_t color = 0; color < colors; ++color) {
-        const uint32_t colorBegin = batches.colorBegin[color];
-        const uint32_t colorEnd = batches.colorBegin[color + 1];
-        const uint32_t manifolds = colorEnd - colorBegin;
-        if (batches.lastIsOverflow && color + 1 == colors) {
-            scratch.shares.push_back({colorBegin, colorEnd, std::max(1u, manifolds)});
-            for (uint32_t s = 1; s < shareCount; ++s) {
-                scratch.shares.push_back({colorEnd, colorEnd, 1});
-            }
-            continue;
-        }
-        // Shares and blocks start at the rows' groups.
-        constexpr uint32_t kGroup = ContactRows::kGroupManifolds;
-        const uint32_t blockSize =
-            (std::max(kMinBlockManifolds, manifolds / (kBlocksPerShare * shareCount)) + kGroup -
-             1) /
-            kGroup * kGroup;
-        for (uint32_t s = 0; s < shareCount; ++s) {
-            uint32_t begin =
-                colorBegin + static_cast<uint32_t>(uint64_t{manifolds} * s / shareCount);
-            uint32_t end =
-                colorBegin + static_cast<uint32_t>(uint64_t{manifolds} * (s + 1) / shareCount);
-            if (batches.regions > 0) {
-                begin = batches.RegionBegin(color, s * batches.regions / shareCount);
-                end = batches.RegionBegin(color, (s + 1) * batches.regions / shareCount);
-            }
-            scratch.shares.push_back(
-                {rows.GroupStart(color, begin), rows.GroupStart(color, end), blockSize});
-        }
-    }
+    PlanBlocks(batches, rows, shareCount, scratch);
     scratch.stages.clear();
     scratch.blocks.clear();
     const auto addPass = [&](RowPass pass, bool writeBack = false) {
-        for (uint32_t color = 0; color < colors; ++color) {
-            scratch.stages.push_back({pass, writeBack, color});
+        for (uint32_t span = 0; span < scratch.spans.size(); ++span) {
+            scratch.stages.push_back({pass, writeBack, span});
             for (uint32_t s = 0; s < shareCount; ++s) {
-                const ContactSolverScratch::Share& share = scratch.shares[color * shareCount + s];
-                scratch.blocks.push_back((share.end - share.begin + share.blockSize - 1) /
-                                         share.blockSize);
+                const uint32_t at = span * shareCount + s;
+                scratch.blocks.push_back(scratch.firstBlock[at + 1] - scratch.firstBlock[at]);
             }
         }
     };
@@ -104,13 +147,10 @@ void SolveContacts(std::span<const SimBody> bodies, std::span<const uint32_t> sl
     const float rate = settings.positionCorrection / settings.dt;
     scratch.runner.Run(scratch.blocks, threads, [&](size_t stageIndex, uint32_t s, uint32_t block) {
         const ContactSolverScratch::Stage& stage = scratch.stages[stageIndex];
-        const ContactSolverScratch::Share& share = scratch.shares[stage.color * shareCount + s];
-        const uint32_t first = share.begin + block * share.blockSize;
-        const uint32_t last = std::min(share.end, first + share.blockSize);
-        const uint32_t rowBegin = rows.RowBegin(stage.color, first);
-        const uint32_t rowEnd = rows.RowBegin(stage.color, last);
-        rows.Solve(solverBodies, pseudo, rowBegin, rowEnd, stage.pass, rate);
-        if (stage.writeBack) rows.WriteBack(contacts, rowBegin, rowEnd);
+        const ContactSolverScratch::Block& rowsOf =
+            scratch.blockRows[scratch.firstBlock[stage.span * shareCount + s] + block];
+        rows.Solve(solverBodies, pseudo, rowsOf.rowBegin, rowsOf.rowEnd, stage.pass, rate);
+        if (stage.writeBack) rows.WriteBack(contacts, rowsOf.rowBegin, rowsOf.rowEnd);
     });
 }
 

@@ -65,19 +65,25 @@ void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_
 
 // What SolveContacts keeps between steps, so that a step allocates nothing.
 struct ContactSolverScratch {
+    // A run of colours solved in one stage: one colour cut into shares and blocks, or several
+    // small ones (or the overflow) in order, in one block.
+    struct Span {
+        uint32_t firstColor;
+        uint32_t lastColor;
+    };
     struct Stage {
         RowPass pass;
         bool writeBack;  // the last pass that changes impulses: they go back to the contacts
-        uint32_t color;
+        uint32_t span;
     };
-    // A share of a colour: the manifolds of some of its regions, cut into blocks.
-    struct Share {
-        uint32_t begin;      // first manifold
-        uint32_t end;        // one past the last
-        uint32_t blockSize;  // manifolds per block
+    struct Block {
+        uint32_t rowBegin;
+        uint32_t rowEnd;
     };
+    std::vector<Span> spans;
+    std::vector<uint32_t> firstBlock;  // per span and share, into blockRows; then the total
+    std::vector<Block> blockRows;
     std::vector<Stage> stages;
-    std::vector<Share> shares;     // per colour and share
     std::vector<uint32_t> blocks;  // per stage and share
     ContactRows rows;              // what the passes read and write
     StageRunner runner;
