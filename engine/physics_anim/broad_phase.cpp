@@ -33,6 +33,24 @@ std::array<int, 3> AxesBySpread(std::span<const BroadPhaseBox> boxes) {
     return axes;
 }
 
+// Sorts by insertion, giving up (false, entries still a permutation) after maxShifts moves.
+template <typename Entry, typename Before>
+bool SortByInsertion(std::vector<Entry>& entries, size_t maxShifts, const Before& before) {
+    size_t shifts = 0;
+    for (size_t i = 1; i < entries.size(); ++i) {
+        const Entry entry = entries[i];
+        size_t j = i;
+        for (; j > 0 && before(entry, entries[j - 1]); --j) entries[j] = entries[j - 1];
+        entries[j] = entry;
+        shifts += i - j;
+        if (shifts > maxShifts) return false;
+    }
+    return true;
+}
+
+// The insertion sort's budget: beyond it, the order has changed too much since the last step.
+constexpr size_t kMaxInsertionShiftsPerBox = 8;
+
 // Strips of at least this many boxes on average: fewer would cost more in bookkeeping than
 // they save in tests.
 constexpr size_t kMinBoxesPerStrip = 16;
@@ -58,12 +76,24 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
     const int axis = axes[0];
     const int stripAxis = axes[1];
     const int other2 = axes[2];
-    order_.resize(boxes.size());
-    for (uint32_t i = 0; i < boxes.size(); ++i) order_[i] = {boxes[i].min[axis], i};
-    // Ties broken by index, so the order (and the pairs' order) never depends on the sort.
-    tbb::parallel_sort(order_.begin(), order_.end(), [](const Entry& a, const Entry& b) {
+    // Ties broken by index, so the order (and the pairs' order) never depends on the sort. Last
+    // step's order is a permutation of the same boxes when their number and the axis have not
+    // changed, and bodies move little in a step: sorting by insertion from it takes about n
+    // steps. When it would take many more, a full sort finishes the job.
+    const auto before = [](const Entry& a, const Entry& b) {
         return a.min != b.min ? a.min < b.min : a.box < b.box;
-    });
+    };
+    const bool coherent = order_.size() == boxes.size() && axis == lastAxis_;
+    if (coherent) {
+        for (Entry& entry : order_) entry.min = boxes[entry.box].min[axis];
+    } else {
+        order_.resize(boxes.size());
+        for (uint32_t i = 0; i < boxes.size(); ++i) order_[i] = {boxes[i].min[axis], i};
+    }
+    lastAxis_ = axis;
+    if (!coherent || !SortByInsertion(order_, kMaxInsertionShiftsPerBox * order_.size(), before)) {
+        tbb::parallel_sort(order_.begin(), order_.end(), before);
+    }
     const Strips strips = PlanStrips(boxes, stripAxis);
     DealIntoStrips(boxes, strips, axis, stripAxis, other2);
     // Each strip swept on its own, its pairs kept apart and joined in strip order: the same pairs

@@ -60,7 +60,8 @@ class SweepAndPrune {
     void DealIntoStrips(std::span<const BroadPhaseBox> boxes, const Strips& strips, int axis,
                         int stripAxis, int other2);
 
-    std::vector<Entry> order_;
+    std::vector<Entry> order_;  // the sweep order, kept for the next step's sort
+    int lastAxis_ = -1;
     std::vector<float> extents_;             // PlanStrips' scratch
     std::vector<uint32_t> stripBegin_;       // each strip's boxes in sorted_
     std::vector<uint32_t> chunkStripCount_;  // DealIntoStrips' scratch
