@@ -54,6 +54,44 @@ TEST(BroadPhaseTest, SweepFindsTheSamePairsAsBruteForce) {
     }
 }
 
+// One SweepAndPrune over many steps, as the physics uses it: boxes that drift a little (the sort
+// starts from the last order), a step where they all jump (too far for that: a full sort), a box
+// count that changes, and the spread turning to another axis. Every step gives brute force's pairs,
+// in the order a fresh SweepAndPrune gives.
+TEST(BroadPhaseTest, StepsFromTheLastOrderFindTheSamePairsAsAFreshSweep) {
+    std::mt19937 rng(17);
+    auto unit = [&] { return static_cast<float>(rng() >> 8) * 0x1p-24f; };
+    std::vector<BroadPhaseBox> boxes = RandomBoxes(1200, 9);
+    SweepAndPrune kept;
+    for (int step = 0; step < 12; ++step) {
+        const float move = step == 5 ? 20.0f : 0.05f;
+        for (BroadPhaseBox& box : boxes) {
+            const vec3 d(move * (unit() - 0.5f), move * (unit() - 0.5f), move * (unit() - 0.5f));
+            box.min += d;
+            box.max += d;
+        }
+        if (step == 7) boxes.resize(1100);
+        if (step == 9) {  // the boxes now spread most along y
+            for (BroadPhaseBox& box : boxes) {
+                std::swap(box.min.x, box.min.y);
+                std::swap(box.max.x, box.max.y);
+            }
+        }
+        Pairs found;
+        kept.FindPairs(boxes, found);
+        SweepAndPrune fresh;
+        Pairs expected;
+        fresh.FindPairs(boxes, expected);
+        EXPECT_EQ(found, expected) << "step " << step;
+        std::vector<uint32_t> keptRanks, freshRanks;
+        kept.Ranks(keptRanks);
+        fresh.Ranks(freshRanks);
+        EXPECT_EQ(keptRanks, freshRanks) << "step " << step;
+        std::sort(found.begin(), found.end());
+        EXPECT_EQ(found, BruteForce(boxes)) << "step " << step;
+    }
+}
+
 // A floor's worth of small boxes (many strips) with a few walls that cross every strip, boxes
 // that touch exactly on strip boundaries, and a box far away: still exactly brute force's pairs,
 // each once, and the same order on a second call.
