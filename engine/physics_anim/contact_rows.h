@@ -94,6 +94,7 @@ class ContactRows {
     void WriteBack(std::span<Contact> contacts, uint32_t begin, uint32_t end) const;
 
     uint32_t Rows() const { return static_cast<uint32_t>(rows_.size()); }
+    const ContactRow& Row(uint32_t r) const { return rows_[r]; }
 
   private:
     template <RowPass kPass>
