@@ -7,7 +7,6 @@
 #include "engine/core/parallel_for.h"
 #include "engine/physics_anim/contact_solver.h"
 #include "engine/physics_anim/procedural_motion.h"
-#include "engine/physics_anim/sim_body.h"
 
 namespace rtrt::physics {
 
@@ -271,12 +270,12 @@ float AxisMass(const SolverBody& a, const SolverBody& b, vec3 rA, vec3 rB, vec3 
 
 // Lane l of row (and of its rolling lanes) from contact k.
 void FillLane(ContactRow& row, RollingLanes& rolling, int l, uint32_t k, const Contact& c,
-              std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
+              std::span<const uint32_t> slotOfBody, std::span<const BodyAtStart> starts,
               std::span<const SolverBody> solverBodies, const SolverSettings& settings) {
-    const SimBody& a = bodies[c.a];
-    const SimBody& b = bodies[c.b];
     row.slotA[l] = slotOfBody[c.a];
     row.slotB[l] = slotOfBody[c.b];
+    const BodyAtStart& a = starts[row.slotA[l]];
+    const BodyAtStart& b = starts[row.slotB[l]];
     row.contact[l] = k;
     row.activeLanes |= 1u << l;
     const SolverBody& sa = solverBodies[row.slotA[l]];
@@ -301,8 +300,8 @@ void FillLane(ContactRow& row, RollingLanes& rolling, int l, uint32_t k, const C
     row.allowedApproach[l] = c.separation > 0.0f ? c.separation / settings.dt : 0.0f;
     row.overlap[l] = -c.separation - settings.linearSlop;
     // Restitution: the approach speed at the start of the step, before gravity.
-    const vec3 startRelative = b.startVelocity + glm::cross(b.startAngularVelocity, rB) -
-                               a.startVelocity - glm::cross(a.startAngularVelocity, rA);
+    const vec3 startRelative = b.velocity + glm::cross(b.angularVelocity, rB) - a.velocity -
+                               glm::cross(a.angularVelocity, rA);
     const float approach = -glm::dot(startRelative, c.normal);
     if (approach > settings.restitutionThreshold) {
         const float gravitySpeed = std::fabs(glm::dot(settings.gravity, c.normal)) * settings.dt;
@@ -383,8 +382,8 @@ uint32_t ContactRows::Deal(uint32_t group, std::span<uint8_t> laneOf) const {
     return *std::max_element(load.begin(), load.end());
 }
 
-void ContactRows::Build(std::span<const Contact> contacts, std::span<const SimBody> bodies,
-                        std::span<const uint32_t> slotOfBody,
+void ContactRows::Build(std::span<const Contact> contacts, std::span<const uint32_t> slotOfBody,
+                        std::span<const BodyAtStart> starts,
                         std::span<const SolverBody> solverBodies, const ContactBatches& batches,
                         const SolverSettings& settings) {
     batches_ = &batches;
@@ -425,7 +424,7 @@ void ContactRows::Build(std::span<const Contact> contacts, std::span<const SimBo
             const uint8_t l = laneOf[m - first];
             for (uint32_t k = batches.manifoldBegin[m]; k < batches.manifoldBegin[m + 1]; ++k) {
                 const uint32_t r = rowBegin + next[l]++;
-                FillLane(rows_[r], rolling_[r], l, k, contacts[k], bodies, slotOfBody, solverBodies,
+                FillLane(rows_[r], rolling_[r], l, k, contacts[k], slotOfBody, starts, solverBodies,
                          settings);
             }
         }

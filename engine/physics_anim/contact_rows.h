@@ -19,9 +19,9 @@
 
 namespace rtrt::physics {
 
+struct BodyAtStart;
 struct Contact;
 struct PseudoVelocity;
-struct SimBody;
 struct SolverBody;
 struct SolverSettings;
 
@@ -74,10 +74,10 @@ class ContactRows {
   public:
     static constexpr uint32_t kGroupManifolds = 4 * kLanes;
 
-    // Lays out the contacts of batches, with their effective masses and targets from bodies and
-    // the solver bodies (indexed by slotOfBody) at the start of the passes.
-    void Build(std::span<const Contact> contacts, std::span<const SimBody> bodies,
-               std::span<const uint32_t> slotOfBody, std::span<const SolverBody> solverBodies,
+    // Lays out the contacts of batches, with their effective masses and targets from the bodies
+    // at the start of the passes (starts and solverBodies, indexed by slotOfBody).
+    void Build(std::span<const Contact> contacts, std::span<const uint32_t> slotOfBody,
+               std::span<const BodyAtStart> starts, std::span<const SolverBody> solverBodies,
                const ContactBatches& batches, const SolverSettings& settings);
 
     // The rows of manifolds [first, last) of colour color; first and last are group boundaries

@@ -100,9 +100,11 @@ void PlanBlocks(const ContactBatches& batches, const ContactRows& rows, uint32_t
 }  // namespace
 
 void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
-                        std::span<SolverBody> out) {
+                        std::span<SolverBody> out, std::span<BodyAtStart> starts) {
     ParallelFor(0, bodies.size(), 1024, [&](size_t i) {
         const SimBody& s = bodies[i];
+        starts[slotOfBody[i]] = {s.position, s.friction, s.startVelocity, s.restitution,
+                                 s.startAngularVelocity};
         SolverBody& b = out[slotOfBody[i]];
         b.velocity = s.velocity;
         b.angularVelocity = s.angularVelocity;
@@ -111,14 +113,14 @@ void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_
     });
 }
 
-void SolveContacts(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
+void SolveContacts(std::span<const uint32_t> slotOfBody, std::span<const BodyAtStart> starts,
                    std::span<SolverBody> solverBodies, std::span<PseudoVelocity> pseudo,
                    std::span<Contact> contacts, const ContactBatches& batches,
                    const SolverSettings& settings, ContactSolverScratch& scratch) {
     const uint32_t colors = batches.Colors();
     if (colors == 0) return;
     ContactRows& rows = scratch.rows;
-    rows.Build(contacts, bodies, slotOfBody, solverBodies, batches, settings);
+    rows.Build(contacts, slotOfBody, starts, solverBodies, batches, settings);
     const int threads =
         batches.Manifolds() < kParallelManifolds ? 1 : StageRunner::AvailableThreads();
     const auto shareCount = static_cast<uint32_t>(threads);

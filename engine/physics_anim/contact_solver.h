@@ -25,6 +25,16 @@ struct alignas(64) SolverBody {
     glm::mat3 invInertia{0.0f};  // world space
 };
 
+// What setting up a contact reads of a body, by slot like SolverBody: one 48-byte record
+// instead of four scattered fields of a SimBody.
+struct alignas(16) BodyAtStart {
+    vec3 position{0.0f};
+    float friction = 0.0f;
+    vec3 velocity{0.0f};  // at the start of the step, before gravity: restitution uses it
+    float restitution = 0.0f;
+    vec3 angularVelocity{0.0f};
+};
+
 // Split impulse: moves a body out of overlap during the step, adds no speed. Aligned like
 // SolverBody, for the same reason.
 struct alignas(32) PseudoVelocity {
@@ -57,11 +67,11 @@ struct SolverSettings {
 };
 
 // The solver's view of the bodies at the start of the contact passes: body i goes to
-// out[slotOfBody[i]]. The caller orders the slots by place, so that the bodies that one thread
-// solves (a run of regions, see ContactBatches) lie together in memory and share no cache line
-// with another thread's.
+// out[slotOfBody[i]] and starts[slotOfBody[i]]. The caller orders the slots by place, so that the
+// bodies that one thread solves (a run of regions, see ContactBatches) lie together in memory and
+// share no cache line with another thread's.
 void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
-                        std::span<SolverBody> out);
+                        std::span<SolverBody> out, std::span<BodyAtStart> starts);
 
 // What SolveContacts keeps between steps, so that a step allocates nothing.
 struct ContactSolverScratch {
@@ -107,9 +117,9 @@ struct ContactSolverScratch {
 //    discarded afterwards, so the correction adds no kinetic energy (unlike Baumgarte
 //    stabilisation of the velocities). They touch nothing that 1 to 3 touch, so they run in the
 //    same stages as the first velocity iterations, with the same result.
-// The contacts' impulses are replaced by the solved ones. solverBodies and pseudo are indexed by
-// slot (slotOfBody); bodies gives the contacts' positions, start velocities and materials.
-void SolveContacts(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
+// The contacts' impulses are replaced by the solved ones. solverBodies, starts and pseudo are
+// indexed by slot (slotOfBody).
+void SolveContacts(std::span<const uint32_t> slotOfBody, std::span<const BodyAtStart> starts,
                    std::span<SolverBody> solverBodies, std::span<PseudoVelocity> pseudo,
                    std::span<Contact> contacts, const ContactBatches& batches,
                    const SolverSettings& settings, ContactSolverScratch& scratch);

@@ -157,10 +157,11 @@ void PhysicsWorld::TakeStep() {
     times.narrowPhaseMs += clock.Milliseconds();
     clock.Restart();
     solverBodies_.resize(bodies_.size());
-    GatherSolverBodies(bodies_, solverSlots_, solverBodies_);
+    bodyStarts_.resize(bodies_.size());
+    GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_);
     SeedFromLastStep();
     pseudoVelocities_.assign(bodies_.size(), PseudoVelocity{});
-    SolveContacts(bodies_, solverSlots_, solverBodies_, pseudoVelocities_, contacts_, batches_,
+    SolveContacts(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_, batches_,
                   solver_, solverScratch_);
     RememberImpulses();
     times.solverMs += clock.Milliseconds();

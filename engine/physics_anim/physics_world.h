@@ -172,6 +172,7 @@ class PhysicsWorld {
     std::vector<Contact> contacts_;  // colour by colour, as batches_ says
     ContactBatches batches_;
     std::vector<SolverBody> solverBodies_;
+    std::vector<BodyAtStart> bodyStarts_;
     std::vector<PseudoVelocity> pseudoVelocities_;
     ContactSolverScratch solverScratch_;
 

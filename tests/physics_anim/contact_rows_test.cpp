@@ -24,6 +24,7 @@ struct Scene {
     std::vector<SimBody> bodies;
     std::vector<uint32_t> slots;
     std::vector<SolverBody> solverBodies;
+    std::vector<BodyAtStart> starts;
     std::vector<Contact> contacts;
     ContactBatches batches;
 
@@ -45,8 +46,9 @@ struct Scene {
     void EndColor() { batches.colorBegin.push_back(batches.Manifolds()); }
     void Build(ContactRows& rows) {
         solverBodies.resize(bodies.size());
-        GatherSolverBodies(bodies, slots, solverBodies);
-        rows.Build(contacts, bodies, slots, solverBodies, batches, Settings());
+        starts.resize(bodies.size());
+        GatherSolverBodies(bodies, slots, solverBodies, starts);
+        rows.Build(contacts, slots, starts, solverBodies, batches, Settings());
     }
 };
 
