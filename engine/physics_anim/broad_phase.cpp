@@ -2,11 +2,13 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 
 namespace rtrt::physics {
 
@@ -58,9 +60,11 @@ constexpr uint32_t kMaxStrips = 4096;
 // A layout whose boxes span more than this many strips each on average (many boxes much
 // larger than the typical one) falls back to one strip.
 constexpr size_t kMaxStripsPerBox = 4;
+// The strip width comes from the median extent of this many boxes at most.
+constexpr size_t kWidthSamples = 1024;
 // The strip dealing's chunks of the sweep order: few enough that their per-strip counts stay
 // small, large enough to be worth a task.
-constexpr size_t kMinDealChunk = 2048;
+constexpr size_t kMinDealChunk = 256;
 constexpr size_t kMaxDealChunks = 64;
 
 }  // namespace
@@ -182,26 +186,36 @@ SweepAndPrune::Strips SweepAndPrune::PlanStrips(std::span<const BroadPhaseBox> b
     const size_t n = boxes.size();
     float low = boxes[0].min[stripAxis];
     float high = boxes[0].max[stripAxis];
-    extents_.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-        low = std::min(low, boxes[i].min[stripAxis]);
-        high = std::max(high, boxes[i].max[stripAxis]);
-        const float extent = boxes[i].max[stripAxis] - boxes[i].min[stripAxis];
-        extents_[i] = std::isnan(extent) ? 0.0f : extent;  // nth_element needs an order
+    for (const BroadPhaseBox& box : boxes) {
+        low = std::min(low, box.min[stripAxis]);
+        high = std::max(high, box.max[stripAxis]);
     }
-    // Strips twice as wide as the median box, so that most boxes lie in one or two.
-    std::nth_element(extents_.begin(), extents_.begin() + n / 2, extents_.end());
-    const float width = 2.0f * extents_[n / 2];
+    // Strips twice as wide as the median box, so that most boxes lie in one or two; the median
+    // of an even sample of at most kWidthSamples boxes is as good a guide.
+    const size_t stride = (n + kWidthSamples - 1) / kWidthSamples;
+    extents_.clear();
+    for (size_t i = 0; i < n; i += stride) {
+        const float extent = boxes[i].max[stripAxis] - boxes[i].min[stripAxis];
+        extents_.push_back(std::isnan(extent) ? 0.0f : extent);  // nth_element needs an order
+    }
+    const size_t middle = extents_.size() / 2;
+    std::nth_element(extents_.begin(), extents_.begin() + middle, extents_.end());
+    const float width = 2.0f * extents_[middle];
     if (!(width > 0.0f) || !(high - low > width) || !std::isfinite(high - low)) return one;
     const double wanted = std::ceil(static_cast<double>(high - low) / width);
     const auto count = static_cast<uint32_t>(
         std::min<double>({wanted, double(kMaxStrips), double(n / kMinBoxesPerStrip)}));
     if (count <= 1) return one;
     Strips strips{count, low, static_cast<float>(count / static_cast<double>(high - low))};
-    size_t spans = 0;
-    for (const BroadPhaseBox& box : boxes) {
-        spans += strips.Of(box.max[stripAxis]) - strips.Of(box.min[stripAxis]) + 1;
-    }
+    const size_t spans = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n, 4096), size_t{0},
+        [&](const tbb::blocked_range<size_t>& r, size_t sum) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                sum += strips.Of(boxes[i].max[stripAxis]) - strips.Of(boxes[i].min[stripAxis]) + 1;
+            }
+            return sum;
+        },
+        std::plus<size_t>());
     return spans <= kMaxStripsPerBox * n ? strips : one;
 }
 
