@@ -81,14 +81,22 @@ void PhysicsWorld::Step(Registry& registry, int steps) {
 }
 
 void PhysicsWorld::Gather(Registry& registry) {
+    // The view is walked once for the components' places, and the bodies are filled from them in
+    // parallel: each reads and writes only its own components, and a serial pass would pull
+    // every body's cache lines from the cores that stepped it.
     bodies_.clear();
-    planes_.clear();
-    registry.View<RigidBody, LocalTransform>().Each([&](Entity e, RigidBody& rb,
-                                                        LocalTransform& local) {
-        SimBody s;
-        s.entity = e;
-        s.body = &rb;
-        s.local = &local;
+    registry.View<RigidBody, LocalTransform>().Each(
+        [&](Entity e, RigidBody& rb, LocalTransform& local) {
+            SimBody& s = bodies_.emplace_back();
+            s.entity = e;
+            s.body = &rb;
+            s.local = &local;
+        });
+    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+        SimBody& s = bodies_[i];
+        const Entity e = s.entity;
+        RigidBody& rb = *s.body;
+        LocalTransform& local = *s.local;
         if (const Collider* collider = registry.Get<Collider>(e)) {
             s.hasCollider = true;
             s.collider = *collider;
@@ -125,9 +133,13 @@ void PhysicsWorld::Gather(Registry& registry) {
             s.position = s.previousPosition = local.translation;
             s.orientation = s.previousOrientation = glm::normalize(local.rotation);
         }
-        if (isPlane) planes_.push_back(static_cast<uint32_t>(bodies_.size()));
-        bodies_.push_back(s);
     });
+    planes_.clear();
+    for (uint32_t i = 0; i < bodies_.size(); ++i) {
+        if (bodies_[i].hasCollider && bodies_[i].collider.shape == ColliderShape::kPlane) {
+            planes_.push_back(i);
+        }
+    }
 }
 
 void PhysicsWorld::TakeStep() {
@@ -526,8 +538,12 @@ void PhysicsWorld::UpdateSleep() {
 }
 
 void PhysicsWorld::WriteBack(Registry& registry, float alpha) {
-    for (const SimBody& s : bodies_) {
-        if (!s.dynamic) continue;
+    // In parallel, each body to its own components; then the moved transforms are marked in body
+    // order.
+    moved_.assign(bodies_.size(), 0);
+    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+        const SimBody& s = bodies_[i];
+        if (!s.dynamic) return;
         RigidBody& rb = *s.body;
         rb.velocity = s.velocity;
         rb.angularVelocity = s.angularVelocity;
@@ -545,10 +561,13 @@ void PhysicsWorld::WriteBack(Registry& registry, float alpha) {
             rotation = Slerp(s.previousOrientation, s.orientation, alpha);
         }
         LocalTransform& local = *s.local;
-        if (local.translation == translation && local.rotation == rotation) continue;
+        if (local.translation == translation && local.rotation == rotation) return;
         local.translation = translation;
         local.rotation = rotation;
-        registry.MarkChanged<LocalTransform>(s.entity);
+        moved_[i] = 1;
+    });
+    for (size_t i = 0; i < bodies_.size(); ++i) {
+        if (moved_[i] != 0) registry.MarkChanged<LocalTransform>(bodies_[i].entity);
     }
 }
 

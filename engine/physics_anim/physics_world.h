@@ -149,6 +149,7 @@ class PhysicsWorld {
     // the colouring): 1 byte each instead of a cache miss on the body.
     std::vector<uint8_t> motion_;
     std::vector<uint32_t> planes_;       // bodies with a plane collider
+    std::vector<uint8_t> moved_;         // WriteBack's: the body's transform changed
     std::vector<uint32_t> broadBodies_;  // body of each broad-phase box
     std::vector<BroadPhaseBox> boxes_;
     std::vector<std::pair<uint32_t, uint32_t>> pairs_;  // body indices
