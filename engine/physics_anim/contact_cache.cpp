@@ -1,7 +1,10 @@
 #include "engine/physics_anim/contact_cache.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
+
+#include "engine/core/parallel_for.h"
 
 namespace rtrt::physics {
 
@@ -19,26 +22,44 @@ size_t ContactCache::Hash(uint64_t key) {
 void ContactCache::Index() {
     // At most half full, so that a probe ends within a few slots.
     const size_t slots = std::bit_ceil(std::max<size_t>(16, 2 * entries_.size()));
-    table_.assign(slots, Run{kEmpty, 0, 0});
+    table_.assign(slots, Run{kEmpty, kEmpty});
     mask_ = slots - 1;
-    for (size_t begin = 0; begin < entries_.size();) {
+    // In parallel, each run inserted by the thread that meets its first entry. A slot is claimed
+    // for a key (the two indices) by a compare-and-swap; its run follows as one 64-bit store, so
+    // a thread that finds the key waits for the run before it compares entities (the same indices
+    // may name other generations: another pair, which probes on). A pair in two runs keeps its
+    // first, by an atomic minimum. Slots may differ from run to run; what Find returns does not.
+    ParallelFor(0, entries_.size(), 2048, [&](size_t begin) {
         const CachedContact& first = entries_[begin];
+        if (begin > 0 && entries_[begin - 1].a == first.a && entries_[begin - 1].b == first.b) {
+            return;  // inside a run
+        }
         size_t end = begin + 1;
         while (end < entries_.size() && entries_[end].a == first.a && entries_[end].b == first.b) {
             ++end;
         }
         const uint64_t key = Key(first.a, first.b);
+        const uint64_t span = (uint64_t{begin} << 32) | end;
         for (size_t slot = Hash(key) & mask_;; slot = (slot + 1) & mask_) {
-            Run& run = table_[slot];
-            if (run.key == kEmpty) {
-                run = {key, static_cast<uint32_t>(begin), static_cast<uint32_t>(end)};
-                break;
+            std::atomic_ref<uint64_t> slotKey(table_[slot].key);
+            std::atomic_ref<uint64_t> slotSpan(table_[slot].span);
+            uint64_t held = kEmpty;
+            if (slotKey.compare_exchange_strong(held, key, std::memory_order_acq_rel)) {
+                uint64_t current = kEmpty;
+                while (span < current && !slotSpan.compare_exchange_weak(current, span)) {
+                }
+                return;
             }
-            const CachedContact& held = entries_[run.begin];
-            if (run.key == key && held.a == first.a && held.b == first.b) break;  // keep the first
+            if (held != key) continue;
+            uint64_t current = slotSpan.load(std::memory_order_acquire);
+            while (current == kEmpty) current = slotSpan.load(std::memory_order_acquire);
+            const CachedContact& owner = entries_[current >> 32];
+            if (owner.a != first.a || owner.b != first.b) continue;
+            while (span < current && !slotSpan.compare_exchange_weak(current, span)) {
+            }
+            return;
         }
-        begin = end;
-    }
+    });
 }
 
 std::span<const CachedContact> ContactCache::Find(ecs::Entity a, ecs::Entity b) const {
@@ -48,11 +69,11 @@ std::span<const CachedContact> ContactCache::Find(ecs::Entity a, ecs::Entity b) 
         const Run& run = table_[slot];
         if (run.key == kEmpty) return {};
         if (run.key != key) continue;
-        const CachedContact& held = entries_[run.begin];
+        const auto begin = static_cast<uint32_t>(run.span >> 32);
+        const auto end = static_cast<uint32_t>(run.span);
+        const CachedContact& held = entries_[begin];
         // The same indices with other generations: entities that were destroyed and reused.
-        if (held.a == a && held.b == b) {
-            return {entries_.data() + run.begin, entries_.data() + run.end};
-        }
+        if (held.a == a && held.b == b) return {entries_.data() + begin, entries_.data() + end};
     }
 }
 

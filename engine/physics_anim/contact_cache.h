@@ -24,17 +24,16 @@ class ContactCache {
   public:
     // Filled by the caller, each pair's contacts in one run; Index() must follow.
     std::vector<CachedContact>& Entries() { return entries_; }
-    // Builds the table of runs (an open-addressing hash table, linear probing). A pair that
-    // appears in two runs is found with its first.
+    // Builds the table of runs (an open-addressing hash table, linear probing), in parallel. A
+    // pair that appears in two runs is found with its first.
     void Index();
     // The contacts of (a, b) in that order, or none.
     std::span<const CachedContact> Find(ecs::Entity a, ecs::Entity b) const;
 
   private:
     struct Run {
-        uint64_t key;  // kEmpty: a free slot
-        uint32_t begin;
-        uint32_t end;
+        uint64_t key;   // kEmpty: a free slot
+        uint64_t span;  // begin << 32 | end in entries_ (kEmpty while being inserted)
     };
     static constexpr uint64_t kEmpty = ~uint64_t{0};
     static uint64_t Key(ecs::Entity a, ecs::Entity b) {

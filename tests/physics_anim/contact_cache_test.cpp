@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <random>
+#include <utility>
 #include <vector>
 
 namespace rtrt::physics {
@@ -58,6 +61,42 @@ TEST(ContactCacheTest, FirstRunOfARepeatedPairWinsAndEmptyFindsNothing) {
     cache.Entries().clear();
     cache.Index();
     EXPECT_TRUE(cache.Find({1, 1}, {2, 1}).empty());
+}
+
+// Index runs in parallel: many runs whose pairs share indices with other generations, and pairs
+// repeated in later runs, in a random order, against a map of each pair's first run. Run on the
+// threads TBB lends, many times, so that inserts of one key meet.
+TEST(ContactCacheTest, ParallelIndexFindsEachPairsFirstRun) {
+    std::mt19937 random(5);
+    for (int round = 0; round < 20; ++round) {
+        ContactCache cache;
+        std::vector<CachedContact>& entries = cache.Entries();
+        std::map<std::pair<uint64_t, uint64_t>, std::pair<size_t, size_t>> first;
+        const auto id = [](Entity e) { return (uint64_t{e.index} << 32) | e.generation; };
+        Entity previousA, previousB;
+        for (int run = 0; run < 20000; ++run) {
+            // 64 x 64 index pairs and 3 generations each: keys meet often.
+            Entity a{uint32_t(random() % 64), uint32_t(random() % 3)};
+            Entity b{uint32_t(random() % 64), uint32_t(random() % 3)};
+            if (a == previousA && b == previousB) continue;  // that would extend the last run
+            previousA = a;
+            previousB = b;
+            const size_t begin = entries.size();
+            const uint32_t length = random() % 3 + 1;
+            for (uint32_t k = 0; k < length; ++k) {
+                entries.push_back(At(a, b, float(entries.size())));
+            }
+            first.try_emplace({id(a), id(b)}, begin, entries.size());
+        }
+        cache.Index();
+        for (const auto& [pair, run] : first) {
+            const Entity a{uint32_t(pair.first >> 32), uint32_t(pair.first)};
+            const Entity b{uint32_t(pair.second >> 32), uint32_t(pair.second)};
+            const std::span<const CachedContact> found = cache.Find(a, b);
+            ASSERT_EQ(found.size(), run.second - run.first);
+            EXPECT_EQ(found.data(), entries.data() + run.first);
+        }
+    }
 }
 
 }  // namespace
