@@ -1,8 +1,8 @@
 #pragma once
-// The velocity iterations' layout of a step's contacts: rows of eight contacts, one per lane,
-// solved at once (lanes.h). The manifolds of one colour share no moving body, so eight of them can
-// be solved side by side and give exactly what solving them one after another gives: each lane
-// does the scalar solver's arithmetic on bodies no other lane writes.
+// The contact passes' layout of a step's contacts: rows of eight contacts, one per lane, solved at
+// once (lanes.h). The manifolds of one colour share no moving body, so eight of them can be solved
+// side by side and give exactly what solving them one after another gives: each lane does one
+// contact's arithmetic on bodies no other lane writes.
 //
 // A colour's manifolds are taken in groups of kGroupManifolds, in layout order. A group's
 // manifolds are dealt to the lanes, the ones with most contacts first, each to the lane with the
@@ -80,8 +80,8 @@ class ContactRows {
                std::span<const BodyAtStart> starts, std::span<const SolverBody> solverBodies,
                const ContactBatches& batches, const SolverSettings& settings);
 
-    // The rows of manifolds [first, last) of colour color; first and last are group boundaries
-    // of that colour (GroupStart) or its end.
+    // The first row of manifold in colour color, which must be a group boundary of that colour
+    // (GroupStart) or its end: rows [RowBegin(c, m0), RowBegin(c, m1)) hold manifolds [m0, m1).
     uint32_t RowBegin(uint32_t color, uint32_t manifold) const;
     // The first group boundary at or after manifold in colour color (its end if none).
     uint32_t GroupStart(uint32_t color, uint32_t manifold) const;

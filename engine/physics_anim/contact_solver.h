@@ -15,7 +15,7 @@
 namespace rtrt::physics {
 
 // What an iteration reads and writes of a body, in one 64-byte cache line of its own: the
-// solver's passes stream the contacts and hit these at random, so 10,000 of them stay in a core's
+// solver's passes stream the rows and hit these at random, so 10,000 of them stay in a core's
 // cache, and threads writing neighbouring bodies do not share a line. A body that is not awake
 // has zero inverse mass and inertia and is never written.
 struct alignas(64) SolverBody {
