@@ -5,7 +5,6 @@
 #include <cstddef>
 
 #include "engine/core/parallel_for.h"
-#include "engine/physics_anim/contact_solver.h"
 #include "engine/physics_anim/procedural_motion.h"
 
 namespace rtrt::physics {

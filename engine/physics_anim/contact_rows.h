@@ -16,14 +16,9 @@
 
 #include "engine/physics_anim/contact_coloring.h"
 #include "engine/physics_anim/lanes.h"
+#include "engine/physics_anim/solver_types.h"
 
 namespace rtrt::physics {
-
-struct BodyAtStart;
-struct Contact;
-struct PseudoVelocity;
-struct SolverBody;
-struct SolverSettings;
 
 // A pass over rows (contact_solver.h describes them). The position iterations touch only pseudo
 // velocities, so one pass may do a velocity and a position iteration.
