@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <utility>
 
 #include "engine/core/parallel_for.h"
 #include "engine/physics_anim/procedural_motion.h"
@@ -359,11 +360,15 @@ uint32_t ContactRows::RowBegin(uint32_t color, uint32_t manifold) const {
     return groupRowBegin_[colorGroupBegin_[color] + (manifold - begin) / GroupSize(color)];
 }
 
-uint32_t ContactRows::Deal(uint32_t group, std::span<uint8_t> laneOf) const {
+std::pair<uint32_t, uint32_t> ContactRows::GroupManifolds(uint32_t group) const {
     const uint32_t color = groupColor_[group];
     const uint32_t size = GroupSize(color);
     const uint32_t first = batches_->colorBegin[color] + (group - colorGroupBegin_[color]) * size;
-    const uint32_t last = std::min(batches_->colorBegin[color + 1], first + size);
+    return {first, std::min(batches_->colorBegin[color + 1], first + size)};
+}
+
+uint32_t ContactRows::Deal(uint32_t group, std::span<uint8_t> laneOf) const {
+    const auto [first, last] = GroupManifolds(group);
     const auto points = [&](uint32_t m) {
         return batches_->manifoldBegin[m + 1] - batches_->manifoldBegin[m];
     };
@@ -398,8 +403,9 @@ void ContactRows::Build(std::span<const Contact> contacts, std::span<const uint3
     }
     const uint32_t groups = colorGroupBegin_.back();
     groupRowBegin_.resize(groups + 1);
+    laneOf_.resize(size_t{groups} * kGroupManifolds);
     ParallelFor(0, groups, 64, [&](size_t g) {
-        std::array<uint8_t, kGroupManifolds> laneOf;
+        const std::span<uint8_t> laneOf(laneOf_.data() + g * kGroupManifolds, kGroupManifolds);
         groupRowBegin_[g + 1] = Deal(static_cast<uint32_t>(g), laneOf);
     });
     groupRowBegin_[0] = 0;
@@ -409,12 +415,8 @@ void ContactRows::Build(std::span<const Contact> contacts, std::span<const uint3
 
     ParallelFor(0, groups, 64, [&](size_t g) {
         const auto group = static_cast<uint32_t>(g);
-        std::array<uint8_t, kGroupManifolds> laneOf;
-        Deal(group, laneOf);
-        const uint32_t color = groupColor_[group];
-        const uint32_t first =
-            batches.colorBegin[color] + (group - colorGroupBegin_[color]) * GroupSize(color);
-        const uint32_t last = std::min(batches.colorBegin[color + 1], first + GroupSize(color));
+        const uint8_t* laneOf = laneOf_.data() + g * kGroupManifolds;
+        const auto [first, last] = GroupManifolds(group);
         const uint32_t rowBegin = groupRowBegin_[group];
         const uint32_t rowEnd = groupRowBegin_[group + 1];
         for (uint32_t r = rowBegin; r < rowEnd; ++r) rows_[r] = ContactRow{};

@@ -12,6 +12,7 @@
 // manifolds may share bodies, has groups of one manifold: one lane per row, in order.
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "engine/physics_anim/contact_coloring.h"
@@ -96,6 +97,8 @@ class ContactRows {
     void SolveRows(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo, uint32_t begin,
                    uint32_t end, float positionRate);
     uint32_t GroupSize(uint32_t color) const;
+    // The manifolds [first, last) of a group.
+    std::pair<uint32_t, uint32_t> GroupManifolds(uint32_t group) const;
     // Deals group g's manifolds to lanes: lane of each manifold in laneOf, returns the rows.
     uint32_t Deal(uint32_t group, std::span<uint8_t> laneOf) const;
 
@@ -103,6 +106,7 @@ class ContactRows {
     std::vector<uint32_t> colorGroupBegin_;  // per colour, and the total at the end
     std::vector<uint32_t> groupColor_;
     std::vector<uint32_t> groupRowBegin_;  // per group, and the total at the end
+    std::vector<uint8_t> laneOf_;          // per group, each manifold's lane (Deal's)
     std::vector<ContactRow> rows_;
     std::vector<RollingLanes> rolling_;  // per row
 };
