@@ -10,6 +10,9 @@
 
 namespace rtrt {
 
+// A SceneHit's instance where a ray found nothing.
+inline constexpr uint32_t kNoHitInstance = 0xffffffffu;
+
 struct PixelResult {
     vec3 color;
     vec3 normal;           // primary hit's shading normal, zero on a miss
@@ -76,10 +79,13 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
     return color;
 }
 
-// Everything one primary ray brings back.
+// Everything one primary ray brings back. primaryHit, when given, is the primary ray's closest hit
+// found beforehand (the GPU's primary-hit kernel, trace_launch.cuh), its instance kNoHitInstance
+// on a miss: the same traversal's answer, so the pixel is the same.
 template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& primaryRay,
-                                  bool countTraversal = false) {
+                                  bool countTraversal = false,
+                                  const SceneHit* primaryHit = nullptr) {
     struct PendingRay {
         Ray ray;
         vec3 weight;
@@ -106,8 +112,14 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         if constexpr (kCones) pathLength = pathLengths[stackSize];
         SceneHit hit;
         ++result.rays;
-        const bool found = TraceIntersect<kFeatures, Policy>(
-            scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
+        bool found;
+        if (primary && primaryHit != nullptr) {
+            hit = *primaryHit;
+            found = hit.instance != kNoHitInstance;
+        } else {
+            found = TraceIntersect<kFeatures, Policy>(
+                scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
+        }
         if (!found) {
             result.color += pending.weight * scene.background;
             primary = false;
