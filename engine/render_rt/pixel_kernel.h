@@ -14,24 +14,16 @@ RT_HD inline uint32_t SamplesPerSide(const RenderSceneView& scene, ViewMode view
     return view == ViewMode::kShaded ? StrataPerSide(scene.samplesPerPixel) : 1u;
 }
 
-// The primary ray of sample s of pixel (x, y)'s n x n.
-RT_HD inline Ray SamplePrimaryRay(const RenderSceneView& scene, uint32_t x, uint32_t y, uint32_t s,
-                                  uint32_t n) {
-    const vec2 at = PixelSample(x, y, s, n);
-    return PrimaryRay(scene.camera, float(x) + at.x, float(y) + at.y, scene.width, scene.height);
-}
-
 // The raw value a view stores for sample s of a pixel's n x n, before the host finishes the image
 // (FinishView): shaded colour, the normal, the primary hit distance, or the heatmap's traversal
-// counts (nodes, primitives). primaryHit, if given, is the sample's primary hit found beforehand
-// (TraceRay).
+// counts (nodes, primitives).
 template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline vec3 RawSample(const RenderSceneView& scene, ViewMode view, uint32_t x, uint32_t y,
-                            uint32_t s, uint32_t n, uint32_t* rays,
-                            const SceneHit* primaryHit = nullptr) {
-    const Ray ray = SamplePrimaryRay(scene, x, y, s, n);
-    const PixelResult r =
-        TraceRay<kFeatures, Policy>(scene, ray, view == ViewMode::kHeatmap, primaryHit);
+                            uint32_t s, uint32_t n, uint32_t* rays) {
+    const vec2 at = PixelSample(x, y, s, n);
+    const Ray ray =
+        PrimaryRay(scene.camera, float(x) + at.x, float(y) + at.y, scene.width, scene.height);
+    const PixelResult r = TraceRay<kFeatures, Policy>(scene, ray, view == ViewMode::kHeatmap);
     *rays += r.rays;
     switch (view) {
         case ViewMode::kNormals:

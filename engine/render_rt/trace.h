@@ -10,9 +10,6 @@
 
 namespace rtrt {
 
-// A SceneHit's instance where a ray found nothing.
-inline constexpr uint32_t kNoHitInstance = 0xffffffffu;
-
 struct PixelResult {
     vec3 color;
     vec3 normal;           // primary hit's shading normal, zero on a miss
@@ -79,13 +76,10 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
     return color;
 }
 
-// Everything one primary ray brings back. primaryHit, when given, is the primary ray's closest hit
-// found beforehand (the GPU's primary-hit kernel, trace_launch.cuh), its instance kNoHitInstance
-// on a miss: the same traversal's answer, so the pixel is the same.
+// Everything one primary ray brings back.
 template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& primaryRay,
-                                  bool countTraversal = false,
-                                  const SceneHit* primaryHit = nullptr) {
+                                  bool countTraversal = false) {
     struct PendingRay {
         Ray ray;
         vec3 weight;
@@ -112,14 +106,8 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         if constexpr (kCones) pathLength = pathLengths[stackSize];
         SceneHit hit;
         ++result.rays;
-        bool found;
-        if (primary && primaryHit != nullptr) {
-            hit = *primaryHit;
-            found = hit.instance != kNoHitInstance;
-        } else {
-            found = TraceIntersect<kFeatures, Policy>(
-                scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
-        }
+        const bool found = TraceIntersect<kFeatures, Policy>(
+            scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
         if (!found) {
             result.color += pending.weight * scene.background;
             primary = false;

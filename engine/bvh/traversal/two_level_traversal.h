@@ -78,7 +78,7 @@ RT_HD inline bool AnyLane(bool pred) {
 }
 
 // Either query (traversal.h): kIntersect records the closest hit in hit and shrinks tMax to it;
-// kOccluded stops at the first primitive before tMax. Tests supplies the primitive tests
+// kOccluded returns at the first primitive before tMax. Tests supplies the primitive tests
 // (primitive_tests.h).
 //
 // The loop has the while-while form of Aila and Laine (2009): lanes step through interior nodes
@@ -86,131 +86,23 @@ RT_HD inline bool AnyLane(bool pred) {
 // lane of the warp holds a leaf ("speculative traversal"), and then the leaves are intersected
 // together. A lane alone (the CPU) intersects each leaf as soon as it is found, which gives the
 // nested form's order exactly.
-//
-// The walk is resumable: Step runs one round of the loop and says when the traversal is over, so
-// that a lane whose ray finished can take up another ray while the rest of its warp goes on
-// (the primary-hit kernel, trace_launch.cuh). TraverseTwoLevel runs one ray to its end.
 template <Query kQuery, class Tests = PrimitiveTests>
-class TwoLevelWalk {
-  public:
-    // stack: kTwoLevelStackSize entries, the caller's (an array inside the walk kept nvcc from
-    // holding the walk's other members in registers).
-    RT_HD explicit TwoLevelWalk(uint32_t* stack) : stack_(stack) {}
+RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float& tMax,
+                                   SceneHit* hit, TraversalStats* stats) {
+    if (!IsTraceable(ray)) return false;
+    // The world-space setup is recomputed on the way back from an instance rather than kept:
+    // registers, not the three divisions, limit how many rays a GPU keeps in flight.
+    RaySetup setup = MakeBoxRaySetup(ray);
+    const BvhNode* nodes = scene.nodes;
+    const BlasView* blas = nullptr;  // null while in the TLAS
+    bool triangles = false;          // the BLAS in use holds triangles (else spheres)
+    uint32_t instanceId = 0;
+    uint32_t stack[kTwoLevelStackSize];
+    uint32_t stackSize = 0;
+    bool found = false;
 
-    // Starts on ray with tMax; false when the traversal is over at once (a ray that cannot be
-    // traced, or the TLAS's root missed), with nothing found.
-    RT_HD bool Begin(const TlasView& scene, const Ray& ray, float tMax, TraversalStats* stats) {
-        found_ = false;
-        tMax_ = tMax;
-        if (!IsTraceable(ray)) return false;
-        // The world-space setup is recomputed on the way back from an instance rather than kept:
-        // registers, not the three divisions, limit how many rays a GPU keeps in flight.
-        setup_ = MakeBoxRaySetup(ray);
-        nodes_ = scene.nodes;
-        blas_ = nullptr;
-        triangles_ = false;
-        instanceId_ = 0;
-        stackSize_ = 0;
-        postponed_ = kNoNode;
-        float tRoot;
-        if (stats) ++stats->nodesVisited;
-        if (!SlabTest(nodes_[0], setup_, tMax_, &tRoot)) return false;
-        current_ = 0;
-        return true;
-    }
-
-    // One round: interior nodes until this lane (on the GPU every lane) holds a leaf, then that
-    // leaf; or, with nothing in hand, leaving an instance or entering the next waiting one. True
-    // once the traversal is over: Found says whether it hit (kIntersect: hit holds the closest).
-    RT_HD bool Step(const TlasView& scene, const Ray& ray, SceneHit* hit, TraversalStats* stats) {
-        // Interior nodes, until this lane (and on the GPU every lane) holds a leaf.
-        while (current_ != kNoNode) {
-            const BvhNode& node = nodes_[current_];
-            if (node.IsLeaf()) {
-                if (postponed_ != kNoNode) break;  // intersect the one set aside first
-                postponed_ = current_;
-                current_ = PopNode();
-            } else {
-                const uint32_t left = node.leftFirst;
-                float tLeft, tRight;
-                const bool hitLeft = SlabTest(nodes_[left], setup_, tMax_, &tLeft);
-                const bool hitRight = SlabTest(nodes_[left + 1], setup_, tMax_, &tRight);
-                if (stats) stats->nodesVisited += 2;
-                if (hitLeft && hitRight) {
-                    // kIntersect visits the nearer child first; kOccluded the builder's order.
-                    const bool leftFirst = kQuery == Query::kOccluded || tLeft <= tRight;
-                    stack_[stackSize_++] = leftFirst ? left + 1 : left;
-                    current_ = leftFirst ? left : left + 1;
-                } else if (hitLeft || hitRight) {
-                    current_ = hitLeft ? left : left + 1;
-                } else {
-                    current_ = PopNode();
-                }
-            }
-            if (!AnyLane(postponed_ == kNoNode)) break;
-        }
-        if (postponed_ != kNoNode) {
-            const BvhNode& leaf = nodes_[postponed_];
-            postponed_ = kNoNode;
-            if (blas_ == nullptr) {
-                // An instance leaf: what was pending at this level waits below the instances.
-                if (current_ != kNoNode) stack_[stackSize_++] = current_;
-                current_ = kNoNode;
-                for (uint32_t i = leaf.primCount - 1; i >= 1; --i)
-                    stack_[stackSize_++] = kInstanceEntry | (leaf.leftFirst + i);
-                if (EnterInstance(scene, ray, leaf.leftFirst, stats)) current_ = 0;
-                return false;
-            }
-            for (uint32_t i = 0; i < leaf.primCount; ++i) {
-                const uint32_t slot = leaf.leftFirst + i;
-                if (stats) ++stats->primsTested;
-                float t;
-                if (triangles_) {
-                    TriangleHit h;
-                    if (!Tests::IntersectTriangle(blas_->triangles[slot], setup_, tMax_, &h))
-                        continue;
-                    if constexpr (kQuery == Query::kOccluded) return found_ = true;
-                    t = h.t;
-                    hit->b1 = h.b1;
-                    hit->b2 = h.b2;
-                } else {
-                    const SphereRay exact = ToObjectSpaceExact(ray, scene.instances[instanceId_]);
-                    if (!Tests::IntersectSphere(blas_->spheres[slot], exact, tMax_, &t)) continue;
-                    if constexpr (kQuery == Query::kOccluded) return found_ = true;
-                    hit->b1 = hit->b2 = 0.0f;
-                }
-                tMax_ = t;
-                hit->t = t;
-                hit->prim = slot;
-                hit->instance = instanceId_;
-                found_ = true;
-            }
-            return false;
-        }
-        // Nothing in hand: leave the instance at a marker, enter the next waiting instance.
-        if (current_ == kNoNode) {
-            if (stackSize_ == 0) return true;
-            const uint32_t entry = stack_[--stackSize_];
-            if (entry == kReturnToWorld) {
-                setup_ = MakeBoxRaySetup(ray);
-                nodes_ = scene.nodes;
-                blas_ = nullptr;
-            } else if (blas_ == nullptr && (entry & kInstanceEntry) != 0) {
-                if (EnterInstance(scene, ray, entry & ~kInstanceEntry, stats)) current_ = 0;
-            } else {
-                current_ = entry;
-            }
-        }
-        return false;
-    }
-
-    RT_HD bool Found() const { return found_; }
-    RT_HD float TMax() const { return tMax_; }
-
-  private:
     // Switches to the instance at a TLAS leaf slot if the ray meets its BLAS's root box.
-    RT_HD bool EnterInstance(const TlasView& scene, const Ray& ray, uint32_t slot,
-                             TraversalStats* stats) {
+    auto enterInstance = [&](uint32_t slot) {
         const uint32_t id = scene.instanceOrder[slot];
         const Instance& inst = scene.instances[id];
         const BlasView& target = scene.blases[inst.blasId];
@@ -223,49 +115,110 @@ class TwoLevelWalk {
             ++stats->nodesVisited;
         }
         float tRoot;
-        if (!SlabTest(target.nodes[0], objectSetup, tMax_, &tRoot)) return false;
-        stack_[stackSize_++] = kReturnToWorld;
-        setup_ = objectSetup;
-        nodes_ = target.nodes;
-        blas_ = &target;
-        triangles_ = isTriangles;
-        instanceId_ = id;
+        if (!SlabTest(target.nodes[0], objectSetup, tMax, &tRoot)) return false;
+        stack[stackSize++] = kReturnToWorld;
+        setup = objectSetup;
+        nodes = target.nodes;
+        blas = &target;
+        triangles = isTriangles;
+        instanceId = id;
         return true;
-    }
+    };
     // The next pending node of the level in use, or kNoNode when the stack is empty or its top
     // leaves the level (a marker or an instance entry: handled once no leaf is set aside).
-    RT_HD uint32_t PopNode() {
-        if (stackSize_ == 0) return kNoNode;
-        const uint32_t top = stack_[stackSize_ - 1];
-        if (top == kReturnToWorld || (blas_ == nullptr && (top & kInstanceEntry) != 0))
+    auto popNode = [&]() {
+        if (stackSize == 0) return kNoNode;
+        const uint32_t top = stack[stackSize - 1];
+        if (top == kReturnToWorld || (blas == nullptr && (top & kInstanceEntry) != 0))
             return kNoNode;
-        --stackSize_;
+        --stackSize;
         return top;
-    }
+    };
 
-    RaySetup setup_;
-    const BvhNode* nodes_ = nullptr;
-    const BlasView* blas_ = nullptr;  // null while in the TLAS
-    bool triangles_ = false;          // the BLAS in use holds triangles (else spheres)
-    bool found_ = false;
-    uint32_t instanceId_ = 0;
-    uint32_t current_ = kNoNode;
-    uint32_t postponed_ = kNoNode;  // a leaf set aside, of the level in use
-    float tMax_ = 0.0f;
-    uint32_t stackSize_ = 0;
-    uint32_t* stack_;
-};
-
-template <Query kQuery, class Tests = PrimitiveTests>
-RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float& tMax,
-                                   SceneHit* hit, TraversalStats* stats) {
-    uint32_t stack[kTwoLevelStackSize];
-    TwoLevelWalk<kQuery, Tests> walk(stack);
-    if (!walk.Begin(scene, ray, tMax, stats)) return false;
-    while (!walk.Step(scene, ray, hit, stats)) {
+    float tRoot;
+    if (stats) ++stats->nodesVisited;
+    if (!SlabTest(nodes[0], setup, tMax, &tRoot)) return false;
+    uint32_t current = 0;
+    uint32_t postponed = kNoNode;  // a leaf set aside, of the level in use
+    for (;;) {
+        // Interior nodes, until this lane (and on the GPU every lane) holds a leaf.
+        while (current != kNoNode) {
+            const BvhNode& node = nodes[current];
+            if (node.IsLeaf()) {
+                if (postponed != kNoNode) break;  // intersect the one set aside first
+                postponed = current;
+                current = popNode();
+            } else {
+                const uint32_t left = node.leftFirst;
+                float tLeft, tRight;
+                const bool hitLeft = SlabTest(nodes[left], setup, tMax, &tLeft);
+                const bool hitRight = SlabTest(nodes[left + 1], setup, tMax, &tRight);
+                if (stats) stats->nodesVisited += 2;
+                if (hitLeft && hitRight) {
+                    // kIntersect visits the nearer child first; kOccluded the builder's order.
+                    const bool leftFirst = kQuery == Query::kOccluded || tLeft <= tRight;
+                    stack[stackSize++] = leftFirst ? left + 1 : left;
+                    current = leftFirst ? left : left + 1;
+                } else if (hitLeft || hitRight) {
+                    current = hitLeft ? left : left + 1;
+                } else {
+                    current = popNode();
+                }
+            }
+            if (!AnyLane(postponed == kNoNode)) break;
+        }
+        if (postponed != kNoNode) {
+            const BvhNode& leaf = nodes[postponed];
+            postponed = kNoNode;
+            if (blas == nullptr) {
+                // An instance leaf: what was pending at this level waits below the instances.
+                if (current != kNoNode) stack[stackSize++] = current;
+                current = kNoNode;
+                for (uint32_t i = leaf.primCount - 1; i >= 1; --i)
+                    stack[stackSize++] = kInstanceEntry | (leaf.leftFirst + i);
+                if (enterInstance(leaf.leftFirst)) current = 0;
+                continue;
+            }
+            for (uint32_t i = 0; i < leaf.primCount; ++i) {
+                const uint32_t slot = leaf.leftFirst + i;
+                if (stats) ++stats->primsTested;
+                float t;
+                if (triangles) {
+                    TriangleHit h;
+                    if (!Tests::IntersectTriangle(blas->triangles[slot], setup, tMax, &h)) continue;
+                    if constexpr (kQuery == Query::kOccluded) return true;
+                    t = h.t;
+                    hit->b1 = h.b1;
+                    hit->b2 = h.b2;
+                } else {
+                    const SphereRay exact = ToObjectSpaceExact(ray, scene.instances[instanceId]);
+                    if (!Tests::IntersectSphere(blas->spheres[slot], exact, tMax, &t)) continue;
+                    if constexpr (kQuery == Query::kOccluded) return true;
+                    hit->b1 = hit->b2 = 0.0f;
+                }
+                tMax = t;
+                hit->t = t;
+                hit->prim = slot;
+                hit->instance = instanceId;
+                found = true;
+            }
+            continue;
+        }
+        // Nothing in hand: leave the instance at a marker, enter the next waiting instance.
+        if (current == kNoNode) {
+            if (stackSize == 0) return found;
+            const uint32_t entry = stack[--stackSize];
+            if (entry == kReturnToWorld) {
+                setup = MakeBoxRaySetup(ray);
+                nodes = scene.nodes;
+                blas = nullptr;
+            } else if (blas == nullptr && (entry & kInstanceEntry) != 0) {
+                if (enterInstance(entry & ~kInstanceEntry)) current = 0;
+            } else {
+                current = entry;
+            }
+        }
     }
-    tMax = walk.TMax();
-    return walk.Found();
 }
 
 }  // namespace rtrt

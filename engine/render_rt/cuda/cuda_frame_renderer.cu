@@ -161,8 +161,7 @@ class CudaFrameRenderer final : public FrameRenderer {
         if (settings.traceBands > 1) {
             TraceBands(f, view, settings, features, rays);
         } else {
-            LaunchTrace(view, settings.view, features, frame_.Data(), rays, 0, {0, UINT32_MAX},
-                        primaryHits_.For(features, settings.width, settings.height, 0));
+            LaunchTrace(view, settings.view, features, frame_.Data(), rays);
         }
         if (stats)
             RT_CUDA_CHECK(cudaMemcpyAsync(f.raysHost, rayCount_.Data(), sizeof(unsigned long long),
@@ -279,15 +278,12 @@ class CudaFrameRenderer final : public FrameRenderer {
             RT_CUDA_CHECK(cudaEventCreate(&f.bandEnd.back()));
         }
         f.bands = split_->Bands(settings.height);
-        primaryHits_.For(features, settings.width, settings.height,
-                         0);  // grown before any band runs
         RT_CUDA_CHECK(cudaEventRecord(f.traceReady));
         for (uint32_t b = 0; b < parts; ++b) {
             cudaStream_t s = bandStreams_[b];
             RT_CUDA_CHECK(cudaStreamWaitEvent(s, f.traceReady));
             RT_CUDA_CHECK(cudaEventRecord(f.bandStart[b], s));
-            LaunchTrace(view, settings.view, features, frame_.Data(), rays, s, f.bands[b],
-                        primaryHits_.For(features, settings.width, settings.height, b));
+            LaunchTrace(view, settings.view, features, frame_.Data(), rays, s, f.bands[b]);
             RT_CUDA_CHECK(cudaEventRecord(f.bandEnd[b], s));
             RT_CUDA_CHECK(cudaStreamWaitEvent(0, f.bandEnd[b]));
         }
@@ -415,7 +411,6 @@ class CudaFrameRenderer final : public FrameRenderer {
     bool sahPending_ = false, sahPendingIsRebuild_ = false;
     DeviceBuffer<unsigned char> scratch_;
     DeviceBuffer<vec3> frame_;
-    PrimaryHitBuffers primaryHits_;  // scenes of many instances
     DeviceBuffer<unsigned long long> rayCount_;
     FrameEvents frames_[2];
     std::optional<FrameSplit> split_;        // with traceBands > 1

@@ -9,11 +9,9 @@
 namespace rtrt {
 
 void LaunchTrace(const RenderSceneView& view, ViewMode mode, uint32_t features, vec3* frame,
-                 unsigned long long* rayCount, cudaStream_t stream, RowBand rows,
-                 PrimaryHitScratch primary) {
+                 unsigned long long* rayCount, cudaStream_t stream, RowBand rows) {
     DispatchFeatures(features, [&](auto featureTag) {
-        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream, rows,
-                                                       primary);
+        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream, rows);
     });
 }
 
@@ -41,11 +39,9 @@ Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, Re
     }
     DeviceBuffer<vec3> frame;
     frame.Resize(size_t(settings.width) * settings.height);
-    const uint32_t features =
-        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
-    PrimaryHitBuffers primary;
-    LaunchTrace(view, settings.view, features, frame.Data(), rayCount.Data(), 0, {0, UINT32_MAX},
-                primary.For(features, settings.width, settings.height, 0));
+    LaunchTrace(view, settings.view,
+                EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
+                frame.Data(), rayCount.Data());
     RT_CUDA_CHECK(cudaDeviceSynchronize());
     Image image(settings.width, settings.height);
     frame.Download(image.pixels);
