@@ -16,7 +16,7 @@ namespace {
 constexpr int kBlock = 256;
 constexpr float kSpacing = 1.5f;
 
-// The benchmark's animation, one thread per instance: both transforms of the record.
+// The benchmark's animation, one thread per instance: the record's transform.
 __global__ void GridInstancesKernel(uint32_t n, uint32_t side, float time, Instance* out) {
     const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= n) return;
@@ -27,12 +27,9 @@ __global__ void GridInstancesKernel(uint32_t n, uint32_t side, float time, Insta
     sincosf(time + 0.37f * float(i), &s, &c);
     Instance inst;
     // Rotation about +y: x' = c x + s z, z' = -s x + c z; the inverse is the transpose.
-    inst.objectToWorld.row[0] = vec4(c, 0.0f, s, t.x);
-    inst.objectToWorld.row[1] = vec4(0.0f, 1.0f, 0.0f, t.y);
-    inst.objectToWorld.row[2] = vec4(-s, 0.0f, c, t.z);
-    inst.worldToObject.row[0] = vec4(c, 0.0f, -s, -(c * t.x - s * t.z));
-    inst.worldToObject.row[1] = vec4(0.0f, 1.0f, 0.0f, -t.y);
-    inst.worldToObject.row[2] = vec4(s, 0.0f, c, -(s * t.x + c * t.z));
+    inst.inverseAndPosition[0] = vec4(c, 0.0f, -s, t.x);
+    inst.inverseAndPosition[1] = vec4(0.0f, 1.0f, 0.0f, t.y);
+    inst.inverseAndPosition[2] = vec4(s, 0.0f, c, t.z);
     inst.blasId = 0;
     inst.materialId = 0;
     inst.pad[0] = inst.pad[1] = 0;
@@ -43,7 +40,7 @@ __global__ void WorldBoundsKernel(const Instance* instances, uint32_t n, Aabb bl
                                   Aabb* out) {
     const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= n) return;
-    out[i] = TransformBounds(instances[i].objectToWorld, blasBounds);
+    out[i] = TransformBounds(instances[i].ObjectToWorld(), blasBounds);
 }
 
 }  // namespace
@@ -119,10 +116,11 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
         row.refitMs = Median(refit);
         row.traceMs = Median(trace);
         row.totalMs = Median(total);
-        // Per instance: the record, its world box, and the TLAS build's arrays (2 nodes, leaf
-        // order, parents x2, Morton codes x2, sort indices, node position, arrival counter).
-        row.bytesPerInstance = double(sizeof(Instance) + sizeof(Aabb) + 2 * sizeof(BvhNode) +
-                                      4 * (1 + 2 + 2 + 1 + 1 + 2) + sizeof(Aabb));
+        // Per instance, as allocated: the records, their world boxes, and the TLAS with every
+        // array its build keeps (CUB's scratch included).
+        row.bytesPerInstance = double(instances.Size() * sizeof(Instance) +
+                                      bounds.Size() * sizeof(Aabb) + tlas.DeviceBytes()) /
+                               double(n);
         rows.push_back(row);
     }
     return rows;

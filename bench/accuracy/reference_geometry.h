@@ -29,30 +29,23 @@ struct HitD {
     double b1, b2;
 };
 
-inline dvec3 ApplyPoint(const Affine& m, dvec3 p) {
-    dvec3 r;
-    for (int i = 0; i < 3; ++i)
-        r[i] = double(m.row[i].x) * p.x + double(m.row[i].y) * p.y + double(m.row[i].z) * p.z +
-               double(m.row[i].w);
-    return r;
-}
-// The inverse of an instance's linear part, in double. The instance is defined by its float
-// objectToWorld; its float worldToObject is the inverse only to float precision, and a hit
-// point taken to world space and a ray taken back would move by that much (~10^-7), far beyond
+// An instance's L^-1 (instance.h), exactly as stored. The instance is defined by its float L^-1
+// and position: its float ObjectToWorld is the inverse only to float precision, and a hit point
+// taken to world space by it and a ray taken back would move by that much (~10^-7), far beyond
 // the double error bounds, and the reference would show acne.
-inline glm::dmat3 InverseLinearD(const Affine& m) {
-    glm::dmat3 linear;
+inline glm::dmat3 InverseLinearD(const Instance& inst) {
+    glm::dmat3 inverse;
     for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col) linear[col][row] = m.row[row][col];
-    return glm::inverse(linear);
+        for (int col = 0; col < 3; ++col) inverse[col][row] = inst.inverseAndPosition[row][col];
+    return inverse;
 }
+// The linear part L, inverted in double.
+inline glm::dmat3 LinearD(const Instance& inst) { return glm::inverse(InverseLinearD(inst)); }
 
 // World to object space as ToObjectSpace does it: subtract the instance's position first.
 inline RayD ToObjectSpaceD(const RayD& ray, const Instance& inst) {
-    const dvec3 position(inst.objectToWorld.row[0].w, inst.objectToWorld.row[1].w,
-                         inst.objectToWorld.row[2].w);
-    const glm::dmat3 inverse = InverseLinearD(inst.objectToWorld);
-    return {inverse * (ray.origin - position), inverse * ray.dir, ray.tMax};
+    const glm::dmat3 inverse = InverseLinearD(inst);
+    return {inverse * (ray.origin - dvec3(inst.Position())), inverse * ray.dir, ray.tMax};
 }
 
 // Slab test on a float box, still conservative: the box is first widened by 8 float ulps of its

@@ -70,16 +70,18 @@ inline SurfaceD MakeSurfaceD(const TlasView& tlas, const RayD& ray, const HitD& 
     }
     SurfaceD surface;
     // Affine::PointError in double.
+    const glm::dmat3 linear = LinearD(inst);
+    const dvec3 position(inst.Position());
     for (int i = 0; i < 3; ++i) {
-        const vec4& r = inst.objectToWorld.row[i];
-        const double roundOff =
-            std::fabs(r.x * p.x) + std::fabs(r.y * p.y) + std::fabs(r.z * p.z) + std::fabs(r.w);
+        const dvec3 r(linear[0][i], linear[1][i], linear[2][i]);
+        const double roundOff = std::fabs(r.x * p.x) + std::fabs(r.y * p.y) + std::fabs(r.z * p.z) +
+                                std::fabs(position[i]);
         const double carried =
             std::fabs(r.x) * pError.x + std::fabs(r.y) * pError.y + std::fabs(r.z) * pError.z;
         surface.pointError[i] = GammaD(3) * roundOff + (1.0 + GammaD(3)) * carried;
     }
-    surface.point = ApplyPoint(inst.objectToWorld, p);
-    const glm::dmat3 normalMatrix = glm::transpose(InverseLinearD(inst.objectToWorld));
+    surface.point = linear * p + position;
+    const glm::dmat3 normalMatrix = glm::transpose(InverseLinearD(inst));
     surface.geomNormal = glm::normalize(normalMatrix * ng);
     surface.shadingNormal = glm::normalize(normalMatrix * ns);
     surface.frontFace = glm::dot(surface.geomNormal, ray.dir) < 0.0;

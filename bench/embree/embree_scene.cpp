@@ -67,11 +67,11 @@ EmbreeScene::EmbreeScene(const RenderScene& scene) {
     top_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
     const bool direct = scene.instances.size() == 1 &&
-                        (IsIdentity(scene.instances[0].objectToWorld) ||
+                        (IsIdentity(scene.instances[0].ObjectToWorld()) ||
                          scene.blases[scene.instances[0].blasId]->kind == GeometryKind::kTriangles);
     if (direct) {
         const Instance& inst = scene.instances[0];
-        RTCGeometry g = MakeGeometry(device_, *scene.blases[inst.blasId], inst.objectToWorld);
+        RTCGeometry g = MakeGeometry(device_, *scene.blases[inst.blasId], inst.ObjectToWorld());
         rtcAttachGeometryByID(top_, g, 0);
         rtcReleaseGeometry(g);
     } else {
@@ -91,7 +91,8 @@ EmbreeScene::EmbreeScene(const RenderScene& scene) {
             rtcSetGeometryInstancedScene(g, blasScenes_[inst.blasId]);
             rtcSetGeometryTimeStepCount(g, 1);
             // Affine's three rows are Embree's row-major 3x4.
-            rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &inst.objectToWorld);
+            const Affine objectToWorld = inst.ObjectToWorld();
+            rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &objectToWorld);
             rtcCommitGeometry(g);
             rtcAttachGeometryByID(top_, g, i);
             rtcReleaseGeometry(g);

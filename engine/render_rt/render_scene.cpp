@@ -1,7 +1,6 @@
 #include "engine/render_rt/render_scene.h"
 
 #include <algorithm>
-#include <glm/gtc/matrix_inverse.hpp>
 
 #include "engine/render_rt/shading/pbr_brdf.h"
 
@@ -43,12 +42,7 @@ uint32_t RenderScene::AddTexture(Texture texture, const uint32_t* rgba) {
 
 uint32_t RenderScene::AddInstance(uint32_t blasId, uint32_t materialId,
                                   const glm::mat4& objectToWorld) {
-    Instance inst{};
-    inst.objectToWorld = AffineFromMat4(objectToWorld);
-    inst.worldToObject = AffineFromMat4(glm::affineInverse(objectToWorld));
-    inst.blasId = blasId;
-    inst.materialId = materialId;
-    instances.push_back(inst);
+    instances.push_back(MakeInstance(blasId, materialId, objectToWorld));
     return uint32_t(instances.size() - 1);
 }
 

@@ -35,8 +35,9 @@ RT_HD inline void SphereSurfacePoint(const Sphere& sphere, const Ray& ray, const
                              GammaDouble(16) * (distance + double(sphere.radius));
     // Frobenius norms of the linear parts: at least their largest stretches.
     float stretch = 0.0f, inverseStretch = 0.0f;
+    const Affine objectToWorld = inst.ObjectToWorld();
     for (int i = 0; i < 3; ++i) {
-        const vec3 l(inst.objectToWorld.row[i]), w(inst.worldToObject.row[i]);
+        const vec3 l(objectToWorld.row[i]), w(inst.InverseRow(i));
         stretch += glm::dot(l, l);
         inverseStretch += glm::dot(w, w);
     }
@@ -69,15 +70,16 @@ RT_HD inline Surface MakeSurface(const RenderSceneView& scene, const Ray& ray,
         if (blas.normals) {
             ns = blas.normals[hit.prim].At(b0, hit.b1, hit.b2);
         }
-        surface.pointError = inst.objectToWorld.PointError(p, pError);
-        surface.point = inst.objectToWorld.Point(p);
+        const Affine objectToWorld = inst.ObjectToWorld();
+        surface.pointError = objectToWorld.PointError(p, pError);
+        surface.point = objectToWorld.Point(p);
     } else {
         SphereSurfacePoint(blas.spheres[hit.prim], ray, inst, hit.t, &surface);
         ng = surface.geomNormal;
         ns = ng;
     }
-    surface.geomNormal = glm::normalize(inst.worldToObject.NormalFromInverse(ng));
-    surface.shadingNormal = glm::normalize(inst.worldToObject.NormalFromInverse(ns));
+    surface.geomNormal = glm::normalize(inst.NormalToWorld(ng));
+    surface.shadingNormal = glm::normalize(inst.NormalToWorld(ns));
     surface.frontFace = glm::dot(surface.geomNormal, ray.dir) < 0.0f;
     if (!surface.frontFace) surface.geomNormal = -surface.geomNormal;
     if (glm::dot(surface.shadingNormal, surface.geomNormal) < 0.0f)

@@ -33,8 +33,9 @@ RT_HD inline float HitFootprint(const RenderSceneView& scene, const SceneHit& hi
     const BlasView& blas = scene.tlas.blases[inst.blasId];
     if (blas.kind != GeometryKind::kTriangles || !blas.uvs) return -1e30f;
     const Triangle& tri = blas.triangles[hit.prim];
-    const vec3 e1 = inst.objectToWorld.Vector(tri.v1 - tri.v0);
-    const vec3 e2 = inst.objectToWorld.Vector(tri.v2 - tri.v0);
+    const Affine objectToWorld = inst.ObjectToWorld();
+    const vec3 e1 = objectToWorld.Vector(tri.v1 - tri.v0);
+    const vec3 e2 = objectToWorld.Vector(tri.v2 - tri.v0);
     return TextureFootprint(blas.uvs[hit.prim], e1, e2, coneWidth,
                             glm::dot(s.geomNormal, glm::normalize(ray.dir)));
 }

@@ -1,7 +1,6 @@
 #include "game/runtime/world.h"
 
 #include <algorithm>
-#include <glm/gtc/matrix_inverse.hpp>
 
 #include "engine/core/timer.h"
 #include "engine/physics_anim/physics_anim_systems.h"
@@ -258,8 +257,7 @@ uint32_t World::Extract() {
             changed_.push_back(r->instance);
         } else {
             Instance& inst = scene_.instances[r->instance];
-            inst.objectToWorld = AffineFromMat4(w.objectToWorld);
-            inst.worldToObject = AffineFromMat4(glm::affineInverse(w.objectToWorld));
+            SetTransform(inst, w.objectToWorld);
             changed_.push_back(r->instance);
         }
         ++extracted;

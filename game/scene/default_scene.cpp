@@ -67,7 +67,7 @@ LoadedScene MakeDefaultLoadedScene() {
         d.sourceIndex = i;
         vec3 skew;
         vec4 perspective;
-        glm::decompose(Mat4FromAffine(inst.objectToWorld), d.local.scale, d.local.rotation,
+        glm::decompose(ObjectToWorldMatrix(inst), d.local.scale, d.local.rotation,
                        d.local.translation, skew, perspective);
         out.entities.push_back(d);
     }

@@ -16,8 +16,7 @@ std::vector<Instance> Grid(uint32_t side, float spacing) {
         const vec3 p(float(i % side), float((i / side) % side), float(i / (side * side)));
         const glm::mat4 m = glm::translate(glm::mat4(1.0f), spacing * p);
         Instance inst{};
-        inst.objectToWorld = AffineFromMat4(m);
-        inst.worldToObject = AffineFromMat4(glm::affineInverse(m));
+        SetTransform(inst, m);
         instances.push_back(inst);
     }
     return instances;
@@ -27,8 +26,8 @@ void Move(std::vector<Instance>& instances, uint32_t frame, float amount) {
     for (size_t i = 0; i < instances.size(); ++i) {
         // Each instance wanders its own way; neighbours drift apart.
         const float phase = 0.37f * float(i) + 0.1f * float(frame);
-        instances[i].objectToWorld.row[0].w += amount * std::sin(phase);
-        instances[i].objectToWorld.row[2].w += amount * std::cos(1.3f * phase);
+        instances[i].inverseAndPosition[0].w += amount * std::sin(phase);
+        instances[i].inverseAndPosition[2].w += amount * std::cos(1.3f * phase);
     }
 }
 

@@ -21,8 +21,7 @@ struct TwoLevel {
 
     void Add(uint32_t blas, const glm::mat4& m) {
         Instance inst{};
-        inst.objectToWorld = AffineFromMat4(m);
-        inst.worldToObject = AffineFromMat4(glm::affineInverse(m));
+        SetTransform(inst, m);
         inst.blasId = blas;
         instances.push_back(inst);
     }
@@ -91,7 +90,7 @@ void ExpectSameAsBruteForce(TwoLevel& world, float spread, uint32_t seed, TlasBu
         Ray ray{spread * vec3(u(rng), u(rng), u(rng)), kInfinity, vec3(u(rng), u(rng), u(rng)), 0};
         if (i % 2) {
             const Instance& target = world.instances[i % world.instances.size()];
-            ray.dir = target.objectToWorld.Point(vec3(0.1f * u(rng))) - ray.origin;
+            ray.dir = target.ObjectToWorld().Point(vec3(0.1f * u(rng))) - ray.origin;
         }
         SceneHit expected{}, got{};
         const bool e = BruteForce(scene, uint32_t(world.instances.size()), ray, &expected);

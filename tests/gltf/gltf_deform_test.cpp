@@ -139,7 +139,7 @@ void ExpectBentCylinder(const World& world, float theta, const std::string& what
     EXPECT_EQ(mesh.jointCount, 2u);
     for (uint32_t v = 0; v < mesh.VertexCount(); ++v) {
         const vec3 rest = mesh.rest.positions[v];
-        const vec3 world = scene.instances[0].objectToWorld.Point(Deformed(scene, d, v));
+        const vec3 world = scene.instances[0].ObjectToWorld().Point(Deformed(scene, d, v));
         EXPECT_NEAR(glm::length(world - ExpectedWorld(rest, theta)), 0.0f, 1e-5f)
             << what << ": vertex " << v << " at y = " << rest.y;
     }
@@ -206,10 +206,10 @@ TEST_F(GltfDeformTest, UnweightedVerticesStayInTheirMeshNodesFrame) {
     const RenderScene& scene = world.Scene();
     const vec3 rest = mesh.rest.positions[0];
     const vec3 p =
-        scene.instances[0].objectToWorld.Point(Deformed(scene, scene.deformations[0], 0));
+        scene.instances[0].ObjectToWorld().Point(Deformed(scene, scene.deformations[0], 0));
     EXPECT_NEAR(glm::length(p - (rest + vec3(5, 0, 0))), 0.0f, 1e-5f);  // the node's frame
     const vec3 shin =
-        scene.instances[0].objectToWorld.Point(Deformed(scene, scene.deformations[0], 29));
+        scene.instances[0].ObjectToWorld().Point(Deformed(scene, scene.deformations[0], 29));
     EXPECT_NEAR(glm::length(shin - ExpectedWorld(mesh.rest.positions[29], glm::radians(90.0f))),
                 0.0f, 1e-5f);
 }

@@ -97,16 +97,16 @@ TEST_F(GltfTest, NodeHierarchyGivesWorldTransforms) {
     ASSERT_EQ(loaded.entities.size(), 3u);  // two nodes and the child's primitive
     EXPECT_EQ(loaded.entities[1].parent, 0);
     EXPECT_EQ(loaded.entities[2].parent, 1);
-    const vec3 p = loaded.scene.instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    const vec3 p = loaded.scene.instances[0].ObjectToWorld().Point(vec3(1, 0, 0));
     EXPECT_NEAR(p.x, 3.0f, 1e-5f);
     EXPECT_NEAR(p.y, 0.0f, 1e-5f);
     EXPECT_NEAR(p.z, -2.0f, 1e-5f);
     // The runtime links the same entities and derives the same world transform.
     World world(loaded);
-    const vec3 q = world.Scene().instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    const vec3 q = world.Scene().instances[0].ObjectToWorld().Point(vec3(1, 0, 0));
     EXPECT_NEAR(glm::length(q - vec3(3, 0, -2)), 0.0f, 1e-5f);
     world.Advance(0.5f);
-    const vec3 r = world.Scene().instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    const vec3 r = world.Scene().instances[0].ObjectToWorld().Point(vec3(1, 0, 0));
     EXPECT_NEAR(glm::length(r - vec3(3, 0, -2)), 0.0f, 1e-5f);
 }
 
@@ -117,14 +117,14 @@ TEST_F(GltfTest, SceneNodesListingAChildShowItOnce) {
     both.doc["scenes"] = Json::array({{{"nodes", {0, 1}}}});
     const LoadedScene shownUnder = LoadSceneFile(Save("both.gltf", both.GltfText()));
     ASSERT_EQ(shownUnder.scene.instances.size(), 1u);
-    const vec3 p = shownUnder.scene.instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    const vec3 p = shownUnder.scene.instances[0].ObjectToWorld().Point(vec3(1, 0, 0));
     EXPECT_NEAR(glm::length(p - vec3(3, 0, -2)), 0.0f, 1e-5f);  // under its parent
 
     GltfBuilder child = test::TwoLevels();
     child.doc["scenes"] = Json::array({{{"nodes", {1}}}});
     const LoadedScene alone = LoadSceneFile(Save("child.gltf", child.GltfText()));
     ASSERT_EQ(alone.scene.instances.size(), 1u);
-    const vec3 q = alone.scene.instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    const vec3 q = alone.scene.instances[0].ObjectToWorld().Point(vec3(1, 0, 0));
     EXPECT_NEAR(glm::length(q - vec3(2, 0, 2)), 0.0f, 1e-5f);  // its own transform only
 }
 
@@ -181,7 +181,7 @@ TEST_F(GltfTest, MatrixNodesAreDecomposed) {
     b.doc["nodes"][0].erase("rotation");
     b.doc["nodes"][0]["matrix"] = {0, 0, -1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
     const LoadedScene loaded = LoadSceneFile(Save("matrix.gltf", b.GltfText()));
-    const vec3 p = loaded.scene.instances[0].objectToWorld.Point(vec3(1, 0, 0));
+    const vec3 p = loaded.scene.instances[0].ObjectToWorld().Point(vec3(1, 0, 0));
     EXPECT_NEAR(glm::length(p - vec3(3, 0, -2)), 0.0f, 1e-5f);
 }
 
@@ -208,7 +208,7 @@ TEST_F(GltfTest, AnimationIsSampledAtKnownTimes) {
     World world(loaded);
     auto pointAt = [&](float dt) {
         world.Advance(dt);
-        return world.Scene().instances[0].objectToWorld.Point(vec3(0, 0, 0));
+        return world.Scene().instances[0].ObjectToWorld().Point(vec3(0, 0, 0));
     };
     // t = 0.5: child at (0, 1, 2), parent scale 1: rotated to (2, 1, 0), moved to (3, 1, 0).
     EXPECT_NEAR(glm::length(pointAt(0.5f) - vec3(3, 1, 0)), 0.0f, 1e-4f);
@@ -274,7 +274,7 @@ TEST_F(GltfTest, SceneFilePlacesAGltfModelPerInstance) {
     const LoadedScene loaded = ParseScene(scene, "scene.json", dir_.string());
     ASSERT_EQ(loaded.scene.blases.size(), 1u);  // loaded once, placed twice
     ASSERT_EQ(loaded.scene.instances.size(), 2u);
-    const vec3 p = loaded.scene.instances[1].objectToWorld.Point(vec3(1, 0, 0));
+    const vec3 p = loaded.scene.instances[1].ObjectToWorld().Point(vec3(1, 0, 0));
     EXPECT_NEAR(glm::length(p - vec3(3, 10, -2)), 0.0f, 1e-5f);
     EXPECT_THROW(ParseScene(R"({"models": {"t": {"type": "gltf", "file": "tree.glb"}},
                                "instances": [{"model": "t", "material": "x"}]})",

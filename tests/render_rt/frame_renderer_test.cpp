@@ -53,8 +53,7 @@ bool SamePixels(const Image& a, const Image& b) {
 
 void MoveInstance(RenderScene& scene, uint32_t i, vec3 to) {
     const glm::mat4 m = glm::translate(glm::mat4(1.0f), to);
-    scene.instances[i].objectToWorld = AffineFromMat4(m);
-    scene.instances[i].worldToObject = AffineFromMat4(glm::inverse(m));
+    SetTransform(scene.instances[i], m);
 }
 
 TEST(CpuFrameRenderer, TracesWhatRenderRawTracesOverTheSameLbvh) {

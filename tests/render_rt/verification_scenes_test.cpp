@@ -130,8 +130,8 @@ TEST(VerificationScenes, TeapotShadowFallsWhereTheGeometrySays) {
     const Blas& blas = *scene.blases[pot.blasId];
     std::vector<Triangle> world;
     for (const Triangle& t : blas.triangles)
-        world.push_back({pot.objectToWorld.Point(t.v0), pot.objectToWorld.Point(t.v1),
-                         pot.objectToWorld.Point(t.v2)});
+        world.push_back({pot.ObjectToWorld().Point(t.v0), pot.ObjectToWorld().Point(t.v1),
+                         pot.ObjectToWorld().Point(t.v2)});
     auto hitsTeapot = [&](vec3 o, vec3 d, float tMax) {
         const RaySetup r = MakeRaySetup(Ray{o, tMax, d, 0});
         for (const Triangle& t : world) {

@@ -32,8 +32,9 @@ inline std::vector<Ray> RaysAtInstances(const RenderScene& scene, vec3 centre, f
         r = {centre + spread * vec3(u(rng), u(rng), u(rng)), kInfinity,
              vec3(u(rng), u(rng), u(rng)), 0};
         if (i % 2)
-            r.dir = scene.instances[pick(rng)].objectToWorld.Point(vec3(0.03f * spread * u(rng))) -
-                    r.origin;
+            r.dir =
+                scene.instances[pick(rng)].ObjectToWorld().Point(vec3(0.03f * spread * u(rng))) -
+                r.origin;
     }
     return rays;
 }

@@ -34,8 +34,7 @@ TEST(TlasHardCases, RefitQualityDriftIsBoundedAndTriggersRebuilds) {
             positions[i] +=
                 0.05f * vec3(std::sin(phase), std::cos(1.3f * phase), std::sin(0.7f * phase));
             const glm::mat4 m = Placement(positions[i]);
-            scene.instances[i].objectToWorld = AffineFromMat4(m);
-            scene.instances[i].worldToObject = AffineFromMat4(glm::inverse(m));
+            SetTransform(scene.instances[i], m);
         }
         const TlasUpdateStats stats = tlas.Update(scene.instances, blasBounds, false);
         rebuilds += stats.rebuilt;

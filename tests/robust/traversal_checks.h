@@ -52,10 +52,10 @@ inline std::vector<std::array<vec3, 3>> WorldTriangles(const RenderScene& scene)
     for (const Instance& inst : scene.instances) {
         const Blas& blas = *scene.blases[inst.blasId];
         for (const Triangle& t : blas.triangles)
-            out.push_back({inst.objectToWorld.Point(t.v0), inst.objectToWorld.Point(t.v1),
-                           inst.objectToWorld.Point(t.v2)});
+            out.push_back({inst.ObjectToWorld().Point(t.v0), inst.ObjectToWorld().Point(t.v1),
+                           inst.ObjectToWorld().Point(t.v2)});
         for (const Sphere& s : blas.spheres) {
-            const vec3 c = inst.objectToWorld.Point(s.center);
+            const vec3 c = inst.ObjectToWorld().Point(s.center);
             out.push_back({c, c, c});
         }
     }

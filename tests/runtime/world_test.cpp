@@ -82,7 +82,7 @@ TEST(World, SpawnersActOnTimeAndBodiesFall) {
     for (int i = 0; i < 60; ++i) world.Advance(1.0f / 60.0f);
     // Every ball is above the floor and below where the rain started.
     for (size_t i = 1; i < 61; ++i) {
-        const float y = world.Scene().instances[i].objectToWorld.row[1].w;
+        const float y = world.Scene().instances[i].Position()[1];
         EXPECT_GT(y, 0.29f);
         EXPECT_LT(y, 6.0f);
     }
@@ -115,9 +115,9 @@ TEST(World, KeyframesMoveAnEntity) {
                                          "keys.json", "");
     World world(scene);
     for (int i = 0; i < 5; ++i) world.Advance(0.125f);  // t = 0.625: linear between the keys
-    EXPECT_NEAR(world.Scene().instances[0].objectToWorld.row[1].w, 2.5f, 1e-5f);
+    EXPECT_NEAR(world.Scene().instances[0].Position()[1], 2.5f, 1e-5f);
     for (int i = 0; i < 4; ++i) world.Advance(0.125f);  // t = 1.125: looped to 0.125
-    EXPECT_NEAR(world.Scene().instances[0].objectToWorld.row[1].w, 0.5f, 1e-5f);
+    EXPECT_NEAR(world.Scene().instances[0].Position()[1], 0.5f, 1e-5f);
 }
 
 TEST(World, BadDynamicFieldsAreRejected) {
@@ -157,9 +157,10 @@ void ExpectRecordsMatchEntities(World& world) {
         const auto* r = world.Registry().Get<Renderable>(e);
         ASSERT_TRUE(w && r);
         EXPECT_EQ(r->instance, i);
-        const Affine expected = AffineFromMat4(w->objectToWorld);
+        const Instance expected = MakeInstance(r->blasId, r->materialId, w->objectToWorld);
         for (int row = 0; row < 3; ++row)
-            EXPECT_EQ(scene.instances[i].objectToWorld.row[row], expected.row[row]) << i;
+            EXPECT_EQ(scene.instances[i].inverseAndPosition[row], expected.inverseAndPosition[row])
+                << i;
     }
 }
 
@@ -181,14 +182,14 @@ TEST(WorldEdits, SpawnMoveAndRemoveKeepRecordsInStep) {
     EXPECT_NE(std::find(changes.instances.begin(), changes.instances.end(), slot),
               changes.instances.end());
     EXPECT_TRUE(changes.topologyChanged);
-    EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[1].w, 9.0f);
+    EXPECT_EQ(world.Scene().instances[slot].Position()[1], 9.0f);
 
     // A drag: the body is teleported and stops.
     ASSERT_TRUE(world.SetPose(spawned, vec3(1.0f, 5.0f, -1.0f), glm::identity<glm::quat>()));
     world.Advance(0.0f);
     EXPECT_FALSE(world.Changes().topologyChanged);
-    EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[0].w, 1.0f);
-    EXPECT_EQ(world.Scene().instances[slot].objectToWorld.row[1].w, 5.0f);
+    EXPECT_EQ(world.Scene().instances[slot].Position()[0], 1.0f);
+    EXPECT_EQ(world.Scene().instances[slot].Position()[1], 5.0f);
     EXPECT_EQ(world.Registry().Get<physics::RigidBody>(spawned)->velocity, vec3(0.0f));
     ExpectRecordsMatchEntities(world);
 
@@ -208,13 +209,12 @@ TEST(WorldEdits, SpawnMoveAndRemoveKeepRecordsInStep) {
     // The CPU renderer's TLAS was rebuilt over the new set: a ray at the moved record finds it.
     EXPECT_EQ(renderer->CurrentTlas().primOrder.size(), world.Scene().instances.size());
     const Instance& moved = world.Scene().instances[3];
-    const vec3 centre(moved.objectToWorld.row[0].w, moved.objectToWorld.row[1].w,
-                      moved.objectToWorld.row[2].w);
+    const vec3 centre(moved.Position()[0], moved.Position()[1], moved.Position()[2]);
     const Ray ray{centre + vec3(0.0f, 0.0f, 50.0f), 1e30f, vec3(0.0f, 0.0f, -1.0f), 0.0f};
     SceneHit hit{};
     ASSERT_TRUE(renderer->Pick(ray, &hit));
     EXPECT_TRUE(hit.instance == 3 ||
-                world.Scene().instances[hit.instance].objectToWorld.row[2].w > centre.z);
+                world.Scene().instances[hit.instance].Position()[2] > centre.z);
 }
 
 }  // namespace

@@ -33,7 +33,7 @@ void ExpectError(const std::string& json, const std::string& field, const std::s
 TEST(SceneFile, ParsesAMinimalScene) {
     const LoadedScene s = ParseScene(kMinimal, "ok.json", "");
     ASSERT_EQ(s.scene.instances.size(), 1u);
-    EXPECT_EQ(s.scene.instances[0].objectToWorld.row[1].w, 2.0f);
+    EXPECT_EQ(s.scene.instances[0].Position()[1], 2.0f);
     EXPECT_EQ(s.scene.blases[0]->spheres[0].radius, 2.0f);
     EXPECT_EQ(s.scene.materials[0].reflectivity, 0.5f);
     // Ambient defaults to 0.1 x diffuse.

@@ -1,4 +1,7 @@
+#include <thrust/iterator/transform_iterator.h>
+
 #include <cub/cub.cuh>
+#include <utility>
 
 #include "engine/bvh/build/gpu_lbvh.h"
 #include "engine/bvh/build/lbvh_steps.h"
@@ -6,10 +9,6 @@
 
 namespace rtrt {
 namespace {
-
-constexpr int kBlock = 256;
-
-uint32_t Blocks(uint32_t n) { return (n + kBlock - 1) / kBlock; }
 
 struct MergeBoxes {
     __device__ Aabb operator()(const Aabb& a, const Aabb& b) const {
@@ -19,12 +18,13 @@ struct MergeBoxes {
     }
 };
 
-__global__ void CentroidsKernel(const Aabb* bounds, uint32_t n, Aabb* centroids) {
-    const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= n) return;
-    const vec3 c = bounds[i].Centroid();
-    centroids[i] = {c, c};
-}
+// A primitive's centroid as a box, read straight from its bounds by the reduction (no array).
+struct CentroidBox {
+    __device__ Aabb operator()(const Aabb& b) const {
+        const vec3 c = b.Centroid();
+        return {c, c};
+    }
+};
 
 }  // namespace
 
@@ -47,32 +47,35 @@ void GpuLbvh::Build(const Aabb* bounds, uint32_t n, cudaStream_t stream) {
     codes_.Resize(n);
     sortedCodes_.Resize(n);
     indices_.Resize(n);
-    centroids_.Resize(n);
     centroidBounds_.Resize(1);
     positionOf_.Resize(n);
     arrivals_.Resize(positions);
 
-    CentroidsKernel<<<Blocks(n), kBlock, 0, stream>>>(bounds, n, centroids_.Data());
-    RT_CUDA_CHECK_LAUNCH();
+    const auto centroids = thrust::make_transform_iterator(bounds, CentroidBox());
+    // The sort ping-pongs between the two arrays of each pair (CUB's double buffer), which
+    // spares the scratch a copy of both.
+    cub::DoubleBuffer<uint32_t> keys(codes_.Data(), sortedCodes_.Data());
+    cub::DoubleBuffer<uint32_t> values(indices_.Data(), primOrder_.Data());
     // CUB needs scratch memory: ask for the largest of the reduce's and the sort's.
     size_t reduceBytes = 0, sortBytes = 0;
-    RT_CUDA_CHECK(cub::DeviceReduce::Reduce(nullptr, reduceBytes, centroids_.Data(),
-                                            centroidBounds_.Data(), int(n), MergeBoxes(), Aabb(),
-                                            stream));
-    RT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, sortBytes, codes_.Data(),
-                                                  sortedCodes_.Data(), indices_.Data(),
-                                                  primOrder_.Data(), int(n), 0, 30, stream));
+    RT_CUDA_CHECK(cub::DeviceReduce::Reduce(nullptr, reduceBytes, centroids, centroidBounds_.Data(),
+                                            int(n), MergeBoxes(), Aabb(), stream));
+    RT_CUDA_CHECK(
+        cub::DeviceRadixSort::SortPairs(nullptr, sortBytes, keys, values, int(n), 0, 30, stream));
     const size_t scratchBytes = std::max(reduceBytes, sortBytes);
     if (scratch_.Size() < scratchBytes) scratch_.Resize(scratchBytes);
-    RT_CUDA_CHECK(cub::DeviceReduce::Reduce(scratch_.Data(), reduceBytes, centroids_.Data(),
+    RT_CUDA_CHECK(cub::DeviceReduce::Reduce(scratch_.Data(), reduceBytes, centroids,
                                             centroidBounds_.Data(), int(n), MergeBoxes(), Aabb(),
                                             stream));
     ParallelForCuda(0, n,
                     LbvhMortonCodes{bounds, centroidBounds_.Data(), codes_.Data(), indices_.Data()},
                     stream);
-    RT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch_.Data(), sortBytes, codes_.Data(),
-                                                  sortedCodes_.Data(), indices_.Data(),
-                                                  primOrder_.Data(), int(n), 0, 30, stream));
+    RT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch_.Data(), sortBytes, keys, values, int(n),
+                                                  0, 30, stream));
+    // The sorted arrays are wherever the last pass left them: name them sortedCodes_ and
+    // primOrder_ (the other two are rewritten next build).
+    if (keys.Current() != sortedCodes_.Data()) std::swap(codes_, sortedCodes_);
+    if (values.Current() != primOrder_.Data()) std::swap(indices_, primOrder_);
     if (n == 1) {
         ParallelForCuda(0, 1, LbvhRootLeaf{bounds, primOrder_.Data(), nodes_.Data()}, stream);
         RT_CUDA_CHECK(cudaStreamSynchronize(stream));
@@ -104,6 +107,13 @@ void GpuLbvh::BoundsBottomUp(cudaStream_t stream) {
     RT_CUDA_CHECK(cudaMemsetAsync(arrivals_.Data(), 0, positions * sizeof(uint32_t), stream));
     ParallelForCuda(0, positions - 2,
                     LbvhBoundsBottomUp{parents_.Data(), nodes_.Data(), arrivals_.Data()}, stream);
+}
+
+size_t GpuLbvh::DeviceBytes() const {
+    auto bytes = [](const auto& buffer) { return buffer.Size() * sizeof(*buffer.Data()); };
+    return bytes(nodes_) + bytes(primOrder_) + bytes(parents_) + bytes(positionOf_) +
+           bytes(arrivals_) + bytes(codes_) + bytes(sortedCodes_) + bytes(indices_) +
+           bytes(centroidBounds_) + bytes(scratch_);
 }
 
 Lbvh GpuLbvh::Download() const {

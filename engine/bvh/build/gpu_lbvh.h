@@ -21,6 +21,8 @@ class GpuLbvh {
     const uint32_t* PrimOrder() const { return primOrder_.Data(); }
     const uint32_t* Parents() const { return parents_.Data(); }
     uint32_t Count() const { return count_; }
+    // The device memory the tree and its build keep between frames (CUB's scratch included).
+    size_t DeviceBytes() const;
     // Copies the tree to the host, for tests and for comparison with the CPU build.
     Lbvh Download() const;
 
@@ -31,7 +33,7 @@ class GpuLbvh {
     DeviceBuffer<BvhNode> nodes_;
     DeviceBuffer<uint32_t> primOrder_, parents_, positionOf_, arrivals_;
     DeviceBuffer<uint32_t> codes_, sortedCodes_, indices_;
-    DeviceBuffer<Aabb> centroids_, centroidBounds_;
+    DeviceBuffer<Aabb> centroidBounds_;
     DeviceBuffer<unsigned char> scratch_;  // CUB's temporary storage
 };
 

@@ -3,14 +3,60 @@
 
 namespace rtrt {
 
-// One placed copy of a BLAS, 112 bytes: both transforms so that neither side inverts per ray.
-struct Instance {
-    Affine objectToWorld;
-    Affine worldToObject;
+// One placed copy of a BLAS, 64 bytes. Its transform objectToWorld (p -> L p + c) is kept as the
+// traversal uses it: the inverse L^-1 of the linear part and the world position c, so that
+// entering an instance loads 48 bytes and inverts nothing. The way back to world space (hit
+// points, tangents, world boxes) inverts L^-1 again, once per hit or per box. Both transforms
+// took 112 bytes; the traversal never read the forward one.
+struct alignas(16) Instance {
+    vec4 inverseAndPosition[3];  // xyz: row i of L^-1; w: coordinate i of c
     uint32_t blasId;
     uint32_t materialId;
     uint32_t pad[2];
+
+    RT_HD vec3 Position() const {
+        return vec3(inverseAndPosition[0].w, inverseAndPosition[1].w, inverseAndPosition[2].w);
+    }
+    // Row i of L^-1.
+    RT_HD vec3 InverseRow(int i) const { return vec3(inverseAndPosition[i]); }
+    // L^-1 v: a world direction (or an offset from the position) in object space.
+    RT_HD vec3 VectorToObject(vec3 v) const {
+        return vec3(Dot3(inverseAndPosition[0], v), Dot3(inverseAndPosition[1], v),
+                    Dot3(inverseAndPosition[2], v));
+    }
+    // L^-T n: an object-space normal in world space (unnormalised).
+    RT_HD vec3 NormalToWorld(vec3 n) const {
+        const vec4* r = inverseAndPosition;
+        return vec3(r[0].x * n.x + r[1].x * n.y + r[2].x * n.z,
+                    r[0].y * n.x + r[1].y * n.y + r[2].y * n.z,
+                    r[0].z * n.x + r[1].z * n.y + r[2].z * n.z);
+    }
+    // objectToWorld, its linear part the inverse of L^-1 (cofactors over the determinant).
+    RT_HD Affine ObjectToWorld() const {
+        const vec3 a = InverseRow(0), b = InverseRow(1), d = InverseRow(2);
+        // The columns of (L^-1)^-1 are the rows' pairwise cross products over the determinant.
+        const vec3 c0 = glm::cross(b, d), c1 = glm::cross(d, a), c2 = glm::cross(a, b);
+        const float inv = 1.0f / glm::dot(a, c0);
+        const vec3 p = Position();
+        Affine m;
+        m.row[0] = vec4(c0.x * inv, c1.x * inv, c2.x * inv, p.x);
+        m.row[1] = vec4(c0.y * inv, c1.y * inv, c2.y * inv, p.y);
+        m.row[2] = vec4(c0.z * inv, c1.z * inv, c2.z * inv, p.z);
+        return m;
+    }
+
+  private:
+    // The expression Affine uses, so that results keep their rounding.
+    RT_HD static float Dot3(const vec4& r, vec3 v) { return r.x * v.x + r.y * v.y + r.z * v.z; }
 };
-static_assert(sizeof(Instance) == 112);
+static_assert(sizeof(Instance) == 64);
+
+// An instance of blasId with materialId placed by objectToWorld (an invertible affine matrix):
+// L^-1 as glm::affineInverse computes it, c as given.
+Instance MakeInstance(uint32_t blasId, uint32_t materialId, const glm::mat4& objectToWorld);
+// Places inst by objectToWorld, keeping its ids.
+void SetTransform(Instance& inst, const glm::mat4& objectToWorld);
+// inst's objectToWorld as a matrix (Instance::ObjectToWorld).
+glm::mat4 ObjectToWorldMatrix(const Instance& inst);
 
 }  // namespace rtrt

@@ -10,7 +10,7 @@ std::vector<Aabb> InstanceWorldBounds(std::span<const Instance> instances,
     std::vector<Aabb> worldBounds(instances.size());
     ParallelFor(0, instances.size(), 4096, [&](size_t i) {
         worldBounds[i] =
-            TransformBounds(instances[i].objectToWorld, blasBounds[instances[i].blasId]);
+            TransformBounds(instances[i].ObjectToWorld(), blasBounds[instances[i].blasId]);
     });
     return worldBounds;
 }

@@ -37,10 +37,8 @@ RT_HD inline Ray ToObjectSpace(const Ray& ray, const Instance& inst) {
     // form L^-1 o - L^-1 c cancels two numbers of size |c| and errs by an ulp of |c|. Far from
     // the world origin that error (1e-3 at 1e4) moved shadow rays spawned near a corner of a
     // closed room onto the neighbouring wall, and light leaked in (tests/robust, closed room).
-    const vec3 position(inst.objectToWorld.row[0].w, inst.objectToWorld.row[1].w,
-                        inst.objectToWorld.row[2].w);
-    r.origin = inst.worldToObject.Vector(ray.origin - position);
-    r.dir = inst.worldToObject.Vector(ray.dir);
+    r.origin = inst.VectorToObject(ray.origin - inst.Position());
+    r.dir = inst.VectorToObject(ray.dir);
     r.tMax = ray.tMax;
     r.pad = 0.0f;
     return r;
@@ -50,14 +48,10 @@ RT_HD inline Ray ToObjectSpace(const Ray& ray, const Instance& inst) {
 // transform's entries taken as exact, so that a huge sphere's space keeps the ray's position to
 // far below its own float spacing. Evaluated only for sphere BLASes.
 RT_HD inline SphereRay ToObjectSpaceExact(const Ray& ray, const Instance& inst) {
-    const Affine& m = inst.worldToObject;
-    const glm::dvec3 local = glm::dvec3(ray.origin) - glm::dvec3(inst.objectToWorld.row[0].w,
-                                                                 inst.objectToWorld.row[1].w,
-                                                                 inst.objectToWorld.row[2].w);
+    const glm::dvec3 local = glm::dvec3(ray.origin) - glm::dvec3(inst.Position());
     SphereRay r;
-    for (int i = 0; i < 3; ++i)
-        r.origin[i] = glm::dot(glm::dvec3(m.row[i].x, m.row[i].y, m.row[i].z), local);
-    r.dir = m.Vector(ray.dir);
+    for (int i = 0; i < 3; ++i) r.origin[i] = glm::dot(glm::dvec3(inst.InverseRow(i)), local);
+    r.dir = inst.VectorToObject(ray.dir);
     return r;
 }
 

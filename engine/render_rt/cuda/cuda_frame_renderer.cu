@@ -26,14 +26,14 @@ __global__ void ScatterInstancesKernel(const uint32_t* indices, const Instance* 
     if (k >= count) return;
     const Instance inst = records[k];
     instances[indices[k]] = inst;
-    worldBounds[indices[k]] = TransformBounds(inst.objectToWorld, blasBounds[inst.blasId]);
+    worldBounds[indices[k]] = TransformBounds(inst.ObjectToWorld(), blasBounds[inst.blasId]);
 }
 
 __global__ void AllWorldBoundsKernel(const Instance* instances, uint32_t n, const Aabb* blasBounds,
                                      Aabb* worldBounds) {
     const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= n) return;
-    worldBounds[i] = TransformBounds(instances[i].objectToWorld, blasBounds[instances[i].blasId]);
+    worldBounds[i] = TransformBounds(instances[i].ObjectToWorld(), blasBounds[instances[i].blasId]);
 }
 
 // Each node's term of the SAH cost (sah_term.h, the one the deformers' policy sums too).

@@ -68,9 +68,9 @@ RT_HD inline PbrInputs PbrInputsAt(const RenderSceneView& scene, const SceneHit&
                 const vec3 front = s.frontFace ? s.shadingNormal : -s.shadingNormal;
                 const vec3 n = blas.tangents
                                    ? NormalFromTangents(blas.tangents[hit.prim], hit.b1, hit.b2,
-                                                        inst.objectToWorld, front, mapped)
+                                                        inst.ObjectToWorld(), front, mapped)
                                    : NormalFromMap(blas.triangles[hit.prim], uvs,
-                                                   inst.objectToWorld, front, mapped);
+                                                   inst.ObjectToWorld(), front, mapped);
                 in.normal = s.frontFace ? n : -n;
             }
         }
