@@ -2,7 +2,7 @@
 #include <cmath>
 
 #include "bench/instance_grid_bench.h"
-#include "engine/bvh/build/gpu_lbvh.h"
+#include "engine/bvh/build/gpu_lbvh.cuh"
 #include "engine/bvh/tlas/tlas.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/cuda/cuda_trace.h"
@@ -36,19 +36,12 @@ __global__ void GridInstancesKernel(uint32_t n, uint32_t side, float time, Insta
     out[i] = inst;
 }
 
-__global__ void WorldBoundsKernel(const Instance* instances, uint32_t n, Aabb blasBounds,
-                                  Aabb* out) {
-    const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= n) return;
-    out[i] = TransformBounds(instances[i].ObjectToWorld(), blasBounds);
-}
-
 }  // namespace
 
 std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> model,
                                                   const std::vector<uint32_t>& counts, int frames) {
     std::vector<InstanceGridRow> rows;
-    const Aabb blasBounds = model->bounds;
+    const DeviceBuffer<Aabb> blasBounds(std::span<const Aabb>(&model->bounds, 1));
     RenderScene scene = MakePaperScene(model);  // BLAS, material, light; its one instance unused
     DeviceScene device(scene);
     for (uint32_t n : counts) {
@@ -59,8 +52,6 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
         RenderSceneView view = device.View(scene, settings);
         DeviceBuffer<Instance> instances;
         instances.Resize(n);
-        DeviceBuffer<Aabb> bounds;
-        bounds.Resize(n);
         DeviceBuffer<vec3> frame;
         frame.Resize(size_t(settings.width) * settings.height);
         DeviceBuffer<unsigned long long> rayCount;
@@ -80,9 +71,9 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
             GridInstancesKernel<<<blocks, kBlock>>>(n, side, 0.016f * float(f), instances.Data());
             RT_CUDA_CHECK_LAUNCH();
             RT_CUDA_CHECK(cudaEventRecord(events[1]));
-            WorldBoundsKernel<<<blocks, kBlock>>>(instances.Data(), n, blasBounds, bounds.Data());
-            RT_CUDA_CHECK_LAUNCH();
-            tlas.Build(bounds.Data(), n);
+            // The TLAS reads the instances' world boxes as it needs them (no array of them).
+            const InstanceWorldBoxes boxes{instances.Data(), blasBounds.Data()};
+            tlas.BuildOver(boxes, n);
             RT_CUDA_CHECK(cudaEventRecord(events[2]));
             view.tlas = {tlas.Nodes(), tlas.PrimOrder(), instances.Data(), view.tlas.blases};
             LaunchTrace(view, ViewMode::kShaded, features, frame.Data(),
@@ -90,7 +81,7 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
             RT_CUDA_CHECK(cudaEventRecord(events[3]));
             // The refit path, timed alone: same tree, the boxes this frame's rebuild used.
             RT_CUDA_CHECK(cudaEventRecord(events[4]));
-            tlas.Refit(bounds.Data());
+            tlas.RefitOver(boxes);
             RT_CUDA_CHECK(cudaEventRecord(events[5]));
             RT_CUDA_CHECK(cudaEventSynchronize(events[5]));
             float refitMs = 0.0f;
@@ -116,11 +107,10 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
         row.refitMs = Median(refit);
         row.traceMs = Median(trace);
         row.totalMs = Median(total);
-        // Per instance, as allocated: the records, their world boxes, and the TLAS with every
-        // array its build keeps (CUB's scratch included).
-        row.bytesPerInstance = double(instances.Size() * sizeof(Instance) +
-                                      bounds.Size() * sizeof(Aabb) + tlas.DeviceBytes()) /
-                               double(n);
+        // Per instance, as allocated: the records and the TLAS with every array its build keeps
+        // (CUB's scratch included).
+        row.bytesPerInstance =
+            double(instances.Size() * sizeof(Instance) + tlas.DeviceBytes()) / double(n);
         rows.push_back(row);
     }
     return rows;

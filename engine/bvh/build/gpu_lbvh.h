@@ -16,6 +16,12 @@ class GpuLbvh {
     void Build(const Aabb* deviceBounds, uint32_t n, cudaStream_t stream = 0);
     // Refit after the boxes moved (same n, same order of primitives).
     void Refit(const Aabb* deviceBounds, cudaStream_t stream = 0);
+    // The same over boxes read through Boxes (lbvh_steps.h), such as boxes computed where the
+    // build reads them, which then keeps no array of them. Defined in gpu_lbvh.cuh.
+    template <class Boxes>
+    void BuildOver(Boxes boxes, uint32_t n, cudaStream_t stream = 0);
+    template <class Boxes>
+    void RefitOver(Boxes boxes, cudaStream_t stream = 0);
 
     const BvhNode* Nodes() const { return nodes_.Data(); }
     const uint32_t* PrimOrder() const { return primOrder_.Data(); }

@@ -30,9 +30,9 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
     for (const Aabb& b : primBounds) centroidBounds.Grow(b.Centroid());
     std::vector<uint32_t> codes(n);
     bvh.primOrder.resize(n);
-    ParallelFor(
-        0, n, 4096,
-        LbvhMortonCodes{primBounds.data(), &centroidBounds, codes.data(), bvh.primOrder.data()});
+    ParallelFor(0, n, 4096,
+                LbvhMortonCodes<const Aabb*>{primBounds.data(), &centroidBounds, codes.data(),
+                                             bvh.primOrder.data()});
     // Sorted as (code, index) pairs: equal codes keep input order, as the GPU's stable radix sort.
     std::vector<uint64_t> keys(n);
     for (uint32_t i = 0; i < n; ++i) keys[i] = uint64_t(codes[i]) << 32 | bvh.primOrder[i];
@@ -46,14 +46,15 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
     bvh.parents.assign(bvh.nodes.size(), kLbvhNoParent);
     bvh.nodes[1] = BvhNode{vec3(0), 0, vec3(0), 0};
     if (n == 1) {
-        LbvhRootLeaf{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
+        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
         return bvh;
     }
     // Internal node k sits where its parent put it: position 0 for the root, else a child slot.
     std::vector<uint32_t> positionOf(n - 1, 0);
-    ParallelFor(0, n - 1, 1024,
-                LbvhKarrasNodes{codes.data(), n, bvh.primOrder.data(), primBounds.data(),
-                                bvh.nodes.data(), positionOf.data()});
+    ParallelFor(
+        0, n - 1, 1024,
+        LbvhKarrasNodes<const Aabb*>{codes.data(), n, bvh.primOrder.data(), primBounds.data(),
+                                     bvh.nodes.data(), positionOf.data()});
     ParallelFor(0, n - 1, 1024,
                 LbvhLinkNodes{positionOf.data(), bvh.nodes.data(), bvh.parents.data()});
     BoundsBottomUp(bvh);
@@ -63,11 +64,12 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
 void RefitLbvh(Lbvh& bvh, std::span<const Aabb> primBounds) {
     if (bvh.primOrder.empty()) return;
     if (bvh.nodes[0].IsLeaf()) {
-        LbvhRootLeaf{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
+        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
         return;
     }
-    ParallelFor(0, bvh.nodes.size() - 2, 4096,
-                LbvhRefitLeaves{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()});
+    ParallelFor(
+        0, bvh.nodes.size() - 2, 4096,
+        LbvhRefitLeaves<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()});
     BoundsBottomUp(bvh);
 }
 

@@ -22,9 +22,14 @@ RT_HD inline BvhNode LbvhLeaf(const Aabb& bounds, uint32_t slot) {
     return node;
 }
 
+// The steps read the primitives' boxes through Boxes: an array (const Aabb*), or anything whose
+// operator[] gives box i, such as boxes computed where they are read (the TLAS's instances:
+// InstanceWorldBoxes, tlas.h), which spares an array of them.
+
 // The Morton code of each primitive's centroid, and its index (the sort's payload).
+template <class Boxes>
 struct LbvhMortonCodes {
-    const Aabb* bounds;
+    Boxes bounds;
     const Aabb* centroidBounds;
     uint32_t* codes;
     uint32_t* indices;
@@ -35,8 +40,9 @@ struct LbvhMortonCodes {
 };
 
 // A tree of one primitive: the root is its leaf.
+template <class Boxes>
 struct LbvhRootLeaf {
-    const Aabb* bounds;
+    Boxes bounds;
     const uint32_t* primOrder;
     BvhNode* nodes;
     RT_HD void operator()(size_t) const { nodes[0] = LbvhLeaf(bounds[primOrder[0]], 0); }
@@ -44,11 +50,12 @@ struct LbvhRootLeaf {
 
 // Karras internal node k writes its leaf children at 2 + 2k and 3 + 2k and tells its internal
 // children where they sit.
+template <class Boxes>
 struct LbvhKarrasNodes {
     const uint32_t* codes;  // sorted
     uint32_t n;
     const uint32_t* primOrder;
-    const Aabb* bounds;
+    Boxes bounds;
     BvhNode* nodes;
     uint32_t* positionOf;
     RT_HD void operator()(size_t i) const {
@@ -83,8 +90,9 @@ struct LbvhLinkNodes {
 
 // A refit's leaves take their primitive's new box (positions from 2; the root is never a leaf
 // here).
+template <class Boxes>
 struct LbvhRefitLeaves {
-    const Aabb* bounds;
+    Boxes bounds;
     const uint32_t* primOrder;
     BvhNode* nodes;
     RT_HD void operator()(size_t i) const {

@@ -26,6 +26,17 @@ RT_HD inline Aabb TransformBounds(const Affine& m, const Aabb& b) {
     return out;
 }
 
+// The instances' world boxes as a TLAS build reads them (the Boxes of lbvh_steps.h): computed
+// from the record and its BLAS's box each time, so that no array of them is kept.
+struct InstanceWorldBoxes {
+    const Instance* instances;
+    const Aabb* blasBounds;  // by BLAS id
+    RT_HD Aabb operator[](size_t i) const {
+        const Instance& inst = instances[i];
+        return TransformBounds(inst.ObjectToWorld(), blasBounds[inst.blasId]);
+    }
+};
+
 enum class TlasBuilder { kSah, kLbvh };
 
 // World bounds of every instance (its BLAS bounds under its transform).

@@ -2,7 +2,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/bvh/build/gpu_lbvh.h"
+#include "engine/bvh/build/gpu_lbvh.cuh"
 #include "engine/bvh/build/sah_term.h"
 #include "engine/bvh/tlas/tlas.h"
 #include "engine/render_rt/cuda/cuda_deformer.h"
@@ -18,22 +18,12 @@ constexpr int kBlock = 256;
 constexpr uint32_t kMaxTraceBands = 64;
 uint32_t Blocks(size_t n) { return uint32_t((n + kBlock - 1) / kBlock); }
 
-// Writes the changed records into place and recomputes their world boxes.
+// Writes the changed records into place (the TLAS computes their world boxes as it reads them).
 __global__ void ScatterInstancesKernel(const uint32_t* indices, const Instance* records,
-                                       uint32_t count, const Aabb* blasBounds, Instance* instances,
-                                       Aabb* worldBounds) {
+                                       uint32_t count, Instance* instances) {
     const uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
     if (k >= count) return;
-    const Instance inst = records[k];
-    instances[indices[k]] = inst;
-    worldBounds[indices[k]] = TransformBounds(inst.ObjectToWorld(), blasBounds[inst.blasId]);
-}
-
-__global__ void AllWorldBoundsKernel(const Instance* instances, uint32_t n, const Aabb* blasBounds,
-                                     Aabb* worldBounds) {
-    const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i >= n) return;
-    worldBounds[i] = TransformBounds(instances[i].ObjectToWorld(), blasBounds[instances[i].blasId]);
+    instances[indices[k]] = records[k];
 }
 
 // Each node's term of the SAH cost (sah_term.h, the one the deformers' policy sums too).
@@ -132,11 +122,12 @@ class CudaFrameRenderer final : public FrameRenderer {
         // stage at most, never for its trace), so that decisions stay deterministic run to run.
         const bool rebuild = policy_.alwaysRebuild || countChanged || !built_ ||
                              lastSahCost_ > (1.0f + policy_.maxSahGrowth) * rebuiltSahCost_;
+        const InstanceWorldBoxes boxes{instances_.Data(), blasBounds_.Data()};
         if (rebuild) {
-            tlas_.Build(worldBounds_.Data(), n);
+            tlas_.BuildOver(boxes, n);
             built_ = true;
         } else if (f.times.uploaded > 0) {
-            tlas_.Refit(worldBounds_.Data());
+            tlas_.RefitOver(boxes);
         }
         // Always-rebuild (the benchmark's mode) needs no cost.
         if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild) QueueSahCost(rebuild);
@@ -299,15 +290,7 @@ class CudaFrameRenderer final : public FrameRenderer {
     }
 
     // Every record again, after the instance count changed.
-    void UploadAll(const RenderScene& scene) {
-        const uint32_t n = uint32_t(scene.instances.size());
-        instances_.Upload(scene.instances);
-        worldBounds_.Resize(n);
-        if (n == 0) return;
-        AllWorldBoundsKernel<<<Blocks(n), kBlock>>>(instances_.Data(), n, blasBounds_.Data(),
-                                                    worldBounds_.Data());
-        RT_CUDA_CHECK_LAUNCH();
-    }
+    void UploadAll(const RenderScene& scene) { instances_.Upload(scene.instances); }
 
     // BLASes the scene gained (spawned models, new deformations' slots), and room for their
     // boxes.
@@ -361,8 +344,7 @@ class CudaFrameRenderer final : public FrameRenderer {
         RT_CUDA_CHECK(cudaMemcpyAsync(changedRecords_.Data(), hostRecords_.data(),
                                       count * sizeof(Instance), cudaMemcpyHostToDevice));
         ScatterInstancesKernel<<<Blocks(count), kBlock>>>(
-            changedIndices_.Data(), changedRecords_.Data(), count, blasBounds_.Data(),
-            instances_.Data(), worldBounds_.Data());
+            changedIndices_.Data(), changedRecords_.Data(), count, instances_.Data());
         RT_CUDA_CHECK_LAUNCH();
         return count;
     }
@@ -396,7 +378,6 @@ class CudaFrameRenderer final : public FrameRenderer {
     uint32_t mark_ = 0;
     DeviceBuffer<Aabb> blasBounds_;
     DeviceBuffer<Instance> instances_;
-    DeviceBuffer<Aabb> worldBounds_;
     DeviceBuffer<uint32_t> changedIndices_;
     DeviceBuffer<Instance> changedRecords_;
     std::vector<uint32_t> hostIndices_;
