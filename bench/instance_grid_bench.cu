@@ -27,9 +27,9 @@ __global__ void GridInstancesKernel(uint32_t n, uint32_t side, float time, Insta
     sincosf(time + 0.37f * float(i), &s, &c);
     Instance inst;
     // Rotation about +y: x' = c x + s z, z' = -s x + c z; the inverse is the transpose.
-    inst.inverseAndPosition[0] = vec4(c, 0.0f, -s, t.x);
-    inst.inverseAndPosition[1] = vec4(0.0f, 1.0f, 0.0f, t.y);
-    inst.inverseAndPosition[2] = vec4(s, 0.0f, c, t.z);
+    inst.inverseAndPosition.row[0] = vec4(c, 0.0f, -s, t.x);
+    inst.inverseAndPosition.row[1] = vec4(0.0f, 1.0f, 0.0f, t.y);
+    inst.inverseAndPosition.row[2] = vec4(s, 0.0f, c, t.z);
     inst.blasId = 0;
     inst.materialId = 0;
     inst.pad[0] = inst.pad[1] = 0;

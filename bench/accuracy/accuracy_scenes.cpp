@@ -78,7 +78,8 @@ void UseRuntimeTlas(RenderScene& scene, uint32_t frames) {
     for (size_t i = 0; i < n; ++i) {
         const float angle = 2.39996f * float(i);  // the golden angle: directions spread evenly
         const vec3 step = kInstanceSpeed * vec3(std::cos(angle), std::sin(angle), 0.0f);
-        for (int r = 0; r < 3; ++r) before[i].inverseAndPosition[r].w -= float(frames) * step[r];
+        for (int r = 0; r < 3; ++r)
+            before[i].inverseAndPosition.row[r].w -= float(frames) * step[r];
     }
     // Never rebuilt by the SAH-growth rule: the interval alone decides.
     DynamicTlas tlas(TlasPolicy{false, 1e30f});

@@ -36,7 +36,7 @@ struct HitD {
 inline glm::dmat3 InverseLinearD(const Instance& inst) {
     glm::dmat3 inverse;
     for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col) inverse[col][row] = inst.inverseAndPosition[row][col];
+        for (int col = 0; col < 3; ++col) inverse[col][row] = inst.inverseAndPosition.row[row][col];
     return inverse;
 }
 // The linear part L, inverted in double.

@@ -26,8 +26,8 @@ void Move(std::vector<Instance>& instances, uint32_t frame, float amount) {
     for (size_t i = 0; i < instances.size(); ++i) {
         // Each instance wanders its own way; neighbours drift apart.
         const float phase = 0.37f * float(i) + 0.1f * float(frame);
-        instances[i].inverseAndPosition[0].w += amount * std::sin(phase);
-        instances[i].inverseAndPosition[2].w += amount * std::cos(1.3f * phase);
+        instances[i].inverseAndPosition.row[0].w += amount * std::sin(phase);
+        instances[i].inverseAndPosition.row[2].w += amount * std::cos(1.3f * phase);
     }
 }
 

@@ -159,7 +159,8 @@ void ExpectRecordsMatchEntities(World& world) {
         EXPECT_EQ(r->instance, i);
         const Instance expected = MakeInstance(r->blasId, r->materialId, w->objectToWorld);
         for (int row = 0; row < 3; ++row)
-            EXPECT_EQ(scene.instances[i].inverseAndPosition[row], expected.inverseAndPosition[row])
+            EXPECT_EQ(scene.instances[i].inverseAndPosition.row[row],
+                      expected.inverseAndPosition.row[row])
                 << i;
     }
 }

@@ -8,7 +8,7 @@ void SetTransform(Instance& inst, const glm::mat4& objectToWorld) {
     // GLM is column-major: m[col][row].
     const glm::mat4 inverse = glm::affineInverse(objectToWorld);
     for (int r = 0; r < 3; ++r)
-        inst.inverseAndPosition[r] =
+        inst.inverseAndPosition.row[r] =
             vec4(inverse[0][r], inverse[1][r], inverse[2][r], objectToWorld[3][r]);
 }
 

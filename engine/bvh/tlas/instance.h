@@ -9,28 +9,23 @@ namespace rtrt {
 // points, tangents, world boxes) inverts L^-1 again, once per hit or per box. Both transforms
 // took 112 bytes; the traversal never read the forward one.
 struct alignas(16) Instance {
-    vec4 inverseAndPosition[3];  // xyz: row i of L^-1; w: coordinate i of c
+    // xyz of row i: row i of L^-1; w: coordinate i of c. Not an affine map itself: only its
+    // linear part is applied (Vector, NormalFromInverse), to offsets from c.
+    Affine inverseAndPosition;
     uint32_t blasId;
     uint32_t materialId;
     uint32_t pad[2];
 
     RT_HD vec3 Position() const {
-        return vec3(inverseAndPosition[0].w, inverseAndPosition[1].w, inverseAndPosition[2].w);
+        const vec4* r = inverseAndPosition.row;
+        return vec3(r[0].w, r[1].w, r[2].w);
     }
     // Row i of L^-1.
-    RT_HD vec3 InverseRow(int i) const { return vec3(inverseAndPosition[i]); }
+    RT_HD vec3 InverseRow(int i) const { return vec3(inverseAndPosition.row[i]); }
     // L^-1 v: a world direction (or an offset from the position) in object space.
-    RT_HD vec3 VectorToObject(vec3 v) const {
-        return vec3(Dot3(inverseAndPosition[0], v), Dot3(inverseAndPosition[1], v),
-                    Dot3(inverseAndPosition[2], v));
-    }
+    RT_HD vec3 VectorToObject(vec3 v) const { return inverseAndPosition.Vector(v); }
     // L^-T n: an object-space normal in world space (unnormalised).
-    RT_HD vec3 NormalToWorld(vec3 n) const {
-        const vec4* r = inverseAndPosition;
-        return vec3(r[0].x * n.x + r[1].x * n.y + r[2].x * n.z,
-                    r[0].y * n.x + r[1].y * n.y + r[2].y * n.z,
-                    r[0].z * n.x + r[1].z * n.y + r[2].z * n.z);
-    }
+    RT_HD vec3 NormalToWorld(vec3 n) const { return inverseAndPosition.NormalFromInverse(n); }
     // objectToWorld, its linear part the inverse of L^-1 (cofactors over the determinant).
     RT_HD Affine ObjectToWorld() const {
         const vec3 a = InverseRow(0), b = InverseRow(1), d = InverseRow(2);
@@ -44,10 +39,6 @@ struct alignas(16) Instance {
         m.row[2] = vec4(c0.z * inv, c1.z * inv, c2.z * inv, p.z);
         return m;
     }
-
-  private:
-    // The expression Affine uses, so that results keep their rounding.
-    RT_HD static float Dot3(const vec4& r, vec3 v) { return r.x * v.x + r.y * v.y + r.z * v.z; }
 };
 static_assert(sizeof(Instance) == 64);
 
