@@ -11,8 +11,12 @@ void GpuLbvh::Build(const Aabb* bounds, uint32_t n, cudaStream_t stream) {
 
 void GpuLbvh::Refit(const Aabb* bounds, cudaStream_t stream) { RefitOver(bounds, stream); }
 
+uint32_t GpuLbvh::NodeCount() const {
+    return std::max(2u, 2 * LbvhLeafGroups{count_, leafSize_}.LeafCount());
+}
+
 void GpuLbvh::BoundsBottomUp(cudaStream_t stream) {
-    const uint32_t positions = 2 * count_;
+    const uint32_t positions = NodeCount();
     RT_CUDA_CHECK(cudaMemsetAsync(arrivals_.Data(), 0, positions * sizeof(uint32_t), stream));
     ParallelForCuda(0, positions - 2,
                     LbvhBoundsBottomUp{parents_.Data(), nodes_.Data(), arrivals_.Data()}, stream);

@@ -1,9 +1,6 @@
 #pragma once
 // GpuLbvh's build and refit over any Boxes (lbvh_steps.h), for .cu files: gpu_lbvh.cu instantiates
 // them for arrays of boxes, the TLAS's users for boxes computed from the instances.
-#include <thrust/iterator/counting_iterator.h>
-#include <thrust/iterator/transform_iterator.h>
-
 #include <cub/cub.cuh>
 #include <utility>
 
@@ -13,28 +10,33 @@
 
 namespace rtrt {
 
-struct LbvhMergeBoxes {
-    __device__ Aabb operator()(const Aabb& a, const Aabb& b) const {
-        Aabb r = a;
-        r.Grow(b);
-        return r;
-    }
-};
-
-// Primitive i's centroid as a box, read straight from its bounds by the reduction (no array).
+// The centroids' bounds as OrderedBounds (set to kNone before): each thread takes the keys of a
+// stride of primitives, each warp its lanes' minima, and one lane per warp the atomic minima.
 template <class Boxes>
-struct LbvhCentroidBox {
-    Boxes boxes;
-    __device__ Aabb operator()(uint32_t i) const {
-        const vec3 c = Aabb(boxes[i]).Centroid();
-        return {c, c};
+__global__ void LbvhCentroidBoundsKernel(Boxes bounds, uint32_t n, OrderedBounds* out) {
+    uint32_t keys[6];
+    for (uint32_t& k : keys) k = OrderedBounds::kNone;
+    for (uint32_t i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
+        const vec3 c = Aabb(bounds[i]).Centroid();
+        for (int a = 0; a < 3; ++a) {
+            keys[a] = min(keys[a], OrderedBounds::MinKey(c[a]));
+            keys[3 + a] = min(keys[3 + a], OrderedBounds::NegMaxKey(c[a]));
+        }
     }
-};
+    for (uint32_t& k : keys) k = __reduce_min_sync(0xffffffffu, k);
+    if (threadIdx.x % 32 != 0) return;
+    for (int a = 0; a < 3; ++a) {
+        if (keys[a] != OrderedBounds::kNone) atomicMin(&out->minKey[a], keys[a]);
+        if (keys[3 + a] != OrderedBounds::kNone) atomicMin(&out->negMaxKey[a], keys[3 + a]);
+    }
+}
 
 template <class Boxes>
 void GpuLbvh::BuildOver(Boxes bounds, uint32_t n, cudaStream_t stream) {
     count_ = n;
-    const size_t positions = std::max<size_t>(2, 2 * size_t(n));
+    const LbvhLeafGroups groups{n, leafSize_};
+    const uint32_t leaves = groups.LeafCount();
+    const size_t positions = NodeCount();
     nodes_.Resize(positions);
     parents_.Resize(positions);
     primOrder_.Resize(n);
@@ -52,61 +54,65 @@ void GpuLbvh::BuildOver(Boxes bounds, uint32_t n, cudaStream_t stream) {
     sortedCodes_.Resize(n);
     indices_.Resize(n);
     centroidBounds_.Resize(1);
-    positionOf_.Resize(n);
+    positionOf_.Resize(std::max(leaves - 1, 1u));
     arrivals_.Resize(positions);
 
-    const auto centroids = thrust::make_transform_iterator(thrust::make_counting_iterator(0u),
-                                                           LbvhCentroidBox<Boxes>{bounds});
     // The sort ping-pongs between the two arrays of each pair (CUB's double buffer), which
     // spares the scratch a copy of both.
     cub::DoubleBuffer<uint32_t> keys(codes_.Data(), sortedCodes_.Data());
     cub::DoubleBuffer<uint32_t> values(indices_.Data(), primOrder_.Data());
-    // CUB needs scratch memory: ask for the largest of the reduce's and the sort's.
-    size_t reduceBytes = 0, sortBytes = 0;
-    RT_CUDA_CHECK(cub::DeviceReduce::Reduce(nullptr, reduceBytes, centroids, centroidBounds_.Data(),
-                                            int(n), LbvhMergeBoxes(), Aabb(), stream));
+    size_t sortBytes = 0;
     RT_CUDA_CHECK(
         cub::DeviceRadixSort::SortPairs(nullptr, sortBytes, keys, values, int(n), 0, 30, stream));
-    const size_t scratchBytes = std::max(reduceBytes, sortBytes);
-    if (scratch_.Size() < scratchBytes) scratch_.Resize(scratchBytes);
-    RT_CUDA_CHECK(cub::DeviceReduce::Reduce(scratch_.Data(), reduceBytes, centroids,
-                                            centroidBounds_.Data(), int(n), LbvhMergeBoxes(),
-                                            Aabb(), stream));
-    ParallelForCuda(
-        0, n,
-        LbvhMortonCodes<Boxes>{bounds, centroidBounds_.Data(), codes_.Data(), indices_.Data()},
-        stream);
+    if (scratch_.Size() < sortBytes) scratch_.Resize(sortBytes);
+
+    RT_CUDA_CHECK(cudaMemsetAsync(centroidBounds_.Data(), 0xff, sizeof(OrderedBounds), stream));
+    constexpr uint32_t kBlock = 256, kMaxBlocks = 1024;  // a few per SM: few atomics
+    const uint32_t blocks = std::min((n + kBlock - 1) / kBlock, kMaxBlocks);
+    LbvhCentroidBoundsKernel<<<blocks, kBlock, 0, stream>>>(bounds, n, centroidBounds_.Data());
+    RT_CUDA_CHECK_LAUNCH();
+    ParallelForCuda(0, n,
+                    LbvhMortonCodes<Boxes, OrderedBounds>{bounds, centroidBounds_.Data(),
+                                                          codes_.Data(), indices_.Data()},
+                    stream);
     RT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch_.Data(), sortBytes, keys, values, int(n),
                                                   0, 30, stream));
     // The sorted arrays are wherever the last pass left them: name them sortedCodes_ and
     // primOrder_ (the other two are rewritten next build).
     if (keys.Current() != sortedCodes_.Data()) std::swap(codes_, sortedCodes_);
     if (values.Current() != primOrder_.Data()) std::swap(indices_, primOrder_);
-    if (n == 1) {
-        ParallelForCuda(0, 1, LbvhRootLeaf<Boxes>{bounds, primOrder_.Data(), nodes_.Data()},
+    if (leaves == 1) {
+        ParallelForCuda(0, 1, LbvhRootLeaf<Boxes>{bounds, primOrder_.Data(), n, nodes_.Data()},
                         stream);
         RT_CUDA_CHECK(cudaStreamSynchronize(stream));
         return;
     }
-    ParallelForCuda(0, n - 1,
-                    LbvhKarrasNodes<Boxes>{sortedCodes_.Data(), n, primOrder_.Data(), bounds,
+    // Karras's nodes over the leaves' codes: the sorted codes themselves for one primitive per
+    // leaf, else every leafSize-th of them, gathered into the free codes_ array.
+    const uint32_t* leafCodes = sortedCodes_.Data();
+    if (leafSize_ > 1) {
+        ParallelForCuda(0, leaves, LbvhLeafCodes{sortedCodes_.Data(), groups, codes_.Data()},
+                        stream);
+        leafCodes = codes_.Data();
+    }
+    ParallelForCuda(0, leaves - 1,
+                    LbvhKarrasNodes<Boxes>{leafCodes, groups, primOrder_.Data(), bounds,
                                            nodes_.Data(), positionOf_.Data()},
                     stream);
-    ParallelForCuda(0, n - 1, LbvhLinkNodes{positionOf_.Data(), nodes_.Data(), parents_.Data()},
-                    stream);
+    ParallelForCuda(0, leaves - 1,
+                    LbvhLinkNodes{positionOf_.Data(), nodes_.Data(), parents_.Data()}, stream);
     BoundsBottomUp(stream);
 }
 
 template <class Boxes>
 void GpuLbvh::RefitOver(Boxes bounds, cudaStream_t stream) {
     if (count_ == 0) return;
-    if (count_ == 1) {
-        ParallelForCuda(0, 1, LbvhRootLeaf<Boxes>{bounds, primOrder_.Data(), nodes_.Data()},
+    if (count_ <= leafSize_) {
+        ParallelForCuda(0, 1, LbvhRootLeaf<Boxes>{bounds, primOrder_.Data(), count_, nodes_.Data()},
                         stream);
         return;
     }
-    const uint32_t positions = 2 * count_;
-    ParallelForCuda(0, positions - 2,
+    ParallelForCuda(0, NodeCount() - 2,
                     LbvhRefitLeaves<Boxes>{bounds, primOrder_.Data(), nodes_.Data()}, stream);
     BoundsBottomUp(stream);
 }

@@ -3,15 +3,24 @@
 // the CPU (lbvh.h) — centroid bounds, 30-bit Morton codes, a stable CUB radix sort (equal codes
 // keep input order, as the CPU's (code, index) sort), Karras 2012 nodes in parallel, bounds
 // bottom-up with atomic arrival counters. All arrays stay on the device.
+//
+// The centroid bounds come from a reduction of order-preserving integer keys with atomic min
+// (exact, so equal to the CPU's in any order) rather than CUB's reduce, whose scratch holds a
+// partial box per block it could launch: about 95 KB at any count, which at 1,000 instances
+// would be most of the TLAS's memory.
 #include <cuda_runtime.h>
 
 #include "engine/bvh/build/lbvh.h"
+#include "engine/bvh/build/ordered_bounds.h"
 #include "engine/core/device_buffer.h"
 
 namespace rtrt {
 
 class GpuLbvh {
   public:
+    // Leaves hold leafSize sorted primitives (lbvh.h).
+    explicit GpuLbvh(uint32_t leafSize = 1) : leafSize_(leafSize < 1 ? 1 : leafSize) {}
+
     // Builds over n primitive boxes in device memory; the arrays are reused across frames.
     void Build(const Aabb* deviceBounds, uint32_t n, cudaStream_t stream = 0);
     // Refit after the boxes moved (same n, same order of primitives).
@@ -27,6 +36,9 @@ class GpuLbvh {
     const uint32_t* PrimOrder() const { return primOrder_.Data(); }
     const uint32_t* Parents() const { return parents_.Data(); }
     uint32_t Count() const { return count_; }
+    uint32_t LeafSize() const { return leafSize_; }
+    // The node positions in Nodes(): two per leaf (the root's pair included), at least two.
+    uint32_t NodeCount() const;
     // The device memory the tree and its build keep between frames (CUB's scratch included).
     size_t DeviceBytes() const;
     // Copies the tree to the host, for tests and for comparison with the CPU build.
@@ -35,11 +47,12 @@ class GpuLbvh {
   private:
     void BoundsBottomUp(cudaStream_t stream);
 
+    uint32_t leafSize_;
     uint32_t count_ = 0;
     DeviceBuffer<BvhNode> nodes_;
     DeviceBuffer<uint32_t> primOrder_, parents_, positionOf_, arrivals_;
     DeviceBuffer<uint32_t> codes_, sortedCodes_, indices_;
-    DeviceBuffer<Aabb> centroidBounds_;
+    DeviceBuffer<OrderedBounds> centroidBounds_;
     DeviceBuffer<unsigned char> scratch_;  // CUB's temporary storage
 };
 

@@ -14,11 +14,30 @@ namespace rtrt {
 
 inline constexpr uint32_t kLbvhNoParent = UINT32_MAX;
 
-RT_HD inline BvhNode LbvhLeaf(const Aabb& bounds, uint32_t slot) {
+// How the sorted primitives fill the leaves: leaf j holds slots [size j, size j + size), the last
+// leaf what remains. The TLAS puts two instances in a leaf (tlas.h); other trees one primitive.
+struct LbvhLeafGroups {
+    uint32_t primCount;
+    uint32_t size;
+
+    RT_HD uint32_t LeafCount() const { return (primCount + size - 1) / size; }
+    RT_HD uint32_t First(uint32_t leaf) const { return leaf * size; }
+    RT_HD uint32_t Count(uint32_t leaf) const {
+        const uint32_t rest = primCount - First(leaf);
+        return rest < size ? rest : size;
+    }
+};
+
+// The leaf over slots [first, first + count): its box is the union of theirs.
+template <class Boxes>
+RT_HD inline BvhNode LbvhLeaf(const Boxes& bounds, const uint32_t* primOrder, uint32_t first,
+                              uint32_t count) {
+    Aabb box = bounds[primOrder[first]];
+    for (uint32_t s = 1; s < count; ++s) box.Grow(Aabb(bounds[primOrder[first + s]]));
     BvhNode node;
-    node.SetBounds(bounds);
-    node.leftFirst = slot;
-    node.primCount = 1;
+    node.SetBounds(box);
+    node.leftFirst = first;
+    node.primCount = count;
     return node;
 }
 
@@ -26,48 +45,62 @@ RT_HD inline BvhNode LbvhLeaf(const Aabb& bounds, uint32_t slot) {
 // operator[] gives box i, such as boxes computed where they are read (the TLAS's instances:
 // InstanceWorldBoxes, tlas.h), which spares an array of them.
 
-// The Morton code of each primitive's centroid, and its index (the sort's payload).
-template <class Boxes>
+// The Morton code of each primitive's centroid, and its index (the sort's payload). The centroids'
+// bounds: an Aabb, or anything that converts to one (the GPU's OrderedBounds).
+template <class Boxes, class CentroidBounds = Aabb>
 struct LbvhMortonCodes {
     Boxes bounds;
-    const Aabb* centroidBounds;
+    const CentroidBounds* centroidBounds;
     uint32_t* codes;
     uint32_t* indices;
     RT_HD void operator()(size_t i) const {
-        codes[i] = MortonCode(bounds[i].Centroid(), *centroidBounds);
+        codes[i] = MortonCode(Aabb(bounds[i]).Centroid(), Aabb(*centroidBounds));
         indices[i] = uint32_t(i);
     }
 };
 
-// A tree of one primitive: the root is its leaf.
+// A tree of one leaf: the root is that leaf.
 template <class Boxes>
 struct LbvhRootLeaf {
     Boxes bounds;
     const uint32_t* primOrder;
+    uint32_t primCount;
     BvhNode* nodes;
-    RT_HD void operator()(size_t) const { nodes[0] = LbvhLeaf(bounds[primOrder[0]], 0); }
+    RT_HD void operator()(size_t) const { nodes[0] = LbvhLeaf(bounds, primOrder, 0, primCount); }
 };
 
-// Karras internal node k writes its leaf children at 2 + 2k and 3 + 2k and tells its internal
-// children where they sit.
+// The sort key of each leaf, for Karras's nodes over leaves: its first primitive's code (the
+// sorted codes are in order, so the leaves' are too).
+struct LbvhLeafCodes {
+    const uint32_t* sortedCodes;
+    LbvhLeafGroups groups;
+    uint32_t* leafCodes;
+    RT_HD void operator()(size_t j) const { leafCodes[j] = sortedCodes[groups.First(uint32_t(j))]; }
+};
+
+// Karras internal node k (over the leaves' codes) writes its leaf children at 2 + 2k and 3 + 2k
+// and tells its internal children where they sit.
 template <class Boxes>
 struct LbvhKarrasNodes {
-    const uint32_t* codes;  // sorted
-    uint32_t n;
+    const uint32_t* leafCodes;  // sorted, one per leaf
+    LbvhLeafGroups groups;
     const uint32_t* primOrder;
     Boxes bounds;
     BvhNode* nodes;
     uint32_t* positionOf;
+    RT_HD BvhNode Leaf(uint32_t j) const {
+        return LbvhLeaf(bounds, primOrder, groups.First(j), groups.Count(j));
+    }
     RT_HD void operator()(size_t i) const {
         const uint32_t k = uint32_t(i);
-        const KarrasNode range = KarrasInternalNode(codes, n, k);
+        const KarrasNode range = KarrasInternalNode(leafCodes, groups.LeafCount(), k);
         const uint32_t pair = 2 + 2 * k;
         if (range.split == range.first)
-            nodes[pair] = LbvhLeaf(bounds[primOrder[range.split]], range.split);
+            nodes[pair] = Leaf(range.split);
         else
             positionOf[range.split] = pair;
         if (range.split + 1 == range.last)
-            nodes[pair + 1] = LbvhLeaf(bounds[primOrder[range.split + 1]], range.split + 1);
+            nodes[pair + 1] = Leaf(range.split + 1);
         else
             positionOf[range.split + 1] = pair + 1;
     }
@@ -88,7 +121,7 @@ struct LbvhLinkNodes {
     }
 };
 
-// A refit's leaves take their primitive's new box (positions from 2; the root is never a leaf
+// A refit's leaves take their primitives' new boxes (positions from 2; the root is never a leaf
 // here).
 template <class Boxes>
 struct LbvhRefitLeaves {
@@ -97,7 +130,8 @@ struct LbvhRefitLeaves {
     BvhNode* nodes;
     RT_HD void operator()(size_t i) const {
         const size_t p = i + 2;
-        if (nodes[p].IsLeaf()) nodes[p].SetBounds(bounds[primOrder[nodes[p].leftFirst]]);
+        const BvhNode node = nodes[p];
+        if (node.IsLeaf()) nodes[p] = LbvhLeaf(bounds, primOrder, node.leftFirst, node.primCount);
     }
 };
 
