@@ -56,7 +56,7 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
         frame.Resize(size_t(settings.width) * settings.height);
         DeviceBuffer<unsigned long long> rayCount;
         rayCount.Resize(1);
-        GpuLbvh tlas(kTlasLeafSize);
+        GpuLbvh tlas;
         cudaEvent_t events[6];
         for (cudaEvent_t& e : events) RT_CUDA_CHECK(cudaEventCreate(&e));
         std::vector<double> update, build, refit, trace, total;

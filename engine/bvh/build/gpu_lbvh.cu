@@ -11,21 +11,20 @@ void GpuLbvh::Build(const Aabb* bounds, uint32_t n, cudaStream_t stream) {
 
 void GpuLbvh::Refit(const Aabb* bounds, cudaStream_t stream) { RefitOver(bounds, stream); }
 
-uint32_t GpuLbvh::NodeCount() const {
-    return std::max(2u, 2 * LbvhLeafGroups{count_, leafSize_}.LeafCount());
-}
-
 void GpuLbvh::BoundsBottomUp(cudaStream_t stream) {
-    const uint32_t positions = NodeCount();
-    RT_CUDA_CHECK(cudaMemsetAsync(arrivals_.Data(), 0, positions * sizeof(uint32_t), stream));
-    ParallelForCuda(0, positions - 2,
-                    LbvhBoundsBottomUp{parents_.Data(), nodes_.Data(), arrivals_.Data()}, stream);
+    // The arrival counters live in the spare indices (count - 1 of them, one per interior node),
+    // free after the build's Karras step and between builds.
+    const uint32_t positions = 2 * count_;
+    uint32_t* const arrivals = spareIndices_.Data();
+    RT_CUDA_CHECK(
+        cudaMemsetAsync(arrivals, 0, LbvhArrivalCount(positions) * sizeof(uint32_t), stream));
+    ParallelForCuda(0, positions - 2, LbvhBoundsBottomUp{parents_.Data(), nodes_.Data(), arrivals},
+                    stream);
 }
 
 size_t GpuLbvh::DeviceBytes() const {
     auto bytes = [](const auto& buffer) { return buffer.Size() * sizeof(*buffer.Data()); };
-    return bytes(nodes_) + bytes(primOrder_) + bytes(parents_) + bytes(positionOf_) +
-           bytes(arrivals_) + bytes(codes_) + bytes(sortedCodes_) + bytes(indices_) +
+    return bytes(nodes_) + bytes(primOrder_) + bytes(parents_) + bytes(spareIndices_) +
            bytes(centroidBounds_) + bytes(scratch_);
 }
 

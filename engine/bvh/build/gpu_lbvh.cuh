@@ -34,14 +34,12 @@ __global__ void LbvhCentroidBoundsKernel(Boxes bounds, uint32_t n, OrderedBounds
 template <class Boxes>
 void GpuLbvh::BuildOver(Boxes bounds, uint32_t n, cudaStream_t stream) {
     count_ = n;
-    const LbvhLeafGroups groups{n, leafSize_};
-    const uint32_t leaves = groups.LeafCount();
-    const size_t positions = NodeCount();
+    const size_t positions = std::max<size_t>(2, 2 * size_t(n));
     nodes_.Resize(positions);
     parents_.Resize(positions);
     primOrder_.Resize(n);
-    RT_CUDA_CHECK(cudaMemsetAsync(parents_.Data(), 0xff, positions * sizeof(uint32_t), stream));
     if (n == 0) {
+        RT_CUDA_CHECK(cudaMemsetAsync(parents_.Data(), 0xff, positions * sizeof(uint32_t), stream));
         const BvhNode empty{vec3(kInfinity), 0, vec3(-kInfinity), 0};
         const BvhNode host[2] = {empty, empty};  // as the CPU build leaves an empty tree
         RT_CUDA_CHECK(
@@ -50,17 +48,15 @@ void GpuLbvh::BuildOver(Boxes bounds, uint32_t n, cudaStream_t stream) {
         return;
     }
     RT_CUDA_CHECK(cudaMemsetAsync(nodes_.Data() + 1, 0, sizeof(BvhNode), stream));
-    codes_.Resize(n);
-    sortedCodes_.Resize(n);
-    indices_.Resize(n);
+    spareIndices_.Resize(n);
     centroidBounds_.Resize(1);
-    positionOf_.Resize(std::max(leaves - 1, 1u));
-    arrivals_.Resize(positions);
 
     // The sort ping-pongs between the two arrays of each pair (CUB's double buffer), which
-    // spares the scratch a copy of both.
-    cub::DoubleBuffer<uint32_t> keys(codes_.Data(), sortedCodes_.Data());
-    cub::DoubleBuffer<uint32_t> values(indices_.Data(), primOrder_.Data());
+    // spares the scratch a copy of both. The codes' two arrays are the halves of the parent
+    // links, which are written only once the codes have been read (below).
+    uint32_t* const codes = parents_.Data();
+    cub::DoubleBuffer<uint32_t> keys(codes, codes + n);
+    cub::DoubleBuffer<uint32_t> values(spareIndices_.Data(), primOrder_.Data());
     size_t sortBytes = 0;
     RT_CUDA_CHECK(
         cub::DeviceRadixSort::SortPairs(nullptr, sortBytes, keys, values, int(n), 0, 30, stream));
@@ -72,47 +68,43 @@ void GpuLbvh::BuildOver(Boxes bounds, uint32_t n, cudaStream_t stream) {
     LbvhCentroidBoundsKernel<<<blocks, kBlock, 0, stream>>>(bounds, n, centroidBounds_.Data());
     RT_CUDA_CHECK_LAUNCH();
     ParallelForCuda(0, n,
-                    LbvhMortonCodes<Boxes, OrderedBounds>{bounds, centroidBounds_.Data(),
-                                                          codes_.Data(), indices_.Data()},
+                    LbvhMortonCodes<Boxes, OrderedBounds>{bounds, centroidBounds_.Data(), codes,
+                                                          spareIndices_.Data()},
                     stream);
     RT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch_.Data(), sortBytes, keys, values, int(n),
                                                   0, 30, stream));
-    // The sorted arrays are wherever the last pass left them: name them sortedCodes_ and
-    // primOrder_ (the other two are rewritten next build).
-    if (keys.Current() != sortedCodes_.Data()) std::swap(codes_, sortedCodes_);
-    if (values.Current() != primOrder_.Data()) std::swap(indices_, primOrder_);
-    if (leaves == 1) {
-        ParallelForCuda(0, 1, LbvhRootLeaf<Boxes>{bounds, primOrder_.Data(), n, nodes_.Data()},
+    // The sorted values are wherever the last pass left them: name them primOrder_ (the other
+    // array is free until the next build).
+    if (values.Current() != primOrder_.Data()) std::swap(spareIndices_, primOrder_);
+    if (n == 1) {
+        RT_CUDA_CHECK(cudaMemsetAsync(parents_.Data(), 0xff, positions * sizeof(uint32_t), stream));
+        ParallelForCuda(0, 1, LbvhRootLeaf<Boxes>{bounds, primOrder_.Data(), nodes_.Data()},
                         stream);
         RT_CUDA_CHECK(cudaStreamSynchronize(stream));
         return;
     }
-    // Karras's nodes over the leaves' codes: the sorted codes themselves for one primitive per
-    // leaf, else every leafSize-th of them, gathered into the free codes_ array.
-    const uint32_t* leafCodes = sortedCodes_.Data();
-    if (leafSize_ > 1) {
-        ParallelForCuda(0, leaves, LbvhLeafCodes{sortedCodes_.Data(), groups, codes_.Data()},
-                        stream);
-        leafCodes = codes_.Data();
-    }
-    ParallelForCuda(0, leaves - 1,
-                    LbvhKarrasNodes<Boxes>{leafCodes, groups, primOrder_.Data(), bounds,
-                                           nodes_.Data(), positionOf_.Data()},
+    // Karras's internal nodes tell their children where they sit through the spare indices.
+    uint32_t* const positionOf = spareIndices_.Data();
+    ParallelForCuda(0, n - 1,
+                    LbvhKarrasNodes<Boxes>{keys.Current(), n, primOrder_.Data(), bounds,
+                                           nodes_.Data(), positionOf},
                     stream);
-    ParallelForCuda(0, leaves - 1,
-                    LbvhLinkNodes{positionOf_.Data(), nodes_.Data(), parents_.Data()}, stream);
+    // The codes are read: the parent links take their memory back.
+    RT_CUDA_CHECK(cudaMemsetAsync(parents_.Data(), 0xff, positions * sizeof(uint32_t), stream));
+    ParallelForCuda(0, n - 1, LbvhLinkNodes{positionOf, nodes_.Data(), parents_.Data()}, stream);
     BoundsBottomUp(stream);
 }
 
 template <class Boxes>
 void GpuLbvh::RefitOver(Boxes bounds, cudaStream_t stream) {
     if (count_ == 0) return;
-    if (count_ <= leafSize_) {
-        ParallelForCuda(0, 1, LbvhRootLeaf<Boxes>{bounds, primOrder_.Data(), count_, nodes_.Data()},
+    if (count_ == 1) {
+        ParallelForCuda(0, 1, LbvhRootLeaf<Boxes>{bounds, primOrder_.Data(), nodes_.Data()},
                         stream);
         return;
     }
-    ParallelForCuda(0, NodeCount() - 2,
+    const uint32_t positions = 2 * count_;
+    ParallelForCuda(0, positions - 2,
                     LbvhRefitLeaves<Boxes>{bounds, primOrder_.Data(), nodes_.Data()}, stream);
     BoundsBottomUp(stream);
 }

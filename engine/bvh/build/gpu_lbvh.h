@@ -2,12 +2,13 @@
 // The LBVH built on the GPU every frame (CUDA): the same steps and the same tree as BuildLbvh on
 // the CPU (lbvh.h) — centroid bounds, 30-bit Morton codes, a stable CUB radix sort (equal codes
 // keep input order, as the CPU's (code, index) sort), Karras 2012 nodes in parallel, bounds
-// bottom-up with atomic arrival counters. All arrays stay on the device.
+// bottom-up with atomic arrival counters. All arrays stay on the device; the build's temporary
+// arrays share memory where their lifetimes allow (see the members).
 //
-// The centroid bounds come from a reduction of order-preserving integer keys with atomic min
+// The centroid bounds come from a reduction of order-preserving integer keys with atomic minima
 // (exact, so equal to the CPU's in any order) rather than CUB's reduce, whose scratch holds a
-// partial box per block it could launch: about 95 KB at any count, which at 1,000 instances
-// would be most of the TLAS's memory.
+// partial box per block it could launch: about 95 KB at any count, which at 1,000 instances was
+// over a third of the TLAS's memory.
 #include <cuda_runtime.h>
 
 #include "engine/bvh/build/lbvh.h"
@@ -18,9 +19,6 @@ namespace rtrt {
 
 class GpuLbvh {
   public:
-    // Leaves hold leafSize sorted primitives (lbvh.h).
-    explicit GpuLbvh(uint32_t leafSize = 1) : leafSize_(leafSize < 1 ? 1 : leafSize) {}
-
     // Builds over n primitive boxes in device memory; the arrays are reused across frames.
     void Build(const Aabb* deviceBounds, uint32_t n, cudaStream_t stream = 0);
     // Refit after the boxes moved (same n, same order of primitives).
@@ -36,9 +34,6 @@ class GpuLbvh {
     const uint32_t* PrimOrder() const { return primOrder_.Data(); }
     const uint32_t* Parents() const { return parents_.Data(); }
     uint32_t Count() const { return count_; }
-    uint32_t LeafSize() const { return leafSize_; }
-    // The node positions in Nodes(): two per leaf (the root's pair included), at least two.
-    uint32_t NodeCount() const;
     // The device memory the tree and its build keep between frames (CUB's scratch included).
     size_t DeviceBytes() const;
     // Copies the tree to the host, for tests and for comparison with the CPU build.
@@ -47,11 +42,13 @@ class GpuLbvh {
   private:
     void BoundsBottomUp(cudaStream_t stream);
 
-    uint32_t leafSize_;
     uint32_t count_ = 0;
     DeviceBuffer<BvhNode> nodes_;
-    DeviceBuffer<uint32_t> primOrder_, parents_, positionOf_, arrivals_;
-    DeviceBuffer<uint32_t> codes_, sortedCodes_, indices_;
+    DeviceBuffer<uint32_t> primOrder_, parents_;
+    // The sort's second array of primitive indices: free after the sort, it holds the Karras
+    // step's node positions and then the bottom-up pass's arrival counters. The sort's keys
+    // (Morton codes) are kept in parents_, two halves of n, until the parent links are written.
+    DeviceBuffer<uint32_t> spareIndices_;
     DeviceBuffer<OrderedBounds> centroidBounds_;
     DeviceBuffer<unsigned char> scratch_;  // CUB's temporary storage
 };

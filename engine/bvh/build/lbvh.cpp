@@ -11,17 +11,16 @@ namespace {
 
 void BoundsBottomUp(Lbvh& bvh) {
     const size_t positions = bvh.nodes.size();
-    std::vector<uint32_t> arrivals(positions, 0);
+    std::vector<uint32_t> arrivals(LbvhArrivalCount(positions), 0);
     ParallelFor(0, positions - 2, 1024,
                 LbvhBoundsBottomUp{bvh.parents.data(), bvh.nodes.data(), arrivals.data()});
 }
 
 }  // namespace
 
-Lbvh BuildLbvh(std::span<const Aabb> primBounds, uint32_t leafSize) {
+Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
     Lbvh bvh;
     const uint32_t n = uint32_t(primBounds.size());
-    const LbvhLeafGroups groups{n, std::max(leafSize, 1u)};
     if (n == 0) {
         bvh.nodes.resize(2, BvhNode{vec3(kInfinity), 0, vec3(-kInfinity), 0});
         bvh.parents.assign(2, kLbvhNoParent);
@@ -43,23 +42,20 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds, uint32_t leafSize) {
         bvh.primOrder[s] = uint32_t(keys[s]);
     }
 
-    const uint32_t leaves = groups.LeafCount();
-    bvh.nodes.resize(2 * size_t(leaves));
+    bvh.nodes.resize(2 * size_t(n));
     bvh.parents.assign(bvh.nodes.size(), kLbvhNoParent);
     bvh.nodes[1] = BvhNode{vec3(0), 0, vec3(0), 0};
-    if (leaves == 1) {
-        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(), n, bvh.nodes.data()}(0);
+    if (n == 1) {
+        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
         return bvh;
     }
-    std::vector<uint32_t> leafCodes(leaves);
-    ParallelFor(0, leaves, 4096, LbvhLeafCodes{codes.data(), groups, leafCodes.data()});
     // Internal node k sits where its parent put it: position 0 for the root, else a child slot.
-    std::vector<uint32_t> positionOf(leaves - 1, 0);
+    std::vector<uint32_t> positionOf(n - 1, 0);
     ParallelFor(
-        0, leaves - 1, 1024,
-        LbvhKarrasNodes<const Aabb*>{leafCodes.data(), groups, bvh.primOrder.data(),
-                                     primBounds.data(), bvh.nodes.data(), positionOf.data()});
-    ParallelFor(0, leaves - 1, 1024,
+        0, n - 1, 1024,
+        LbvhKarrasNodes<const Aabb*>{codes.data(), n, bvh.primOrder.data(), primBounds.data(),
+                                     bvh.nodes.data(), positionOf.data()});
+    ParallelFor(0, n - 1, 1024,
                 LbvhLinkNodes{positionOf.data(), bvh.nodes.data(), bvh.parents.data()});
     BoundsBottomUp(bvh);
     return bvh;
@@ -68,8 +64,7 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds, uint32_t leafSize) {
 void RefitLbvh(Lbvh& bvh, std::span<const Aabb> primBounds) {
     if (bvh.primOrder.empty()) return;
     if (bvh.nodes[0].IsLeaf()) {
-        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(),
-                                  uint32_t(bvh.primOrder.size()), bvh.nodes.data()}(0);
+        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
         return;
     }
     ParallelFor(

@@ -4,9 +4,7 @@
 // bottom-up bounds. The CPU version here runs the same steps the CUDA version runs per thread.
 //
 // Layout in the common BvhNode array: the root at 0 (index 1 unused), and the two children of
-// Karras internal node k at 2 + 2k and 3 + 2k; leaf slot s holds sorted primitive s. Leaves hold
-// leafSize consecutive slots (the last leaf fewer), so m = ceil(n / leafSize) leaves take 2m
-// positions.
+// Karras internal node k at 2 + 2k and 3 + 2k; leaf slot s holds sorted primitive s.
 #include <span>
 #include <vector>
 
@@ -21,10 +19,10 @@ struct Lbvh {
     std::vector<uint32_t> parents;    // node position -> parent position (root: UINT32_MAX)
 };
 
-Lbvh BuildLbvh(std::span<const Aabb> primBounds, uint32_t leafSize = 1);
+Lbvh BuildLbvh(std::span<const Aabb> primBounds);
 
 // Recomputes bounds bottom-up for a new set of primitive bounds (same primitives, moved); the
-// topology stays. Works for any leaf size.
+// topology stays. Works for any node layout.
 void RefitLbvh(Lbvh& bvh, std::span<const Aabb> primBounds);
 
 }  // namespace rtrt

@@ -14,30 +14,11 @@ namespace rtrt {
 
 inline constexpr uint32_t kLbvhNoParent = UINT32_MAX;
 
-// How the sorted primitives fill the leaves: leaf j holds slots [size j, size j + size), the last
-// leaf what remains. The TLAS puts two instances in a leaf (tlas.h); other trees one primitive.
-struct LbvhLeafGroups {
-    uint32_t primCount;
-    uint32_t size;
-
-    RT_HD uint32_t LeafCount() const { return (primCount + size - 1) / size; }
-    RT_HD uint32_t First(uint32_t leaf) const { return leaf * size; }
-    RT_HD uint32_t Count(uint32_t leaf) const {
-        const uint32_t rest = primCount - First(leaf);
-        return rest < size ? rest : size;
-    }
-};
-
-// The leaf over slots [first, first + count): its box is the union of theirs.
-template <class Boxes>
-RT_HD inline BvhNode LbvhLeaf(const Boxes& bounds, const uint32_t* primOrder, uint32_t first,
-                              uint32_t count) {
-    Aabb box = bounds[primOrder[first]];
-    for (uint32_t s = 1; s < count; ++s) box.Grow(Aabb(bounds[primOrder[first + s]]));
+RT_HD inline BvhNode LbvhLeaf(const Aabb& bounds, uint32_t slot) {
     BvhNode node;
-    node.SetBounds(box);
-    node.leftFirst = first;
-    node.primCount = count;
+    node.SetBounds(bounds);
+    node.leftFirst = slot;
+    node.primCount = 1;
     return node;
 }
 
@@ -59,48 +40,35 @@ struct LbvhMortonCodes {
     }
 };
 
-// A tree of one leaf: the root is that leaf.
+// A tree of one primitive: the root is its leaf.
 template <class Boxes>
 struct LbvhRootLeaf {
     Boxes bounds;
     const uint32_t* primOrder;
-    uint32_t primCount;
     BvhNode* nodes;
-    RT_HD void operator()(size_t) const { nodes[0] = LbvhLeaf(bounds, primOrder, 0, primCount); }
+    RT_HD void operator()(size_t) const { nodes[0] = LbvhLeaf(bounds[primOrder[0]], 0); }
 };
 
-// The sort key of each leaf, for Karras's nodes over leaves: its first primitive's code (the
-// sorted codes are in order, so the leaves' are too).
-struct LbvhLeafCodes {
-    const uint32_t* sortedCodes;
-    LbvhLeafGroups groups;
-    uint32_t* leafCodes;
-    RT_HD void operator()(size_t j) const { leafCodes[j] = sortedCodes[groups.First(uint32_t(j))]; }
-};
-
-// Karras internal node k (over the leaves' codes) writes its leaf children at 2 + 2k and 3 + 2k
-// and tells its internal children where they sit.
+// Karras internal node k writes its leaf children at 2 + 2k and 3 + 2k and tells its internal
+// children where they sit.
 template <class Boxes>
 struct LbvhKarrasNodes {
-    const uint32_t* leafCodes;  // sorted, one per leaf
-    LbvhLeafGroups groups;
+    const uint32_t* codes;  // sorted
+    uint32_t n;
     const uint32_t* primOrder;
     Boxes bounds;
     BvhNode* nodes;
     uint32_t* positionOf;
-    RT_HD BvhNode Leaf(uint32_t j) const {
-        return LbvhLeaf(bounds, primOrder, groups.First(j), groups.Count(j));
-    }
     RT_HD void operator()(size_t i) const {
         const uint32_t k = uint32_t(i);
-        const KarrasNode range = KarrasInternalNode(leafCodes, groups.LeafCount(), k);
+        const KarrasNode range = KarrasInternalNode(codes, n, k);
         const uint32_t pair = 2 + 2 * k;
         if (range.split == range.first)
-            nodes[pair] = Leaf(range.split);
+            nodes[pair] = LbvhLeaf(bounds[primOrder[range.split]], range.split);
         else
             positionOf[range.split] = pair;
         if (range.split + 1 == range.last)
-            nodes[pair + 1] = Leaf(range.split + 1);
+            nodes[pair + 1] = LbvhLeaf(bounds[primOrder[range.split + 1]], range.split + 1);
         else
             positionOf[range.split + 1] = pair + 1;
     }
@@ -121,7 +89,7 @@ struct LbvhLinkNodes {
     }
 };
 
-// A refit's leaves take their primitives' new boxes (positions from 2; the root is never a leaf
+// A refit's leaves take their primitive's new box (positions from 2; the root is never a leaf
 // here).
 template <class Boxes>
 struct LbvhRefitLeaves {
@@ -130,17 +98,23 @@ struct LbvhRefitLeaves {
     BvhNode* nodes;
     RT_HD void operator()(size_t i) const {
         const size_t p = i + 2;
-        const BvhNode node = nodes[p];
-        if (node.IsLeaf()) nodes[p] = LbvhLeaf(bounds, primOrder, node.leftFirst, node.primCount);
+        if (nodes[p].IsLeaf()) nodes[p].SetBounds(bounds[primOrder[nodes[p].leftFirst]]);
     }
 };
+
+// An interior node's arrival counter is found by its children's pair (left child at 2 + 2k:
+// counter k), so a tree of the pair layout needs one per pair, not one per position.
+RT_HD inline uint32_t LbvhArrivalIndex(uint32_t leftChild) { return (leftChild - 2) / 2; }
+RT_HD inline uint32_t LbvhArrivalCount(size_t positions) {
+    return positions > 2 ? uint32_t((positions - 2) / 2) : 0u;
+}
 
 // Bounds of every interior node from its children: each leaf walks up; at each parent the first
 // arrival stops and the second, which then sees both children done, computes the bounds.
 struct LbvhBoundsBottomUp {
     const uint32_t* parents;
     BvhNode* nodes;
-    uint32_t* arrivals;  // zero per position before the pass
+    uint32_t* arrivals;  // LbvhArrivalCount(positions) zeros before the pass
 
     // The arrival count before this one; this thread's writes below p are visible to the thread
     // that arrives second.
@@ -170,8 +144,9 @@ struct LbvhBoundsBottomUp {
                              uint32_t leaf) {
         uint32_t p = parents[leaf];
         while (p != kLbvhNoParent) {
-            if (Arrive(&arrivals[p]) == 0) return;  // the sibling's walk finishes p
-            const uint32_t left = nodes[p].leftFirst;
+            const uint32_t left = nodes[p].leftFirst;  // not written by the walk
+            // The sibling's walk finishes p.
+            if (Arrive(&arrivals[LbvhArrivalIndex(left)]) == 0) return;
             Aabb b = LoadBounds(&nodes[left]);
             b.Grow(LoadBounds(&nodes[left + 1]));
             nodes[p].boundsMin = b.min;

@@ -19,7 +19,7 @@ TlasUpdateStats DynamicTlas::Update(std::span<const Instance> instances,
             return stats;
         }
     }
-    tree_ = BuildLbvh(bounds, kTlasLeafSize);
+    tree_ = BuildLbvh(bounds);
     built_ = true;
     rebuiltSahCost_ = SahCost(tree_.nodes);
     stats.rebuilt = true;

@@ -19,7 +19,7 @@ Tlas BuildTlas(std::span<const Instance> instances, std::span<const Aabb> blasBo
                TlasBuilder builder) {
     const std::vector<Aabb> worldBounds = InstanceWorldBounds(instances, blasBounds);
     if (builder == TlasBuilder::kLbvh) {
-        Lbvh lbvh = BuildLbvh(worldBounds, kTlasLeafSize);
+        Lbvh lbvh = BuildLbvh(worldBounds);
         return {std::move(lbvh.nodes), std::move(lbvh.primOrder)};
     }
     BvhBuildOptions options;

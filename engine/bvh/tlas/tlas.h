@@ -39,12 +39,6 @@ struct InstanceWorldBoxes {
 
 enum class TlasBuilder { kSah, kLbvh };
 
-// The per-frame LBVH TLAS puts two instances in a leaf (lbvh.h): half the nodes, parents and
-// arrival counters of one per leaf, which brings a TLAS with its records to about 120 bytes per
-// instance. A ray that meets the pair's box tests each instance's BLAS root in object space,
-// which is a box at least as tight as the instance's world box.
-inline constexpr uint32_t kTlasLeafSize = 2;
-
 // World bounds of every instance (its BLAS bounds under its transform).
 std::vector<Aabb> InstanceWorldBounds(std::span<const Instance> instances,
                                       std::span<const Aabb> blasBounds);

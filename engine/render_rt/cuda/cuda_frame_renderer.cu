@@ -351,7 +351,8 @@ class CudaFrameRenderer final : public FrameRenderer {
 
     // Queues the SAH cost of the tree; it arrives in sahHost_.
     void QueueSahCost(bool afterRebuild) {
-        const uint32_t positions = tlas_.NodeCount();
+        const uint32_t n = tlas_.Count();
+        const uint32_t positions = n == 0 ? 2u : 2u * n;
         if (sahTerms_.Size() < positions) sahTerms_.Resize(positions);
         SahTermsKernel<<<Blocks(positions), kBlock>>>(tlas_.Nodes(), positions, sahTerms_.Data());
         RT_CUDA_CHECK_LAUNCH();
@@ -381,7 +382,7 @@ class CudaFrameRenderer final : public FrameRenderer {
     DeviceBuffer<Instance> changedRecords_;
     std::vector<uint32_t> hostIndices_;
     std::vector<Instance> hostRecords_;
-    GpuLbvh tlas_{kTlasLeafSize};
+    GpuLbvh tlas_;
     bool built_ = false;
     float rebuiltSahCost_ = 0.0f;
     float lastSahCost_ = 0.0f;
