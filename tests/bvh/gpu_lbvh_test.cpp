@@ -45,8 +45,16 @@ TEST(GpuLbvh, CentroidBoundsSkipNanAsTheCpuDoes) {
     // and the trees, agree.
     std::vector<Aabb> boxes = test::RandomBoxes(3000, 10.0f, 11);
     boxes[17] = {vec3(std::nanf(""), 1, 2), vec3(std::nanf(""), 1, 2)};
-    boxes[400] = {vec3(-0.0f, 0.0f, -0.0f), vec3(0.0f, -0.0f, 0.0f)};
     boxes.push_back({vec3(-1e30f), vec3(-1e30f)});
+    ExpectGpuEqualsCpu(boxes);
+    // Zeros of both signs as the lowest centroids of every axis (boxes shifted to positive
+    // coordinates), +0 first so that the CPU's bound is +0 and the GPU's -0.
+    for (Aabb& b : boxes) {
+        b.min = glm::abs(b.min) + vec3(1.0f);
+        b.max = b.min + vec3(0.5f);
+    }
+    boxes[5] = {vec3(0.0f), vec3(0.0f)};
+    boxes[6] = {vec3(-0.0f), vec3(-0.0f)};
     ExpectGpuEqualsCpu(boxes);
 }
 

@@ -211,6 +211,8 @@ std::vector<HostileCase> MakeHostileCorpus(const std::string& valid, const Blas&
          "0 spheres but 40 primIds"},
         {"child_out_of_range", node(0, [](BvhNode& n) { n.leftFirst = 1000000; }),
          "nodes[0].leftFirst", "child index 1000000 out of range"},
+        {"child_pair_odd", node(0, [](BvhNode& n) { n.leftFirst = 1; }), "nodes[0].leftFirst",
+         "child pair at odd index 1"},
         {"child_cycle", node(interior, [](BvhNode& n) { n.leftFirst = 0; }),
          "nodes[" + std::to_string(interior) + "].leftFirst", "child index 0 out of range"},
         {"leaf_out_of_range", node(leaf, [](BvhNode& n) { n.leftFirst = 40; }),

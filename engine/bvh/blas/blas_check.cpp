@@ -128,6 +128,12 @@ class Checker {
                 CheckLeafRange(field, node.leftFirst, node.primCount);
                 continue;
             }
+            // Children sit in pairs from index 2 (bvh_node.h): the refit's walk finds an interior
+            // node's arrival counter by its pair (lbvh_steps.h).
+            if (node.leftFirst % 2 != 0)
+                Fail(field() + ".leftFirst", "child pair at odd index " +
+                                                 std::to_string(node.leftFirst) +
+                                                 " (pairs start at even indices from 2)");
             for (uint64_t c = node.leftFirst; c <= uint64_t(node.leftFirst) + 1; ++c) {
                 Visit(seen, "nodes", item.index, c, nodes.size(),
                       [&] { return field() + ".leftFirst"; });

@@ -13,7 +13,7 @@ void GpuLbvh::Refit(const Aabb* bounds, cudaStream_t stream) { RefitOver(bounds,
 
 void GpuLbvh::BoundsBottomUp(cudaStream_t stream) {
     // The arrival counters live in the spare indices (count - 1 of them, one per interior node),
-    // free after the build's Karras step and between builds.
+    // free once the build's link step has read the node positions, and between builds.
     const uint32_t positions = 2 * count_;
     uint32_t* const arrivals = spareIndices_.Data();
     RT_CUDA_CHECK(

@@ -74,7 +74,7 @@ void GpuLbvh::BuildOver(Boxes bounds, uint32_t n, cudaStream_t stream) {
     RT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch_.Data(), sortBytes, keys, values, int(n),
                                                   0, 30, stream));
     // The sorted values are wherever the last pass left them: name them primOrder_ (the other
-    // array is free until the next build).
+    // array, spareIndices_, then holds the node positions and the arrival counters).
     if (values.Current() != primOrder_.Data()) std::swap(spareIndices_, primOrder_);
     if (n == 1) {
         RT_CUDA_CHECK(cudaMemsetAsync(parents_.Data(), 0xff, positions * sizeof(uint32_t), stream));

@@ -6,9 +6,9 @@
 // arrays share memory where their lifetimes allow (see the members).
 //
 // The centroid bounds come from a reduction of order-preserving integer keys with atomic minima
-// (exact, so equal to the CPU's in any order) rather than CUB's reduce, whose scratch holds a
-// partial box per block it could launch: about 95 KB at any count, which at 1,000 instances was
-// over a third of the TLAS's memory.
+// (exact in any order, so the Morton codes equal the CPU's) rather than CUB's reduce, whose scratch
+// holds a partial box per block it could launch: about 95 KB at any count, which at 1,000 instances
+// was over a third of the TLAS's memory.
 #include <cuda_runtime.h>
 
 #include "engine/bvh/build/lbvh.h"

@@ -22,7 +22,8 @@ struct Lbvh {
 Lbvh BuildLbvh(std::span<const Aabb> primBounds);
 
 // Recomputes bounds bottom-up for a new set of primitive bounds (same primitives, moved); the
-// topology stays. Works for any node layout.
+// topology stays. Works for any tree of the pair layout (interior nodes' children at an even
+// index from 2), which the bottom-up walk's arrival counters need.
 void RefitLbvh(Lbvh& bvh, std::span<const Aabb> primBounds);
 
 }  // namespace rtrt

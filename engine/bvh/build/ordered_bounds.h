@@ -1,7 +1,9 @@
 #pragma once
 // A box kept as integer keys that order as the floats they encode, so that a GPU reduction takes
-// its minimum and maximum with atomicMin: exact in any order (hence equal to the CPU's serial
-// Aabb::Grow) and with no scratch per block. NaN coordinates are skipped, as Grow skips them.
+// its minimum and maximum with atomicMin: exact in any order and with no scratch per block. The
+// box equals the CPU's serial Aabb::Grow but for the sign of a zero bound (here -0 is below +0;
+// Grow keeps the zero it saw first), which no Morton code can tell apart. NaN coordinates are
+// skipped, as Grow skips them.
 #include "engine/core/float_bounds.h"
 #include "engine/geometry/aabb.h"
 
