@@ -73,6 +73,7 @@ struct BenchOptions {
     std::vector<std::string> models{"cube",        "teapot",      "dragon_res4",
                                     "dragon_res3", "dragon_res2", "dragon"};
     std::vector<std::string> builders{"binned", "sweep", "centroid"};
+    std::vector<std::string> gpuBuilders{"binned"};
 };
 
 std::string CommandOutput(const char* command) {
@@ -179,8 +180,8 @@ void RunGpuBench(const BenchOptions& o) {
     report["scene"] = "paper scene, 1920x1080, max depth 2, one ray per pixel centre";
     report["timing"] = "CUDA events around the trace kernel, 20 warm-up frames, median of the rest";
     std::printf("rtrt bench gpu: %s\n", report["machine"]["gpu"].get<std::string>().c_str());
-    std::printf("%-12s %10s %10s %10s %8s %9s %10s\n", "model", "triangles", "median ms", "min ms",
-                "M rays", "G rays/s", "B/tri");
+    std::printf("%-12s %10s %-9s %10s %10s %8s %9s %10s\n", "model", "triangles", "builder",
+                "median ms", "min ms", "M rays", "G rays/s", "B/tri");
     for (const std::string& name : o.models) {
         TriangleMesh mesh;
         if (!LoadBenchModel(name, &mesh)) {
@@ -188,28 +189,37 @@ void RunGpuBench(const BenchOptions& o) {
                         name.c_str());
             continue;
         }
-        auto blas = std::make_shared<const Blas>(BuildTriangleBlas(mesh));
-        const size_t blasBytes = blas->DeviceBytes();
-        const RenderScene scene = MakePaperScene(blas);
-        RenderSettings settings{kPaperWidth, kPaperHeight, kPaperMaxDepth};
-        RenderStats stats;
-        const std::vector<double> times = TimeCudaTrace(scene, settings, 20, o.gpuFrames, &stats);
-        const double median = Median(times);
-        const double best = *std::min_element(times.begin(), times.end());
-        const double grays = double(stats.rays) / (median * 1e-3) * 1e-9;
-        const double bytesPerTri = double(blasBytes) / double(mesh.indices.size());
-        std::printf("%-12s %10zu %10.3f %10.3f %8.2f %9.2f %10.1f\n", name.c_str(),
-                    mesh.indices.size(), median, best, double(stats.rays) * 1e-6, grays,
-                    bytesPerTri);
-        report["models"].push_back({{"model", name},
-                                    {"triangles", mesh.indices.size()},
-                                    {"trace_ms_median", median},
-                                    {"trace_ms_min", best},
-                                    {"frames", times.size()},
-                                    {"rays", stats.rays},
-                                    {"grays_per_s", grays},
-                                    {"blas_bytes", blasBytes},
-                                    {"bytes_per_triangle", bytesPerTri}});
+        for (const std::string& builderName : o.gpuBuilders) {
+            BvhBuildOptions options;
+            ParseBuilder(builderName, &options.builder);
+            auto blas = std::make_shared<const Blas>(BuildTriangleBlas(mesh, options));
+            const size_t blasBytes = blas->DeviceBytes();
+            const float sahCost = SahCost(blas->nodes);
+            const RenderScene scene = MakePaperScene(blas);
+            RenderSettings settings{kPaperWidth, kPaperHeight, kPaperMaxDepth};
+            RenderStats stats;
+            const std::vector<double> times =
+                TimeCudaTrace(scene, settings, 20, o.gpuFrames, &stats);
+            const double median = Median(times);
+            const double best = *std::min_element(times.begin(), times.end());
+            const double grays = double(stats.rays) / (median * 1e-3) * 1e-9;
+            const double bytesPerTri = double(blasBytes) / double(mesh.indices.size());
+            std::printf("%-12s %10zu %-9s %10.3f %10.3f %8.2f %9.2f %10.1f\n", name.c_str(),
+                        mesh.indices.size(), builderName.c_str(), median, best,
+                        double(stats.rays) * 1e-6, grays, bytesPerTri);
+            report["models"].push_back({{"model", name},
+                                        {"triangles", mesh.indices.size()},
+                                        {"builder", builderName},
+                                        {"sah_cost", sahCost},
+                                        {"leaf_slots", blas->PrimCount()},
+                                        {"trace_ms_median", median},
+                                        {"trace_ms_min", best},
+                                        {"frames", times.size()},
+                                        {"rays", stats.rays},
+                                        {"grays_per_s", grays},
+                                        {"blas_bytes", blasBytes},
+                                        {"bytes_per_triangle", bytesPerTri}});
+        }
     }
     if (!o.output.empty()) {
         WriteReport(o.output, report);
@@ -339,8 +349,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
     AddModelsOption(cpu, &options->models);
-    cpu->add_option("--builders", options->builders, "binned, sweep, centroid")
-        ->check(CLI::IsMember({"binned", "sweep", "centroid"}))
+    cpu->add_option("--builders", options->builders, "binned, sweep, centroid, sbvh")
+        ->check(CLI::IsMember({"binned", "sweep", "centroid", "sbvh"}))
         ->delimiter(',');
     cpu->add_option("-o,--output", options->output, "Write the results as JSON here");
     cpu->callback([options, exitCode] {
@@ -416,6 +426,12 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();
     AddModelsOption(gpu, &options->models);
+    gpu->add_option("--builders", options->gpuBuilders,
+                    "BLAS builders to trace with, one after the other: binned, sweep, centroid, "
+                    "sbvh")
+        ->check(CLI::IsMember({"binned", "sweep", "centroid", "sbvh"}))
+        ->delimiter(',')
+        ->capture_default_str();
     gpu->add_option("-o,--output", options->output, "Write the results as JSON here");
     gpu->callback([options, exitCode] {
         std::string why;

@@ -141,8 +141,8 @@ void AddConvertBench(CLI::App& bench, int* exitCode, nlohmann::json (*machineInf
     cmd->add_option("--models", options->models, "dragon_res4, dragon_res3, dragon_res2, dragon")
         ->check(CLI::IsMember({"dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
         ->delimiter(',');
-    cmd->add_option("--builder", options->builder, "binned, sweep or centroid")
-        ->check(CLI::IsMember({"binned", "sweep", "centroid"}))
+    cmd->add_option("--builder", options->builder, "binned, sweep, centroid or sbvh")
+        ->check(CLI::IsMember({"binned", "sweep", "centroid", "sbvh"}))
         ->capture_default_str();
     cmd->add_option("--runs", options->runs, "Runs per model (medians reported)")
         ->check(CLI::Range(1, 100))

@@ -94,8 +94,9 @@ void AddConvertCommand(CLI::App& app, int* exitCode) {
         "Build a model's BVH offline and store it with the triangles as an .rtmodel file");
     cmd->add_option("model", options->model, "Mesh file: .obj, .ply or .ply.gz")->required();
     cmd->add_option("-o,--output", options->output, "The .rtmodel file to write")->required();
-    cmd->add_option("--builder", options->builder, "BVH builder: binned, sweep or centroid")
-        ->check(CLI::IsMember({"binned", "sweep", "centroid"}))
+    cmd->add_option("--builder", options->builder,
+                    "BVH builder: binned, sweep, centroid or sbvh (spatial splits)")
+        ->check(CLI::IsMember({"binned", "sweep", "centroid", "sbvh"}))
         ->capture_default_str();
     cmd->callback([options, exitCode] {
         RunConvert(*options);

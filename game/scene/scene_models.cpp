@@ -49,7 +49,7 @@ Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shap
     const std::string builder = f.String("builder", "binned");
     if (!ParseBuilder(builder, &options.builder))
         f.Fail("builder",
-               "unknown builder \"" + builder + "\" (expected binned, sweep or centroid)");
+               "unknown builder \"" + builder + "\" (expected binned, sweep, centroid or sbvh)");
     const std::string type = f.String("type");
     if (type == "sphere") {
         const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};

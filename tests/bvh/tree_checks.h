@@ -223,7 +223,8 @@ class EveryBuilder : public ::testing::TestWithParam<BvhBuilder> {
     }
 };
 inline const auto kAllBuilders =
-    ::testing::Values(BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit);
+    ::testing::Values(BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit,
+                      BvhBuilder::kSpatialSah);
 inline std::string BuilderTestName(const ::testing::TestParamInfo<BvhBuilder>& info) {
     return std::string(BuilderName(info.param));
 }

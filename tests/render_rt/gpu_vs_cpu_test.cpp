@@ -10,8 +10,10 @@
 
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
+#include "game/assets/teapot.h"
 #include "game/runtime/world.h"
 #include "game/scene/default_scene.h"
+#include "game/scene/paper_scene.h"
 #include "game/scene/scene_file.h"
 #include "tests/gltf/gltf_builder.h"
 #include "tests/test_util.h"
@@ -313,6 +315,18 @@ TEST(GpuFrameRenderer, FirstTlasEqualsTheCpuRenderers) {
     ASSERT_EQ(cpu.nodes.size(), gpu.nodes.size());
     EXPECT_EQ(std::memcmp(cpu.nodes.data(), gpu.nodes.data(), cpu.nodes.size() * sizeof(BvhNode)),
               0);
+}
+
+// A spatial-split BLAS (triangles in several leaves, leaf boxes tighter than their triangles)
+// traces on the GPU as on the CPU.
+TEST(GpuVsCpu, SpatialSplitTeapot) {
+    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
+    const TriangleMesh mesh = TessellateTeapot(teapot, 6);
+    BvhBuildOptions options;
+    options.builder = BvhBuilder::kSpatialSah;
+    auto blas = std::make_shared<const Blas>(BuildTriangleBlas(mesh, options));
+    ASSERT_GT(blas->PrimCount(), mesh.indices.size()) << "no triangle was split";
+    ExpectGpuMatchesCpu(MakePaperScene(blas));
 }
 
 TEST(GpuVsCpu, FullDragon) {

@@ -1,5 +1,8 @@
 #include "engine/bvh/blas/blas.h"
 
+#include <algorithm>
+
+#include "engine/bvh/build/spatial_split_builder.h"
 #include "engine/core/parallel_for.h"
 
 namespace rtrt {
@@ -32,7 +35,15 @@ DeformableMesh RestMeshOfBlas(const Blas& blas) {
     const size_t n = blas.triangles.size();
     TriangleMesh& rest = mesh.rest;
     rest.positions.resize(3 * n);
-    rest.indices.resize(n);
+    // A triangle in several leaves (spatial splits) is one source triangle: it takes the
+    // vertices of its first slot, and the other slots' copies are never drawn from.
+    uint32_t sourceCount = 0;
+    for (uint32_t id : blas.primIds) sourceCount = std::max(sourceCount, id + 1);
+    rest.indices.resize(sourceCount);
+    for (size_t s = n; s-- > 0;) {
+        const uint32_t v = uint32_t(3 * s);
+        rest.indices[blas.primIds[s]] = glm::uvec3(v, v + 1, v + 2);
+    }
     if (!blas.normals.empty()) rest.normals.resize(3 * n);
     if (!blas.uvs.empty()) rest.uvs.resize(3 * n);
     ParallelFor(0, n, 4096, [&](size_t s) {
@@ -41,7 +52,6 @@ DeformableMesh RestMeshOfBlas(const Blas& blas) {
         rest.positions[v] = t.v0;
         rest.positions[v + 1] = t.v1;
         rest.positions[v + 2] = t.v2;
-        rest.indices[blas.primIds[s]] = glm::uvec3(v, v + 1, v + 2);
         if (!blas.normals.empty()) {
             rest.normals[v] = UnpackNormal(blas.normals[s].n0);
             rest.normals[v + 1] = UnpackNormal(blas.normals[s].n1);
@@ -62,23 +72,32 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
         const glm::uvec3 idx = mesh.indices[i];
         return Triangle{mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
     };
-    std::vector<Aabb> bounds(count);
-    ParallelFor(0, count, 4096, [&](size_t i) { bounds[i] = triangle(i).Bounds(); });
-    Bvh bvh = BuildBvh(bounds, options);
+    Bvh bvh;
+    if (options.builder == BvhBuilder::kSpatialSah) {
+        std::vector<Triangle> triangles(count);
+        ParallelFor(0, count, 4096, [&](size_t i) { triangles[i] = triangle(i); });
+        bvh = BuildSpatialSplitBvh(triangles, options);
+    } else {
+        std::vector<Aabb> bounds(count);
+        ParallelFor(0, count, 4096, [&](size_t i) { bounds[i] = triangle(i).Bounds(); });
+        bvh = BuildBvh(bounds, options);
+    }
+    // A spatial-split tree may hold a triangle in several leaves: one slot each.
+    const size_t slots = bvh.primOrder.size();
 
     // Triangles go straight from the mesh into leaf order: no intermediate copy.
     Blas blas;
     blas.kind = GeometryKind::kTriangles;
     blas.nodes = std::move(bvh.nodes);
     blas.primIds = std::move(bvh.primOrder);
-    blas.triangles.resize(count);
+    blas.triangles.resize(slots);
     const bool smooth = !mesh.normals.empty();
-    if (smooth) blas.normals.resize(count);
+    if (smooth) blas.normals.resize(slots);
     const bool textured = !mesh.uvs.empty();
-    if (textured) blas.uvs.resize(count);
+    if (textured) blas.uvs.resize(slots);
     const bool tangents = !mesh.tangents.empty();
-    if (tangents) blas.tangents.resize(count);
-    ParallelFor(0, count, 4096, [&](size_t slot) {
+    if (tangents) blas.tangents.resize(slots);
+    ParallelFor(0, slots, 4096, [&](size_t slot) {
         const uint32_t prim = blas.primIds[slot];
         blas.triangles[slot] = triangle(prim);
         if (smooth) {

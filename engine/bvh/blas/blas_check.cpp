@@ -25,7 +25,8 @@ bool ProperBox(vec3 lo, vec3 hi) {
 
 class Checker {
   public:
-    Checker(const Blas& blas, const std::string& file) : blas_(blas), file_(file) {}
+    Checker(const Blas& blas, const std::string& file, bool repeatedIds)
+        : blas_(blas), file_(file), repeatedIds_(repeatedIds) {}
 
     void Run() {
         CheckSizes();
@@ -188,7 +189,7 @@ class Checker {
                 Fail(Indexed("primIds", slot), "primitive index " + std::to_string(id) +
                                                    " out of range (" + std::to_string(seen.size()) +
                                                    " primitives)");
-            if (seen[id])
+            if (seen[id] && !repeatedIds_)
                 Fail(Indexed("primIds", slot), "primitive " + std::to_string(id) + " listed twice");
             seen[id] = 1;
         }
@@ -215,10 +216,13 @@ class Checker {
 
     const Blas& blas_;
     const std::string& file_;
+    bool repeatedIds_;
 };
 
 }  // namespace
 
-void CheckBlas(const Blas& blas, const std::string& file) { Checker(blas, file).Run(); }
+void CheckBlas(const Blas& blas, const std::string& file, bool repeatedIds) {
+    Checker(blas, file, repeatedIds).Run();
+}
 
 }  // namespace rtrt

@@ -99,7 +99,7 @@ class Reader {
             Fail("header.headerChecksum", "checksum mismatch: the header is corrupt");
         if (h_.kind > uint32_t(GeometryKind::kSpheres))
             Fail("header.kind", "unknown geometry kind " + std::to_string(h_.kind));
-        if (h_.builder > uint32_t(BvhBuilder::kCentroidSplit))
+        if (h_.builder > uint32_t(BvhBuilder::kSpatialSah))
             Fail("header.builder", "unknown builder id " + std::to_string(h_.builder));
         for (int s = 0; s < kSectionCount; ++s)
             if (h_.counts[s] > size / kElementBytes[s])
@@ -135,7 +135,7 @@ class Reader {
                              [&] { hashes[kUvs] = ReadSection(kUvs, blas.uvs); });
         if (PayloadChecksum(hashes) != h_.payloadChecksum)
             Fail("payloadChecksum", "checksum mismatch: the file is corrupt");
-        CheckBlas(blas, path_);
+        CheckBlas(blas, path_, BvhBuilder(h_.builder) == BvhBuilder::kSpatialSah);
         blas.bounds = blas.nodes[0].Bounds();
         return blas;
     }

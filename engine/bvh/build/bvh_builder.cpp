@@ -275,13 +275,15 @@ std::string_view BuilderName(BvhBuilder builder) {
             return "sweep";
         case BvhBuilder::kCentroidSplit:
             return "centroid";
+        case BvhBuilder::kSpatialSah:
+            return "sbvh";
     }
     return "unknown";
 }
 
 bool ParseBuilder(std::string_view name, BvhBuilder* builder) {
-    for (BvhBuilder b :
-         {BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit}) {
+    for (BvhBuilder b : {BvhBuilder::kBinnedSah, BvhBuilder::kSweepSah, BvhBuilder::kCentroidSplit,
+                         BvhBuilder::kSpatialSah}) {
         if (name == BuilderName(b)) {
             *builder = b;
             return true;

@@ -14,10 +14,11 @@ enum class BvhBuilder {
     kBinnedSah,      // default: SAH evaluated at binCount planes per axis (Wald 2007)
     kSweepSah,       // SAH evaluated between every pair of sorted centroids, per axis
     kCentroidSplit,  // the original paper's builder: split at the middle of the centroid bounds
+    kSpatialSah,     // binned SAH plus spatial splits (SBVH) for triangles; binned for other boxes
 };
 
 std::string_view BuilderName(BvhBuilder builder);
-// Parses "binned", "sweep" or "centroid"; false for anything else.
+// Parses "binned", "sweep", "centroid" or "sbvh"; false for anything else.
 bool ParseBuilder(std::string_view name, BvhBuilder* builder);
 
 struct BvhBuildOptions {
@@ -25,6 +26,9 @@ struct BvhBuildOptions {
     uint32_t maxLeafSize =
         8;  // leaves hold at most this many primitives (unless the depth cap hits)
     uint32_t binCount = 32;
+    // kSpatialSah: at most this many extra triangle references per triangle. A .rtmodel's key
+    // does not hold it: change it only with kRtModelRevision.
+    float spatialSplitBudget = 0.25f;
 };
 
 // SAH cost constants: one unit per node traversal and per primitive test.
@@ -36,6 +40,7 @@ struct Bvh {
     std::vector<uint32_t> primOrder;  // slot i of the leaves holds input primitive primOrder[i]
 };
 
+// kSpatialSah needs the triangles (BuildSpatialSplitBvh); over bare boxes it builds binned SAH.
 Bvh BuildBvh(std::span<const Aabb> primBounds, const BvhBuildOptions& options = {});
 
 // SAH cost of a tree, relative to its root's area: sum over interior nodes of Ct A(n)/A(root)
