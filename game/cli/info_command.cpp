@@ -65,7 +65,11 @@ void PrintModel(const std::string& path) {
     const bool rtmodel = model.origin == MeshModel::Origin::kRtModelFile;
     std::printf("%s: %s\n", path.c_str(),
                 rtmodel ? ".rtmodel (BLAS stored in the tracer's layout)" : "triangle mesh");
-    std::printf("  triangles     %s\n", Grouped(blas.PrimCount()).c_str());
+    std::printf("  triangles     %s", Grouped(blas.SourcePrimCount()).c_str());
+    if (blas.PrimCount() != blas.SourcePrimCount())
+        std::printf(" in %s leaf slots (spatial splits put some in several leaves)",
+                    Grouped(blas.PrimCount()).c_str());
+    std::printf("\n");
     std::printf("  vertices      %s in the source mesh\n",
                 Grouped(model.info.sourceVertexCount).c_str());
     PrintBounds("  ", blas.bounds);
@@ -153,7 +157,7 @@ void PrintScene(const std::string& path) {
         const Blas& blas = *scene.blases[i];
         std::printf("  - %s: %s %s\n",
                     i < loaded.modelNames.size() ? loaded.modelNames[i].c_str() : "?",
-                    Grouped(blas.PrimCount()).c_str(),
+                    Grouped(blas.SourcePrimCount()).c_str(),
                     blas.kind == GeometryKind::kSpheres ? "spheres" : "triangles");
         PrintBounds("    ", blas.bounds);
         PrintBvh("    ", blas);

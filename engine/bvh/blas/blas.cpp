@@ -28,6 +28,12 @@ size_t Blas::Bytes() const {
            tangents.size() * sizeof(TriangleTangents);
 }
 
+uint32_t Blas::SourcePrimCount() const {
+    uint32_t count = 0;
+    for (uint32_t id : primIds) count = std::max(count, id + 1);
+    return count;
+}
+
 size_t Blas::DeviceBytes() const { return Bytes() - nodes4.size() * sizeof(Bvh4Node); }
 
 DeformableMesh RestMeshOfBlas(const Blas& blas) {
@@ -37,9 +43,7 @@ DeformableMesh RestMeshOfBlas(const Blas& blas) {
     rest.positions.resize(3 * n);
     // A triangle in several leaves (spatial splits) is one source triangle: it takes the
     // vertices of its first slot, and the other slots' copies are never drawn from.
-    uint32_t sourceCount = 0;
-    for (uint32_t id : blas.primIds) sourceCount = std::max(sourceCount, id + 1);
-    rest.indices.resize(sourceCount);
+    rest.indices.resize(blas.SourcePrimCount());
     for (size_t s = n; s-- > 0;) {
         const uint32_t v = uint32_t(3 * s);
         rest.indices[blas.primIds[s]] = glm::uvec3(v, v + 1, v + 2);

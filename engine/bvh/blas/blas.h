@@ -38,7 +38,10 @@ struct Blas {
     std::vector<TriangleTangents> tangents;  // kTriangles: leaf order, or none
     Aabb bounds;
 
-    uint32_t PrimCount() const { return uint32_t(primIds.size()); }
+    uint32_t PrimCount() const { return uint32_t(primIds.size()); }  // leaf slots
+    // Distinct source primitives: fewer than the slots when spatial splits put some in several
+    // leaves.
+    uint32_t SourcePrimCount() const;
     BlasView View() const;
     size_t Bytes() const;        // what the CPU tracer keeps of it (both node layouts too)
     size_t DeviceBytes() const;  // what the GPU holds: binary nodes, primitives, normals, uvs,
