@@ -108,11 +108,11 @@ void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine
         }
         const double mb = double(fs::file_size(out)) / 1e6;
         std::printf("%-12s %10u %7.1f %8.1f %8.1f %7.1f %8.1f | %8.1f %9.2f %8.1f\n", name.c_str(),
-                    model.blas.PrimCount(), Median(hash), Median(parse), Median(build),
+                    model.blas.SourcePrimCount(), Median(hash), Median(parse), Median(build),
                     Median(write), Median(total), Median(load), model.info.sahCost, mb);
         report["models"].push_back(
             {{"model", name},
-             {"triangles", model.blas.PrimCount()},
+             {"triangles", model.blas.SourcePrimCount()},
              {"hash_ms", Median(hash)},
              {"parse_ms", Median(parse)},
              {"build_ms", Median(build)},

@@ -14,6 +14,7 @@
 #include "engine/bvh/blas/blas.h"
 #include "engine/bvh/blas/blas_check.h"
 #include "engine/core/error.h"
+#include "tests/bvh/tree_checks.h"
 #include "tests/test_util.h"
 
 namespace rtrt {
@@ -102,6 +103,14 @@ TEST(SpatialSplitBuilder, EveryTriangleIsInALeafWithinTheBudget) {
 // A few large triangles across a soup of small ones (a floor or a wall among props): binned SAH
 // must keep each large triangle whole, so its box overlaps every node it passes; spatial splits
 // cut it into parts each bounding only its own node's share.
+// Many references split, so rays aimed at the triangles cross many split planes: closest hit,
+// any hit, binary and 4-wide layout all as brute force finds them.
+TEST(SpatialSplitBuilder, SplitSliversTraceAsBruteForce) {
+    const Blas blas = BuildTriangleBlas(Slivers(3000, 8), Spatial(1.0f));
+    ASSERT_GT(blas.PrimCount(), 3300u) << "too few triangles were split to test their parts";
+    test::ExpectMatchesBruteForce(blas, 21);
+}
+
 TEST(SpatialSplitBuilder, CostsLessThanBinnedSahWhereLargeTrianglesCrossSmallOnes) {
     TriangleMesh mesh = test::RandomTriangles(4000, 9);
     std::mt19937 rng(3);
@@ -166,6 +175,17 @@ TEST(SpatialSplitBuilder, OnlyASpatialSplitTreeMayListATriangleTwice) {
     const Blas blas = BuildTriangleBlas(Slivers(500, 6), Spatial());
     ASSERT_GT(blas.PrimCount(), 500u);
     EXPECT_NO_THROW(CheckBlas(blas, "m.rtmodel", true));
+    // Every triangle must be in some slot: drop all of triangle 0's.
+    Blas gap = blas;
+    for (uint32_t& id : gap.primIds)
+        if (id == 0) id = 1;
+    try {
+        CheckBlas(gap, "m.rtmodel", true);
+        ADD_FAILURE() << "a triangle in no leaf was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("primitive 0 is in no leaf slot"), std::string::npos)
+            << e.what();
+    }
     try {
         CheckBlas(blas, "m.rtmodel");
         ADD_FAILURE() << "a permutation was expected";

@@ -47,11 +47,12 @@ struct DeformingScene {
     RenderScene scene;
     uint32_t deformation = 0;
 
-    explicit DeformingScene(ProceduralDeform procedural, uint32_t rings = 24) {
+    explicit DeformingScene(ProceduralDeform procedural, uint32_t rings = 24,
+                            BvhBuildOptions options = {}) {
         auto mesh = std::make_shared<DeformableMesh>();
         mesh->rest = UvSphere(rings, 2 * rings);
         const uint32_t rest =
-            scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(mesh->rest)));
+            scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(mesh->rest, options)));
         const uint32_t meshId = scene.AddDeformableMesh(mesh);
         deformation = scene.AddDeformation(meshId, rest);
         scene.deformations[deformation].procedural = procedural;
@@ -229,6 +230,46 @@ TEST(CpuDeformer, RefitTreeStaysExactAfterManyDeformingFrames) {
     EXPECT_EQ(views[s.scene.deformations[d].blasId].nodes4, nullptr);
     // An unchanged pose is not touched.
     EXPECT_EQ(deformer.Update(s.scene, {}, views, bounds).deformed, 0u);
+}
+
+// A spatial-split rest tree (some triangles in several leaves) deforms too: every slot takes its
+// triangle's deformed corners and the refit bounds them whole.
+TEST(CpuDeformer, SpatialSplitRestTreeRefitsExactly) {
+    BvhBuildOptions sbvh;
+    sbvh.builder = BvhBuilder::kSpatialSah;
+    DeformingScene s(Twist(2.5f), 12, sbvh);  // coarse enough for its triangles to be split
+    const Blas& rest = *s.scene.blases[s.scene.deformations[s.deformation].blasId];
+    ASSERT_GT(rest.PrimCount(), rest.SourcePrimCount()) << "no triangle was split";
+    BlasRebuildPolicy refitOnly;
+    refitOnly.mode = BlasRebuildPolicy::Mode::kAlwaysRefit;
+    CpuDeformer deformer(refitOnly);
+    std::vector<BlasView> views = Views(s.scene);
+    std::vector<Aabb> bounds = Bounds(s.scene);
+    const uint32_t d = s.deformation;
+    for (int frame = 0; frame < 30; ++frame) {
+        s.At(0.05f * float(frame));
+        ASSERT_EQ(deformer.Update(s.scene, std::span(&d, 1), views, bounds).deformed, 1u);
+    }
+    const Blas blas = deformer.Snapshot(d);
+    ASSERT_EQ(blas.PrimCount(), rest.PrimCount());
+    // Every leaf bounds the whole triangles of its slots, however the rest tree clipped them.
+    uint32_t slots = 0;
+    std::vector<uint32_t> stack{0};
+    while (!stack.empty()) {
+        const BvhNode& node = blas.nodes[stack.back()];
+        stack.pop_back();
+        if (!node.IsLeaf()) {
+            stack.push_back(node.leftFirst);
+            stack.push_back(node.leftFirst + 1);
+            continue;
+        }
+        for (uint32_t slot = node.leftFirst; slot < node.leftFirst + node.primCount; ++slot) {
+            EXPECT_TRUE(node.Bounds().Contains(blas.triangles[slot].Bounds())) << "slot " << slot;
+            ++slots;
+        }
+    }
+    EXPECT_EQ(slots, blas.PrimCount());
+    ExpectMatchesBruteForce(blas, 13);
 }
 
 TEST(CpuDeformer, RebuiltTreeIsAValidLbvhOfTheDeformedTriangles) {

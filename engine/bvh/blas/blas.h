@@ -52,8 +52,9 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options 
 Blas BuildSphereBlas(std::span<const Sphere> spheres, const BvhBuildOptions& options = {});
 
 // A triangle BLAS's mesh as a deformable rest mesh whose triangle primIds[s] is the BLAS's slot s
-// (three vertices of its own per triangle, with its normals and uvs), so that the BLAS is the
-// rest tree of the mesh: models loaded as BLASes only (.rtmodel caches) can deform too.
+// (the first such slot where spatial splits put a triangle in several; three vertices of its own
+// per slot, with its normals and uvs), so that the BLAS is the rest tree of the mesh: models loaded
+// as BLASes only (.rtmodel caches) can deform too.
 DeformableMesh RestMeshOfBlas(const Blas& blas);
 
 // Moves and scales a triangle BLAS in place, p -> (p - centre) * scale with scale > 0, on every

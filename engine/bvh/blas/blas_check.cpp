@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <vector>
@@ -182,17 +183,26 @@ class Checker {
     }
 
     void CheckPrimIds() const {
+        // Only triangles are split spatially.
+        const bool repeated = repeatedIds_ && blas_.kind == GeometryKind::kTriangles;
         std::vector<uint8_t> seen(blas_.primIds.size(), 0);
+        uint32_t sourceCount = 0;
         for (size_t slot = 0; slot < blas_.primIds.size(); ++slot) {
             const uint32_t id = blas_.primIds[slot];
             if (id >= seen.size())
                 Fail(Indexed("primIds", slot), "primitive index " + std::to_string(id) +
                                                    " out of range (" + std::to_string(seen.size()) +
                                                    " primitives)");
-            if (seen[id] && !repeatedIds_)
+            if (seen[id] && !repeated)
                 Fail(Indexed("primIds", slot), "primitive " + std::to_string(id) + " listed twice");
             seen[id] = 1;
+            sourceCount = std::max(sourceCount, id + 1);
         }
+        // Repeated or not, the ids name every source primitive from 0 up.
+        for (uint32_t id = 0; id < sourceCount; ++id)
+            if (!seen[id])
+                Fail("primIds", "primitive " + std::to_string(id) + " is in no leaf slot (" +
+                                    std::to_string(sourceCount) + " primitives)");
     }
 
     void CheckGeometry() const {

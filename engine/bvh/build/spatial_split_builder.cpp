@@ -79,14 +79,20 @@ float SpatialPlane(const Aabb& box, int axis, uint32_t i) {
     return box.min[axis] + float(i) * ((box.max[axis] - box.min[axis]) / float(kSpatialBins));
 }
 
+// Extra references allowed over the whole tree: FRACTION of the triangle count, read as 0 when
+// it is not a positive number and capped at 4.
+uint32_t ReferenceBudget(float fraction, size_t triangles) {
+    const double f = fraction > 0.0f ? std::min(double(fraction), 4.0) : 0.0;
+    return uint32_t(std::min(f * double(triangles), double(UINT32_MAX / 2)));
+}
+
 class SpatialSplitBuilder {
   public:
     SpatialSplitBuilder(std::span<const Triangle> triangles, const BvhBuildOptions& options)
         : triangles_(triangles),
           options_(options),
           binCount_(std::clamp(options.binCount, 2u, kMaxSahBins)),
-          budget_(uint32_t(std::clamp(double(options.spatialSplitBudget), 0.0, 4.0) *
-                           double(triangles.size()))),
+          budget_(ReferenceBudget(options.spatialSplitBudget, triangles.size())),
           slotCapacity_(triangles.size() + budget_),
           nodes_(new BvhNode[2 * slotCapacity_ + 2]),
           leafIds_(new uint32_t[slotCapacity_]) {}

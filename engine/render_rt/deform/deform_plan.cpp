@@ -50,7 +50,9 @@ std::vector<DeformSlotInit> DeformPlan::Admit(const RenderScene& scene) {
             throw std::invalid_argument(at + ": mesh or BLAS out of range");
         const DeformableMesh& mesh = *scene.deformableMeshes[def.mesh];
         const Blas& rest = *scene.blases[def.blasId];
-        if (rest.kind != GeometryKind::kTriangles || rest.PrimCount() != mesh.rest.indices.size())
+        // A spatial-split BLAS has more leaf slots than triangles: each slot names its triangle.
+        if (rest.kind != GeometryKind::kTriangles ||
+            rest.SourcePrimCount() != mesh.rest.indices.size())
             throw std::invalid_argument(at + ": its BLAS is not the mesh's triangles");
         Entry slot;
         slot.place.mesh = def.mesh;
