@@ -3,8 +3,8 @@
 # of .device/variants/ (pack.sh --variant <commit>) are built at once (rtrt alone; this tree also
 # its GPU tests, which run first), then bench gpu, bench grid and bench frame run for each build
 # in turn, RTRT_ROUNDS times (default 2) interleaved, so that a drift of the machine shows as a
-# spread between rounds rather than as a difference between variants. Leaves results.tar (the
-# JSON of every run) and variants.log in $OUT.
+# spread between rounds rather than as a difference between variants. RTRT_GRID=0 leaves out
+# bench grid. Leaves results.tar (the JSON of every run) and variants.log in $OUT.
 set -uo pipefail
 source "$(dirname "$0")/device_env.sh"
 builds=("$root")
@@ -30,8 +30,9 @@ rm -f "$out/build.log"
             c=$(commitOf "$b")
             echo "== round $round: $c"
             RTRT_COMMIT=$c "$b/build/gpu/game/rtrt" bench gpu -o "$out/gpu-$c-$round.json" | tail -7
-            RTRT_COMMIT=$c "$b/build/gpu/game/rtrt" bench grid --counts 1000,10000,100000 \
-                --frames 100 -o "$out/grid-$c-$round.json" | tail -4
+            [ "${RTRT_GRID:-1}" = 0 ] ||
+                RTRT_COMMIT=$c "$b/build/gpu/game/rtrt" bench grid --counts 1000,10000,100000 \
+                    --frames 100 -o "$out/grid-$c-$round.json" | tail -4
             RTRT_COMMIT=$c "$b/build/gpu/game/rtrt" bench frame assets/scenes/demo_glass.json \
                 assets/scenes/demo_1000_instances.json --size 1920x1080 \
                 -o "$out/frame-$c-$round.json" | tail -3
