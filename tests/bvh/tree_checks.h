@@ -52,11 +52,9 @@ inline Found BruteForce(const Blas& blas, const RaySetup& r, float tMax) {
     return f;
 }
 
-// kSpeculate: the GPU's speculative form (traversal.h), here on one lane.
-template <bool kSpeculate = kSpeculativeTraversal>
 inline Found Intersect(const Blas& blas, const RaySetup& r, float tMax) {
     Found f;
-    f.hit = Traverse<Query::kIntersect, kSpeculate>(
+    f.hit = Traverse<Query::kIntersect>(
         blas.nodes.data(), r, tMax,
         [&](uint32_t slot, float& tBest) {
             float t;
@@ -99,9 +97,8 @@ inline bool Occluded4(const Blas& blas, const RaySetup& r, float tMax) {
         });
 }
 
-template <bool kSpeculate = kSpeculativeTraversal>
 inline bool Occluded(const Blas& blas, const RaySetup& r, float tMax) {
-    return Traverse<Query::kOccluded, kSpeculate>(
+    return Traverse<Query::kOccluded>(
         blas.nodes.data(), r, tMax,
         [&](uint32_t slot, float tLimit) {
             if (blas.kind == GeometryKind::kTriangles) {
@@ -163,18 +160,10 @@ inline void ExpectMatchesBruteForce(const Blas& blas, uint32_t seed) {
                           << " slot=" << expected.slot << ", BVH " << got.hit << " t=" << got.t
                           << " slot=" << got.slot;
         }
-        // The GPU's speculative form, on one lane, visits in the same order: the same hit.
-        const Found speculative = Intersect<true>(blas, r, ray.tMax);
-        if ((speculative.hit != got.hit || speculative.t != got.t ||
-             speculative.slot != got.slot) &&
-            ++mismatches <= 5)
-            ADD_FAILURE() << "ray " << i << ": the speculative traversal found another hit";
         // The occlusion query with tMax just past the closest hit agrees with the closest hit.
         const float tLimit = expected.hit ? expected.t * 1.001f : 1e30f;
         if (Occluded(blas, r, tLimit) != expected.hit && ++mismatches <= 5)
             ADD_FAILURE() << "ray " << i << ": the occlusion query disagrees with brute force";
-        if (Occluded<true>(blas, r, tLimit) != expected.hit && ++mismatches <= 5)
-            ADD_FAILURE() << "ray " << i << ": the speculative occlusion query disagrees";
         if (blas.nodes4.empty()) continue;
         const Found wide = Intersect4(blas, r, ray.tMax);
         const bool wideSame =

@@ -62,6 +62,15 @@ inline constexpr uint32_t kNoNode = 0xfffffffeu;
 // One TLAS path, a leaf's waiting instances and one BLAS path.
 inline constexpr uint32_t kTwoLevelStackSize = 2 * kBvhStackSize + 8;
 
+// Whether pred holds for any active lane of the warp; on the CPU, one lane.
+RT_HD inline bool AnyLane(bool pred) {
+#if defined(__CUDA_ARCH__)
+    return __any_sync(__activemask(), pred);
+#else
+    return pred;
+#endif
+}
+
 // Either query (traversal.h): kIntersect records the closest hit in hit and shrinks tMax to it;
 // kOccluded returns at the first primitive before tMax. Tests supplies the primitive tests
 // (primitive_tests.h).
