@@ -33,15 +33,8 @@ constexpr int TraceMinBlocks(uint32_t features) {
     return (features & kFeaturePbr) != 0 ? 1 : 8;
 }
 
-// One warp per block (8 x 4 pixels): a block's registers are freed when its own warp finishes, not
-// when the slower of two does, so more warps stay resident per SM (the minimum counts above are in
-// blocks of 64 threads, kept as two blocks of 32).
-inline constexpr uint32_t kTraceBlockWidth = 8, kTraceBlockHeight = 4;
-inline constexpr int kTraceBlockThreads = int(kTraceBlockWidth * kTraceBlockHeight);
-
 template <uint32_t kFeatures, class Policy>
-__global__ void __launch_bounds__(kTraceBlockThreads,
-                                  TraceMinBlocks(kFeatures) * 64 / kTraceBlockThreads)
+__global__ void __launch_bounds__(64, TraceMinBlocks(kFeatures))
     TraceKernel(RenderSceneView scene, ViewMode view, uint32_t sample, uint32_t perSide,
                 uint32_t rowBegin, uint32_t rowEnd, vec3* out, unsigned long long* rayCount) {
     const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
@@ -61,7 +54,7 @@ void LaunchTraceKernel(const RenderSceneView& view, ViewMode mode, vec3* frame,
                        RowBand rows = {0, UINT32_MAX}) {
     const uint32_t rowEnd = std::min(rows.end, view.height);
     if (rows.begin >= rowEnd) return;
-    const dim3 block(kTraceBlockWidth, kTraceBlockHeight);
+    const dim3 block(8, 8);
     const dim3 grid((view.width + block.x - 1) / block.x,
                     (rowEnd - rows.begin + block.y - 1) / block.y);
     // One launch per sample (AccumulateSample says why).
