@@ -2,7 +2,7 @@
 #include <cmath>
 
 #include "bench/instance_grid_bench.h"
-#include "engine/bvh/build/gpu_lbvh.cuh"
+#include "engine/bvh/tlas/gpu_tlas.h"
 #include "engine/bvh/tlas/tlas.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/cuda/cuda_trace.h"
@@ -16,7 +16,8 @@ namespace {
 constexpr int kBlock = 256;
 constexpr float kSpacing = 1.5f;
 
-// The benchmark's animation, one thread per instance: the record's transform.
+// The benchmark's animation, one thread per instance: the record's transform (its TLAS words are
+// the TLAS's).
 __global__ void GridInstancesKernel(uint32_t n, uint32_t side, float time, Instance* out) {
     const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
     if (i >= n) return;
@@ -32,8 +33,7 @@ __global__ void GridInstancesKernel(uint32_t n, uint32_t side, float time, Insta
     inst.inverseAndPosition.row[2] = vec4(s, 0.0f, c, t.z);
     inst.blasId = 0;
     inst.materialId = 0;
-    inst.pad[0] = inst.pad[1] = 0;
-    out[i] = inst;
+    SetPlacement(out[i], inst);
 }
 
 }  // namespace
@@ -56,7 +56,7 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
         frame.Resize(size_t(settings.width) * settings.height);
         DeviceBuffer<unsigned long long> rayCount;
         rayCount.Resize(1);
-        GpuLbvh tlas;
+        GpuTlas tlas;
         cudaEvent_t events[6];
         for (cudaEvent_t& e : events) RT_CUDA_CHECK(cudaEventCreate(&e));
         std::vector<double> update, build, refit, trace, total;
@@ -72,16 +72,15 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
             RT_CUDA_CHECK_LAUNCH();
             RT_CUDA_CHECK(cudaEventRecord(events[1]));
             // The TLAS reads the instances' world boxes as it needs them (no array of them).
-            const InstanceWorldBoxes boxes{instances.Data(), blasBounds.Data()};
-            tlas.BuildOver(boxes, n);
+            tlas.Build(instances.Data(), blasBounds.Data(), n);
             RT_CUDA_CHECK(cudaEventRecord(events[2]));
-            view.tlas = {tlas.Nodes(), tlas.PrimOrder(), instances.Data(), view.tlas.blases};
+            view.tlas = {tlas.Nodes(), instances.Data(), view.tlas.blases};
             LaunchTrace(view, ViewMode::kShaded, features, frame.Data(),
                         count ? rayCount.Data() : nullptr);
             RT_CUDA_CHECK(cudaEventRecord(events[3]));
             // The refit path, timed alone: same tree, the boxes this frame's rebuild used.
             RT_CUDA_CHECK(cudaEventRecord(events[4]));
-            tlas.RefitOver(boxes);
+            tlas.Refit(instances.Data(), blasBounds.Data());
             RT_CUDA_CHECK(cudaEventRecord(events[5]));
             RT_CUDA_CHECK(cudaEventSynchronize(events[5]));
             float refitMs = 0.0f;
@@ -108,7 +107,7 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
         row.traceMs = Median(trace);
         row.totalMs = Median(total);
         // Per instance, as allocated: the records and the TLAS with every array its build keeps
-        // (CUB's scratch included).
+        // (CUB's scratch included, where it does not fit in the node array).
         row.bytesPerInstance =
             double(instances.Size() * sizeof(Instance) + tlas.DeviceBytes()) / double(n);
         rows.push_back(row);

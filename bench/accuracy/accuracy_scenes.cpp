@@ -85,7 +85,7 @@ void UseRuntimeTlas(RenderScene& scene, uint32_t frames) {
     DynamicTlas tlas(TlasPolicy{false, 1e30f});
     tlas.Update(before, blasBounds, true);
     if (frames > 0) tlas.Update(scene.instances, blasBounds, false);
-    scene.SetTlas({tlas.Tree().nodes, tlas.Tree().primOrder});
+    scene.SetTlas({tlas.Tree().nodes});
 }
 
 }  // namespace rtrt

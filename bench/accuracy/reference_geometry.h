@@ -192,8 +192,7 @@ inline bool IntersectSphereD(const Sphere& s, const RayD& r, double tMax, double
 template <Query kQuery>
 bool TraceSceneD(const TlasView& scene, const RayD& ray, HitD* hit) {
     double tMax = ray.tMax;
-    return TraverseD<kQuery>(scene.nodes, ray, tMax, [&](uint32_t slot, double& tBest) {
-        const uint32_t id = scene.instanceOrder[slot];
+    return TraverseD<kQuery>(scene.nodes, ray, tMax, [&](uint32_t id, double& tBest) {
         const Instance& inst = scene.instances[id];
         const BlasView& blas = scene.blases[inst.blasId];
         const RayD r = ToObjectSpaceD(ray, inst);

@@ -8,8 +8,8 @@
 #include <memory>
 #include <span>
 
-#include "engine/bvh/build/lbvh.h"
 #include "engine/bvh/tlas/dynamic_tlas.h"
+#include "engine/bvh/tlas/tlas.h"
 #include "engine/render_rt/image.h"
 #include "engine/render_rt/render_scene.h"
 #include "engine/render_rt/render_settings.h"
@@ -58,7 +58,7 @@ class FrameRenderer {
     // null where frames live on the host.
     virtual const vec3* DeviceFrame() const = 0;
     // The TLAS as the renderer holds it (tests compare the back ends' trees).
-    virtual Lbvh CurrentTlas() const = 0;
+    virtual Tlas CurrentTlas() const = 0;
 };
 
 // The frame renderer of `backend` over `scene` (its materials, lights and textures are taken

@@ -130,8 +130,7 @@ uint64_t RenderScene::TriangleCount() const {
 
 RenderSceneView RenderScene::HostView(uint32_t width, uint32_t height, uint32_t depth) const {
     RenderSceneView view;
-    view.tlas = {tlas_.nodes.data(), tlas_.instanceOrder.data(), instances.data(),
-                 blasViews_.data()};
+    view.tlas = {tlas_.nodes.data(), instances.data(), blasViews_.data()};
     view.materials = materials.data();
     view.pbrMaterials = pbrMaterials.data();
     view.lights = lights.data();

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
 
 #include "engine/bvh/build/morton.h"
@@ -108,6 +109,31 @@ TEST(Lbvh, RefitFollowsMovedBoxes) {
     }
     RefitLbvh(bvh, boxes);
     ExpectValid(bvh, boxes);
+}
+
+// The TLAS's form: the same tree, but each leaf holds its primitive's index instead of its slot;
+// a refit reads the boxes by those indices, and its walk leaves no mark on any node.
+TEST(Lbvh, LeavesMayHoldPrimitiveIds) {
+    std::vector<Aabb> boxes = test::RandomBoxes(3000, 20.0f, 8);
+    const Lbvh slots = BuildLbvh(boxes);
+    Lbvh ids = BuildLbvh(boxes, LbvhLeaves::kPrimitiveIds);
+    auto expectSameButLeaves = [&](const Lbvh& a, const Lbvh& b) {
+        ASSERT_EQ(a.nodes.size(), b.nodes.size());
+        EXPECT_EQ(a.parents, b.parents);
+        for (size_t i = 0; i < a.nodes.size(); ++i) {
+            BvhNode expected = a.nodes[i];
+            if (expected.IsLeaf()) expected.leftFirst = a.primOrder[expected.leftFirst];
+            ASSERT_EQ(std::memcmp(&expected, &b.nodes[i], sizeof(BvhNode)), 0) << "node " << i;
+        }
+    };
+    expectSameButLeaves(slots, ids);
+    for (Aabb& b : boxes) b.max += vec3(0.5f, 0.0f, 2.0f);
+    Lbvh refit = slots;
+    RefitLbvh(refit, boxes);
+    RefitLbvh(ids, boxes);
+    expectSameButLeaves(refit, ids);
+    for (const BvhNode& node : ids.nodes)
+        if (!node.IsLeaf()) EXPECT_LT(node.leftFirst, ids.nodes.size());
 }
 
 }  // namespace

@@ -33,7 +33,7 @@ struct TwoLevel {
             views.push_back(b.View());
         }
         tlas = BuildTlas(instances, bounds, builder);
-        return {tlas.nodes.data(), tlas.instanceOrder.data(), instances.data(), views.data()};
+        return {tlas.nodes.data(), instances.data(), views.data()};
     }
 };
 

@@ -208,7 +208,7 @@ TEST(WorldEdits, SpawnMoveAndRemoveKeepRecordsInStep) {
     ExpectRecordsMatchEntities(world);
     EXPECT_FALSE(world.Remove(middle));  // already gone
     // The CPU renderer's TLAS was rebuilt over the new set: a ray at the moved record finds it.
-    EXPECT_EQ(renderer->CurrentTlas().primOrder.size(), world.Scene().instances.size());
+    EXPECT_EQ(TlasLeafInstances(renderer->CurrentTlas()).size(), world.Scene().instances.size());
     const Instance& moved = world.Scene().instances[3];
     const vec3 centre(moved.Position()[0], moved.Position()[1], moved.Position()[2]);
     const Ray ray{centre + vec3(0.0f, 0.0f, 50.0f), 1e30f, vec3(0.0f, 0.0f, -1.0f), 0.0f};

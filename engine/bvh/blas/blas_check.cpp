@@ -130,8 +130,8 @@ class Checker {
                 CheckLeafRange(field, node.leftFirst, node.primCount);
                 continue;
             }
-            // Children sit in pairs from index 2 (bvh_node.h): the refit's walk finds an interior
-            // node's arrival counter by its pair (lbvh_steps.h).
+            // Children sit in pairs from index 2 (bvh_node.h), a line each, as every builder of
+            // the engine lays them out.
             if (node.leftFirst % 2 != 0)
                 Fail(field() + ".leftFirst", "child pair at odd index " +
                                                  std::to_string(node.leftFirst) +

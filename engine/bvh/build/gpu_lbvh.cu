@@ -12,13 +12,8 @@ void GpuLbvh::Build(const Aabb* bounds, uint32_t n, cudaStream_t stream) {
 void GpuLbvh::Refit(const Aabb* bounds, cudaStream_t stream) { RefitOver(bounds, stream); }
 
 void GpuLbvh::BoundsBottomUp(cudaStream_t stream) {
-    // The arrival counters live in the spare indices (count - 1 of them, one per interior node),
-    // free once the build's link step has read the node positions, and between builds.
-    const uint32_t positions = 2 * count_;
-    uint32_t* const arrivals = spareIndices_.Data();
-    RT_CUDA_CHECK(
-        cudaMemsetAsync(arrivals, 0, LbvhArrivalCount(positions) * sizeof(uint32_t), stream));
-    ParallelForCuda(0, positions - 2, LbvhBoundsBottomUp{parents_.Data(), nodes_.Data(), arrivals},
+    ParallelForCuda(0, 2 * count_ - 2,
+                    LbvhBoundsBottomUp<LbvhPositionParents>{{parents_.Data()}, nodes_.Data()},
                     stream);
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // GpuLbvh's build and refit over any Boxes (lbvh_steps.h), for .cu files: gpu_lbvh.cu instantiates
-// them for arrays of boxes, the TLAS's users for boxes computed from the instances.
+// them for arrays of boxes. The centroids' reduction serves the GPU TLAS too (gpu_tlas.cu).
 #include <cub/cub.cuh>
 #include <utility>
 
@@ -73,8 +73,7 @@ void GpuLbvh::BuildOver(Boxes bounds, uint32_t n, cudaStream_t stream) {
                     stream);
     RT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch_.Data(), sortBytes, keys, values, int(n),
                                                   0, 30, stream));
-    // The sorted values are wherever the last pass left them: name them primOrder_ (the other
-    // array, spareIndices_, then holds the node positions and the arrival counters).
+    // The sorted values are wherever the last pass left them: name them primOrder_.
     if (values.Current() != primOrder_.Data()) std::swap(spareIndices_, primOrder_);
     if (n == 1) {
         RT_CUDA_CHECK(cudaMemsetAsync(parents_.Data(), 0xff, positions * sizeof(uint32_t), stream));
@@ -83,15 +82,14 @@ void GpuLbvh::BuildOver(Boxes bounds, uint32_t n, cudaStream_t stream) {
         RT_CUDA_CHECK(cudaStreamSynchronize(stream));
         return;
     }
-    // Karras's internal nodes tell their children where they sit through the spare indices.
-    uint32_t* const positionOf = spareIndices_.Data();
-    ParallelForCuda(0, n - 1,
-                    LbvhKarrasNodes<Boxes>{keys.Current(), n, primOrder_.Data(), bounds,
-                                           nodes_.Data(), positionOf},
-                    stream);
+    ParallelForCuda(
+        0, n - 1,
+        LbvhKarrasNodes<Boxes>{keys.Current(), n, primOrder_.Data(), bounds, nodes_.Data()},
+        stream);
     // The codes are read: the parent links take their memory back.
     RT_CUDA_CHECK(cudaMemsetAsync(parents_.Data(), 0xff, positions * sizeof(uint32_t), stream));
-    ParallelForCuda(0, n - 1, LbvhLinkNodes{positionOf, nodes_.Data(), parents_.Data()}, stream);
+    ParallelForCuda(0, positions,
+                    LbvhLinkNodes<LbvhPositionParents>{nodes_.Data(), {parents_.Data()}}, stream);
     BoundsBottomUp(stream);
 }
 

@@ -1,9 +1,10 @@
 #pragma once
-// The LBVH built on the GPU every frame (CUDA): the same steps and the same tree as BuildLbvh on
-// the CPU (lbvh.h) — centroid bounds, 30-bit Morton codes, a stable CUB radix sort (equal codes
-// keep input order, as the CPU's (code, index) sort), Karras 2012 nodes in parallel, bounds
-// bottom-up with atomic arrival counters. All arrays stay on the device; the build's temporary
-// arrays share memory where their lifetimes allow (see the members).
+// The LBVH built on the GPU (CUDA) over primitive boxes, for the deforming BLASes: the same steps
+// and the same tree as BuildLbvh on the CPU (lbvh.h) — centroid bounds, 30-bit Morton codes, a
+// stable CUB radix sort (equal codes keep input order, as the CPU's (code, index) sort), Karras
+// 2012 nodes in parallel, bounds bottom-up with a mark on each node (lbvh_steps.h). All arrays
+// stay on the device; the build's temporary arrays share memory where their lifetimes allow (see
+// the members). The TLAS has its own, leaner form of the same build (gpu_tlas.h).
 //
 // The centroid bounds come from a reduction of order-preserving integer keys with atomic minima
 // (exact in any order, so the Morton codes equal the CPU's) rather than CUB's reduce, whose scratch
@@ -45,9 +46,8 @@ class GpuLbvh {
     uint32_t count_ = 0;
     DeviceBuffer<BvhNode> nodes_;
     DeviceBuffer<uint32_t> primOrder_, parents_;
-    // The sort's second array of primitive indices: free after the sort, it holds the Karras
-    // step's node positions and then the bottom-up pass's arrival counters. The sort's keys
-    // (Morton codes) are kept in parents_, two halves of n, until the parent links are written.
+    // The sort's second array of primitive indices. The sort's keys (Morton codes) are kept in
+    // parents_, two halves of n, until the parent links are written.
     DeviceBuffer<uint32_t> spareIndices_;
     DeviceBuffer<OrderedBounds> centroidBounds_;
     DeviceBuffer<unsigned char> scratch_;  // CUB's temporary storage

@@ -21,10 +21,12 @@ RT_HD inline int CountLeadingZeros(uint32_t v) {
 }
 
 // Length of the common prefix of keys i and j, -1 outside the array; equal keys compare their
-// indices instead, so that every pair of keys differs (the paper's section 4).
-RT_HD inline int CommonPrefix(const uint32_t* codes, uint32_t n, int64_t i, int64_t j) {
+// indices instead, so that every pair of keys differs (the paper's section 4). Codes: an array of
+// keys, or anything whose operator[] gives key i.
+template <class Codes>
+RT_HD inline int CommonPrefix(const Codes& codes, uint32_t n, int64_t i, int64_t j) {
     if (j < 0 || j >= int64_t(n)) return -1;
-    const uint32_t a = codes[i], b = codes[j];
+    const uint32_t a = uint32_t(codes[i]), b = uint32_t(codes[j]);
     if (a == b) return 32 + CountLeadingZeros(uint32_t(i) ^ uint32_t(j));
     return CountLeadingZeros(a ^ b);
 }
@@ -35,7 +37,8 @@ struct KarrasNode {
     uint32_t first, last, split;
 };
 
-RT_HD inline KarrasNode KarrasInternalNode(const uint32_t* codes, uint32_t n, uint32_t index) {
+template <class Codes>
+RT_HD inline KarrasNode KarrasInternalNode(const Codes& codes, uint32_t n, uint32_t index) {
     const int64_t i = index;
     const int d = CommonPrefix(codes, n, i, i + 1) - CommonPrefix(codes, n, i, i - 1) > 0 ? 1 : -1;
     // The range extends in direction d while keys share more than deltaMin prefix bits with i.

@@ -10,16 +10,15 @@ namespace rtrt {
 namespace {
 
 void BoundsBottomUp(Lbvh& bvh) {
-    const size_t positions = bvh.nodes.size();
-    std::vector<uint32_t> arrivals(LbvhArrivalCount(positions), 0);
-    ParallelFor(0, positions - 2, 1024,
-                LbvhBoundsBottomUp{bvh.parents.data(), bvh.nodes.data(), arrivals.data()});
+    ParallelFor(0, bvh.nodes.size() - 2, 1024,
+                LbvhBoundsBottomUp<LbvhPositionParents>{{bvh.parents.data()}, bvh.nodes.data()});
 }
 
 }  // namespace
 
-Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
+Lbvh BuildLbvh(std::span<const Aabb> primBounds, LbvhLeaves leaves) {
     Lbvh bvh;
+    bvh.leaves = leaves;
     const uint32_t n = uint32_t(primBounds.size());
     if (n == 0) {
         bvh.nodes.resize(2, BvhNode{vec3(kInfinity), 0, vec3(-kInfinity), 0});
@@ -46,17 +45,15 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
     bvh.parents.assign(bvh.nodes.size(), kLbvhNoParent);
     bvh.nodes[1] = BvhNode{vec3(0), 0, vec3(0), 0};
     if (n == 1) {
-        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
+        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data(),
+                                  leaves}(0);
         return bvh;
     }
-    // Internal node k sits where its parent put it: position 0 for the root, else a child slot.
-    std::vector<uint32_t> positionOf(n - 1, 0);
-    ParallelFor(
-        0, n - 1, 1024,
-        LbvhKarrasNodes<const Aabb*>{codes.data(), n, bvh.primOrder.data(), primBounds.data(),
-                                     bvh.nodes.data(), positionOf.data()});
     ParallelFor(0, n - 1, 1024,
-                LbvhLinkNodes{positionOf.data(), bvh.nodes.data(), bvh.parents.data()});
+                LbvhKarrasNodes<const Aabb*>{codes.data(), n, bvh.primOrder.data(),
+                                             primBounds.data(), bvh.nodes.data(), leaves});
+    ParallelFor(0, bvh.nodes.size(), 1024,
+                LbvhLinkNodes<LbvhPositionParents>{bvh.nodes.data(), {bvh.parents.data()}});
     BoundsBottomUp(bvh);
     return bvh;
 }
@@ -64,12 +61,13 @@ Lbvh BuildLbvh(std::span<const Aabb> primBounds) {
 void RefitLbvh(Lbvh& bvh, std::span<const Aabb> primBounds) {
     if (bvh.primOrder.empty()) return;
     if (bvh.nodes[0].IsLeaf()) {
-        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()}(0);
+        LbvhRootLeaf<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data(),
+                                  bvh.leaves}(0);
         return;
     }
-    ParallelFor(
-        0, bvh.nodes.size() - 2, 4096,
-        LbvhRefitLeaves<const Aabb*>{primBounds.data(), bvh.primOrder.data(), bvh.nodes.data()});
+    ParallelFor(0, bvh.nodes.size() - 2, 4096,
+                LbvhRefitLeaves<const Aabb*>{primBounds.data(), bvh.primOrder.data(),
+                                             bvh.nodes.data(), bvh.leaves});
     BoundsBottomUp(bvh);
 }
 

@@ -14,17 +14,33 @@ namespace rtrt {
 
 inline constexpr uint32_t kLbvhNoParent = UINT32_MAX;
 
-RT_HD inline BvhNode LbvhLeaf(const Aabb& bounds, uint32_t slot) {
+// What an LBVH's leaves hold: the slot (sorted position) of their primitive, for trees whose
+// primitives are then stored in leaf order (BLASes: primOrder maps slots to primitives), or the
+// primitive's own index, for trees that keep no order at all (TLASes: the instance).
+enum class LbvhLeaves : uint8_t { kSlots, kPrimitiveIds };
+
+RT_HD inline BvhNode LbvhLeaf(const Aabb& bounds, uint32_t index) {
     BvhNode node;
     node.SetBounds(bounds);
-    node.leftFirst = slot;
+    node.leftFirst = index;
     node.primCount = 1;
+    return node;
+}
+
+// An interior node whose children sit at leftChild and leftChild + 1; its bounds come bottom-up.
+RT_HD inline BvhNode LbvhInterior(uint32_t leftChild) {
+    BvhNode node;
+    node.SetBounds(Aabb{});
+    node.leftFirst = leftChild;
+    node.primCount = 0;
     return node;
 }
 
 // The steps read the primitives' boxes through Boxes: an array (const Aabb*), or anything whose
 // operator[] gives box i, such as boxes computed where they are read (the TLAS's instances:
-// InstanceWorldBoxes, tlas.h), which spares an array of them.
+// InstanceWorldBoxes, tlas.h), which spares an array of them. The sorted codes (Codes) and the
+// leaf order (Order) are read the same way: arrays, or words kept elsewhere (the GPU TLAS keeps
+// them in the instance records, gpu_tlas.h).
 
 // The Morton code of each primitive's centroid, and its index (the sort's payload). The centroids'
 // bounds: an Aabb, or anything that converts to one (the GPU's OrderedBounds).
@@ -40,90 +56,122 @@ struct LbvhMortonCodes {
     }
 };
 
+// The leaf of sorted primitive s.
+template <class Boxes, class Order>
+RT_HD inline BvhNode LbvhLeafOf(Boxes bounds, Order primOrder, LbvhLeaves leaves, uint32_t s) {
+    const uint32_t prim = primOrder[s];
+    return LbvhLeaf(bounds[prim], leaves == LbvhLeaves::kSlots ? s : prim);
+}
+
 // A tree of one primitive: the root is its leaf.
-template <class Boxes>
+template <class Boxes, class Order = const uint32_t*>
 struct LbvhRootLeaf {
     Boxes bounds;
-    const uint32_t* primOrder;
+    Order primOrder;
     BvhNode* nodes;
-    RT_HD void operator()(size_t) const { nodes[0] = LbvhLeaf(bounds[primOrder[0]], 0); }
+    LbvhLeaves leaves = LbvhLeaves::kSlots;
+    RT_HD void operator()(size_t) const { nodes[0] = LbvhLeafOf(bounds, primOrder, leaves, 0); }
 };
 
-// Karras internal node k writes its leaf children at 2 + 2k and 3 + 2k and tells its internal
-// children where they sit.
-template <class Boxes>
+// Karras internal node k writes its two children at 2 + 2k and 3 + 2k: a leaf, or internal node
+// c, whose own children will sit at 2 + 2c. The root (k = 0) also writes itself at position 0.
+template <class Boxes, class Codes = const uint32_t*, class Order = const uint32_t*>
 struct LbvhKarrasNodes {
-    const uint32_t* codes;  // sorted
+    Codes codes;  // sorted
     uint32_t n;
-    const uint32_t* primOrder;
+    Order primOrder;
     Boxes bounds;
     BvhNode* nodes;
-    uint32_t* positionOf;
+    LbvhLeaves leaves = LbvhLeaves::kSlots;
+
+    RT_HD BvhNode Child(uint32_t index, bool leaf) const {
+        return leaf ? LbvhLeafOf(bounds, primOrder, leaves, index) : LbvhInterior(2 + 2 * index);
+    }
     RT_HD void operator()(size_t i) const {
         const uint32_t k = uint32_t(i);
         const KarrasNode range = KarrasInternalNode(codes, n, k);
         const uint32_t pair = 2 + 2 * k;
-        if (range.split == range.first)
-            nodes[pair] = LbvhLeaf(bounds[primOrder[range.split]], range.split);
-        else
-            positionOf[range.split] = pair;
-        if (range.split + 1 == range.last)
-            nodes[pair + 1] = LbvhLeaf(bounds[primOrder[range.split + 1]], range.split + 1);
-        else
-            positionOf[range.split + 1] = pair + 1;
+        if (k == 0) nodes[0] = LbvhInterior(2);
+        nodes[pair] = Child(range.split, range.split == range.first);
+        nodes[pair + 1] = Child(range.split + 1, range.split + 1 == range.last);
     }
 };
 
-// Internal node k, now at its position (the root at 0), points at its children and they at it.
+// Parent links by position, one per node (Lbvh::parents; the deformers' trees).
+struct LbvhPositionParents {
+    uint32_t* parents;  // the root's is kLbvhNoParent
+    RT_HD uint32_t Of(uint32_t position) const { return parents[position]; }
+    RT_HD void SetPair(uint32_t leftChild, uint32_t parent) const {
+        parents[leftChild] = parents[leftChild + 1] = parent;
+    }
+};
+
+// Parent links by pair: the two children of Karras node k (at 2 + 2k) share their parent, so n - 1
+// words hold every link; Words is any array of them.
+template <class Words>
+struct LbvhPairParents {
+    Words words;
+    RT_HD uint32_t Of(uint32_t position) const {
+        return position < 2 ? kLbvhNoParent : uint32_t(words[(position - 2) / 2]);
+    }
+    RT_HD void SetPair(uint32_t leftChild, uint32_t parent) const {
+        words[(leftChild - 2) / 2] = parent;
+    }
+};
+
+// Each interior node at a position (the root at 0; position 1 is unused) tells its children it is
+// their parent.
+template <class Parents>
 struct LbvhLinkNodes {
-    const uint32_t* positionOf;
-    BvhNode* nodes;
-    uint32_t* parents;
+    const BvhNode* nodes;
+    Parents parents;
     RT_HD void operator()(size_t i) const {
-        const uint32_t k = uint32_t(i);
-        const uint32_t position = k == 0 ? 0 : positionOf[k];
-        const uint32_t pair = 2 + 2 * k;
-        nodes[position].leftFirst = pair;
-        nodes[position].primCount = 0;
-        parents[pair] = parents[pair + 1] = position;
+        const uint32_t position = uint32_t(i);
+        if (position == 1 || nodes[position].IsLeaf()) return;
+        parents.SetPair(nodes[position].leftFirst, position);
     }
 };
 
 // A refit's leaves take their primitive's new box (positions from 2; the root is never a leaf
 // here).
-template <class Boxes>
+template <class Boxes, class Order = const uint32_t*>
 struct LbvhRefitLeaves {
     Boxes bounds;
-    const uint32_t* primOrder;
+    Order primOrder;  // read only for leaves that hold slots
     BvhNode* nodes;
+    LbvhLeaves leaves = LbvhLeaves::kSlots;
     RT_HD void operator()(size_t i) const {
-        const size_t p = i + 2;
-        if (nodes[p].IsLeaf()) nodes[p].SetBounds(bounds[primOrder[nodes[p].leftFirst]]);
+        BvhNode& node = nodes[i + 2];
+        if (!node.IsLeaf()) return;
+        const uint32_t prim =
+            leaves == LbvhLeaves::kSlots ? uint32_t(primOrder[node.leftFirst]) : node.leftFirst;
+        node.SetBounds(bounds[prim]);
     }
 };
 
-// An interior node's arrival counter is found by its children's pair (left child at 2 + 2k:
-// counter k), so a tree of the pair layout needs one per pair, not one per position.
-RT_HD inline uint32_t LbvhArrivalIndex(uint32_t leftChild) { return (leftChild - 2) / 2; }
-RT_HD inline uint32_t LbvhArrivalCount(size_t positions) {
-    return positions > 2 ? uint32_t((positions - 2) / 2) : 0u;
-}
+// The bottom-up walk's mark on an interior node that one of its children has reached: the top bit
+// of its leftFirst, which child positions (below 2^31) never use. The second arrival clears it,
+// so a finished walk leaves every node's indices as it found them and needs no counters.
+inline constexpr uint32_t kLbvhArrived = 0x80000000u;
 
 // Bounds of every interior node from its children: each leaf walks up; at each parent the first
-// arrival stops and the second, which then sees both children done, computes the bounds.
+// arrival stops and the second, which then sees both children done, computes the bounds. Any tree
+// of the pair layout with parent links works (Parents: LbvhPositionParents or LbvhPairParents):
+// the deforming BLASes' refit runs it too.
+template <class Parents>
 struct LbvhBoundsBottomUp {
-    const uint32_t* parents;
+    Parents parents;
     BvhNode* nodes;
-    uint32_t* arrivals;  // LbvhArrivalCount(positions) zeros before the pass
 
-    // The arrival count before this one; this thread's writes below p are visible to the thread
-    // that arrives second.
-    RT_HD static uint32_t Arrive(uint32_t* counter) {
+    // Marks *leftFirst and returns it as it was; this thread's writes below the node are visible
+    // to the thread that arrives second.
+    RT_HD static uint32_t Arrive(uint32_t* leftFirst) {
 #if defined(__CUDA_ARCH__)
         __threadfence();
-        return atomicAdd(counter, 1u);
+        return atomicOr(leftFirst, kLbvhArrived);
 #else
-        return std::atomic_ref<uint32_t>(*counter).fetch_add(1, std::memory_order_acq_rel);
+        return std::atomic_ref<uint32_t>(*leftFirst)
+            .fetch_or(kLbvhArrived, std::memory_order_acq_rel);
 #endif
     }
 
@@ -138,26 +186,25 @@ struct LbvhBoundsBottomUp {
 #endif
     }
 
-    // The walk from one leaf (at any position but the root) towards the root. Any tree of the
-    // pair layout with parent links works: the deforming BLASes' refit runs it too.
-    RT_HD static void WalkUp(const uint32_t* parents, BvhNode* nodes, uint32_t* arrivals,
-                             uint32_t leaf) {
-        uint32_t p = parents[leaf];
+    // The walk from one leaf (at any position but the root) towards the root.
+    RT_HD static void WalkUp(Parents parents, BvhNode* nodes, uint32_t leaf) {
+        uint32_t p = parents.Of(leaf);
         while (p != kLbvhNoParent) {
-            const uint32_t left = nodes[p].leftFirst;  // not written by the walk
-            // The sibling's walk finishes p.
-            if (Arrive(&arrivals[LbvhArrivalIndex(left)]) == 0) return;
+            const uint32_t before = Arrive(&nodes[p].leftFirst);
+            if ((before & kLbvhArrived) == 0) return;  // the sibling's walk finishes p
+            const uint32_t left = before & ~kLbvhArrived;
+            nodes[p].leftFirst = left;  // both arrivals are in: no other thread touches it
             Aabb b = LoadBounds(&nodes[left]);
             b.Grow(LoadBounds(&nodes[left + 1]));
             nodes[p].boundsMin = b.min;
             nodes[p].boundsMax = b.max;
-            p = parents[p];
+            p = parents.Of(p);
         }
     }
 
     RT_HD void operator()(size_t i) const {
         const uint32_t leaf = uint32_t(i + 2);
-        if (nodes[leaf].IsLeaf()) WalkUp(parents, nodes, arrivals, leaf);
+        if (nodes[leaf].IsLeaf()) WalkUp(parents, nodes, leaf);
     }
 };
 

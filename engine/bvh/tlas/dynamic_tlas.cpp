@@ -19,7 +19,7 @@ TlasUpdateStats DynamicTlas::Update(std::span<const Instance> instances,
             return stats;
         }
     }
-    tree_ = BuildLbvh(bounds);
+    tree_ = BuildLbvh(bounds, LbvhLeaves::kPrimitiveIds);
     built_ = true;
     rebuiltSahCost_ = SahCost(tree_.nodes);
     stats.rebuilt = true;

@@ -1,5 +1,6 @@
 #pragma once
-// The per-frame TLAS of the runtime: an LBVH over instance world bounds, rebuilt when instances
+// The per-frame TLAS of the runtime on the CPU: an LBVH over instance world bounds (its leaves
+// hold instance indices, as every TLAS's: tlas.h), rebuilt when instances
 // were added or removed (or on request) and otherwise refit, until refitting has let the SAH cost
 // drift more than a threshold above the cost of the last rebuild.
 #include <span>

@@ -14,7 +14,10 @@ struct alignas(16) Instance {
     Affine inverseAndPosition;
     uint32_t blasId;
     uint32_t materialId;
-    uint32_t pad[2];
+    // Not the instance's: two words of the GPU TLAS's own (gpu_tlas.h), which has one pair of
+    // nodes per instance and keeps each pair's parent link here rather than in an array of its
+    // own. Writers of a placement leave them alone (SetPlacement); no traversal reads them.
+    uint32_t tlasWords[2];
 
     RT_HD vec3 Position() const {
         const vec4* r = inverseAndPosition.row;
@@ -45,6 +48,12 @@ static_assert(sizeof(Instance) == 64);
 // An instance of blasId with materialId placed by objectToWorld (an invertible affine matrix):
 // L^-1 as glm::affineInverse computes it, c as given.
 Instance MakeInstance(uint32_t blasId, uint32_t materialId, const glm::mat4& objectToWorld);
+// Copies src's placement and ids into dst, leaving dst's TLAS words as they are.
+RT_HD inline void SetPlacement(Instance& dst, const Instance& src) {
+    dst.inverseAndPosition = src.inverseAndPosition;
+    dst.blasId = src.blasId;
+    dst.materialId = src.materialId;
+}
 // Places inst by objectToWorld, keeping its ids.
 void SetTransform(Instance& inst, const glm::mat4& objectToWorld);
 // inst's objectToWorld as a matrix (Instance::ObjectToWorld).

@@ -1,6 +1,7 @@
 #pragma once
 // Top-level acceleration structure over instances: a binned SAH build (best trees, for static
-// scenes) or the LBVH (fast, rebuilt every frame in the runtime).
+// scenes) or the LBVH (fast, rebuilt every frame in the runtime). Every leaf holds one instance
+// and names it itself (leftFirst is the instance's index), so a TLAS keeps no leaf order.
 #include <span>
 #include <vector>
 
@@ -10,8 +11,7 @@
 namespace rtrt {
 
 struct Tlas {
-    AlignedVector<BvhNode> nodes;
-    std::vector<uint32_t> instanceOrder;
+    AlignedVector<BvhNode> nodes;  // leaves: leftFirst = instance index, primCount = 1
 };
 
 // World bounds of a box under an affine transform (the 8 transformed corners' bounds).
@@ -42,6 +42,9 @@ enum class TlasBuilder { kSah, kLbvh };
 // World bounds of every instance (its BLAS bounds under its transform).
 std::vector<Aabb> InstanceWorldBounds(std::span<const Instance> instances,
                                       std::span<const Aabb> blasBounds);
+
+// The instances its leaves name, in node order (each once, for a well-formed TLAS).
+std::vector<uint32_t> TlasLeafInstances(const Tlas& tlas);
 
 Tlas BuildTlas(std::span<const Instance> instances, std::span<const Aabb> blasBounds,
                TlasBuilder builder = TlasBuilder::kSah);

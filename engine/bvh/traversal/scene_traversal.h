@@ -94,8 +94,7 @@ RT_HD inline bool IntersectScene(const TlasView& scene, const Ray& ray, SceneHit
     float tMax = ray.tMax;
     return Traverse<Query::kIntersect>(
         scene.nodes, setup, tMax,
-        [&](uint32_t slot, float& tBest) {
-            const uint32_t id = scene.instanceOrder[slot];
+        [&](uint32_t id, float& tBest) {
             const Instance& inst = scene.instances[id];
             const BlasView& blas = scene.blases[inst.blasId];
             if (!IntersectBlas<Tests>(blas, inst, ray, tBest, hit, stats)) return false;
@@ -114,8 +113,8 @@ RT_HD inline bool OccludedScene(const TlasView& scene, const Ray& ray,
     float tMax = ray.tMax;
     return Traverse<Query::kOccluded>(
         scene.nodes, setup, tMax,
-        [&](uint32_t slot, float tLimit) {
-            const Instance& inst = scene.instances[scene.instanceOrder[slot]];
+        [&](uint32_t id, float tLimit) {
+            const Instance& inst = scene.instances[id];
             const BlasView& blas = scene.blases[inst.blasId];
             return OccludedBlas<Tests>(blas, inst, ray, tLimit, stats);
         },

@@ -5,9 +5,8 @@
 // the same work, a node pair or a leaf, whichever level each lane is in.
 //
 // Entering an instance pushes a return-to-world marker and continues with the BLAS's root in
-// object space; popping the marker restores the world-space ray. TLAS leaves with several
-// instances push the later ones as instance entries, last first, so they are visited in order.
-// The visiting order, the hits and the heatmap's counts are those of the nested form
+// object space; popping the marker restores the world-space ray. A TLAS leaf holds one instance
+// (tlas.h). The visiting order, the hits and the heatmap's counts are those of the nested form
 // (scene_traversal.h), which tests check.
 #include "engine/bvh/blas/blas.h"
 #include "engine/bvh/tlas/instance.h"
@@ -17,8 +16,7 @@
 namespace rtrt {
 
 struct TlasView {
-    const BvhNode* nodes;
-    const uint32_t* instanceOrder;  // leaf slot -> instance index
+    const BvhNode* nodes;  // leaves name their instance (tlas.h)
     const Instance* instances;
     const BlasView* blases;
 };
@@ -55,11 +53,10 @@ RT_HD inline SphereRay ToObjectSpaceExact(const Ray& ray, const Instance& inst) 
     return r;
 }
 
-// Stack entries: a node index of the level in use, or one of these two.
+// Stack entries: a node index of the level in use, or the marker.
 inline constexpr uint32_t kReturnToWorld = 0xffffffffu;
-inline constexpr uint32_t kInstanceEntry = 0x80000000u;  // | TLAS leaf slot
 inline constexpr uint32_t kNoNode = 0xfffffffeu;
-// One TLAS path, a leaf's waiting instances and one BLAS path.
+// One TLAS path and one BLAS path.
 inline constexpr uint32_t kTwoLevelStackSize = 2 * kBvhStackSize + 8;
 
 // Whether pred holds for any active lane of the warp; on the CPU, one lane.
@@ -95,9 +92,8 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
     uint32_t stackSize = 0;
     bool found = false;
 
-    // Switches to the instance at a TLAS leaf slot if the ray meets its BLAS's root box.
-    auto enterInstance = [&](uint32_t slot) {
-        const uint32_t id = scene.instanceOrder[slot];
+    // Switches to instance id if the ray meets its BLAS's root box.
+    auto enterInstance = [&](uint32_t id) {
         const Instance& inst = scene.instances[id];
         const BlasView& target = scene.blases[inst.blasId];
         const Ray objectRay = ToObjectSpace(ray, inst);
@@ -119,12 +115,11 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
         return true;
     };
     // The next pending node of the level in use, or kNoNode when the stack is empty or its top
-    // leaves the level (a marker or an instance entry: handled once no leaf is set aside).
+    // leaves the level (the marker: handled once no leaf is set aside).
     auto popNode = [&]() {
         if (stackSize == 0) return kNoNode;
         const uint32_t top = stack[stackSize - 1];
-        if (top == kReturnToWorld || (blas == nullptr && (top & kInstanceEntry) != 0))
-            return kNoNode;
+        if (top == kReturnToWorld) return kNoNode;
         --stackSize;
         return top;
     };
@@ -165,11 +160,9 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
             const BvhNode& leaf = nodes[postponed];
             postponed = kNoNode;
             if (blas == nullptr) {
-                // An instance leaf: what was pending at this level waits below the instances.
+                // An instance leaf: what was pending at this level waits below the instance.
                 if (current != kNoNode) stack[stackSize++] = current;
                 current = kNoNode;
-                for (uint32_t i = leaf.primCount - 1; i >= 1; --i)
-                    stack[stackSize++] = kInstanceEntry | (leaf.leftFirst + i);
                 if (enterInstance(leaf.leftFirst)) current = 0;
                 continue;
             }
@@ -198,7 +191,7 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
             }
             continue;
         }
-        // Nothing in hand: leave the instance at a marker, enter the next waiting instance.
+        // Nothing in hand: leave the instance at its marker.
         if (current == kNoNode) {
             if (stackSize == 0) return found;
             const uint32_t entry = stack[--stackSize];
@@ -206,8 +199,6 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                 setup = MakeBoxRaySetup(ray);
                 nodes = scene.nodes;
                 blas = nullptr;
-            } else if (blas == nullptr && (entry & kInstanceEntry) != 0) {
-                if (enterInstance(entry & ~kInstanceEntry)) current = 0;
             } else {
                 current = entry;
             }

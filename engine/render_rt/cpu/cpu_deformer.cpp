@@ -22,7 +22,6 @@ void CpuDeformer::Admit(const RenderScene& scene) {
     slotTriangle_.resize(plan_.SlotTotal());
     nodes_.resize(plan_.NodeTotal());
     parents_.resize(plan_.NodeTotal(), kLbvhNoParent);
-    arrivals_.resize(plan_.NodeTotal());
     for (const DeformSlotInit& init : added) {
         const DeformJob& at = plan_.Slot(init.deformation);
         std::copy(init.rest->nodes.begin(), init.rest->nodes.end(), nodes_.begin() + at.nodeOffset);
@@ -37,7 +36,7 @@ void CpuDeformer::Admit(const RenderScene& scene) {
 DeformJobs CpuDeformer::Work() {
     DeformPools pools{positions_.data(),       normals_.data(),     triangles_.data(),
                       triangleNormals_.data(), triangleUvs_.data(), slotTriangle_.data(),
-                      nodes_.data(),           parents_.data(),     arrivals_.data()};
+                      nodes_.data(),           parents_.data()};
     return {plan_.Jobs().data(), uint32_t(plan_.Jobs().size()), meshes_.data(), pools};
 }
 

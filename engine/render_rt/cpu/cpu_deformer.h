@@ -40,7 +40,7 @@ class CpuDeformer {
     std::vector<TriangleUvs> triangleUvs_;
     std::vector<uint32_t> slotTriangle_;
     AlignedVector<BvhNode> nodes_;
-    std::vector<uint32_t> parents_, arrivals_;
+    std::vector<uint32_t> parents_;
     std::vector<float> terms_;
     std::vector<Aabb> boxes_;
 };

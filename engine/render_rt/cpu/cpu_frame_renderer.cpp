@@ -65,22 +65,21 @@ class CpuFrameRenderer final : public FrameRenderer {
 
     bool Pick(const Ray& ray, SceneHit* hit) override {
         if (!instances_) return false;
-        return IntersectScene(Tlas(), ray, hit);
+        return IntersectScene(TlasViewOf(), ray, hit);
     }
 
     const FrameTimes& Times() const override { return times_; }
     const vec3* DeviceFrame() const override { return nullptr; }
-    Lbvh CurrentTlas() const override { return tlas_.Tree(); }
+    Tlas CurrentTlas() const override { return {tlas_.Tree().nodes}; }
 
   private:
-    TlasView Tlas() const {
-        return {tlas_.Tree().nodes.data(), tlas_.Tree().primOrder.data(), instances_,
-                blasViews_.data()};
+    TlasView TlasViewOf() const {
+        return {tlas_.Tree().nodes.data(), instances_, blasViews_.data()};
     }
 
     RenderSceneView View(const RenderScene& scene, const RenderSettings& settings) const {
         RenderSceneView view = scene.HostView(settings.width, settings.height, settings.maxDepth);
-        view.tlas = Tlas();
+        view.tlas = TlasViewOf();
         return view;
     }
 

@@ -75,7 +75,6 @@ void CudaDeformer::Admit(const RenderScene& scene) {
     slotTriangle_.GrowTo(plan_.SlotTotal());
     nodes_.GrowTo(plan_.NodeTotal());
     parents_.GrowTo(plan_.NodeTotal());
-    arrivals_.GrowTo(plan_.NodeTotal());
     for (const DeformSlotInit& init : added) {
         const DeformJob& at = plan_.Slot(init.deformation);
         CopyInto(nodes_, at.nodeOffset, std::span<const BvhNode>(init.rest->nodes));
@@ -88,7 +87,7 @@ void CudaDeformer::Admit(const RenderScene& scene) {
 DeformJobs CudaDeformer::Work() const {
     DeformPools pools{positions_.Data(),       normals_.Data(),     triangles_.Data(),
                       triangleNormals_.Data(), triangleUvs_.Data(), slotTriangle_.Data(),
-                      nodes_.Data(),           parents_.Data(),     arrivals_.Data()};
+                      nodes_.Data(),           parents_.Data()};
     return {jobs_.Data(), uint32_t(plan_.Jobs().size()), meshes_.Data(), pools};
 }
 

@@ -68,7 +68,7 @@ class CudaDeformer {
     DeviceBuffer<TriangleUvs> triangleUvs_;
     DeviceBuffer<uint32_t> slotTriangle_;
     DeviceBuffer<BvhNode> nodes_;
-    DeviceBuffer<uint32_t> parents_, arrivals_;
+    DeviceBuffer<uint32_t> parents_;
     // The frame's work: jobs, the items' begins, poses, SAH terms and per-job costs.
     DeviceBuffer<DeformJob> jobs_;
     DeviceBuffer<uint32_t> vertexBegins_, slotBegins_, nodeBegins_;

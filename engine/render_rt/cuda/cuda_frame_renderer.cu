@@ -2,8 +2,8 @@
 #include <optional>
 #include <vector>
 
-#include "engine/bvh/build/gpu_lbvh.cuh"
 #include "engine/bvh/build/sah_term.h"
+#include "engine/bvh/tlas/gpu_tlas.h"
 #include "engine/bvh/tlas/tlas.h"
 #include "engine/render_rt/cuda/cuda_deformer.h"
 #include "engine/render_rt/cuda/cuda_frame_renderer.h"
@@ -18,12 +18,13 @@ constexpr int kBlock = 256;
 constexpr uint32_t kMaxTraceBands = 64;
 uint32_t Blocks(size_t n) { return uint32_t((n + kBlock - 1) / kBlock); }
 
-// Writes the changed records into place (the TLAS computes their world boxes as it reads them).
+// Writes the changed records into place (the TLAS computes their world boxes as it reads them),
+// leaving the TLAS's words in them for its refit.
 __global__ void ScatterInstancesKernel(const uint32_t* indices, const Instance* records,
                                        uint32_t count, Instance* instances) {
     const uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
     if (k >= count) return;
-    instances[indices[k]] = records[k];
+    SetPlacement(instances[indices[k]], records[k]);
 }
 
 // Each node's term of the SAH cost (sah_term.h, the one the deformers' policy sums too).
@@ -122,12 +123,11 @@ class CudaFrameRenderer final : public FrameRenderer {
         // stage at most, never for its trace), so that decisions stay deterministic run to run.
         const bool rebuild = policy_.alwaysRebuild || countChanged || !built_ ||
                              lastSahCost_ > (1.0f + policy_.maxSahGrowth) * rebuiltSahCost_;
-        const InstanceWorldBoxes boxes{instances_.Data(), blasBounds_.Data()};
         if (rebuild) {
-            tlas_.BuildOver(boxes, n);
+            tlas_.Build(instances_.Data(), blasBounds_.Data(), n);
             built_ = true;
         } else if (f.times.uploaded > 0) {
-            tlas_.RefitOver(boxes);
+            tlas_.Refit(instances_.Data(), blasBounds_.Data());
         }
         // Always-rebuild (the benchmark's mode) needs no cost.
         if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild) QueueSahCost(rebuild);
@@ -196,11 +196,11 @@ class CudaFrameRenderer final : public FrameRenderer {
 
     const FrameTimes& Times() const override { return times_; }
     const vec3* DeviceFrame() const override { return frame_.Data(); }
-    Lbvh CurrentTlas() const override { return tlas_.Download(); }
+    Tlas CurrentTlas() const override { return tlas_.Download(); }
 
   private:
     TlasView TlasOnDevice() const {
-        return {tlas_.Nodes(), tlas_.PrimOrder(), instances_.Data(), device_.blasViews.Data()};
+        return {tlas_.Nodes(), instances_.Data(), device_.blasViews.Data()};
     }
 
     // Takes the next set of events for a frame (reading its previous frame's times first: that
@@ -382,7 +382,7 @@ class CudaFrameRenderer final : public FrameRenderer {
     DeviceBuffer<Instance> changedRecords_;
     std::vector<uint32_t> hostIndices_;
     std::vector<Instance> hostRecords_;
-    GpuLbvh tlas_;
+    GpuTlas tlas_;
     bool built_ = false;
     float rebuiltSahCost_ = 0.0f;
     float lastSahCost_ = 0.0f;

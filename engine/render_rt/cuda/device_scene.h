@@ -76,7 +76,7 @@ struct DeviceScene {
     RenderSceneView View(const RenderScene& scene, const RenderSettings& s) const {
         RenderSceneView view = scene.HostView(s.width, s.height, s.maxDepth);
         view.samplesPerPixel = s.samplesPerPixel;
-        view.tlas = {nullptr, nullptr, nullptr, blasViews.Data()};
+        view.tlas = {nullptr, nullptr, blasViews.Data()};
         view.materials = materials.Data();
         view.pbrMaterials = pbrMaterials.Data();
         view.lights = lights.Data();
@@ -94,19 +94,16 @@ struct DeviceScene {
 struct DeviceStaticScene {
     DeviceScene scene;
     DeviceBuffer<BvhNode> tlasNodes;
-    DeviceBuffer<uint32_t> instanceOrder;
     DeviceBuffer<Instance> instances;
 
     explicit DeviceStaticScene(const RenderScene& s) : scene(s) {
         tlasNodes.Upload(s.GetTlas().nodes);
-        instanceOrder.Upload(s.GetTlas().instanceOrder);
         instances.Upload(s.instances);
     }
 
     RenderSceneView View(const RenderScene& s, const RenderSettings& settings) const {
         RenderSceneView view = scene.View(s, settings);
-        view.tlas = {tlasNodes.Data(), instanceOrder.Data(), instances.Data(),
-                     scene.blasViews.Data()};
+        view.tlas = {tlasNodes.Data(), instances.Data(), scene.blasViews.Data()};
         return view;
     }
 };

@@ -33,7 +33,6 @@ struct DeformPools {
     uint32_t* slotTriangle;            // leaf slot -> triangle of the rest mesh
     BvhNode* nodes;
     uint32_t* parents;  // relative to the job's nodeOffset; the root's is kLbvhNoParent
-    uint32_t* arrivals;
 };
 
 // The job whose items [begins[j], begins[j + 1]) hold item i.
@@ -108,8 +107,7 @@ struct TriangleBoxesStep {
     }
 };
 
-// Leaves take the box of their triangles; every position's arrival counter is cleared for the
-// walk up.
+// Leaves take the box of their triangles.
 struct RefitLeavesStep {
     DeformJobs work;
     const uint32_t* nodeBegins;
@@ -117,7 +115,6 @@ struct RefitLeavesStep {
         const uint32_t j = FindJob(nodeBegins, work.count, uint32_t(i));
         const DeformJob& job = work.jobs[j];
         const uint32_t at = job.nodeOffset + (uint32_t(i) - nodeBegins[j]);
-        work.pools.arrivals[at] = 0;
         BvhNode& node = work.pools.nodes[at];
         if (!node.IsLeaf()) return;
         const Triangle* tri = work.pools.triangles + job.slotOffset + node.leftFirst;
@@ -138,8 +135,8 @@ struct RefitUpStep {
         const uint32_t p = uint32_t(i) - nodeBegins[j];
         BvhNode* nodes = work.pools.nodes + job.nodeOffset;
         if (p == 0 || p == 1 || !nodes[p].IsLeaf()) return;
-        LbvhBoundsBottomUp::WalkUp(work.pools.parents + job.nodeOffset, nodes,
-                                   work.pools.arrivals + job.nodeOffset, p);
+        LbvhBoundsBottomUp<LbvhPositionParents>::WalkUp({work.pools.parents + job.nodeOffset},
+                                                        nodes, p);
     }
 };
 

@@ -1,0 +1,120 @@
+// The GPU TLAS equals the CPU's LBVH TLAS over the same records, bit for bit, built and refit, for
+// 0 to 200,000 instances; it keeps nothing but its nodes (two per instance) on the device, and a
+// refit after records were rewritten by their placement alone equals a CPU refit. Label gpu.
+#include "engine/bvh/tlas/gpu_tlas.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <random>
+
+#include "engine/bvh/build/lbvh.h"
+#include "engine/render_rt/renderer.h"
+
+namespace rtrt {
+namespace {
+
+const std::vector<Aabb> kBlasBounds = {{vec3(-1.0f), vec3(1.0f)},
+                                       {vec3(-0.5f, 0.0f, -2.0f), vec3(0.5f, 3.0f, 2.0f)}};
+
+glm::mat4 RandomPlacement(std::mt19937& rng, float extent) {
+    std::uniform_real_distribution<float> at(-extent, extent), angle(0.0f, 6.2831853f);
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), vec3(at(rng), at(rng), at(rng)));
+    return glm::rotate(m, angle(rng), glm::normalize(vec3(at(rng), at(rng), at(rng)) + 1e-3f));
+}
+
+std::vector<Instance> RandomInstances(uint32_t n, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::vector<Instance> instances;
+    for (uint32_t i = 0; i < n; ++i)
+        instances.push_back(MakeInstance(i % 2, 0, RandomPlacement(rng, 50.0f)));
+    return instances;
+}
+
+void ExpectSameNodes(const AlignedVector<BvhNode>& cpu, const AlignedVector<BvhNode>& gpu) {
+    ASSERT_EQ(cpu.size(), gpu.size());
+    for (size_t i = 0; i < cpu.size(); ++i)
+        ASSERT_EQ(std::memcmp(&cpu[i], &gpu[i], sizeof(BvhNode)), 0) << "node " << i;
+}
+
+TEST(GpuTlas, EqualsCpuForManySizes) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    const DeviceBuffer<Aabb> blasBounds{std::span<const Aabb>(kBlasBounds)};
+    for (uint32_t n : {0u, 1u, 2u, 3u, 17u, 1000u, 200000u}) {
+        SCOPED_TRACE(n);
+        const std::vector<Instance> instances = RandomInstances(n, n + 5);
+        DeviceBuffer<Instance> records{std::span<const Instance>(instances)};
+        GpuTlas gpu;
+        gpu.Build(records.Data(), blasBounds.Data(), n);
+        const Tlas cpu = BuildTlas(instances, kBlasBounds, TlasBuilder::kLbvh);
+        ExpectSameNodes(cpu.nodes, gpu.Download().nodes);
+    }
+}
+
+TEST(GpuTlas, KeepsOnlyItsNodes) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    const DeviceBuffer<Aabb> blasBounds{std::span<const Aabb>(kBlasBounds)};
+    for (uint32_t n : {1000u, 100000u}) {
+        const std::vector<Instance> instances = RandomInstances(n, 9);
+        DeviceBuffer<Instance> records{std::span<const Instance>(instances)};
+        GpuTlas gpu;
+        gpu.Build(records.Data(), blasBounds.Data(), n);
+        EXPECT_EQ(gpu.DeviceBytes(), 2 * size_t(n) * sizeof(BvhNode)) << n << " instances";
+    }
+}
+
+TEST(GpuTlas, EqualsCpuWithAllAtOnePoint) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    const DeviceBuffer<Aabb> blasBounds{std::span<const Aabb>(kBlasBounds)};
+    const std::vector<Instance> instances(5000, MakeInstance(1, 0, glm::mat4(1.0f)));
+    DeviceBuffer<Instance> records{std::span<const Instance>(instances)};
+    GpuTlas gpu;
+    gpu.Build(records.Data(), blasBounds.Data(), uint32_t(instances.size()));
+    ExpectSameNodes(BuildTlas(instances, kBlasBounds, TlasBuilder::kLbvh).nodes,
+                    gpu.Download().nodes);
+}
+
+// As the runtime refits: the records' placements change on the device (SetPlacement, which
+// leaves the TLAS words), then the same tree takes the new boxes.
+TEST(GpuTlas, RefitEqualsCpuRefit) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    const DeviceBuffer<Aabb> blasBounds{std::span<const Aabb>(kBlasBounds)};
+    for (uint32_t n : {1u, 2u, 20000u}) {
+        SCOPED_TRACE(n);
+        std::vector<Instance> instances = RandomInstances(n, 3);
+        DeviceBuffer<Instance> records{std::span<const Instance>(instances)};
+        GpuTlas gpu;
+        gpu.Build(records.Data(), blasBounds.Data(), n);
+        Lbvh cpu =
+            BuildLbvh(InstanceWorldBounds(instances, kBlasBounds), LbvhLeaves::kPrimitiveIds);
+
+        std::vector<Instance> onDevice(n);
+        records.Download(onDevice);
+        std::mt19937 rng(77);
+        for (uint32_t i = 0; i < n; ++i) {
+            if (i % 3 == 0) SetTransform(instances[i], RandomPlacement(rng, 60.0f));
+            SetPlacement(onDevice[i], instances[i]);
+        }
+        records.Upload(onDevice);
+        gpu.Refit(records.Data(), blasBounds.Data());
+        RefitLbvh(cpu, InstanceWorldBounds(instances, kBlasBounds));
+        ExpectSameNodes(cpu.nodes, gpu.Download().nodes);
+        // And a second refit from there, with no walk's marks left behind by the first.
+        for (uint32_t i = 0; i < n; ++i) {
+            SetTransform(instances[i], RandomPlacement(rng, 40.0f));
+            SetPlacement(onDevice[i], instances[i]);
+        }
+        records.Upload(onDevice);
+        gpu.Refit(records.Data(), blasBounds.Data());
+        RefitLbvh(cpu, InstanceWorldBounds(instances, kBlasBounds));
+        ExpectSameNodes(cpu.nodes, gpu.Download().nodes);
+    }
+}
+
+}  // namespace
+}  // namespace rtrt
