@@ -1,7 +1,8 @@
 #pragma once
 // Top-level acceleration structure over instances: a binned SAH build (best trees, for static
 // scenes) or the LBVH (fast, rebuilt every frame in the runtime). Every leaf holds one instance
-// and names it itself (leftFirst is the instance's index), so a TLAS keeps no leaf order.
+// and names it itself (leftFirst is the instance's index), so a TLAS keeps no leaf order. (The
+// traversals would take a leaf of several instances as [leftFirst, leftFirst + primCount).)
 #include <span>
 #include <vector>
 

@@ -5,8 +5,11 @@
 // the same work, a node pair or a leaf, whichever level each lane is in.
 //
 // Entering an instance pushes a return-to-world marker and continues with the BLAS's root in
-// object space; popping the marker restores the world-space ray. A TLAS leaf holds one instance
-// (tlas.h). The visiting order, the hits and the heatmap's counts are those of the nested form
+// object space; popping the marker restores the world-space ray. TLAS leaves with several
+// instances (which no builder of the engine makes, tlas.h, but which the loop supports as BLAS
+// leaves are supported) push the later ones as instance entries, last first, so they are visited
+// in order.
+// The visiting order, the hits and the heatmap's counts are those of the nested form
 // (scene_traversal.h), which tests check.
 #include "engine/bvh/blas/blas.h"
 #include "engine/bvh/tlas/instance.h"
@@ -16,7 +19,7 @@
 namespace rtrt {
 
 struct TlasView {
-    const BvhNode* nodes;  // leaves name their instance (tlas.h)
+    const BvhNode* nodes;  // leaves name their instances (tlas.h)
     const Instance* instances;
     const BlasView* blases;
 };
@@ -53,10 +56,11 @@ RT_HD inline SphereRay ToObjectSpaceExact(const Ray& ray, const Instance& inst) 
     return r;
 }
 
-// Stack entries: a node index of the level in use, or the marker.
+// Stack entries: a node index of the level in use, or one of these two.
 inline constexpr uint32_t kReturnToWorld = 0xffffffffu;
+inline constexpr uint32_t kInstanceEntry = 0x80000000u;  // | instance index
 inline constexpr uint32_t kNoNode = 0xfffffffeu;
-// One TLAS path and one BLAS path.
+// One TLAS path, a leaf's waiting instances and one BLAS path.
 inline constexpr uint32_t kTwoLevelStackSize = 2 * kBvhStackSize + 8;
 
 // Whether pred holds for any active lane of the warp; on the CPU, one lane.
@@ -115,11 +119,12 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
         return true;
     };
     // The next pending node of the level in use, or kNoNode when the stack is empty or its top
-    // leaves the level (the marker: handled once no leaf is set aside).
+    // leaves the level (a marker or an instance entry: handled once no leaf is set aside).
     auto popNode = [&]() {
         if (stackSize == 0) return kNoNode;
         const uint32_t top = stack[stackSize - 1];
-        if (top == kReturnToWorld) return kNoNode;
+        if (top == kReturnToWorld || (blas == nullptr && (top & kInstanceEntry) != 0))
+            return kNoNode;
         --stackSize;
         return top;
     };
@@ -160,9 +165,11 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
             const BvhNode& leaf = nodes[postponed];
             postponed = kNoNode;
             if (blas == nullptr) {
-                // An instance leaf: what was pending at this level waits below the instance.
+                // An instance leaf: what was pending at this level waits below the instances.
                 if (current != kNoNode) stack[stackSize++] = current;
                 current = kNoNode;
+                for (uint32_t i = leaf.primCount - 1; i >= 1; --i)
+                    stack[stackSize++] = kInstanceEntry | (leaf.leftFirst + i);
                 if (enterInstance(leaf.leftFirst)) current = 0;
                 continue;
             }
@@ -191,7 +198,7 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
             }
             continue;
         }
-        // Nothing in hand: leave the instance at its marker.
+        // Nothing in hand: leave the instance at a marker, enter the next waiting instance.
         if (current == kNoNode) {
             if (stackSize == 0) return found;
             const uint32_t entry = stack[--stackSize];
@@ -199,6 +206,8 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                 setup = MakeBoxRaySetup(ray);
                 nodes = scene.nodes;
                 blas = nullptr;
+            } else if (blas == nullptr && (entry & kInstanceEntry) != 0) {
+                if (enterInstance(entry & ~kInstanceEntry)) current = 0;
             } else {
                 current = entry;
             }
