@@ -299,6 +299,44 @@ TEST(GpuFrameRenderer, UploadsOnlyChangedRecords) {
     EXPECT_FALSE(gpu->Times().tlasRebuilt);
 }
 
+// The SAH cost the device's rebuild policy sees (summed on the device in fixed-order blocks) is
+// the host's for the same refit tree, one update later as the device reports it.
+TEST(GpuFrameRenderer, SahCostFollowsTheCpuRenderers) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
+    RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
+    const LoadedScene loaded =
+        LoadSceneFile(test::SourcePath("assets/scenes/demo_1000_instances.json"));
+    World cpuWorld(loaded), gpuWorld(loaded);
+    const std::unique_ptr<FrameRenderer> cpu = MakeFrameRenderer(Backend::kCpu, cpuWorld.Scene());
+    const std::unique_ptr<FrameRenderer> gpu = MakeFrameRenderer(Backend::kCuda, gpuWorld.Scene());
+    RenderSettings s;
+    s.width = 32;
+    s.height = 18;
+    float cpuBefore = 0.0f;
+    int compared = 0;
+    for (int f = 1; f <= 12; ++f) {
+        cpuWorld.Advance(1.0f / 60.0f);
+        gpuWorld.Advance(1.0f / 60.0f);
+        cpu->Update(cpuWorld.Scene(), cpuWorld.Changes());
+        gpu->Update(gpuWorld.Scene(), gpuWorld.Changes());
+        cpu->Trace(cpuWorld.Scene(), s, nullptr);
+        gpu->Trace(gpuWorld.Scene(), s, nullptr);
+        gpu->Finish();
+        // Until either rebuilds, both refit the same first tree.
+        if (cpu->Times().tlasRebuilt || gpu->Times().tlasRebuilt) break;
+        if (f > 1) {
+            SCOPED_TRACE("frame " + std::to_string(f));
+            ASSERT_GT(cpuBefore, 0.0f);
+            EXPECT_NEAR(gpu->Times().tlasSahCost, cpuBefore, 1e-4f * cpuBefore);
+            ++compared;
+        }
+        cpuBefore = cpu->Times().tlasSahCost;
+    }
+    EXPECT_GE(compared, 5);
+}
+
 // Both frame renderers build their first TLAS from the same records: the same LBVH, bit for bit.
 TEST(GpuFrameRenderer, FirstTlasEqualsTheCpuRenderers) {
     std::string why;

@@ -1,4 +1,3 @@
-#include <cub/cub.cuh>
 #include <optional>
 #include <vector>
 
@@ -27,10 +26,34 @@ __global__ void ScatterInstancesKernel(const uint32_t* indices, const Instance* 
     SetPlacement(instances[indices[k]], records[k]);
 }
 
-// Each node's term of the SAH cost (sah_term.h, the one the deformers' policy sums too).
-__global__ void SahTermsKernel(const BvhNode* nodes, uint32_t positions, float* terms) {
-    const uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-    if (i < positions) terms[i] = SahNodeTerm(nodes, i);
+// Each node's term of the SAH cost (sah_term.h, the one the deformers' policy sums too), read
+// where the sum needs it.
+struct SahTerms {
+    const BvhNode* nodes;
+    __device__ float operator[](uint32_t position) const { return SahNodeTerm(nodes, position); }
+};
+
+constexpr uint32_t kSumPerThread = 8;
+constexpr uint32_t kSumSpan = kBlock * kSumPerThread;  // the values one block sums
+uint32_t SumBlocks(uint32_t n) { return (n + kSumSpan - 1) / kSumSpan; }
+
+// Block b sums values [b kSumSpan, (b + 1) kSumSpan) in a fixed order (each thread its strided
+// share, then a tree in shared memory), so the cost is the same run to run and the rebuild
+// decisions with it, and only one partial sum per block is kept, not a term per node.
+template <class Values>
+__global__ void BlockSumsKernel(Values values, uint32_t n, float* sums) {
+    __shared__ float partial[kBlock];
+    const uint32_t first = blockIdx.x * kSumSpan + threadIdx.x;
+    float s = 0.0f;
+    for (uint32_t k = 0; k < kSumPerThread; ++k)
+        if (first + k * kBlock < n) s += values[first + k * kBlock];
+    partial[threadIdx.x] = s;
+    __syncthreads();
+    for (uint32_t half = kBlock / 2; half > 0; half /= 2) {
+        if (threadIdx.x < half) partial[threadIdx.x] += partial[threadIdx.x + half];
+        __syncthreads();
+    }
+    if (threadIdx.x == 0) sums[blockIdx.x] = partial[0];
 }
 
 __global__ void PickKernel(TlasView tlas, Ray ray, SceneHit* hit, uint32_t* found) {
@@ -75,7 +98,6 @@ class CudaFrameRenderer final : public FrameRenderer {
         }
         RT_CUDA_CHECK(cudaEventCreate(&sahCopied_));
         rayCount_.Resize(1);
-        sahSum_.Resize(1);
         RT_CUDA_CHECK(cudaMallocHost(&sahHost_, sizeof(float)));
         Update(scene, {{}, true});
     }
@@ -352,19 +374,24 @@ class CudaFrameRenderer final : public FrameRenderer {
     // Queues the SAH cost of the tree; it arrives in sahHost_.
     void QueueSahCost(bool afterRebuild) {
         const uint32_t n = tlas_.Count();
-        const uint32_t positions = n == 0 ? 2u : 2u * n;
-        if (sahTerms_.Size() < positions) sahTerms_.Resize(positions);
-        SahTermsKernel<<<Blocks(positions), kBlock>>>(tlas_.Nodes(), positions, sahTerms_.Data());
+        uint32_t count = n == 0 ? 2u : 2u * n;
+        // Each level's partial sums follow the level before's in sahSums_, down to one.
+        size_t partials = 0;
+        for (uint32_t c = count; c > 1 || partials == 0; c = SumBlocks(c)) partials += SumBlocks(c);
+        if (sahSums_.Size() < partials) sahSums_.Resize(partials);
+        float* sums = sahSums_.Data();
+        uint32_t blocks = SumBlocks(count);
+        BlockSumsKernel<<<blocks, kBlock>>>(SahTerms{tlas_.Nodes()}, count, sums);
         RT_CUDA_CHECK_LAUNCH();
-        size_t bytes = 0;
-        RT_CUDA_CHECK(cub::DeviceReduce::Sum(nullptr, bytes, sahTerms_.Data(), sahSum_.Data(),
-                                             int(positions)));
-        if (scratch_.Size() < bytes) scratch_.Resize(bytes);
-        // CUB's reduction is deterministic run to run, so the rebuild decisions are too.
-        RT_CUDA_CHECK(cub::DeviceReduce::Sum(scratch_.Data(), bytes, sahTerms_.Data(),
-                                             sahSum_.Data(), int(positions)));
-        RT_CUDA_CHECK(
-            cudaMemcpyAsync(sahHost_, sahSum_.Data(), sizeof(float), cudaMemcpyDeviceToHost));
+        while (blocks > 1) {
+            const float* previous = sums;
+            sums += blocks;
+            count = blocks;
+            blocks = SumBlocks(count);
+            BlockSumsKernel<<<blocks, kBlock>>>(previous, count, sums);
+            RT_CUDA_CHECK_LAUNCH();
+        }
+        RT_CUDA_CHECK(cudaMemcpyAsync(sahHost_, sums, sizeof(float), cudaMemcpyDeviceToHost));
         RT_CUDA_CHECK(cudaEventRecord(sahCopied_));
         sahPending_ = true;
         sahPendingIsRebuild_ = afterRebuild;
@@ -386,11 +413,10 @@ class CudaFrameRenderer final : public FrameRenderer {
     bool built_ = false;
     float rebuiltSahCost_ = 0.0f;
     float lastSahCost_ = 0.0f;
-    DeviceBuffer<float> sahTerms_, sahSum_;
-    float* sahHost_ = nullptr;  // pinned: the cost arrives without a synchronous copy
+    DeviceBuffer<float> sahSums_;  // the cost's partial sums (BlockSumsKernel)
+    float* sahHost_ = nullptr;     // pinned: the cost arrives without a synchronous copy
     cudaEvent_t sahCopied_;
     bool sahPending_ = false, sahPendingIsRebuild_ = false;
-    DeviceBuffer<unsigned char> scratch_;
     DeviceBuffer<vec3> frame_;
     DeviceBuffer<unsigned long long> rayCount_;
     FrameEvents frames_[2];
