@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
@@ -269,15 +270,22 @@ TEST(GpuVsCpu, TexturedQuadTexelsDecoded) {
 // glTF animation, the node hierarchy and the textures on the device.
 TEST(GpuVsCpu, GltfDemoPlayed) { ExpectPlayedGpuMatchesCpu("gltf_demo.json", 60); }
 
+// The frame renderer's own tests play demo_1000_instances (skipped without a GPU or its models).
+class GpuFrameRenderer : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        std::string why;
+        if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+        RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
+        RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
+        loaded.emplace(LoadSceneFile(test::SourcePath("assets/scenes/demo_1000_instances.json")));
+    }
+    std::optional<LoadedScene> loaded;
+};
+
 // Per frame only the records the World rewrote travel, and an unchanged frame sends none.
-TEST(GpuFrameRenderer, UploadsOnlyChangedRecords) {
-    std::string why;
-    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
-    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
-    RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
-    const LoadedScene loaded =
-        LoadSceneFile(test::SourcePath("assets/scenes/demo_1000_instances.json"));
-    World world(loaded);
+TEST_F(GpuFrameRenderer, UploadsOnlyChangedRecords) {
+    World world(*loaded);
     const std::unique_ptr<FrameRenderer> gpu = MakeFrameRenderer(Backend::kCuda, world.Scene());
     RenderSettings s;
     s.width = 64;
@@ -301,14 +309,8 @@ TEST(GpuFrameRenderer, UploadsOnlyChangedRecords) {
 
 // The SAH cost the device's rebuild policy sees (summed on the device in fixed-order blocks) is
 // the host's for the same refit tree, one update later as the device reports it.
-TEST(GpuFrameRenderer, SahCostFollowsTheCpuRenderers) {
-    std::string why;
-    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
-    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
-    RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
-    const LoadedScene loaded =
-        LoadSceneFile(test::SourcePath("assets/scenes/demo_1000_instances.json"));
-    World cpuWorld(loaded), gpuWorld(loaded);
+TEST_F(GpuFrameRenderer, SahCostFollowsTheCpuRenderers) {
+    World cpuWorld(*loaded), gpuWorld(*loaded);
     const std::unique_ptr<FrameRenderer> cpu = MakeFrameRenderer(Backend::kCpu, cpuWorld.Scene());
     const std::unique_ptr<FrameRenderer> gpu = MakeFrameRenderer(Backend::kCuda, gpuWorld.Scene());
     RenderSettings s;
@@ -338,14 +340,8 @@ TEST(GpuFrameRenderer, SahCostFollowsTheCpuRenderers) {
 }
 
 // Both frame renderers build their first TLAS from the same records: the same LBVH, bit for bit.
-TEST(GpuFrameRenderer, FirstTlasEqualsTheCpuRenderers) {
-    std::string why;
-    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
-    RTRT_REQUIRE_MODEL(teapot, "teapot.inc");
-    RTRT_REQUIRE_MODEL(dragon, "dragon_vrip_res4.ply.gz");
-    const LoadedScene loaded =
-        LoadSceneFile(test::SourcePath("assets/scenes/demo_1000_instances.json"));
-    World world(loaded);
+TEST_F(GpuFrameRenderer, FirstTlasEqualsTheCpuRenderers) {
+    World world(*loaded);
     for (int f = 0; f < 30; ++f) world.Advance(1.0f / 60.0f);
     const Tlas cpu = MakeFrameRenderer(Backend::kCpu, world.Scene())->CurrentTlas();
     const Tlas gpu = MakeFrameRenderer(Backend::kCuda, world.Scene())->CurrentTlas();
