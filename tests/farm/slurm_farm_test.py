@@ -167,8 +167,12 @@ def test_killed_task(ref):
 def test_cancelled_element(ref):
     folder = os.path.join(WORK, "job_cancelled")
     render, _, assemble = plain_submission(folder, 16)
-    wait_for(lambda: (render + "_2", "RUNNING") in queued("rtrt-render"), "element 2 running",
-             300)
+    # Cancel element 2 once it has written its first frame: a cancel that lands while Slurm is
+    # still launching a --requeue batch job (already RUNNING in squeue) can requeue it instead,
+    # and the element then renders everything.
+    first = 2 * FRAMES // SHARDS
+    wait_for(lambda: (render + "_2", "RUNNING") in queued("rtrt-render")
+             and os.path.exists(frame_file(folder, first)), "element 2 rendering", 300)
     run(["scancel", f"{render}_2"])
     wait_for(lambda: not queued("rtrt-"), "the queue to empty after the scancel", 900)
     st = status(folder)
