@@ -414,6 +414,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         *exitCode = kExitOk;
     });
     AddFrameBench(*bench, exitCode);
+    AddSplitBench(*bench, exitCode);
     AddDeformBench(*bench, exitCode);
     AddSoakBench(*bench, exitCode);
     AddAccuracyBench(*bench, exitCode);

@@ -18,6 +18,8 @@ CLI::Option* AddModelsOption(CLI::App* command, std::vector<std::string>* models
 void AddEmbreeBench(CLI::App& bench, int* exitCode);
 // `rtrt bench frame`, registered by AddBenchCommand.
 void AddFrameBench(CLI::App& bench, int* exitCode);
+// `rtrt bench split`, registered by AddBenchCommand.
+void AddSplitBench(CLI::App& bench, int* exitCode);
 // `rtrt bench deform`, registered by AddBenchCommand.
 void AddDeformBench(CLI::App& bench, int* exitCode);
 // `rtrt bench soak`, registered by AddBenchCommand.

@@ -34,6 +34,8 @@ struct FrameBenchOptions {
     int frames = 300;
     int warmup = 30;
     uint32_t traceBands = 1;
+    std::string gpus = "1";
+    GpuSplit split;  // what gpus names
     std::string output;
 };
 
@@ -49,7 +51,7 @@ std::vector<double> PipelinedIntervals(const LoadedScene& loaded, const RenderSe
                                        bool gpu, const FrameBenchOptions& o) {
     World world(loaded);
     const std::unique_ptr<FrameRenderer> renderer =
-        MakeFrameRenderer(gpu ? Backend::kCuda : Backend::kCpu, world.Scene());
+        MakeFrameRenderer(gpu ? Backend::kCuda : Backend::kCpu, world.Scene(), {}, {}, o.split);
     std::vector<double> intervals;
     Stopwatch pass;
     for (int f = 0; f < o.warmup + o.frames; ++f) {
@@ -74,7 +76,7 @@ nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
     const bool gpu = o.backend == "cuda";
     World world(loaded);
     const std::unique_ptr<FrameRenderer> renderer =
-        MakeFrameRenderer(gpu ? Backend::kCuda : Backend::kCpu, world.Scene());
+        MakeFrameRenderer(gpu ? Backend::kCuda : Backend::kCpu, world.Scene(), {}, {}, o.split);
     StageSamples s;
     RenderStats stats;
     for (int f = 0; f < o.warmup + o.frames; ++f) {
@@ -133,6 +135,7 @@ void RunFrameBench(const FrameBenchOptions& o) {
     report["machine"] = BenchMachine(gpu);
     report["backend"] = o.backend;
     report["trace_bands"] = o.traceBands;
+    report["gpus"] = o.split.devices.empty() ? 1 : o.split.devices.size();
     report["timing"] =
         "medians over --frames frames at 60 fps after --warmup frames; GPU stages by CUDA events, "
         "simulation and extraction and the whole frame by the CPU clock (frame_ms: one frame at "
@@ -174,6 +177,7 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
                     "CUDA: trace each frame in this many row bands, each on its own stream")
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
+    AddGpusOption(cmd, &o->gpus);
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
     cmd->callback([o, exitCode] {
         Backend backend;
@@ -181,6 +185,7 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
         if (!ChooseBackend(o->backend, &backend, &why))
             throw InputError("--backend", o->backend, why + "; use --backend cpu");
         o->backend = backend == Backend::kCuda ? "cuda" : "cpu";
+        o->split = ResolveGpus(o->gpus, backend);
         RunFrameBench(*o);
         *exitCode = kExitOk;
     });

@@ -5,8 +5,10 @@
 // LBVH refit or rebuilt under the TlasPolicy, on the host or on the device), traces into a
 // target, answers picking rays against what it traced, and reports per-stage times. One factory
 // chooses the implementation; the window, `rtrt play --headless` and `rtrt bench frame` use it.
+#include <array>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "engine/bvh/tlas/dynamic_tlas.h"
 #include "engine/bvh/tlas/tlas.h"
@@ -31,6 +33,26 @@ struct FrameTimes {
     bool tlasRebuilt = false;
     float tlasSahCost = 0.0f;  // the cost the rebuild policy last saw
     uint64_t rays = 0;         // rays traced, when Trace was asked to count them
+    // A frame split over several GPUs (GpuSplit): traceMs runs from the display GPU's start of the
+    // trace until every band is gathered there; each GPU's own band took gpuTraceMs, over
+    // gpuRows rows.
+    static constexpr uint32_t kMaxGpus = 16;
+    uint32_t gpus = 1;
+    std::array<double, kMaxGpus> gpuTraceMs{};
+    std::array<uint32_t, kMaxGpus> gpuRows{};
+};
+
+// Where a CUDA frame renderer traces. Each frame's rows are split over `devices`, the shares
+// following each GPU's last trace times; the first device is the display GPU, where the bands are
+// gathered (for CUDA-GL interop or the output file). Empty: the current device alone. A device
+// may be named more than once (tests split a frame over several renderers of one GPU).
+struct GpuSplit {
+    enum class Tlas {
+        kBuildOnEach,      // every GPU builds the TLAS from the same instance records
+        kCopyFromDisplay,  // the display GPU builds it; the others copy its records and nodes
+    };
+    std::vector<int> devices;
+    Tlas tlas = Tlas::kBuildOnEach;
 };
 
 class FrameRenderer {
@@ -62,10 +84,11 @@ class FrameRenderer {
 };
 
 // The frame renderer of `backend` over `scene` (its materials, lights and textures are taken
-// now; BLASes and deformations the scene gains later are taken by Update). Throws
-// std::runtime_error when the back end cannot run here, saying why.
+// now; BLASes and deformations the scene gains later are taken by Update); CUDA traces on `gpus`,
+// the CPU ignores them. Throws std::runtime_error when the back end cannot run here, saying why.
 std::unique_ptr<FrameRenderer> MakeFrameRenderer(Backend backend, const RenderScene& scene,
                                                  TlasPolicy policy = {},
-                                                 BlasRebuildPolicy blasPolicy = {});
+                                                 BlasRebuildPolicy blasPolicy = {},
+                                                 const GpuSplit& gpus = {});
 
 }  // namespace rtrt

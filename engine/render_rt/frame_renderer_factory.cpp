@@ -7,8 +7,9 @@
 namespace rtrt {
 
 std::unique_ptr<FrameRenderer> MakeFrameRenderer(Backend backend, const RenderScene& scene,
-                                                 TlasPolicy policy, BlasRebuildPolicy blasPolicy) {
-    if (backend == Backend::kCuda) return MakeCudaFrameRenderer(scene, policy, blasPolicy);
+                                                 TlasPolicy policy, BlasRebuildPolicy blasPolicy,
+                                                 const GpuSplit& gpus) {
+    if (backend == Backend::kCuda) return MakeCudaFrameRenderer(scene, policy, blasPolicy, gpus);
     return MakeCpuFrameRenderer(scene, policy, blasPolicy);
 }
 

@@ -3,6 +3,7 @@
 // and what tracing it counted.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/render_rt/scene_features.h"
 
@@ -29,6 +30,13 @@ struct RenderStats {
 
 // Whether the CUDA back end can run here; if not, why (for the CLI's message).
 bool CudaBackendAvailable(std::string* why);
+
+// The CUDA devices this machine has (0 where the CUDA back end cannot run).
+uint32_t CudaDeviceCount();
+
+// The GPUs a user's --gpus names: "all" (every device), or a count N (devices 0 to N-1). False,
+// with why, for a count the machine does not have or text that is neither.
+bool ChooseGpus(const std::string& choice, std::vector<int>* devices, std::string* why);
 
 // The back end a user's choice names: "cpu", "cuda", or "auto" (CUDA where it can run, else the
 // CPU). False, with why, for "cuda" where it cannot run, or an unknown name.

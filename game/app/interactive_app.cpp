@@ -161,8 +161,8 @@ class App {
         std::vector<std::string> notes;
         palette_ = std::make_unique<SpawnPalette>(*world_, &notes);
         for (const std::string& n : notes) std::printf("rtrt: %s\n", n.c_str());
-        renderer_ =
-            MakeFrameRenderer(model_.useCuda ? Backend::kCuda : Backend::kCpu, world_->Scene());
+        renderer_ = MakeFrameRenderer(model_.useCuda ? Backend::kCuda : Backend::kCpu,
+                                      world_->Scene(), {}, {}, GpusFor(model_.useCuda));
         model_.scene = std::filesystem::path(o_.scenes[index]).filename().string();
         model_.frameMs.clear();  // another scene's frame times would mislead
         model_.maxDepth = int(loaded_->scene.maxDepth);
@@ -191,10 +191,13 @@ class App {
         if (renderer_->Kind() == backend) return;
         model_.useCuda = useCuda;
         // The new renderer takes the scene as it is now: every record, a fresh TLAS.
-        renderer_ = MakeFrameRenderer(backend, world_->Scene());
+        renderer_ = MakeFrameRenderer(backend, world_->Scene(), {}, {}, GpusFor(useCuda));
         interop_.Unregister();
         model_.frameMs.clear();  // the other back end's frame times would mislead
     }
+
+    // --gpus applies to the CUDA back end (the window switches back ends with a key).
+    GpuSplit GpusFor(bool useCuda) const { return useCuda ? o_.gpus : GpuSplit{}; }
 
     Ray RayThroughMouse() const {
         const ivec2 fb = window_.FramebufferSize();
@@ -420,6 +423,9 @@ class App {
         model_.times.upload = t.uploadMs;
         model_.times.tlas = t.tlasMs;
         model_.times.trace = t.traceMs;
+        const uint32_t split = t.gpus > 1 ? t.gpus : 0;  // one GPU: its trace is the trace
+        model_.times.gpuTrace.assign(t.gpuTraceMs.begin(), t.gpuTraceMs.begin() + split);
+        model_.times.gpuRows.assign(t.gpuRows.begin(), t.gpuRows.begin() + split);
         model_.rays = t.rays;
         // Only the shaded view is radiance; the others are display values already.
         const OutputTransform output =

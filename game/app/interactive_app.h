@@ -6,11 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "engine/render_rt/frame_renderer.h"
+
 namespace rtrt {
 
 struct WindowOptions {
     std::vector<std::string> scenes;  // PageDown / PageUp cycle through them
     std::string backend = "auto";     // auto (CUDA when usable), cpu, cuda
+    GpuSplit gpus;                    // the CUDA back end's GPUs (the first shows the frame)
     uint32_t width = 1280, height = 720;
     bool vsync = true;
     // Waits for the GPU (glFinish) after each display stage, so that the stage times printed at

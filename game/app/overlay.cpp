@@ -60,6 +60,9 @@ void Overlay::Draw(OverlayModel& m) {
                         m.times.blas, m.times.deformed, m.times.blasRebuilt);
         ImGui::Text("TLAS %.3f  trace %.3f  display %.3f ms", m.times.tlas, m.times.trace,
                     m.times.display);
+        for (size_t g = 0; g < m.times.gpuTrace.size(); ++g)
+            ImGui::Text("GPU %zu: trace %.3f ms, %u rows", g, m.times.gpuTrace[g],
+                        m.times.gpuRows[g]);
         ImGui::Text("present %.3f  draw %.3f  overlay %.3f  swap %.3f ms", m.times.present,
                     m.times.draw, m.times.overlay, m.times.swap);
         ImGui::Text("instances %llu  triangles %llu", (unsigned long long)m.instances,

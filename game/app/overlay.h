@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <deque>
 #include <string>
+#include <vector>
 
 struct GLFWwindow;
 
@@ -18,6 +19,9 @@ struct StageTimes {
     // the X server when it is behind).
     double present = 0, draw = 0, overlay = 0, swap = 0;
     uint32_t deformed = 0, blasRebuilt = 0;  // deforming BLASes updated, of them rebuilt
+    // A frame split over several GPUs: each one's band trace and rows.
+    std::vector<double> gpuTrace;
+    std::vector<uint32_t> gpuRows;
 };
 
 struct OverlayModel {

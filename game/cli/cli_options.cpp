@@ -49,6 +49,26 @@ void AddOutputOptions(CLI::App* command, OutputOptions* options) {
         ->check(CLI::IsMember({"pbr_neutral", "aces", "clamp"}));
 }
 
+void AddGpusOption(CLI::App* command, std::string* gpus) {
+    command
+        ->add_option("--gpus", *gpus,
+                     "CUDA: split each frame's rows over N GPUs (or all), shares following each "
+                     "GPU's trace time; the first GPU shows or writes the frame")
+        ->capture_default_str();
+}
+
+GpuSplit ResolveGpus(const std::string& gpus, Backend backend) {
+    GpuSplit split;
+    if (gpus == "1") return split;  // the current device, as without the option
+    std::string why;
+    if (!ChooseGpus(gpus, &split.devices, &why)) throw InputError("--gpus", gpus, why);
+    if (backend != Backend::kCuda && split.devices.size() > 1)
+        throw InputError("--gpus", gpus,
+                         "splitting frames over GPUs needs the CUDA back end; use --backend cuda");
+    if (split.devices.size() == 1) split.devices.clear();
+    return split;
+}
+
 OutputTransform ResolveOutput(OutputTransform scene, const OutputOptions& options) {
     if (options.exposureEv) scene.exposureEv = *options.exposureEv;
     if (!options.toneMap.empty()) ParseToneMap(options.toneMap.c_str(), &scene.toneMap);

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/output_transform.h"
 
 namespace CLI {
@@ -32,5 +33,11 @@ struct OutputOptions {
 };
 void AddOutputOptions(CLI::App* command, OutputOptions* options);
 OutputTransform ResolveOutput(OutputTransform scene, const OutputOptions& options);
+
+// --gpus N|all: the GPUs each CUDA frame is split over (default 1, the current device).
+void AddGpusOption(CLI::App* command, std::string* gpus);
+// The split --gpus names for `backend`; InputError naming --gpus for a count this machine does
+// not have, or for more than one GPU on the CPU back end.
+GpuSplit ResolveGpus(const std::string& gpus, Backend backend);
 
 }  // namespace rtrt

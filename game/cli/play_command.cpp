@@ -32,6 +32,7 @@ struct PlayOptions {
     std::string output;
     std::string size;
     std::string backend = "auto";
+    std::string gpus = "1";
     std::string record, script;
     std::string manifest;  // headless: a line per finished frame, with its checksum
     bool headless = false;
@@ -70,6 +71,8 @@ void RunWindowed(const PlayOptions& o) {
     WindowOptions w;
     w.scenes = o.scenes;
     w.backend = o.backend;
+    Backend chosen = Backend::kCpu;
+    if (ChooseBackend(o.backend, &chosen, nullptr)) w.gpus = ResolveGpus(o.gpus, chosen);
     if (!o.size.empty()) {
         ParseSize(o.size, &w.width, &w.height);
     } else {
@@ -144,7 +147,8 @@ void RunPlay(PlayOptions o) {
 
     const OutputTransform transform = ResolveOutput(loaded.output, o.display);
     World world(loaded);
-    const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(backend, world.Scene());
+    const std::unique_ptr<FrameRenderer> renderer =
+        MakeFrameRenderer(backend, world.Scene(), {}, {}, ResolveGpus(o.gpus, backend));
     const float dt = float(1.0 / o.fps);
     // Frames before A are played, not traced: the simulation and every update of the frame
     // renderer (TLAS and BLAS refits, rebuild decisions) happen as in a full run, so frame A on
@@ -223,6 +227,7 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--backend", options->backend, "auto (CUDA when usable), cpu or cuda")
         ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
         ->capture_default_str();
+    AddGpusOption(cmd, &options->gpus);
     AddOutputOptions(cmd, &options->display);
     cmd->callback([options, exitCode] {
         RunPlay(*options);

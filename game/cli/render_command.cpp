@@ -20,6 +20,7 @@ struct RenderOptions {
     std::string output;
     std::string size;
     std::string backend = "cpu";
+    std::string gpus = "1";
     std::string view = "shaded";
     int maxDepth = 0;  // 0: the scene's own
     uint32_t spp = 1;
@@ -63,6 +64,7 @@ void RunRender(const RenderOptions& o) {
     std::string why;
     if (backend == Backend::kCuda && !CudaBackendAvailable(&why))
         throw InputError("--backend", "cuda", why + "; use --backend cpu");
+    const GpuSplit gpus = ResolveGpus(o.gpus, backend);
 
     Stopwatch renderTimer;
     RenderStats stats;
@@ -70,9 +72,12 @@ void RunRender(const RenderOptions& o) {
     if (HasDeformation(loaded)) {
         // Deformed meshes exist only in a running scene: its first frame is the image.
         World world(loaded);
-        auto renderer = MakeFrameRenderer(backend, world.Scene());
+        auto renderer = MakeFrameRenderer(backend, world.Scene(), {}, {}, gpus);
         renderer->Update(world.Scene(), world.Changes());
         renderer->Trace(world.Scene(), settings, &raw, &stats);
+    } else if (!gpus.devices.empty()) {  // the frame split over the GPUs
+        auto renderer = MakeFrameRenderer(backend, loaded.scene, {}, {}, gpus);
+        renderer->Trace(loaded.scene, settings, &raw, &stats);
     } else {
         raw = backend == Backend::kCuda ? RenderRawCuda(loaded.scene, settings, &stats)
                                         : RenderRaw(loaded.scene, settings, &stats);
@@ -122,6 +127,7 @@ void AddRenderCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--view", options->view, "shaded, normals, depth or heatmap")
         ->check(CLI::IsMember({"shaded", "normals", "depth", "heatmap"}))
         ->capture_default_str();
+    AddGpusOption(cmd, &options->gpus);
     AddOutputOptions(cmd, &options->display);
     cmd->callback([options, exitCode] {
         RunRender(*options);

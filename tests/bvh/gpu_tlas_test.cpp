@@ -25,7 +25,6 @@ const std::vector<Aabb> kBlasBounds = {{vec3(-1.0f), vec3(1.0f)},
 glm::mat4 RandomPlacement(std::mt19937& rng, float extent) {
     std::uniform_real_distribution<float> at(-extent, extent);
     std::uniform_int_distribution<int> pick(0, 2), quarter(0, 3);
-    const vec3 axes[3] = {vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1)};
     const float scales[3] = {0.5f, 1.0f, 2.0f};
     glm::mat4 m = glm::translate(glm::mat4(1.0f), vec3(at(rng), at(rng), at(rng)));
     glm::mat4 r(0.0f);

@@ -137,6 +137,17 @@ void GpuTlas::Refit(Instance* records, const Aabb* blasBounds, cudaStream_t stre
     BoundsBottomUp(records, nodes, count_, stream);
 }
 
+void GpuTlas::CopyFrom(const BvhNode* source, int sourceDevice, uint32_t nodeCount, uint32_t n,
+                       cudaStream_t stream) {
+    int device = 0;
+    RT_CUDA_CHECK(cudaGetDevice(&device));
+    nodes_.Resize(nodeCount);
+    count_ = n;
+    if (nodeCount > 0)
+        RT_CUDA_CHECK(cudaMemcpyPeerAsync(nodes_.Data(), device, source, sourceDevice,
+                                          nodeCount * sizeof(BvhNode), stream));
+}
+
 size_t GpuTlas::DeviceBytes() const { return nodes_.Size() * sizeof(BvhNode) + scratch_.Size(); }
 
 Tlas GpuTlas::Download() const {

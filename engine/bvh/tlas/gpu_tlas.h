@@ -24,7 +24,13 @@ class GpuTlas {
     // Refit after the records moved (same n and the same records, TLAS words as Build left them).
     void Refit(Instance* records, const Aabb* blasBounds, cudaStream_t stream = 0);
 
+    // Takes another GPU's tree over the same n records (its nodeCount nodes, on sourceDevice) in
+    // place of a build: a copy queued on `stream` of the current device.
+    void CopyFrom(const BvhNode* source, int sourceDevice, uint32_t nodeCount, uint32_t n,
+                  cudaStream_t stream = 0);
+
     const BvhNode* Nodes() const { return nodes_.Data(); }
+    uint32_t NodeCount() const { return uint32_t(nodes_.Size()); }
     uint32_t Count() const { return count_; }
     // The device memory the tree and its build keep between frames.
     size_t DeviceBytes() const;

@@ -1,13 +1,17 @@
+#include <array>
 #include <optional>
 #include <vector>
 
 #include "engine/bvh/build/sah_term.h"
 #include "engine/bvh/tlas/gpu_tlas.h"
 #include "engine/bvh/tlas/tlas.h"
+#include "engine/core/cuda_device_guard.h"
 #include "engine/render_rt/cuda/cuda_deformer.h"
 #include "engine/render_rt/cuda/cuda_frame_renderer.h"
 #include "engine/render_rt/cuda/cuda_trace.h"
 #include "engine/render_rt/cuda/device_scene.h"
+#include "engine/render_rt/cuda/gpu_band_renderer.h"
+#include "engine/render_rt/cuda/multi_gpu_frame_renderer.h"
 #include "engine/render_rt/pixel_kernel.h"
 
 namespace rtrt {
@@ -85,10 +89,13 @@ struct FrameEvents {
     FrameTimes times;                        // filled in as far as the host knows it
 };
 
-class CudaFrameRenderer final : public FrameRenderer {
+// Made, and destroyed, with its device current (MakeGpuBandRenderer; the multi-GPU renderer);
+// every call makes it current.
+class CudaFrameRenderer final : public GpuBandRenderer {
   public:
-    CudaFrameRenderer(const RenderScene& scene, TlasPolicy policy, BlasRebuildPolicy blasPolicy)
-        : policy_(policy), device_(scene), deformer_(blasPolicy) {
+    CudaFrameRenderer(int device, const RenderScene& scene, TlasPolicy policy,
+                      BlasRebuildPolicy blasPolicy)
+        : gpu_(device), policy_(policy), device_(scene), deformer_(blasPolicy) {
         std::vector<Aabb> bounds;
         for (const auto& blas : scene.blases) bounds.push_back(blas->bounds);
         blasBounds_.Upload(bounds);
@@ -102,6 +109,7 @@ class CudaFrameRenderer final : public FrameRenderer {
         Update(scene, {{}, true});
     }
     ~CudaFrameRenderer() override {
+        CudaDeviceGuard guard(gpu_);
         for (FrameEvents& f : frames_) {
             for (cudaEvent_t e : f.events) cudaEventDestroy(e);
             for (cudaEvent_t e : f.bandStart) cudaEventDestroy(e);
@@ -115,8 +123,10 @@ class CudaFrameRenderer final : public FrameRenderer {
     }
 
     Backend Kind() const override { return Backend::kCuda; }
+    int Device() const override { return gpu_; }
 
     void Update(const RenderScene& scene, const SceneChanges& changes) override {
+        CudaDeviceGuard guard(gpu_);
         CollectSahCost();
         FrameEvents& f = BeginFrame();
         AddBlases(scene);
@@ -130,6 +140,7 @@ class CudaFrameRenderer final : public FrameRenderer {
         f.times.deformed = deformer_.Deformed();
         f.times.blasRebuilt = deformer_.Rebuilt();
         const uint32_t n = uint32_t(scene.instances.size());
+        if (tlasSource_) return CopyTlas(f, n);
         // Added or removed instances move records around: all of them go up again.
         const bool countChanged = changes.topologyChanged || instances_.Size() != n;
         if (countChanged) {
@@ -160,29 +171,9 @@ class CudaFrameRenderer final : public FrameRenderer {
 
     void Trace(const RenderScene& scene, const RenderSettings& settings, Image* image,
                RenderStats* stats) override {
-        FrameEvents& f = inFrame_ ? frames_[current_] : BeginEmptyFrame();
-        inFrame_ = false;
-        RenderSceneView view = device_.View(scene, settings);
-        view.tlas = TlasOnDevice();
+        CudaDeviceGuard guard(gpu_);
+        FrameEvents& f = Launch(scene, settings, stats != nullptr, std::nullopt);
         const size_t pixels = size_t(settings.width) * settings.height;
-        if (frame_.Size() != pixels) frame_.Resize(pixels);
-        if (stats) RT_CUDA_CHECK(cudaMemsetAsync(rayCount_.Data(), 0, sizeof(unsigned long long)));
-        const uint32_t features =
-            EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
-        unsigned long long* rays = stats ? rayCount_.Data() : nullptr;
-        f.bands.clear();
-        if (settings.traceBands > 1) {
-            TraceBands(f, view, settings, features, rays);
-        } else {
-            LaunchTrace(view, settings.view, features, frame_.Data(), rays);
-        }
-        if (stats)
-            RT_CUDA_CHECK(cudaMemcpyAsync(f.raysHost, rayCount_.Data(), sizeof(unsigned long long),
-                                          cudaMemcpyDeviceToHost));
-        RT_CUDA_CHECK(cudaEventRecord(f.events[7]));
-        f.times.frame = ++traced_;
-        f.pending = true;
-        f.counted = stats != nullptr;
         if (image) {
             image->width = settings.width;
             image->height = settings.height;
@@ -191,12 +182,45 @@ class CudaFrameRenderer final : public FrameRenderer {
             Collect(f);
             if (stats) stats->rays = f.times.rays;
         }
-        // The other set's frame has most likely finished by now; if so its times are shown.
-        FrameEvents& other = frames_[1 - current_];
-        if (other.pending && cudaEventQuery(other.events[7]) == cudaSuccess) Collect(other);
+        CollectOtherIfDone();
+    }
+
+    void TraceBand(const RenderScene& scene, const RenderSettings& settings, RowBand band,
+                   bool countRays) override {
+        CudaDeviceGuard guard(gpu_);
+        Launch(scene, settings, countRays, band);
+        CollectOtherIfDone();
+    }
+
+    vec3* Framebuffer() override { return frame_.Data(); }
+
+    void CopyTlasFrom(GpuBandRenderer* source) override {
+        if (tlasSource_ && !source) {  // the next Update uploads every record and builds again
+            CudaDeviceGuard guard(gpu_);
+            instances_.Resize(0);
+            built_ = false;
+        }
+        tlasSource_ = source;
+    }
+
+    bool TimesOf(uint64_t frame, FrameTimes* times) override {
+        CudaDeviceGuard guard(gpu_);
+        for (FrameEvents& f : frames_)
+            if (f.pending && f.times.frame == frame) Collect(f);
+        const FrameTimes& t = history_[frame % history_.size()];
+        if (frame == 0 || t.frame != frame) return false;
+        *times = t;
+        return true;
+    }
+    cudaEvent_t TlasDone() const override { return frames_[current_].events[6]; }
+    const Instance* InstanceRecords() const override { return instances_.Data(); }
+    const BvhNode* TlasNodes(uint32_t* nodeCount) const override {
+        *nodeCount = tlas_.NodeCount();
+        return tlas_.Nodes();
     }
 
     void Finish() override {
+        CudaDeviceGuard guard(gpu_);
         // Oldest first, so that the last traced frame's times are the ones kept.
         FrameEvents& other = frames_[1 - current_];
         if (other.pending) Collect(other);
@@ -204,6 +228,7 @@ class CudaFrameRenderer final : public FrameRenderer {
     }
 
     bool Pick(const Ray& ray, SceneHit* hit) override {
+        CudaDeviceGuard guard(gpu_);
         DeviceBuffer<SceneHit> deviceHit;
         deviceHit.Resize(1);
         DeviceBuffer<uint32_t> found;
@@ -218,9 +243,71 @@ class CudaFrameRenderer final : public FrameRenderer {
 
     const FrameTimes& Times() const override { return times_; }
     const vec3* DeviceFrame() const override { return frame_.Data(); }
-    Tlas CurrentTlas() const override { return tlas_.Download(); }
+    Tlas CurrentTlas() const override {
+        CudaDeviceGuard guard(gpu_);
+        return tlas_.Download();
+    }
 
   private:
+    // Queues a frame's trace (all rows, or one band on the main stream) after the frame's update,
+    // and its end event.
+    FrameEvents& Launch(const RenderScene& scene, const RenderSettings& settings, bool countRays,
+                        std::optional<RowBand> band) {
+        FrameEvents& f = inFrame_ ? frames_[current_] : BeginEmptyFrame();
+        inFrame_ = false;
+        RenderSceneView view = device_.View(scene, settings);
+        view.tlas = TlasOnDevice();
+        const size_t pixels = size_t(settings.width) * settings.height;
+        if (frame_.Size() != pixels) frame_.Resize(pixels);
+        if (countRays)
+            RT_CUDA_CHECK(cudaMemsetAsync(rayCount_.Data(), 0, sizeof(unsigned long long)));
+        const uint32_t features =
+            EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
+        unsigned long long* rays = countRays ? rayCount_.Data() : nullptr;
+        f.bands.clear();
+        if (band) {
+            if (band->Rows() > 0)
+                LaunchTrace(view, settings.view, features, frame_.Data(), rays, 0, *band);
+        } else if (settings.traceBands > 1) {
+            TraceBands(f, view, settings, features, rays);
+        } else {
+            LaunchTrace(view, settings.view, features, frame_.Data(), rays);
+        }
+        if (countRays)
+            RT_CUDA_CHECK(cudaMemcpyAsync(f.raysHost, rayCount_.Data(), sizeof(unsigned long long),
+                                          cudaMemcpyDeviceToHost));
+        RT_CUDA_CHECK(cudaEventRecord(f.events[7]));
+        f.times.frame = ++traced_;
+        f.pending = true;
+        f.counted = countRays;
+        return f;
+    }
+
+    // The other set's frame has most likely finished by now; if so its times are shown.
+    void CollectOtherIfDone() {
+        FrameEvents& other = frames_[1 - current_];
+        if (other.pending && cudaEventQuery(other.events[7]) == cudaSuccess) Collect(other);
+    }
+
+    // The TLAS stage when another GPU builds the tree: its records and nodes are copied here once
+    // that GPU's TLAS stage is done (peer to peer where the GPUs allow it; the CUDA runtime stages
+    // the copy through host memory where they do not).
+    void CopyTlas(FrameEvents& f, uint32_t n) {
+        RT_CUDA_CHECK(cudaEventRecord(f.events[5]));
+        RT_CUDA_CHECK(cudaStreamWaitEvent(0, tlasSource_->TlasDone()));
+        if (instances_.Size() != n) instances_.Resize(n);
+        if (n > 0)
+            RT_CUDA_CHECK(cudaMemcpyPeerAsync(instances_.Data(), gpu_,
+                                              tlasSource_->InstanceRecords(), tlasSource_->Device(),
+                                              n * sizeof(Instance)));
+        uint32_t nodes = 0;
+        const BvhNode* source = tlasSource_->TlasNodes(&nodes);
+        tlas_.CopyFrom(source, tlasSource_->Device(), nodes, n);
+        RT_CUDA_CHECK(cudaEventRecord(f.events[6]));
+        f.times.uploaded = n;
+        built_ = true;
+    }
+
     TlasView TlasOnDevice() const {
         return {tlas_.Nodes(), instances_.Data(), device_.blasViews.Data()};
     }
@@ -268,6 +355,7 @@ class CudaFrameRenderer final : public FrameRenderer {
             split_->Report(f.bands, ms);
         }
         f.pending = false;
+        history_[f.times.frame % history_.size()] = f.times;
         if (f.times.frame > times_.frame) times_ = f.times;
     }
 
@@ -397,6 +485,7 @@ class CudaFrameRenderer final : public FrameRenderer {
         sahPendingIsRebuild_ = afterRebuild;
     }
 
+    int gpu_;
     TlasPolicy policy_;
     DeviceScene device_;
     CudaDeformer deformer_;
@@ -422,19 +511,36 @@ class CudaFrameRenderer final : public FrameRenderer {
     FrameEvents frames_[2];
     std::optional<FrameSplit> split_;        // with traceBands > 1
     std::vector<cudaStream_t> bandStreams_;  // one per band
+    GpuBandRenderer* tlasSource_ = nullptr;  // where the TLAS is copied from, if not built here
     uint32_t current_ = 1;                   // the first frame takes set 0
     bool inFrame_ = false;                   // Update began the frame that Trace ends
     uint64_t traced_ = 0;
     FrameTimes times_;
+    std::array<FrameTimes, 4> history_;  // the last collected frames', by frame number
 };
 
 }  // namespace
 
-std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene& scene, TlasPolicy policy,
+std::unique_ptr<GpuBandRenderer> MakeGpuBandRenderer(int device, const RenderScene& scene,
+                                                     TlasPolicy policy,
                                                      BlasRebuildPolicy blasPolicy) {
+    CudaDeviceGuard guard(device);
+    return std::make_unique<CudaFrameRenderer>(device, scene, policy, blasPolicy);
+}
+
+std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene& scene, TlasPolicy policy,
+                                                     BlasRebuildPolicy blasPolicy,
+                                                     const GpuSplit& gpus) {
     std::string why;
     if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use the CPU back end");
-    return std::make_unique<CudaFrameRenderer>(scene, policy, blasPolicy);
+    if (gpus.devices.size() > 1) return MakeMultiGpuFrameRenderer(scene, policy, blasPolicy, gpus);
+    int device = 0;
+    if (gpus.devices.empty()) {
+        RT_CUDA_CHECK(cudaGetDevice(&device));
+    } else {
+        device = gpus.devices[0];
+    }
+    return MakeGpuBandRenderer(device, scene, policy, blasPolicy);
 }
 
 }  // namespace rtrt

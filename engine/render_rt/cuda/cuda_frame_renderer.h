@@ -10,8 +10,10 @@
 
 namespace rtrt {
 
-// Throws std::runtime_error when the CUDA back end is unavailable, saying why.
+// On one GPU, or split over several (multi_gpu_frame_renderer.h). Throws std::runtime_error when
+// the CUDA back end is unavailable, saying why.
 std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene& scene, TlasPolicy policy,
-                                                     BlasRebuildPolicy blasPolicy);
+                                                     BlasRebuildPolicy blasPolicy,
+                                                     const GpuSplit& gpus = {});
 
 }  // namespace rtrt

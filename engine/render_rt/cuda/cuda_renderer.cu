@@ -27,6 +27,11 @@ bool CudaBackendAvailable(std::string* why) {
     return true;
 }
 
+uint32_t CudaDeviceCount() {
+    int count = 0;
+    return cudaGetDeviceCount(&count) == cudaSuccess ? uint32_t(count) : 0u;
+}
+
 Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, RenderStats* stats) {
     std::string why;
     if (!CudaBackendAvailable(&why)) throw std::runtime_error(why + "; use the CPU back end");

@@ -11,12 +11,14 @@ bool CudaBackendAvailable(std::string* why) {
     return false;
 }
 
+uint32_t CudaDeviceCount() { return 0; }
+
 Image RenderRawCuda(const RenderScene&, const RenderSettings&, RenderStats*) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt; use the CPU back end");
 }
 
 std::unique_ptr<FrameRenderer> MakeCudaFrameRenderer(const RenderScene&, TlasPolicy,
-                                                     BlasRebuildPolicy) {
+                                                     BlasRebuildPolicy, const GpuSplit&) {
     throw std::runtime_error("the CUDA back end is not built into this rtrt; use the CPU back end");
 }
 
