@@ -35,7 +35,7 @@ struct FrameTimes {
     uint64_t rays = 0;         // rays traced, when Trace was asked to count them
     // A frame split over several GPUs (GpuSplit): traceMs runs from the display GPU's start of the
     // trace until every band is gathered there; each GPU's own band took gpuTraceMs, over
-    // gpuRows rows.
+    // gpuRows rows. On one GPU, its trace and rows.
     static constexpr uint32_t kMaxGpus = 16;
     uint32_t gpus = 1;
     std::array<double, kMaxGpus> gpuTraceMs{};

@@ -278,6 +278,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
                                           cudaMemcpyDeviceToHost));
         RT_CUDA_CHECK(cudaEventRecord(f.events[7]));
         f.times.frame = ++traced_;
+        f.times.gpuRows[0] = band ? band->Rows() : settings.height;
         f.pending = true;
         f.counted = countRays;
         return f;
@@ -347,6 +348,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         }
         f.times.tlasMs = Elapsed(e[5], e[6]);
         f.times.traceMs = Elapsed(e[6], e[7]);
+        f.times.gpuTraceMs[0] = f.times.traceMs;
         f.times.rays = f.counted ? *f.raysHost : 0;
         if (!f.bands.empty() && split_ && split_->Parts() == f.bands.size()) {
             std::vector<double> ms(f.bands.size());
