@@ -30,6 +30,7 @@
 #include "game/assets/model_dir.h"
 #include "game/assets/procedural_shapes.h"
 #include "game/assets/teapot.h"
+#include "game/cli/cli_options.h"
 #include "game/runtime/world.h"
 #include "game/scene/paper_scene.h"
 #include "game/scene/scene_file.h"
@@ -267,28 +268,32 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
 }
 
 // Runtime cost per stage on a played scene: what a scene does not use must cost ~nothing. Each
-// scene is played once per thread count (0: TBB's default, every core); the last four columns
-// split the physics step (PhysicsTimes).
+// scene is played once per contact solver (cpu, gpu) and thread count (0: TBB's default, every
+// core); the last four columns split the physics step (PhysicsTimes).
 void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
-                     const std::vector<int>& threadCounts) {
+                     const std::vector<int>& threadCounts,
+                     const std::vector<std::string>& solvers) {
     std::printf("rtrt bench runtime: medians over %d frames at 60 fps (CPU, ms)\n", frames);
-    std::printf("%-28s %7s %9s %9s %9s %11s %9s %9s %9s %9s %9s %9s %7s %8s %8s %8s %8s\n", "scene",
-                "threads", "instances", "moving", "physics", "animators", "transform", "extract",
-                "deform", "BLAS", "TLAS", "contacts", "colours", "broad", "narrow", "solver",
-                "integr.");
+    std::printf(
+        "%-28s %6s %7s %9s %9s %9s %11s %9s %9s %9s %9s %9s %9s %7s %8s %8s %8s %8s %8s %8s\n",
+        "scene", "solver", "threads", "instances", "moving", "physics", "animators", "transform",
+        "extract", "deform", "BLAS", "TLAS", "contacts", "colours", "broad", "narrow", "solver",
+        "integr.", "gpu-copy", "gpu-pass");
     for (const std::string& path : scenes) {
         const LoadedScene loaded = LoadSceneFile(path);
+        for (const std::string& solverName : solvers) {
         for (const int threadCount : threadCounts) {
             const int threads =
                 threadCount > 0 ? threadCount : tbb::this_task_arena::max_concurrency();
             const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                             static_cast<size_t>(threads));
             World world(loaded);
+            ApplyPhysicsSolver(solverName, world);
             // The TLAS stage of the CPU back end: its frame renderer's update, without a trace.
             const std::unique_ptr<FrameRenderer> renderer =
                 MakeFrameRenderer(Backend::kCpu, world.Scene());
             std::vector<double> physics, animators, transforms, extract, deform, blas, tlas, moving,
-                contacts, colours, broad, narrow, solver, integrate;
+                contacts, colours, broad, narrow, solver, integrate, gpuCopy, gpuPass;
             for (int i = 0; i < frames; ++i) {
                 const FrameStats stats = world.Advance(1.0f / 60.0f);
                 renderer->Update(world.Scene(), world.Changes());
@@ -313,15 +318,19 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
                 narrow.push_back(times.narrowPhaseMs);
                 solver.push_back(times.solverMs);
                 integrate.push_back(times.integrateMs);
+                gpuCopy.push_back(times.gpuTransferMs);
+                gpuPass.push_back(times.gpuSolveMs);
             }
             std::printf(
-                "%-28s %7d %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.0f %7.0f %8.3f "
-                "%8.3f %8.3f %8.3f\n",
-                std::filesystem::path(path).filename().string().c_str(), threads,
+                "%-28s %6s %7d %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.0f %7.0f "
+                "%8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n",
+                std::filesystem::path(path).filename().string().c_str(), solverName.c_str(),
+                threads,
                 world.Scene().instances.size(), Median(moving), Median(physics), Median(animators),
                 Median(transforms), Median(extract), Median(deform), Median(blas), Median(tlas),
                 Median(contacts), Median(colours), Median(broad), Median(narrow), Median(solver),
-                Median(integrate));
+                Median(integrate), Median(gpuCopy), Median(gpuPass));
+        }
         }
     }
 }
@@ -392,6 +401,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         std::vector<std::string> scenes;
         int frames = 300;
         std::vector<int> threads{0};
+        std::vector<std::string> solvers{"cpu"};
     };
     auto runtime = std::make_shared<RuntimeOptions>();
     CLI::App* runtimeBench = bench->add_subcommand(
@@ -409,8 +419,15 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         ->allow_extra_args(false)
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
+    runtimeBench
+        ->add_option("--physics-solver", runtime->solvers,
+                     "Contact solvers to play each scene with: cpu, gpu or cpu,gpu")
+        ->delimiter(',')
+        ->allow_extra_args(false)
+        ->check(CLI::IsMember({"cpu", "gpu"}))
+        ->capture_default_str();
     runtimeBench->callback([runtime, exitCode] {
-        RunRuntimeBench(runtime->scenes, runtime->frames, runtime->threads);
+        RunRuntimeBench(runtime->scenes, runtime->frames, runtime->threads, runtime->solvers);
         *exitCode = kExitOk;
     });
     AddFrameBench(*bench, exitCode);

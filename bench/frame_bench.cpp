@@ -36,6 +36,7 @@ struct FrameBenchOptions {
     uint32_t traceBands = 1;
     std::string gpus = "1";
     GpuSplit split;  // what gpus names
+    std::string physicsSolver = "cpu";
     std::string output;
 };
 
@@ -50,6 +51,7 @@ struct StageSamples {
 std::vector<double> PipelinedIntervals(const LoadedScene& loaded, const RenderSettings& settings,
                                        bool gpu, const FrameBenchOptions& o) {
     World world(loaded);
+    ApplyPhysicsSolver(o.physicsSolver, world);
     const std::unique_ptr<FrameRenderer> renderer =
         MakeFrameRenderer(gpu ? Backend::kCuda : Backend::kCpu, world.Scene(), {}, {}, o.split);
     std::vector<double> intervals;
@@ -75,6 +77,7 @@ nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
     settings.traceBands = o.traceBands;
     const bool gpu = o.backend == "cuda";
     World world(loaded);
+    ApplyPhysicsSolver(o.physicsSolver, world);
     const std::unique_ptr<FrameRenderer> renderer =
         MakeFrameRenderer(gpu ? Backend::kCuda : Backend::kCpu, world.Scene(), {}, {}, o.split);
     StageSamples s;
@@ -136,6 +139,7 @@ void RunFrameBench(const FrameBenchOptions& o) {
     report["backend"] = o.backend;
     report["trace_bands"] = o.traceBands;
     report["gpus"] = o.split.devices.empty() ? 1 : o.split.devices.size();
+    report["physics_solver"] = o.physicsSolver;
     report["timing"] =
         "medians over --frames frames at 60 fps after --warmup frames; GPU stages by CUDA events, "
         "simulation and extraction and the whole frame by the CPU clock (frame_ms: one frame at "
@@ -178,6 +182,7 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
     AddGpusOption(cmd, &o->gpus);
+    AddPhysicsSolverOption(cmd, &o->physicsSolver);
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
     cmd->callback([o, exitCode] {
         Backend backend;

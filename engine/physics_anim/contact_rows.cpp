@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "engine/core/parallel_for.h"
-#include "engine/physics_anim/procedural_motion.h"
+#include "engine/physics_anim/contact_setup.h"
 
 namespace rtrt::physics {
 
@@ -258,65 +258,37 @@ void SetLane(Lanes3& lanes, int l, vec3 v) {
     ScatterPseudo(pseudo, row.slotB, row.activeLanes, b.invMass, pb);
 }
 
-// Effective mass of the contact along direction: the inverse of the relative speed along it that
-// a unit impulse along it makes.
-float AxisMass(const SolverBody& a, const SolverBody& b, vec3 rA, vec3 rB, vec3 direction) {
-    const vec3 armA = glm::cross(rA, direction);
-    const vec3 armB = glm::cross(rB, direction);
-    const float k = a.invMass + b.invMass + glm::dot(armA, a.invInertia * armA) +
-                    glm::dot(armB, b.invInertia * armB);
-    return k > 0.0f ? 1.0f / k : 0.0f;
-}
-
 // Lane l of row (and of its rolling lanes) from contact k.
 void FillLane(ContactRow& row, RollingLanes& rolling, int l, uint32_t k, const Contact& c,
               std::span<const uint32_t> slotOfBody, std::span<const BodyAtStart> starts,
               std::span<const SolverBody> solverBodies, const SolverSettings& settings) {
     row.slotA[l] = slotOfBody[c.a];
     row.slotB[l] = slotOfBody[c.b];
-    const BodyAtStart& a = starts[row.slotA[l]];
-    const BodyAtStart& b = starts[row.slotB[l]];
     row.contact[l] = k;
     row.activeLanes |= 1u << l;
-    const SolverBody& sa = solverBodies[row.slotA[l]];
-    const SolverBody& sb = solverBodies[row.slotB[l]];
-    const vec3 rA = c.point - a.position;
-    const vec3 rB = c.point - b.position;
-    vec3 t1;
-    vec3 t2;
-    OrthonormalBasis(c.normal, t1, t2);
+    const ContactSetUp setUp =
+        SetUpContact(c, starts[row.slotA[l]], starts[row.slotB[l]], solverBodies[row.slotA[l]],
+                     solverBodies[row.slotB[l]], settings);
     SetLane(row.normal, l, c.normal);
-    SetLane(row.tangent1, l, t1);
-    SetLane(row.tangent2, l, t2);
-    SetLane(row.anchorA, l, rA);
-    SetLane(row.anchorB, l, rB);
-    row.normalMass[l] = AxisMass(sa, sb, rA, rB, c.normal);
-    row.tangentMass1[l] = AxisMass(sa, sb, rA, rB, t1);
-    row.tangentMass2[l] = AxisMass(sa, sb, rA, rB, t2);
+    SetLane(row.tangent1, l, setUp.tangent1);
+    SetLane(row.tangent2, l, setUp.tangent2);
+    SetLane(row.anchorA, l, setUp.anchorA);
+    SetLane(row.anchorB, l, setUp.anchorB);
+    row.normalMass[l] = setUp.normalMass;
+    row.tangentMass1[l] = setUp.tangentMass1;
+    row.tangentMass2[l] = setUp.tangentMass2;
     row.normalImpulse[l] = c.normalImpulse;
     row.tangentImpulse1[l] = c.tangentImpulse1;
     row.tangentImpulse2[l] = c.tangentImpulse2;
-    row.friction[l] = std::sqrt(a.friction * b.friction);
-    row.allowedApproach[l] = c.separation > 0.0f ? c.separation / settings.dt : 0.0f;
-    row.overlap[l] = -c.separation - settings.linearSlop;
-    // Restitution: the approach speed at the start of the step, before gravity.
-    const vec3 startRelative = b.velocity + glm::cross(b.angularVelocity, rB) - a.velocity -
-                               glm::cross(a.angularVelocity, rA);
-    const float approach = -glm::dot(startRelative, c.normal);
-    if (approach > settings.restitutionThreshold) {
-        const float gravitySpeed = std::fabs(glm::dot(settings.gravity, c.normal)) * settings.dt;
-        row.bounce[l] =
-            std::max(std::max(a.restitution, b.restitution) * approach - gravitySpeed, 0.0f);
-    }
-    if (c.rollingLimit > 0.0f) {
-        const glm::mat3 inverse = sa.invInertia + sb.invInertia;
-        if (glm::determinant(inverse) > 0.0f) {  // else neither body can turn
-            if (!row.rolling) rolling = RollingLanes{};
-            row.rolling = true;
-            rolling.limit[l] = c.rollingLimit;
-            const glm::mat3 mass = glm::inverse(inverse);
-            for (int i = 0; i < 3; ++i) SetLane(rolling.mass.column[i], l, mass[i]);
-        }
+    row.friction[l] = setUp.friction;
+    row.allowedApproach[l] = setUp.allowedApproach;
+    row.overlap[l] = setUp.overlap;
+    row.bounce[l] = setUp.bounce;
+    if (setUp.rollingLimit > 0.0f) {
+        if (!row.rolling) rolling = RollingLanes{};
+        row.rolling = true;
+        rolling.limit[l] = setUp.rollingLimit;
+        for (int i = 0; i < 3; ++i) SetLane(rolling.mass.column[i], l, setUp.rollingMass[i]);
     }
 }
 

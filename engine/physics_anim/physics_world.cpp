@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "engine/core/parallel_compact.h"
 #include "engine/core/parallel_for.h"
@@ -55,6 +57,12 @@ PhysicsWorld::PhysicsWorld(PhysicsSettings settings)
               settings.restitutionThreshold,
               settings.linearSlop,
               settings.positionCorrection} {}
+
+void PhysicsWorld::UseGpuSolver() {
+    std::string why;
+    gpuSolver_ = GpuContactSolver::Create(&why);
+    if (!gpuSolver_) throw std::runtime_error("cannot solve contacts on the GPU: " + why);
+}
 
 void PhysicsWorld::Advance(Registry& registry, float frameDt) {
     if (registry.Count<RigidBody>() == 0) return;  // no bodies, no cost
@@ -173,8 +181,16 @@ void PhysicsWorld::TakeStep() {
     GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_);
     SeedFromLastStep();
     pseudoVelocities_.assign(bodies_.size(), PseudoVelocity{});
-    SolveContacts(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_, batches_,
-                  solver_, solverScratch_);
+    if (gpuSolver_) {
+        gpuSolver_->Solve(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_,
+                          batches_, solver_);
+        const GpuSolverTimes gpu = gpuSolver_->LastTimes();
+        times.gpuTransferMs += gpu.uploadMs + gpu.downloadMs;
+        times.gpuSolveMs += gpu.solveMs;
+    } else {
+        SolveContacts(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_,
+                      batches_, solver_, solverScratch_);
+    }
     RememberImpulses();
     times.solverMs += clock.Milliseconds();
     clock.Restart();

@@ -1,6 +1,7 @@
 #pragma once
 // The rigid-body simulation: fixed steps from an accumulator, interpolated rendering poses.
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "engine/physics_anim/broad_phase.h"
 #include "engine/physics_anim/contact_cache.h"
 #include "engine/physics_anim/contact_solver.h"
+#include "engine/physics_anim/gpu_contact_solver.h"
 #include "engine/physics_anim/narrow_phase.h"
 #include "engine/physics_anim/sim_body.h"
 
@@ -55,6 +57,9 @@ struct PhysicsTimes {
     double narrowPhaseMs = 0.0;  // contacts, colouring and layout
     double solverMs = 0.0;       // warm start, velocity and position iterations, impulse cache
     double integrateMs = 0.0;    // positions and sleep
+    // Of solverMs, with the GPU solver (UseGpuSolver): the device's transfers and passes.
+    double gpuTransferMs = 0.0;
+    double gpuSolveMs = 0.0;
 };
 
 struct PhysicsStats {
@@ -82,7 +87,8 @@ struct PhysicsStats {
 // Deterministic whatever the number of threads: bodies are visited in pool order, pairs in strip
 // and sweep order with index tie-breaks, the colours are assigned serially in that order, and
 // parallel passes write disjoint data, so the same registry contents and calls give bit-identical
-// results on one build and machine, on 1 thread or 16.
+// results on one build and machine, on 1 thread or 16. The contacts may be solved on the GPU
+// instead (UseGpuSolver): the same bits again (gpu_contact_solver.h).
 class PhysicsWorld {
     using Entity = ecs::Entity;
 
@@ -106,6 +112,11 @@ class PhysicsWorld {
     static constexpr uint8_t kDynamic = 1;
     static constexpr uint8_t kAwake = 2;
     static constexpr uint8_t kResting = 4;  // restingTime > 0
+
+    // Solves the contacts on the first CUDA device from the next step on (the rest of the step
+    // stays on the CPU). Throws std::runtime_error saying why when there is none.
+    void UseGpuSolver();
+    bool SolvesOnGpu() const { return gpuSolver_ != nullptr; }
 
     const PhysicsSettings& Settings() const { return settings_; }
     const PhysicsStats& Stats() const { return stats_; }
@@ -176,6 +187,7 @@ class PhysicsWorld {
     std::vector<BodyAtStart> bodyStarts_;
     std::vector<PseudoVelocity> pseudoVelocities_;
     ContactSolverScratch solverScratch_;
+    std::unique_ptr<GpuContactSolver> gpuSolver_;
 
     ContactCache cache_;  // last step's touching contacts, for warm starting
     ContactCache nextCache_;

@@ -19,14 +19,6 @@ vec3 UnitOr(vec3 v, vec3 fallback) {
 
 }  // namespace
 
-void OrthonormalBasis(vec3 n, vec3& u, vec3& v) {
-    const float sign = std::copysign(1.0f, n.z);
-    const float a = -1.0f / (sign + n.z);
-    const float b = n.x * n.y * a;
-    u = vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-    v = vec3(b, sign + n.y * n.y * a, -n.y);
-}
-
 void ApplyMotion(const ProceduralMotion& motion, double t, LocalTransform& pose) {
     const vec3 kUp(0.0f, 1.0f, 0.0f);
     if (const auto* spin = std::get_if<Spin>(&motion)) {

@@ -3,6 +3,7 @@
 #include <memory>
 #include <variant>
 
+#include "engine/physics_anim/orthonormal_basis.h"
 #include "engine/physics_anim/path.h"
 #include "engine/physics_anim/transform.h"
 
@@ -43,8 +44,5 @@ using ProceduralMotion = std::variant<Spin, Orbit, Bob, FollowPath>;
 
 // Applies motion at time t (seconds) to pose.
 void ApplyMotion(const ProceduralMotion& motion, double t, LocalTransform& pose);
-
-// Duff et al. 2017, "Building an Orthonormal Basis, Revisited": (u, v) with u x v = n for unit n.
-void OrthonormalBasis(vec3 n, vec3& u, vec3& v);
 
 }  // namespace rtrt::physics

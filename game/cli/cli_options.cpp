@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "engine/core/error.h"
+#include "game/runtime/world.h"
 
 namespace rtrt {
 
@@ -67,6 +68,33 @@ GpuSplit ResolveGpus(const std::string& gpus, Backend backend) {
                          "splitting frames over GPUs needs the CUDA back end; use --backend cuda");
     if (split.devices.size() == 1) split.devices.clear();
     return split;
+}
+
+void AddPhysicsSolverOption(CLI::App* command, std::string* solver) {
+    command
+        ->add_option("--physics-solver", *solver,
+                     "Where the rigid bodies' contacts are solved: cpu (every core) or gpu (the "
+                     "first CUDA device; the same result bit for bit)")
+        ->check(CLI::IsMember({"cpu", "gpu"}))
+        ->capture_default_str();
+}
+
+void CheckPhysicsSolver(const std::string& solver) {
+    if (solver != "gpu") return;
+    std::string why;
+    if (!physics::GpuContactSolver::Create(&why))
+        throw InputError("--physics-solver", solver,
+                         "cannot solve contacts on the GPU: " + why + "; use --physics-solver cpu");
+}
+
+void ApplyPhysicsSolver(const std::string& solver, World& world) {
+    if (solver != "gpu") return;
+    try {
+        world.SolveContactsOnGpu();
+    } catch (const std::runtime_error& e) {
+        throw InputError("--physics-solver", solver,
+                         std::string(e.what()) + "; use --physics-solver cpu");
+    }
 }
 
 OutputTransform ResolveOutput(OutputTransform scene, const OutputOptions& options) {

@@ -13,6 +13,8 @@ class App;
 
 namespace rtrt {
 
+class World;
+
 // Exit statuses scripts can rely on.
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   // the work itself failed (GPU error, I/O error)
@@ -39,5 +41,15 @@ void AddGpusOption(CLI::App* command, std::string* gpus);
 // The split --gpus names for `backend`; InputError naming --gpus for a count this machine does
 // not have, or for more than one GPU on the CPU back end.
 GpuSplit ResolveGpus(const std::string& gpus, Backend backend);
+
+// --physics-solver cpu|gpu: where the rigid bodies' contacts are solved (default cpu; gpu gives
+// the same bits, see gpu_contact_solver.h).
+void AddPhysicsSolverOption(CLI::App* command, std::string* solver);
+// InputError naming --physics-solver when solver is "gpu" and this machine cannot solve on its
+// GPU.
+void CheckPhysicsSolver(const std::string& solver);
+// Moves world's contact solver to the GPU when solver is "gpu"; InputError naming
+// --physics-solver when this machine has no CUDA device for it.
+void ApplyPhysicsSolver(const std::string& solver, World& world);
 
 }  // namespace rtrt

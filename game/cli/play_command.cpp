@@ -33,6 +33,7 @@ struct PlayOptions {
     std::string size;
     std::string backend = "auto";
     std::string gpus = "1";
+    std::string physicsSolver = "cpu";
     std::string record, script;
     std::string manifest;  // headless: a line per finished frame, with its checksum
     bool headless = false;
@@ -73,6 +74,8 @@ void RunWindowed(const PlayOptions& o) {
     w.backend = o.backend;
     Backend chosen = Backend::kCpu;
     if (ChooseBackend(o.backend, &chosen, nullptr)) w.gpus = ResolveGpus(o.gpus, chosen);
+    CheckPhysicsSolver(o.physicsSolver);
+    w.gpuPhysics = o.physicsSolver == "gpu";
     if (!o.size.empty()) {
         ParseSize(o.size, &w.width, &w.height);
     } else {
@@ -147,6 +150,7 @@ void RunPlay(PlayOptions o) {
 
     const OutputTransform transform = ResolveOutput(loaded.output, o.display);
     World world(loaded);
+    ApplyPhysicsSolver(o.physicsSolver, world);
     const std::unique_ptr<FrameRenderer> renderer =
         MakeFrameRenderer(backend, world.Scene(), {}, {}, ResolveGpus(o.gpus, backend));
     const float dt = float(1.0 / o.fps);
@@ -228,6 +232,7 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
         ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
         ->capture_default_str();
     AddGpusOption(cmd, &options->gpus);
+    AddPhysicsSolverOption(cmd, &options->physicsSolver);
     AddOutputOptions(cmd, &options->display);
     cmd->callback([options, exitCode] {
         RunPlay(*options);
