@@ -282,55 +282,57 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
     for (const std::string& path : scenes) {
         const LoadedScene loaded = LoadSceneFile(path);
         for (const std::string& solverName : solvers) {
-        for (const int threadCount : threadCounts) {
-            const int threads =
-                threadCount > 0 ? threadCount : tbb::this_task_arena::max_concurrency();
-            const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
-                                            static_cast<size_t>(threads));
-            World world(loaded);
-            ApplyPhysicsSolver(solverName, world);
-            // The TLAS stage of the CPU back end: its frame renderer's update, without a trace.
-            const std::unique_ptr<FrameRenderer> renderer =
-                MakeFrameRenderer(Backend::kCpu, world.Scene());
-            std::vector<double> physics, animators, transforms, extract, deform, blas, tlas, moving,
-                contacts, colours, broad, narrow, solver, integrate, gpuCopy, gpuPass;
-            for (int i = 0; i < frames; ++i) {
-                const FrameStats stats = world.Advance(1.0f / 60.0f);
-                renderer->Update(world.Scene(), world.Changes());
-                // A frame's times are published by its trace: a one-pixel one costs nothing here.
-                RenderSettings onePixel;
-                onePixel.width = onePixel.height = 1;
-                renderer->Trace(world.Scene(), onePixel, nullptr);
-                deform.push_back(renderer->Times().deformMs);
-                blas.push_back(renderer->Times().blasMs);
-                tlas.push_back(renderer->Times().tlasMs);
-                for (const ecs::SystemTiming& t : world.Scheduler().SystemTimings()) {
-                    if (t.name == "physics") physics.push_back(t.milliseconds);
-                    if (t.name == "animators") animators.push_back(t.milliseconds);
-                    if (t.name == "transforms") transforms.push_back(t.milliseconds);
+            for (const int threadCount : threadCounts) {
+                const int threads =
+                    threadCount > 0 ? threadCount : tbb::this_task_arena::max_concurrency();
+                const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                                static_cast<size_t>(threads));
+                World world(loaded);
+                ApplyPhysicsSolver(solverName, world);
+                // The TLAS stage of the CPU back end: its frame renderer's update, without a trace.
+                const std::unique_ptr<FrameRenderer> renderer =
+                    MakeFrameRenderer(Backend::kCpu, world.Scene());
+                std::vector<double> physics, animators, transforms, extract, deform, blas, tlas,
+                    moving, contacts, colours, broad, narrow, solver, integrate, gpuCopy, gpuPass;
+                for (int i = 0; i < frames; ++i) {
+                    const FrameStats stats = world.Advance(1.0f / 60.0f);
+                    renderer->Update(world.Scene(), world.Changes());
+                    // A frame's times are published by its trace: a one-pixel one costs nothing
+                    // here.
+                    RenderSettings onePixel;
+                    onePixel.width = onePixel.height = 1;
+                    renderer->Trace(world.Scene(), onePixel, nullptr);
+                    deform.push_back(renderer->Times().deformMs);
+                    blas.push_back(renderer->Times().blasMs);
+                    tlas.push_back(renderer->Times().tlasMs);
+                    for (const ecs::SystemTiming& t : world.Scheduler().SystemTimings()) {
+                        if (t.name == "physics") physics.push_back(t.milliseconds);
+                        if (t.name == "animators") animators.push_back(t.milliseconds);
+                        if (t.name == "transforms") transforms.push_back(t.milliseconds);
+                    }
+                    extract.push_back(stats.extractMs);
+                    moving.push_back(stats.extracted);
+                    contacts.push_back(world.PhysicsStats().lastContacts);
+                    colours.push_back(world.PhysicsStats().lastColors);
+                    const physics::PhysicsTimes& times = world.PhysicsStats().lastTimes;
+                    broad.push_back(times.broadPhaseMs);
+                    narrow.push_back(times.narrowPhaseMs);
+                    solver.push_back(times.solverMs);
+                    integrate.push_back(times.integrateMs);
+                    gpuCopy.push_back(times.gpuTransferMs);
+                    gpuPass.push_back(times.gpuSolveMs);
                 }
-                extract.push_back(stats.extractMs);
-                moving.push_back(stats.extracted);
-                contacts.push_back(world.PhysicsStats().lastContacts);
-                colours.push_back(world.PhysicsStats().lastColors);
-                const physics::PhysicsTimes& times = world.PhysicsStats().lastTimes;
-                broad.push_back(times.broadPhaseMs);
-                narrow.push_back(times.narrowPhaseMs);
-                solver.push_back(times.solverMs);
-                integrate.push_back(times.integrateMs);
-                gpuCopy.push_back(times.gpuTransferMs);
-                gpuPass.push_back(times.gpuSolveMs);
+                std::printf(
+                    "%-28s %6s %7d %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.0f "
+                    "%7.0f "
+                    "%8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n",
+                    std::filesystem::path(path).filename().string().c_str(), solverName.c_str(),
+                    threads, world.Scene().instances.size(), Median(moving), Median(physics),
+                    Median(animators), Median(transforms), Median(extract), Median(deform),
+                    Median(blas), Median(tlas), Median(contacts), Median(colours), Median(broad),
+                    Median(narrow), Median(solver), Median(integrate), Median(gpuCopy),
+                    Median(gpuPass));
             }
-            std::printf(
-                "%-28s %6s %7d %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.0f %7.0f "
-                "%8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n",
-                std::filesystem::path(path).filename().string().c_str(), solverName.c_str(),
-                threads,
-                world.Scene().instances.size(), Median(moving), Median(physics), Median(animators),
-                Median(transforms), Median(extract), Median(deform), Median(blas), Median(tlas),
-                Median(contacts), Median(colours), Median(broad), Median(narrow), Median(solver),
-                Median(integrate), Median(gpuCopy), Median(gpuPass));
-        }
         }
     }
 }
@@ -427,6 +429,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         ->check(CLI::IsMember({"cpu", "gpu"}))
         ->capture_default_str();
     runtimeBench->callback([runtime, exitCode] {
+        for (const std::string& solver : runtime->solvers) CheckPhysicsSolver(solver);
         RunRuntimeBench(runtime->scenes, runtime->frames, runtime->threads, runtime->solvers);
         *exitCode = kExitOk;
     });

@@ -39,9 +39,9 @@ struct ContactSetUp {
 
 // Contact c between bodies a and b (by slot: their state at the start of the step, and as the
 // solver sees them).
-RT_HD inline ContactSetUp SetUpContact(const Contact& c, const BodyAtStart& a,
-                                       const BodyAtStart& b, const SolverBody& sa,
-                                       const SolverBody& sb, const SolverSettings& settings) {
+RT_HD inline ContactSetUp SetUpContact(const Contact& c, const BodyAtStart& a, const BodyAtStart& b,
+                                       const SolverBody& sa, const SolverBody& sb,
+                                       const SolverSettings& settings) {
     ContactSetUp out;
     out.anchorA = c.point - a.position;
     out.anchorB = c.point - b.position;

@@ -143,12 +143,11 @@ __device__ void Restitute(BodyState& a, BodyState& b, const PointSetUp& p, Point
 }
 
 __device__ void SolvePosition(PseudoVelocity& pa, PseudoVelocity& pb, const BodyState& a,
-                              const BodyState& b, const PointSetUp& p, PointState& q,
-                              float rate) {
+                              const BodyState& b, const PointSetUp& p, PointState& q, float rate) {
     const ContactSetUp& s = p.setUp;
     if (!(s.overlap > 0.0f)) return;
-    const float vn = glm::dot(p.normal, pb.linear + glm::cross(pb.angular, s.anchorB) -
-                                            pa.linear - glm::cross(pa.angular, s.anchorA));
+    const float vn = glm::dot(p.normal, pb.linear + glm::cross(pb.angular, s.anchorB) - pa.linear -
+                                            glm::cross(pa.angular, s.anchorA));
     const float impulse = Max(q.pseudoImpulse - s.normalMass * (vn - rate * s.overlap), 0.0f);
     const vec3 push = (impulse - q.pseudoImpulse) * p.normal;
     q.pseudoImpulse = impulse;
@@ -370,10 +369,10 @@ class CudaContactSolver final : public GpuContactSolver {
 
         const auto at = [&](size_t offset) { return dev + offset; };
         RT_CUDA_CHECK(cudaEventRecord(events_[0], stream_));
-        RT_CUDA_CHECK(cudaMemcpyAsync(dev, host, layout.UploadBytes(), cudaMemcpyHostToDevice,
-                                      stream_));
-        RT_CUDA_CHECK(cudaMemsetAsync(at(layout.pseudo), 0, slots * sizeof(PseudoVelocity),
-                                      stream_));
+        RT_CUDA_CHECK(
+            cudaMemcpyAsync(dev, host, layout.UploadBytes(), cudaMemcpyHostToDevice, stream_));
+        RT_CUDA_CHECK(
+            cudaMemsetAsync(at(layout.pseudo), 0, slots * sizeof(PseudoVelocity), stream_));
         RT_CUDA_CHECK(cudaEventRecord(events_[1], stream_));
         auto* const bodies = reinterpret_cast<SolverBody*>(at(layout.bodies));
         const auto* manifoldBegin = reinterpret_cast<const uint32_t*>(at(layout.manifoldBegin));
@@ -413,8 +412,7 @@ class CudaContactSolver final : public GpuContactSolver {
         RT_CUDA_CHECK_LAUNCH();
         RT_CUDA_CHECK(cudaEventRecord(events_[2], stream_));
         RT_CUDA_CHECK(cudaMemcpyAsync(host + layout.bodies, at(layout.bodies),
-                                      layout.end - layout.bodies, cudaMemcpyDeviceToHost,
-                                      stream_));
+                                      layout.end - layout.bodies, cudaMemcpyDeviceToHost, stream_));
         RT_CUDA_CHECK(cudaEventRecord(events_[3], stream_));
         RT_CUDA_CHECK(cudaStreamSynchronize(stream_));
 
