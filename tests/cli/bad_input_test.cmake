@@ -44,6 +44,24 @@ expect_failure(bad_view 2 "--view" render default --view fancy)
 expect_failure(bad_spp 2 "--spp" render default --spp 3)
 expect_failure(accuracy_bad_backend 2 "--backend" bench accuracy --backend gpu)
 expect_failure(accuracy_bad_size 2 "--size: width and height must be between 1 and 16384" bench accuracy --size 0x100)
+expect_failure(unknown_physics_solver 2 "--physics-solver" play default --headless --frames 1 --physics-solver quantum)
+
+# --physics-solver gpu on a machine without a CUDA device: refused before any frame, saying what to
+# use instead (a machine with one plays the frame).
+execute_process(COMMAND ${RTRT} play ${SOURCE_DIR}/assets/scenes/demo_physics.json --headless
+    --frames 1 --size 32x18 --physics-solver gpu -o ${WORK_DIR}/gpu_physics_%d${EXT}
+    RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(status EQUAL 2)
+    if(NOT stderr MATCHES "--physics-solver: gpu: cannot solve contacts on the GPU: .*; use --physics-solver cpu")
+        message(FATAL_ERROR "gpu_physics_without_device: unclear message:\n${stderr}")
+    endif()
+    file(GLOB written ${WORK_DIR}/gpu_physics_*)
+    if(written)
+        message(FATAL_ERROR "gpu_physics_without_device: wrote ${written} although it failed")
+    endif()
+elseif(NOT status EQUAL 0)
+    message(FATAL_ERROR "gpu_physics: exit status ${status}\n${stderr}")
+endif()
 
 # A bad output path fails before any rendering, and --help succeeds.
 execute_process(COMMAND ${RTRT} render default -o ${WORK_DIR}/no/such/dir/out${EXT} RESULT_VARIABLE status ERROR_VARIABLE stderr)

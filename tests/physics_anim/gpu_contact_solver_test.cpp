@@ -4,71 +4,24 @@
 #include "engine/physics_anim/gpu_contact_solver.h"
 
 #include <gtest/gtest.h>
-#include <tbb/task_arena.h>
 
 #include <cstring>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "engine/physics_anim/physics_world.h"
 #include "engine/physics_anim/random_spawn.h"
+#include "tests/physics_anim/pile.h"
 
 namespace rtrt::physics {
 namespace {
 
 using ecs::Entity;
 using ecs::Registry;
+using test::PileResult;
+using test::RunPile;
 
-void AddPlane(Registry& registry, vec3 point, vec3 normal) {
-    const Entity e = registry.Create();
-    registry.Add(e, LocalTransform{point});
-    RigidBody body;
-    body.mass = 0.0f;
-    registry.Add(e, body);
-    registry.Add(e, Collider::Plane(normal));
-}
-
-struct PileResult {
-    std::vector<float> state;  // per body: position, orientation, velocity, angular velocity
-    uint32_t colors = 0, contacts = 0;
-    uint64_t steps = 0;
-};
-
-// desc's bodies rained into a walled pit, changed by `extras`, stepped `steps` times on `threads`
-// threads.
-PileResult RunPile(const SpawnDesc& desc, float halfWidth, int steps, int threads, bool gpu,
-                   const std::function<void(Registry&, std::vector<Entity>&)>& extras = {}) {
-    PileResult result;
-    tbb::task_arena arena(threads);
-    arena.execute([&] {
-        Registry registry;
-        AddPlane(registry, vec3(0.0f), vec3(0.0f, 1.0f, 0.0f));
-        AddPlane(registry, vec3(-halfWidth, 0.0f, 0.0f), vec3(1.0f, 0.0f, 0.0f));
-        AddPlane(registry, vec3(halfWidth, 0.0f, 0.0f), vec3(-1.0f, 0.0f, 0.0f));
-        AddPlane(registry, vec3(0.0f, 0.0f, -halfWidth), vec3(0.0f, 0.0f, 1.0f));
-        AddPlane(registry, vec3(0.0f, 0.0f, halfWidth), vec3(0.0f, 0.0f, -1.0f));
-        std::vector<Entity> bodies = SpawnRandomBodies(registry, desc, 11);
-        if (extras) extras(registry, bodies);
-        PhysicsWorld world;
-        if (gpu) world.UseGpuSolver();
-        EXPECT_EQ(world.SolvesOnGpu(), gpu);
-        world.Step(registry, steps);
-        result.colors = world.Stats().lastColors;
-        result.contacts = world.Stats().lastContacts;
-        result.steps = world.Stats().steps;
-        for (const Entity e : bodies) {
-            const RigidBody& b = *registry.Get<RigidBody>(e);
-            const RigidBody::State& s = b.state;
-            result.state.insert(
-                result.state.end(),
-                {s.position.x, s.position.y, s.position.z, s.orientation.x, s.orientation.y,
-                 s.orientation.z, s.orientation.w, b.velocity.x, b.velocity.y, b.velocity.z,
-                 b.angularVelocity.x, b.angularVelocity.y, b.angularVelocity.z});
-        }
-    });
-    return result;
-}
+constexpr uint64_t kSeed = 11;
 
 bool HaveGpuSolver(std::string* why) { return GpuContactSolver::Create(why) != nullptr; }
 
@@ -103,8 +56,8 @@ TEST(GpuContactSolverTest, MixedPileGivesTheCpuSolversBits) {
     desc.maxSpeed = 2.0f;
     desc.minRestitution = 0.1f;
     desc.maxRestitution = 0.8f;
-    const PileResult cpu = RunPile(desc, 3.0f, 240, 4, false);
-    const PileResult gpu = RunPile(desc, 3.0f, 240, 4, true);
+    const PileResult cpu = RunPile(desc, kSeed, {.threads = 4});
+    const PileResult gpu = RunPile(desc, kSeed, {.threads = 4, .gpuSolver = true});
     EXPECT_GE(cpu.colors, 4u);
     EXPECT_GT(cpu.contacts, 1500u);
     EXPECT_EQ(gpu.steps, 240u);
@@ -136,8 +89,10 @@ TEST(GpuContactSolverTest, OverflowAndRollingGiveTheCpuSolversBits) {
         registry.Add(slab, Collider::Box(vec3(2.9f, 0.25f, 2.9f)));
         bodies.push_back(slab);
     };
-    const PileResult cpu = RunPile(desc, 3.0f, 90, 3, false, slabAndRolling);
-    const PileResult gpu = RunPile(desc, 3.0f, 90, 3, true, slabAndRolling);
+    const PileResult cpu =
+        RunPile(desc, kSeed, {.steps = 90, .threads = 3, .extras = slabAndRolling});
+    const PileResult gpu = RunPile(
+        desc, kSeed, {.steps = 90, .threads = 3, .gpuSolver = true, .extras = slabAndRolling});
     // 64 colours and the overflow.
     EXPECT_EQ(cpu.colors, ContactColoring::kColors + 1);
     ExpectSameBits(cpu, gpu);

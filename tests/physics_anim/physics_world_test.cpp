@@ -13,25 +13,19 @@
 #include "engine/core/timer.h"
 #include "engine/physics_anim/physics_anim_systems.h"
 #include "engine/physics_anim/random_spawn.h"
+#include "tests/physics_anim/pile.h"
 
 namespace rtrt::physics {
 namespace {
 
 using ecs::Entity;
 using ecs::Registry;
+using test::AddPit;
+using test::AddPlane;
+using test::PileResult;
+using test::RunPile;
 
 constexpr float kStep = 1.0f / 120.0f;
-
-Entity AddPlane(Registry& registry, vec3 point, vec3 normal, float restitution = 0.0f) {
-    const Entity e = registry.Create();
-    registry.Add(e, LocalTransform{point});
-    RigidBody body;
-    body.mass = 0.0f;
-    body.restitution = restitution;
-    registry.Add(e, body);
-    registry.Add(e, Collider::Plane(normal));
-    return e;
-}
 
 Entity AddBody(Registry& registry, vec3 position, Collider collider, float mass,
                vec3 velocity = vec3(0.0f), float restitution = 0.0f,
@@ -52,15 +46,6 @@ Entity AddBody(Registry& registry, vec3 position, Collider collider, float mass,
 
 vec3 Position(const Registry& registry, Entity e) {
     return registry.Get<RigidBody>(e)->state.position;
-}
-
-// Five planes: a floor at y = 0 and walls at x, z = +-halfWidth.
-void AddPit(Registry& registry, float halfWidth) {
-    AddPlane(registry, vec3(0.0f), vec3(0.0f, 1.0f, 0.0f));
-    AddPlane(registry, vec3(-halfWidth, 0.0f, 0.0f), vec3(1.0f, 0.0f, 0.0f));
-    AddPlane(registry, vec3(halfWidth, 0.0f, 0.0f), vec3(-1.0f, 0.0f, 0.0f));
-    AddPlane(registry, vec3(0.0f, 0.0f, -halfWidth), vec3(0.0f, 0.0f, 1.0f));
-    AddPlane(registry, vec3(0.0f, 0.0f, halfWidth), vec3(0.0f, 0.0f, -1.0f));
 }
 
 TEST(PhysicsWorldTest, SphereAndBoxRestingOnAPlaneStayAtRestForTenSeconds) {
@@ -242,36 +227,6 @@ TEST(PhysicsWorldTest, SpeedsAboveTheLimitAreClamped) {
     EXPECT_NEAR(glm::length(registry.Get<RigidBody>(e)->velocity), 200.0f, 1e-3f);
 }
 
-struct PileResult {
-    std::vector<float> state;  // per body: position, orientation, velocity, angular velocity
-    uint32_t colors = 0, contacts = 0;
-};
-
-// Random bodies spawned into a pit of half-width 3 and stepped on `threads` threads.
-PileResult RunPile(const SpawnDesc& desc, uint64_t seed, int steps, int threads) {
-    PileResult result;
-    tbb::task_arena arena(threads);
-    arena.execute([&] {
-        Registry registry;
-        AddPit(registry, 3.0f);
-        const std::vector<Entity> bodies = SpawnRandomBodies(registry, desc, seed);
-        PhysicsWorld world;
-        world.Step(registry, steps);
-        result.colors = world.Stats().lastColors;
-        result.contacts = world.Stats().lastContacts;
-        for (const Entity e : bodies) {
-            const RigidBody& b = *registry.Get<RigidBody>(e);
-            const RigidBody::State& s = b.state;
-            result.state.insert(
-                result.state.end(),
-                {s.position.x, s.position.y, s.position.z, s.orientation.x, s.orientation.y,
-                 s.orientation.z, s.orientation.w, b.velocity.x, b.velocity.y, b.velocity.z,
-                 b.angularVelocity.x, b.angularVelocity.y, b.angularVelocity.z});
-        }
-    });
-    return result;
-}
-
 std::vector<float> RunSeeded(uint64_t seed, int steps) {
     SpawnDesc desc;
     desc.count = 300;
@@ -282,7 +237,7 @@ std::vector<float> RunSeeded(uint64_t seed, int steps) {
     desc.maxSpeed = 2.0f;
     desc.minRestitution = 0.1f;
     desc.maxRestitution = 0.8f;
-    return RunPile(desc, seed, steps, 1).state;
+    return RunPile(desc, seed, {.steps = steps}).state;
 }
 
 TEST(PhysicsWorldTest, SameSeedGivesBitIdenticalResults) {
@@ -305,7 +260,7 @@ PileResult RunOnThreads(int threads) {
     desc.maxSize = 0.2f;
     desc.boxFraction = 0.3f;
     desc.maxSpeed = 2.0f;
-    return RunPile(desc, 7, 240, threads);
+    return RunPile(desc, 7, {.threads = threads});
 }
 
 TEST(PhysicsWorldTest, SameBitsOnAnyNumberOfThreads) {
