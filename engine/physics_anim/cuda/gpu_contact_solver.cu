@@ -468,7 +468,11 @@ std::unique_ptr<GpuContactSolver> GpuContactSolver::Create(std::string* why) {
     RT_CUDA_CHECK(cudaOccupancyMaxActiveBlocksPerMultiprocessor(
         &perSm, reinterpret_cast<const void*>(&SolveKernel), kThreads, 0));
     RT_CUDA_CHECK(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, kDevice));
-    return std::make_unique<CudaContactSolver>(kDevice, std::max(1, perSm * sms));
+    if (perSm == 0) {
+        if (why) *why = "the solver's kernel does not fit on an SM of CUDA device 0";
+        return nullptr;
+    }
+    return std::make_unique<CudaContactSolver>(kDevice, perSm * sms);
 }
 
 }  // namespace rtrt::physics
