@@ -273,10 +273,13 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
 void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
                      const std::vector<int>& threadCounts,
                      const std::vector<std::string>& solvers) {
-    std::printf("rtrt bench runtime: medians over %d frames at 60 fps (CPU, ms)\n", frames);
+    std::printf(
+        "rtrt bench runtime: medians over %d frames at 60 fps (ms; \"on\": where the contacts "
+        "are solved)\n",
+        frames);
     std::printf(
         "%-28s %6s %7s %9s %9s %9s %11s %9s %9s %9s %9s %9s %9s %7s %8s %8s %8s %8s %8s %8s\n",
-        "scene", "solver", "threads", "instances", "moving", "physics", "animators", "transform",
+        "scene", "on", "threads", "instances", "moving", "physics", "animators", "transform",
         "extract", "deform", "BLAS", "TLAS", "contacts", "colours", "broad", "narrow", "solver",
         "integr.", "gpu-copy", "gpu-pass");
     for (const std::string& path : scenes) {

@@ -29,8 +29,9 @@ class DeviceBuffer {
         if (count == size_) return;
         if (data_) RT_CUDA_CHECK(cudaFree(data_));
         data_ = nullptr;
-        size_ = count;
+        size_ = 0;  // until the allocation succeeds: a failed one leaves an empty buffer
         if (count) RT_CUDA_CHECK(cudaMalloc(&data_, count * sizeof(T)));
+        size_ = count;
     }
     // Resizes to at least count, keeping the contents (a copy on the device).
     void GrowTo(size_t count) {

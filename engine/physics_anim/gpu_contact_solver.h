@@ -5,7 +5,10 @@
 // impulses come back. Each manifold's contacts are solved in their order with the arithmetic of
 // the CPU rows in the same order (contact_setup.h is shared; no fused multiply-adds on either
 // side), and the manifolds of a colour share no moving body, so the result is the CPU solver's,
-// whatever the number of CPU threads. A build without CUDA has the interface and no device.
+// whatever the number of CPU threads. One difference: where a lane of a CPU row has nothing to
+// do while others in its row work, the CPU applies a zero impulse to its bodies and the GPU
+// skips it, which can turn a velocity component of -0 into +0 on the CPU alone; every other bit
+// agrees. A build without CUDA has the interface and no device.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -28,7 +31,8 @@ class GpuContactSolver {
     virtual ~GpuContactSolver() = default;
 
     // A solver on the first CUDA device, or nullptr with why it cannot be (no CUDA in the build,
-    // no device, a device without cooperative launches).
+    // no device or no usable driver, a device without cooperative launches or on which the
+    // kernel cannot run). Never throws.
     static std::unique_ptr<GpuContactSolver> Create(std::string* why);
 
     // As SolveContacts, without its CPU scratch: solverBodies' velocities, pseudo and the

@@ -58,7 +58,7 @@ PhysicsWorld::PhysicsWorld(PhysicsSettings settings)
               settings.linearSlop,
               settings.positionCorrection} {}
 
-void PhysicsWorld::UseGpuSolver() {
+void PhysicsWorld::SolveContactsOnGpu() {
     std::string why;
     gpuSolver_ = GpuContactSolver::Create(&why);
     if (!gpuSolver_) throw std::runtime_error("cannot solve contacts on the GPU: " + why);

@@ -57,7 +57,7 @@ struct PhysicsTimes {
     double narrowPhaseMs = 0.0;  // contacts, colouring and layout
     double solverMs = 0.0;       // warm start, velocity and position iterations, impulse cache
     double integrateMs = 0.0;    // positions and sleep
-    // Of solverMs, with the GPU solver (UseGpuSolver): the device's transfers and passes.
+    // Of solverMs, with the GPU solver (SolveContactsOnGpu): the device's transfers and passes.
     double gpuTransferMs = 0.0;
     double gpuSolveMs = 0.0;
 };
@@ -88,7 +88,7 @@ struct PhysicsStats {
 // and sweep order with index tie-breaks, the colours are assigned serially in that order, and
 // parallel passes write disjoint data, so the same registry contents and calls give bit-identical
 // results on one build and machine, on 1 thread or 16. The contacts may be solved on the GPU
-// instead (UseGpuSolver): the same bits again (gpu_contact_solver.h).
+// instead (SolveContactsOnGpu): the same values (gpu_contact_solver.h).
 class PhysicsWorld {
     using Entity = ecs::Entity;
 
@@ -115,8 +115,8 @@ class PhysicsWorld {
 
     // Solves the contacts on the first CUDA device from the next step on (the rest of the step
     // stays on the CPU). Throws std::runtime_error saying why when there is none.
-    void UseGpuSolver();
-    bool SolvesOnGpu() const { return gpuSolver_ != nullptr; }
+    void SolveContactsOnGpu();
+    bool SolvesContactsOnGpu() const { return gpuSolver_ != nullptr; }
 
     const PhysicsSettings& Settings() const { return settings_; }
     const PhysicsStats& Stats() const { return stats_; }

@@ -158,7 +158,7 @@ class App {
         world_.reset();
         loaded_ = std::make_unique<LoadedScene>(LoadSceneFile(o_.scenes[index]));
         world_ = std::make_unique<World>(*loaded_);
-        if (o_.gpuPhysics) world_->SolveContactsOnGpu();
+        if (o_.contactsOnGpu) world_->SolveContactsOnGpu();
         std::vector<std::string> notes;
         palette_ = std::make_unique<SpawnPalette>(*world_, &notes);
         for (const std::string& n : notes) std::printf("rtrt: %s\n", n.c_str());

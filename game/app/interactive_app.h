@@ -14,7 +14,7 @@ struct WindowOptions {
     std::vector<std::string> scenes;  // PageDown / PageUp cycle through them
     std::string backend = "auto";     // auto (CUDA when usable), cpu, cuda
     GpuSplit gpus;                    // the CUDA back end's GPUs (the first shows the frame)
-    bool gpuPhysics = false;          // the rigid bodies' contacts solved on the first GPU
+    bool contactsOnGpu = false;       // the rigid bodies' contacts solved on the first GPU
     uint32_t width = 1280, height = 720;
     bool vsync = true;
     // Waits for the GPU (glFinish) after each display stage, so that the stage times printed at

@@ -75,7 +75,7 @@ void RunWindowed(const PlayOptions& o) {
     Backend chosen = Backend::kCpu;
     if (ChooseBackend(o.backend, &chosen, nullptr)) w.gpus = ResolveGpus(o.gpus, chosen);
     CheckPhysicsSolver(o.physicsSolver);
-    w.gpuPhysics = o.physicsSolver == "gpu";
+    w.contactsOnGpu = o.physicsSolver == "gpu";
     if (!o.size.empty()) {
         ParseSize(o.size, &w.width, &w.height);
     } else {
@@ -148,6 +148,7 @@ void RunPlay(PlayOptions o) {
     if (!ChooseBackend(o.backend, &backend, &why))
         throw InputError("--backend", o.backend, why + "; use --backend cpu");
 
+    CheckPhysicsSolver(o.physicsSolver);
     const OutputTransform transform = ResolveOutput(loaded.output, o.display);
     World world(loaded);
     ApplyPhysicsSolver(o.physicsSolver, world);

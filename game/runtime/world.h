@@ -86,9 +86,9 @@ class World {
     const ecs::Scheduler& Scheduler() const { return scheduler_; }
     // The rigid-body step's counts (bodies, contacts, colours) after the last frame.
     const physics::PhysicsStats& PhysicsStats() const { return physics_.Stats(); }
-    // Solves the rigid bodies' contacts on the first CUDA device (the same bits as on the CPU);
+    // Solves the rigid bodies' contacts on the first CUDA device (the same values as on the CPU);
     // throws std::runtime_error saying why when there is none.
-    void SolveContactsOnGpu() { physics_.UseGpuSolver(); }
+    void SolveContactsOnGpu() { physics_.SolveContactsOnGpu(); }
 
   private:
     void SpawnDue();

@@ -1,11 +1,10 @@
 // The GPU contact solver against the CPU one: the same piles, stepped with contacts solved on the
-// CPU's threads and on the GPU, must end in the same bits (gpu_contact_solver.h says why they
-// can). Skipped without a CUDA device.
+// CPU's threads and on the GPU, must end with every body's every float equal (gpu_contact_solver.h
+// says why they can). Skipped without a CUDA device.
 #include "engine/physics_anim/gpu_contact_solver.h"
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -29,7 +28,8 @@ void ExpectSameBits(const PileResult& cpu, const PileResult& gpu) {
     ASSERT_EQ(gpu.state.size(), cpu.state.size());
     size_t firstDifference = cpu.state.size();
     for (size_t i = 0; i < cpu.state.size(); ++i) {
-        if (std::memcmp(&cpu.state[i], &gpu.state[i], sizeof(float)) != 0) {
+        // Equal values: a zero's sign may differ (gpu_contact_solver.h says where).
+        if (!(cpu.state[i] == gpu.state[i])) {
             firstDifference = i;
             break;
         }
@@ -43,7 +43,7 @@ void ExpectSameBits(const PileResult& cpu, const PileResult& gpu) {
 
 // Spheres and boxes of mixed sizes, bouncing and rolling: every pass of the solver (warm start,
 // friction, rolling resistance, restitution, split impulse) does work.
-TEST(GpuContactSolverTest, MixedPileGivesTheCpuSolversBits) {
+TEST(GpuContactSolverTest, MixedPileGivesTheCpuSolversResult) {
     std::string why;
     if (!HaveGpuSolver(&why)) GTEST_SKIP() << why;
     SpawnDesc desc;
@@ -105,14 +105,14 @@ TEST(GpuContactSolverTest, WithoutADeviceTheWorldSaysWhy) {
     EXPECT_FALSE(why.empty());
     PhysicsWorld world;
     try {
-        world.UseGpuSolver();
-        ADD_FAILURE() << "UseGpuSolver did not throw";
+        world.SolveContactsOnGpu();
+        ADD_FAILURE() << "SolveContactsOnGpu did not throw";
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("cannot solve contacts on the GPU: " + why),
                   std::string::npos)
             << e.what();
     }
-    EXPECT_FALSE(world.SolvesOnGpu());
+    EXPECT_FALSE(world.SolvesContactsOnGpu());
 }
 
 }  // namespace

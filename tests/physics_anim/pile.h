@@ -57,7 +57,7 @@ inline PileResult RunPile(const SpawnDesc& desc, uint64_t seed, const PileRun& r
         std::vector<ecs::Entity> bodies = SpawnRandomBodies(registry, desc, seed);
         if (run.extras) run.extras(registry, bodies);
         PhysicsWorld world;
-        if (run.gpuSolver) world.UseGpuSolver();
+        if (run.gpuSolver) world.SolveContactsOnGpu();
         world.Step(registry, run.steps);
         result.colors = world.Stats().lastColors;
         result.contacts = world.Stats().lastContacts;

@@ -1,11 +1,13 @@
-// Compiled with -fmad=false (CMakeLists.txt): every product and sum is rounded on its own, as on
-// the CPU (-ffp-contract=off), so the passes give the CPU rows' bits.
+// Compiled with -fmad=false, IEEE division and square roots and no flush to zero
+// (CMakeLists.txt): every product and sum is rounded on its own, as on the CPU
+// (-ffp-contract=off), so the passes give the CPU rows' results.
 #include <cooperative_groups.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include "engine/core/cuda_check.h"
 #include "engine/core/cuda_device_guard.h"
@@ -21,6 +23,8 @@ namespace {
 
 namespace cg = cooperative_groups;
 
+// The passes' kernel holds a point and the next one in registers (158 a thread): 512-thread
+// blocks do not fit on an SM.
 constexpr int kThreads = 256;
 constexpr uint32_t kMaxColors = ContactColoring::kColors + 1;  // and the overflow
 
@@ -45,6 +49,11 @@ struct Impulses {
     float tangent1;
     float tangent2;
 };
+
+// The records the host fills and the device reads, byte for byte.
+static_assert(sizeof(Contact) == 52 && sizeof(BodyAtStart) == 48);
+static_assert(sizeof(SolverBody) == 64 && sizeof(PseudoVelocity) == 32);
+static_assert(sizeof(PointState) == 32 && sizeof(Impulses) == 12);
 
 struct PassCounts {
     int velocityAndPosition;  // the position iterations that ride along the first velocity ones
@@ -91,6 +100,7 @@ __device__ void Push(BodyState& a, BodyState& b, const ContactSetUp& s, vec3 imp
     b.angularVelocity = b.angularVelocity + b.invInertia * glm::cross(s.anchorB, impulse);
 }
 
+// lanes.h's Max, not fmaxf: the same result when an operand is NaN.
 __device__ float Max(float a, float b) { return a > b ? a : b; }
 
 __device__ void WarmStart(BodyState& a, BodyState& b, const PointSetUp& p, const PointState& q) {
@@ -301,7 +311,8 @@ void ParallelCopy(void* to, const void* from, size_t bytes) {
 }
 
 // Where a step's arrays lie, alike on the host (page-locked) and on the device: what goes up is
-// [0, BodiesEnd()), what comes back [bodies, end) - the bodies go both ways.
+// [0, UploadBytes()), what comes back [bodies, end) - the bodies go both ways, and the pseudo
+// velocities start as zeros on the device.
 struct StagingLayout {
     size_t contacts, manifoldBegin, slotOfBody, starts, bodies, pseudo, impulses, end;
 
@@ -448,11 +459,19 @@ class CudaContactSolver final : public GpuContactSolver {
 
 }  // namespace
 
-std::unique_ptr<GpuContactSolver> GpuContactSolver::Create(std::string* why) {
+namespace {
+
+// Create's work; CUDA failures throw (RT_CUDA_CHECK) and Create turns them into its reason.
+std::unique_ptr<GpuContactSolver> CreateOnDevice0(std::string* why) {
     int devices = 0;
-    if (cudaGetDeviceCount(&devices) != cudaSuccess || devices == 0) {
-        cudaGetLastError();  // clear the sticky "no device" error
-        if (why) *why = "no CUDA device";
+    const cudaError_t counted = cudaGetDeviceCount(&devices);
+    if (counted != cudaSuccess || devices == 0) {
+        cudaGetLastError();  // clear the sticky error
+        if (why) {
+            *why = counted == cudaSuccess || counted == cudaErrorNoDevice
+                       ? "no CUDA device"
+                       : std::string("CUDA is not usable: ") + cudaGetErrorString(counted);
+        }
         return nullptr;
     }
     constexpr int kDevice = 0;
@@ -473,6 +492,18 @@ std::unique_ptr<GpuContactSolver> GpuContactSolver::Create(std::string* why) {
         return nullptr;
     }
     return std::make_unique<CudaContactSolver>(kDevice, perSm * sms);
+}
+
+}  // namespace
+
+std::unique_ptr<GpuContactSolver> GpuContactSolver::Create(std::string* why) {
+    try {
+        return CreateOnDevice0(why);
+    } catch (const std::runtime_error& e) {  // e.g. a build without code for this GPU
+        cudaGetLastError();
+        if (why) *why = e.what();
+        return nullptr;
+    }
 }
 
 }  // namespace rtrt::physics
