@@ -468,9 +468,9 @@ std::unique_ptr<GpuContactSolver> CreateOnDevice0(std::string* why) {
     if (counted != cudaSuccess || devices == 0) {
         cudaGetLastError();  // clear the sticky error
         if (why) {
-            *why = counted == cudaSuccess || counted == cudaErrorNoDevice
+            *why = counted == cudaSuccess
                        ? "no CUDA device"
-                       : std::string("CUDA is not usable: ") + cudaGetErrorString(counted);
+                       : std::string("no usable CUDA device (") + cudaGetErrorString(counted) + ")";
         }
         return nullptr;
     }
