@@ -74,7 +74,7 @@ void AddPhysicsSolverOption(CLI::App* command, std::string* solver) {
     command
         ->add_option("--physics-solver", *solver,
                      "Where the rigid bodies' contacts are solved: cpu (every core) or gpu (the "
-                     "first CUDA device; the same result bit for bit)")
+                     "first CUDA device; the same result)")
         ->check(CLI::IsMember({"cpu", "gpu"}))
         ->capture_default_str();
 }
