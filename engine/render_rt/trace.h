@@ -77,10 +77,12 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
     return color;
 }
 
-// Everything one primary ray brings back.
+// Everything one primary ray brings back. primaryHit, if not null, is the primary ray's closest
+// hit, found already (the GPU's primary-hit kernel): it is not traced again.
 template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& primaryRay,
-                                  bool countTraversal = false) {
+                                  bool countTraversal = false,
+                                  const SceneHit* primaryHit = nullptr) {
     struct PendingRay {
         Ray ray;
         vec3 weight;
@@ -107,8 +109,12 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         if constexpr (kCones) pathLength = pathLengths[stackSize];
         SceneHit hit;
         ++result.rays;
-        const bool found = TraceIntersect<kFeatures, Policy>(
-            scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
+        bool found = true;
+        if (primaryHit && primary)
+            hit = *primaryHit;
+        else
+            found = TraceIntersect<kFeatures, Policy>(
+                scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
         if (!found) {
             result.color += pending.weight * scene.background;
             primary = false;

@@ -1,5 +1,7 @@
 // The CUDA back end: the trace kernel of trace_launch.cuh (the RT_HD body of pixel_kernel.h, one
 // thread per pixel) with production's policy, specialised per scene feature set.
+#include <cstdlib>
+
 #include "engine/core/device_buffer.h"
 #include "engine/render_rt/cuda/cuda_trace.h"
 #include "engine/render_rt/cuda/device_scene.h"
@@ -9,10 +11,17 @@
 namespace rtrt {
 
 void LaunchTrace(const RenderSceneView& view, ViewMode mode, uint32_t features, vec3* frame,
-                 unsigned long long* rayCount, cudaStream_t stream, RowBand rows) {
+                 unsigned long long* rayCount, cudaStream_t stream, RowBand rows,
+                 TraceWorkspace* workspace) {
     DispatchFeatures(features, [&](auto featureTag) {
-        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream, rows);
+        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream, rows,
+                                                       workspace);
     });
+}
+
+bool TwoKernelTraceWanted() {
+    const char* v = std::getenv("RTRT_TWO_KERNELS");
+    return v && v[0] == '1';
 }
 
 bool CudaBackendAvailable(std::string* why) {
@@ -44,9 +53,12 @@ Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, Re
     }
     DeviceBuffer<vec3> frame;
     frame.Resize(size_t(settings.width) * settings.height);
+    TraceWorkspace workspace;
+    workspace.Reserve(view.width, view.height);
     LaunchTrace(view, settings.view,
                 EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
-                frame.Data(), rayCount.Data());
+                frame.Data(), rayCount.Data(), 0, {0, UINT32_MAX},
+                TwoKernelTraceWanted() ? &workspace : nullptr);
     RT_CUDA_CHECK(cudaDeviceSynchronize());
     Image image(settings.width, settings.height);
     frame.Download(image.pixels);
