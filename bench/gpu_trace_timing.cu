@@ -17,13 +17,9 @@ std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings
     frame.Resize(size_t(settings.width) * settings.height);
     const uint32_t features =
         EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
-    TraceWorkspace workspace;
-    workspace.Reserve(view.width, view.height);
-    TraceWorkspace* two = TwoKernelTraceWanted() ? &workspace : nullptr;
     return TimeTraceLaunches(warmup, frames, stats ? &stats->rays : nullptr,
                              [&](unsigned long long* rayCount) {
-                                 LaunchTrace(view, settings.view, features, frame.Data(), rayCount,
-                                             0, {0, UINT32_MAX}, two);
+                                 LaunchTrace(view, settings.view, features, frame.Data(), rayCount);
                              });
 }
 

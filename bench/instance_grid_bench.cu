@@ -64,8 +64,6 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
         row.instances = n;
         const uint32_t blocks = (n + kBlock - 1) / kBlock;
         const uint32_t features = scene.Features() | InstanceCountFeatures(n);
-        TraceWorkspace workspace;
-        workspace.Reserve(view.width, view.height);
         for (int f = 0; f < 20 + frames; ++f) {
             const bool count = f == 0;
             if (count) RT_CUDA_CHECK(cudaMemset(rayCount.Data(), 0, sizeof(unsigned long long)));
@@ -78,8 +76,7 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
             RT_CUDA_CHECK(cudaEventRecord(events[2]));
             view.tlas = {tlas.Nodes(), instances.Data(), view.tlas.blases};
             LaunchTrace(view, ViewMode::kShaded, features, frame.Data(),
-                        count ? rayCount.Data() : nullptr, 0, {0, UINT32_MAX},
-                        TwoKernelTraceWanted() ? &workspace : nullptr);
+                        count ? rayCount.Data() : nullptr);
             RT_CUDA_CHECK(cudaEventRecord(events[3]));
             // The refit path, timed alone: same tree, the boxes this frame's rebuild used.
             RT_CUDA_CHECK(cudaEventRecord(events[4]));

@@ -77,12 +77,10 @@ RT_HD inline vec3 ShadeLocal(const RenderSceneView& scene, const Surface& s, con
     return color;
 }
 
-// Everything one primary ray brings back. primaryHit, if not null, is the primary ray's closest
-// hit, found already (the GPU's primary-hit kernel): it is not traced again.
+// Everything one primary ray brings back.
 template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& primaryRay,
-                                  bool countTraversal = false,
-                                  const SceneHit* primaryHit = nullptr) {
+                                  bool countTraversal = false) {
     struct PendingRay {
         Ray ray;
         vec3 weight;
@@ -109,12 +107,8 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         if constexpr (kCones) pathLength = pathLengths[stackSize];
         SceneHit hit;
         ++result.rays;
-        bool found = true;
-        if (primaryHit && primary)
-            hit = *primaryHit;
-        else
-            found = TraceIntersect<kFeatures, Policy>(
-                scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
+        const bool found = TraceIntersect<kFeatures, Policy>(
+            scene.tlas, pending.ray, &hit, primary && countTraversal ? &result.stats : nullptr);
         if (!found) {
             result.color += pending.weight * scene.background;
             primary = false;

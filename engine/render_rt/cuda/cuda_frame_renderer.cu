@@ -259,8 +259,6 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         view.tlas = TlasOnDevice();
         const size_t pixels = size_t(settings.width) * settings.height;
         if (frame_.Size() != pixels) frame_.Resize(pixels);
-        workspace_.Reserve(settings.width, settings.height);
-        TraceWorkspace* workspace = TwoKernelTraceWanted() ? &workspace_ : nullptr;
         if (countRays)
             RT_CUDA_CHECK(cudaMemsetAsync(rayCount_.Data(), 0, sizeof(unsigned long long)));
         const uint32_t features =
@@ -269,13 +267,11 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         f.bands.clear();
         if (band) {
             if (band->Rows() > 0)
-                LaunchTrace(view, settings.view, features, frame_.Data(), rays, 0, *band,
-                            workspace);
+                LaunchTrace(view, settings.view, features, frame_.Data(), rays, 0, *band);
         } else if (settings.traceBands > 1) {
-            TraceBands(f, view, settings, features, rays, workspace);
+            TraceBands(f, view, settings, features, rays);
         } else {
-            LaunchTrace(view, settings.view, features, frame_.Data(), rays, 0, {0, UINT32_MAX},
-                        workspace);
+            LaunchTrace(view, settings.view, features, frame_.Data(), rays);
         }
         if (countRays)
             RT_CUDA_CHECK(cudaMemcpyAsync(f.raysHost, rayCount_.Data(), sizeof(unsigned long long),
@@ -369,7 +365,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
     // the main stream goes on when every band is done. The shares follow the bands' times as
     // their frames are collected.
     void TraceBands(FrameEvents& f, const RenderSceneView& view, const RenderSettings& settings,
-                    uint32_t features, unsigned long long* rays, TraceWorkspace* workspace) {
+                    uint32_t features, unsigned long long* rays) {
         const uint32_t parts = std::min(settings.traceBands, kMaxTraceBands);
         if (!split_ || split_->Parts() != parts) split_.emplace(parts);
         while (bandStreams_.size() < parts) {
@@ -390,8 +386,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
             cudaStream_t s = bandStreams_[b];
             RT_CUDA_CHECK(cudaStreamWaitEvent(s, f.traceReady));
             RT_CUDA_CHECK(cudaEventRecord(f.bandStart[b], s));
-            LaunchTrace(view, settings.view, features, frame_.Data(), rays, s, f.bands[b],
-                        workspace);
+            LaunchTrace(view, settings.view, features, frame_.Data(), rays, s, f.bands[b]);
             RT_CUDA_CHECK(cudaEventRecord(f.bandEnd[b], s));
             RT_CUDA_CHECK(cudaStreamWaitEvent(0, f.bandEnd[b]));
         }
@@ -514,7 +509,6 @@ class CudaFrameRenderer final : public GpuBandRenderer {
     cudaEvent_t sahCopied_;
     bool sahPending_ = false, sahPendingIsRebuild_ = false;
     DeviceBuffer<vec3> frame_;
-    TraceWorkspace workspace_;
     DeviceBuffer<unsigned long long> rayCount_;
     FrameEvents frames_[2];
     std::optional<FrameSplit> split_;        // with traceBands > 1

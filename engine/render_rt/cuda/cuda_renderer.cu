@@ -1,7 +1,5 @@
 // The CUDA back end: the trace kernel of trace_launch.cuh (the RT_HD body of pixel_kernel.h, one
 // thread per pixel) with production's policy, specialised per scene feature set.
-#include <cstdlib>
-
 #include "engine/core/device_buffer.h"
 #include "engine/render_rt/cuda/cuda_trace.h"
 #include "engine/render_rt/cuda/device_scene.h"
@@ -11,17 +9,10 @@
 namespace rtrt {
 
 void LaunchTrace(const RenderSceneView& view, ViewMode mode, uint32_t features, vec3* frame,
-                 unsigned long long* rayCount, cudaStream_t stream, RowBand rows,
-                 TraceWorkspace* workspace) {
+                 unsigned long long* rayCount, cudaStream_t stream, RowBand rows) {
     DispatchFeatures(features, [&](auto featureTag) {
-        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream, rows,
-                                                       workspace);
+        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream, rows);
     });
-}
-
-bool TwoKernelTraceWanted() {
-    const char* v = std::getenv("RTRT_TWO_KERNELS");
-    return v && v[0] == '1';
 }
 
 bool CudaBackendAvailable(std::string* why) {
@@ -53,12 +44,9 @@ Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, Re
     }
     DeviceBuffer<vec3> frame;
     frame.Resize(size_t(settings.width) * settings.height);
-    TraceWorkspace workspace;
-    workspace.Reserve(view.width, view.height);
     LaunchTrace(view, settings.view,
                 EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
-                frame.Data(), rayCount.Data(), 0, {0, UINT32_MAX},
-                TwoKernelTraceWanted() ? &workspace : nullptr);
+                frame.Data(), rayCount.Data());
     RT_CUDA_CHECK(cudaDeviceSynchronize());
     Image image(settings.width, settings.height);
     frame.Download(image.pixels);
