@@ -20,30 +20,6 @@ enum class Query { kIntersect, kOccluded };
 // one primitive. kIntersect: test returns true when it found a nearer hit, having recorded it;
 // tMax shrinks to that hit's distance. kOccluded: test returns true when the primitive blocks the
 // ray before tMax, and the traversal stops there; tMax stays, so children keep the builder's order.
-// A node waiting on the stack of a closest-hit traversal keeps the distance at which the ray
-// enters its box: once a hit nearer than that is found, popping it skips the node without loading
-// its children. The margin covers the rounding that the slab and triangle tests allow for (both
-// accept up to tMax * (1 + 2 gamma(3))), so a skipped node never held a hit the traversal would
-// have taken: its children's entries are at least its own (rounding is monotone), and the hits
-// in a leaf lie within its box.
-RT_HD inline bool BeyondHit(float tEntry, float tMax) {
-    return tEntry > tMax * (1.0f + 8.0f * Gamma(3));
-}
-
-template <Query kQuery>
-struct WaitingNode {  // kIntersect: the header and the entry distance
-    NodeHeader header;
-    float tEntry;
-};
-template <>
-struct WaitingNode<Query::kOccluded> {  // kOccluded stops at the first hit: no distance needed
-    NodeHeader header;
-};
-
-// One loop for both queries (as madmann91/bvh's intersect<IsAnyHit>). test(primIndex, tMax) tests
-// one primitive. kIntersect: test returns true when it found a nearer hit, having recorded it;
-// tMax shrinks to that hit's distance. kOccluded: test returns true when the primitive blocks the
-// ray before tMax, and the traversal stops there; tMax stays, so children keep the builder's order.
 template <Query kQuery, typename TestPrim>
 RT_HD inline bool Traverse(const BvhNode* nodes, const RaySetup& ray, float& tMax, TestPrim&& test,
                            TraversalStats* stats) {
@@ -51,7 +27,7 @@ RT_HD inline bool Traverse(const BvhNode* nodes, const RaySetup& ray, float& tMa
     NodeHeader current;  // of the node in hand; the stack holds the headers of those waiting
     if (stats) ++stats->nodesVisited;
     if (!SlabTest(nodes[0], ray, tMax, &tRoot, &current)) return false;
-    WaitingNode<kQuery> stack[kBvhStackSize];
+    NodeHeader stack[kBvhStackSize];
     uint32_t stackSize = 0;
     bool found = false;
     for (;;) {
@@ -72,15 +48,9 @@ RT_HD inline bool Traverse(const BvhNode* nodes, const RaySetup& ray, float& tMa
             if (stats) stats->nodesVisited += 2;
             if (hitLeft && hitRight) {
                 // kIntersect visits the nearer child first; kOccluded the builder's order.
-                if constexpr (kQuery == Query::kOccluded) {
-                    stack[stackSize++] = {headRight};
-                    current = headLeft;
-                } else {
-                    const bool leftNearer = tLeft <= tRight;
-                    stack[stackSize++] = leftNearer ? WaitingNode<kQuery>{headRight, tRight}
-                                                    : WaitingNode<kQuery>{headLeft, tLeft};
-                    current = leftNearer ? headLeft : headRight;
-                }
+                const bool leftNearer = kQuery == Query::kOccluded || tLeft <= tRight;
+                stack[stackSize++] = leftNearer ? headRight : headLeft;
+                current = leftNearer ? headLeft : headRight;
                 continue;
             }
             if (hitLeft || hitRight) {
@@ -88,11 +58,8 @@ RT_HD inline bool Traverse(const BvhNode* nodes, const RaySetup& ray, float& tMa
                 continue;
             }
         }
-        if constexpr (kQuery == Query::kIntersect) {
-            while (stackSize > 0 && BeyondHit(stack[stackSize - 1].tEntry, tMax)) --stackSize;
-        }
         if (stackSize == 0) break;
-        current = stack[--stackSize].header;
+        current = stack[--stackSize];
     }
     return found;
 }

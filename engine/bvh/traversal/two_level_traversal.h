@@ -93,20 +93,7 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
     bool triangles = false;          // the BLAS in use holds triangles (else spheres)
     uint32_t instanceId = 0;
     uint32_t stack[kTwoLevelStackSize];
-    // kIntersect: where the ray enters each waiting entry's box (0 where not known: never
-    // skipped), so that a node beyond the nearest hit so far is dropped unvisited (BeyondHit).
-    constexpr bool kKeepsEntries = kQuery == Query::kIntersect;
-    float entries[kKeepsEntries ? kTwoLevelStackSize : 1];
     uint32_t stackSize = 0;
-    auto push = [&](uint32_t entry, float tEntry) {
-        if constexpr (kKeepsEntries) entries[stackSize] = tEntry;
-        stack[stackSize++] = entry;
-    };
-    // Whether the entry just popped (at stackSize) lies beyond the nearest hit.
-    auto poppedBeyondHit = [&]() {
-        if constexpr (kKeepsEntries) return BeyondHit(entries[stackSize], tMax);
-        return false;
-    };
     bool found = false;
 
     // Switches to instance id if the ray meets its BLAS's root box.
@@ -123,7 +110,7 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
         }
         float tRoot;
         if (!SlabTest(target.nodes[0], objectSetup, tMax, &tRoot)) return false;
-        push(kReturnToWorld, 0.0f);
+        stack[stackSize++] = kReturnToWorld;
         setup = objectSetup;
         nodes = target.nodes;
         blas = &target;
@@ -134,14 +121,12 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
     // The next pending node of the level in use, or kNoNode when the stack is empty or its top
     // leaves the level (a marker or an instance entry: handled once no leaf is set aside).
     auto popNode = [&]() {
-        for (;;) {
-            if (stackSize == 0) return kNoNode;
-            const uint32_t top = stack[stackSize - 1];
-            if (top == kReturnToWorld || (blas == nullptr && (top & kInstanceEntry) != 0))
-                return kNoNode;
-            --stackSize;
-            if (!poppedBeyondHit()) return top;
-        }
+        if (stackSize == 0) return kNoNode;
+        const uint32_t top = stack[stackSize - 1];
+        if (top == kReturnToWorld || (blas == nullptr && (top & kInstanceEntry) != 0))
+            return kNoNode;
+        --stackSize;
+        return top;
     };
 
     float tRoot;
@@ -166,7 +151,7 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                 if (hitLeft && hitRight) {
                     // kIntersect visits the nearer child first; kOccluded the builder's order.
                     const bool leftFirst = kQuery == Query::kOccluded || tLeft <= tRight;
-                    push(leftFirst ? left + 1 : left, leftFirst ? tRight : tLeft);
+                    stack[stackSize++] = leftFirst ? left + 1 : left;
                     current = leftFirst ? left : left + 1;
                 } else if (hitLeft || hitRight) {
                     current = hitLeft ? left : left + 1;
@@ -181,10 +166,10 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
             postponed = kNoNode;
             if (blas == nullptr) {
                 // An instance leaf: what was pending at this level waits below the instances.
-                if (current != kNoNode) push(current, 0.0f);
+                if (current != kNoNode) stack[stackSize++] = current;
                 current = kNoNode;
                 for (uint32_t i = leaf.primCount - 1; i >= 1; --i)
-                    push(kInstanceEntry | (leaf.leftFirst + i), 0.0f);
+                    stack[stackSize++] = kInstanceEntry | (leaf.leftFirst + i);
                 if (enterInstance(leaf.leftFirst)) current = 0;
                 continue;
             }
@@ -223,7 +208,7 @@ RT_HD inline bool TraverseTwoLevel(const TlasView& scene, const Ray& ray, float&
                 blas = nullptr;
             } else if (blas == nullptr && (entry & kInstanceEntry) != 0) {
                 if (enterInstance(entry & ~kInstanceEntry)) current = 0;
-            } else if (!poppedBeyondHit()) {
+            } else {
                 current = entry;
             }
         }
