@@ -10,7 +10,6 @@
 #include "engine/core/parallel_for.h"
 #include "engine/core/timer.h"
 #include "engine/physics_anim/narrow_phase.h"
-#include "engine/physics_anim/quat_interp.h"
 
 namespace rtrt::physics {
 
@@ -86,68 +85,6 @@ void PhysicsWorld::Step(Registry& registry, int steps) {
     Gather(registry);
     for (int i = 0; i < steps; ++i) TakeStep();
     WriteBack(registry, 1.0f);
-}
-
-void PhysicsWorld::Gather(Registry& registry) {
-    // The view is walked once for the components' places, and the bodies are filled from them in
-    // parallel: each reads and writes only its own components, and a serial pass would pull
-    // every body's cache lines from the cores that stepped it.
-    bodies_.clear();
-    registry.View<RigidBody, LocalTransform>().Each(
-        [&](Entity e, RigidBody& rb, LocalTransform& local) {
-            SimBody& s = bodies_.emplace_back();
-            s.entity = e;
-            s.body = &rb;
-            s.local = &local;
-        });
-    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
-        SimBody& s = bodies_[i];
-        const Entity e = s.entity;
-        RigidBody& rb = *s.body;
-        LocalTransform& local = *s.local;
-        if (const Collider* collider = registry.Get<Collider>(e)) {
-            s.hasCollider = true;
-            s.collider = *collider;
-        }
-        const bool isPlane = s.hasCollider && s.collider.shape == ColliderShape::kPlane;
-        s.dynamic = rb.mass > 0.0f && !isPlane;
-        s.restitution = rb.restitution;
-        s.friction = rb.friction;
-        s.rollingResistance = rb.rollingResistance;
-        s.boundingRadius = s.hasCollider ? BoundingRadius(s.collider) : 0.0f;
-        if (s.dynamic) {
-            if (!rb.state.initialized) {
-                Teleport(rb, local.translation, glm::normalize(local.rotation));
-            }
-            // Sleeping zeroes the velocities, so a non-zero one was set by the user.
-            if (rb.state.sleeping &&
-                (rb.velocity != vec3(0.0f) || rb.angularVelocity != vec3(0.0f))) {
-                WakeUp(rb);
-            }
-            s.awake = !rb.state.sleeping;
-            s.position = rb.state.position;
-            s.orientation = rb.state.orientation;
-            s.previousPosition = rb.state.previousPosition;
-            s.previousOrientation = rb.state.previousOrientation;
-            s.velocity = rb.velocity;
-            s.angularVelocity = rb.angularVelocity;
-            s.restingTime = rb.state.restingTime;
-            s.invMass = 1.0f / rb.mass;
-            const vec3 inertia = s.hasCollider ? InertiaDiagonal(s.collider, rb.mass) : vec3(0.0f);
-            if (!rb.fixedRotation && inertia.x > 0.0f && inertia.y > 0.0f && inertia.z > 0.0f) {
-                s.invInertiaLocal = 1.0f / inertia;
-            }
-        } else {
-            s.position = s.previousPosition = local.translation;
-            s.orientation = s.previousOrientation = glm::normalize(local.rotation);
-        }
-    });
-    planes_.clear();
-    for (uint32_t i = 0; i < bodies_.size(); ++i) {
-        if (bodies_[i].hasCollider && bodies_[i].collider.shape == ColliderShape::kPlane) {
-            planes_.push_back(i);
-        }
-    }
 }
 
 void PhysicsWorld::TakeStep() {
@@ -251,17 +188,29 @@ void PhysicsWorld::WakeTouched() {
     // so a disturbance spreads through a resting pile (within this pass, or over the next steps).
     // The pass is serial (its order matters) and reads only the dense motion flags, which stay in
     // the core's cache where the bodies would not.
+    constexpr uint8_t kSleeperMask = kDynamic | kAwake;
+    const auto isSleeper = [&](uint32_t body) {
+        return (motion_[body] & kSleeperMask) == kDynamic;
+    };
     auto wake = [&](uint32_t sleeper, uint32_t other) {
-        const uint8_t s = motion_[sleeper];
         const uint8_t o = motion_[other];
-        if ((s & (kDynamic | kAwake)) != kDynamic || (o & (kAwake | kResting)) != kAwake) return;
+        if (!isSleeper(sleeper) || (o & (kAwake | kResting)) != kAwake) return;
         motion_[sleeper] = kDynamic | kAwake;
         SimBody& body = bodies_[sleeper];
         body.awake = true;
         body.restingTime = 0.0f;
         body.invInertiaWorld = WorldInverseInertia(body.rotation, body.invInertiaLocal);
     };
-    for (const auto& [a, b] : pairs_) {
+    // Only a pair that holds a sleeper when the pass begins can wake anything (the pass never
+    // puts a body to sleep), so those are found first, in parallel, and the serial pass visits
+    // them alone in the same order: where most bodies are awake it has little left to do.
+    sleeperPairs_.resize(pairs_.size());
+    sleeperPairs_.resize(ParallelCompact(
+        pairs_.size(), chunkStarts_,
+        [&](size_t k) { return isSleeper(pairs_[k].first) || isSleeper(pairs_[k].second); },
+        [&](size_t k, uint32_t out) { sleeperPairs_[out] = static_cast<uint32_t>(k); }));
+    for (const uint32_t k : sleeperPairs_) {
+        const auto [a, b] = pairs_[k];
         wake(a, b);
         wake(b, a);
     }
@@ -551,40 +500,6 @@ void PhysicsWorld::UpdateSleep() {
             s.angularVelocity = vec3(0.0f);
         }
     });
-}
-
-void PhysicsWorld::WriteBack(Registry& registry, float alpha) {
-    // In parallel, each body to its own components; then the moved transforms are marked in body
-    // order.
-    moved_.assign(bodies_.size(), 0);
-    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
-        const SimBody& s = bodies_[i];
-        if (!s.dynamic) return;
-        RigidBody& rb = *s.body;
-        rb.velocity = s.velocity;
-        rb.angularVelocity = s.angularVelocity;
-        rb.state.position = s.position;
-        rb.state.orientation = s.orientation;
-        rb.state.previousPosition = s.previousPosition;
-        rb.state.previousOrientation = s.previousOrientation;
-        rb.state.restingTime = s.restingTime;
-        rb.state.sleeping = !s.awake;
-
-        vec3 translation = s.position;
-        glm::quat rotation = s.orientation;
-        if (alpha < 1.0f) {
-            translation = glm::mix(s.previousPosition, s.position, alpha);
-            rotation = Slerp(s.previousOrientation, s.orientation, alpha);
-        }
-        LocalTransform& local = *s.local;
-        if (local.translation == translation && local.rotation == rotation) return;
-        local.translation = translation;
-        local.rotation = rotation;
-        moved_[i] = 1;
-    });
-    for (size_t i = 0; i < bodies_.size(); ++i) {
-        if (moved_[i] != 0) registry.MarkChanged<LocalTransform>(bodies_[i].entity);
-    }
 }
 
 void AddPhysicsSystem(ecs::Scheduler& scheduler, PhysicsWorld& world) {

@@ -191,7 +191,8 @@ class PhysicsWorld {
 
     ContactCache cache_;  // last step's touching contacts, for warm starting
     ContactCache nextCache_;
-    std::vector<uint32_t> chunkStarts_;  // ParallelCompact's scratch
+    std::vector<uint32_t> chunkStarts_;   // ParallelCompact's scratch
+    std::vector<uint32_t> sleeperPairs_;  // pairs_ holding a sleeper (WakeTouched)
     SweepAndPrune sweep_;
 };
 

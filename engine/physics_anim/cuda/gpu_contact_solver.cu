@@ -339,7 +339,12 @@ class CudaContactSolver final : public GpuContactSolver {
   public:
     CudaContactSolver(int device, int maxBlocks) : device_(device), maxBlocks_(maxBlocks) {
         CudaDeviceGuard guard(device_);
-        RT_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
+        // The highest priority: in pipelined play the step runs while the last frame traces on
+        // the same GPU, and the step's passes, one short stage after another, would otherwise
+        // queue behind the trace's blocks; the CPU waits for them.
+        int lowest = 0, highest = 0;
+        RT_CUDA_CHECK(cudaDeviceGetStreamPriorityRange(&lowest, &highest));
+        RT_CUDA_CHECK(cudaStreamCreateWithPriority(&stream_, cudaStreamNonBlocking, highest));
         for (cudaEvent_t& e : events_) RT_CUDA_CHECK(cudaEventCreate(&e));
     }
     ~CudaContactSolver() override {

@@ -1,0 +1,115 @@
+// PhysicsWorld::Gather and WriteBack: the world's bodies read from the registry's components
+// before a frame's steps, and written back to them after.
+#include "engine/core/parallel_for.h"
+#include "engine/physics_anim/physics_world.h"
+#include "engine/physics_anim/quat_interp.h"
+
+namespace rtrt::physics {
+
+using ecs::Entity;
+using ecs::Registry;
+
+namespace {
+
+// Work per TBB task: a body's components are a few cache lines.
+constexpr size_t kBodyGrain = 1024;
+
+}  // namespace
+
+void PhysicsWorld::Gather(Registry& registry) {
+    // The view is walked once for the components' places, and the bodies are filled from them in
+    // parallel: each reads and writes only its own components, and a serial pass would pull
+    // every body's cache lines from the cores that stepped it.
+    bodies_.clear();
+    registry.View<RigidBody, LocalTransform>().Each(
+        [&](Entity e, RigidBody& rb, LocalTransform& local) {
+            SimBody& s = bodies_.emplace_back();
+            s.entity = e;
+            s.body = &rb;
+            s.local = &local;
+        });
+    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+        SimBody& s = bodies_[i];
+        const Entity e = s.entity;
+        RigidBody& rb = *s.body;
+        LocalTransform& local = *s.local;
+        if (const Collider* collider = registry.Get<Collider>(e)) {
+            s.hasCollider = true;
+            s.collider = *collider;
+        }
+        const bool isPlane = s.hasCollider && s.collider.shape == ColliderShape::kPlane;
+        s.dynamic = rb.mass > 0.0f && !isPlane;
+        s.restitution = rb.restitution;
+        s.friction = rb.friction;
+        s.rollingResistance = rb.rollingResistance;
+        s.boundingRadius = s.hasCollider ? BoundingRadius(s.collider) : 0.0f;
+        if (s.dynamic) {
+            if (!rb.state.initialized) {
+                Teleport(rb, local.translation, glm::normalize(local.rotation));
+            }
+            // Sleeping zeroes the velocities, so a non-zero one was set by the user.
+            if (rb.state.sleeping &&
+                (rb.velocity != vec3(0.0f) || rb.angularVelocity != vec3(0.0f))) {
+                WakeUp(rb);
+            }
+            s.awake = !rb.state.sleeping;
+            s.position = rb.state.position;
+            s.orientation = rb.state.orientation;
+            s.previousPosition = rb.state.previousPosition;
+            s.previousOrientation = rb.state.previousOrientation;
+            s.velocity = rb.velocity;
+            s.angularVelocity = rb.angularVelocity;
+            s.restingTime = rb.state.restingTime;
+            s.invMass = 1.0f / rb.mass;
+            const vec3 inertia = s.hasCollider ? InertiaDiagonal(s.collider, rb.mass) : vec3(0.0f);
+            if (!rb.fixedRotation && inertia.x > 0.0f && inertia.y > 0.0f && inertia.z > 0.0f) {
+                s.invInertiaLocal = 1.0f / inertia;
+            }
+        } else {
+            s.position = s.previousPosition = local.translation;
+            s.orientation = s.previousOrientation = glm::normalize(local.rotation);
+        }
+    });
+    planes_.clear();
+    for (uint32_t i = 0; i < bodies_.size(); ++i) {
+        if (bodies_[i].hasCollider && bodies_[i].collider.shape == ColliderShape::kPlane) {
+            planes_.push_back(i);
+        }
+    }
+}
+
+void PhysicsWorld::WriteBack(Registry& registry, float alpha) {
+    // In parallel, each body to its own components; then the moved transforms are marked in body
+    // order.
+    moved_.assign(bodies_.size(), 0);
+    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+        const SimBody& s = bodies_[i];
+        if (!s.dynamic) return;
+        RigidBody& rb = *s.body;
+        rb.velocity = s.velocity;
+        rb.angularVelocity = s.angularVelocity;
+        rb.state.position = s.position;
+        rb.state.orientation = s.orientation;
+        rb.state.previousPosition = s.previousPosition;
+        rb.state.previousOrientation = s.previousOrientation;
+        rb.state.restingTime = s.restingTime;
+        rb.state.sleeping = !s.awake;
+
+        vec3 translation = s.position;
+        glm::quat rotation = s.orientation;
+        if (alpha < 1.0f) {
+            translation = glm::mix(s.previousPosition, s.position, alpha);
+            rotation = Slerp(s.previousOrientation, s.orientation, alpha);
+        }
+        LocalTransform& local = *s.local;
+        if (local.translation == translation && local.rotation == rotation) return;
+        local.translation = translation;
+        local.rotation = rotation;
+        moved_[i] = 1;
+    });
+    for (size_t i = 0; i < bodies_.size(); ++i) {
+        if (moved_[i] != 0) registry.MarkChanged<LocalTransform>(bodies_[i].entity);
+    }
+}
+
+}  // namespace rtrt::physics
