@@ -344,10 +344,14 @@ uint32_t ContactRows::Deal(uint32_t group, std::span<uint8_t> laneOf) const {
     const auto points = [&](uint32_t m) {
         return batches_->manifoldBegin[m + 1] - batches_->manifoldBegin[m];
     };
+    // Most contacts first, in layout order among equals: a stable insertion sort, as a group is
+    // small (std::stable_sort would allocate a buffer per group).
     std::array<uint32_t, kGroupManifolds> order;
-    for (uint32_t m = first; m < last; ++m) order[m - first] = m;
-    std::stable_sort(order.begin(), order.begin() + (last - first),
-                     [&](uint32_t x, uint32_t y) { return points(x) > points(y); });
+    for (uint32_t m = first; m < last; ++m) {
+        uint32_t at = m - first;
+        for (; at > 0 && points(order[at - 1]) < points(m); --at) order[at] = order[at - 1];
+        order[at] = m;
+    }
     std::array<uint32_t, kLanes> load{};
     for (uint32_t i = 0; i < last - first; ++i) {
         const auto lane =
@@ -362,6 +366,20 @@ void ContactRows::Build(std::span<const Contact> contacts, std::span<const uint3
                         std::span<const BodyAtStart> starts,
                         std::span<const SolverBody> solverBodies, const ContactBatches& batches,
                         const SolverSettings& settings) {
+    Plan(contacts, slotOfBody, starts, solverBodies, batches, settings);
+    ParallelFor(0, colorGroupBegin_.back(), 64,
+                [&](size_t g) { FillGroup(static_cast<uint32_t>(g)); });
+}
+
+void ContactRows::Plan(std::span<const Contact> contacts, std::span<const uint32_t> slotOfBody,
+                       std::span<const BodyAtStart> starts,
+                       std::span<const SolverBody> solverBodies, const ContactBatches& batches,
+                       const SolverSettings& settings) {
+    contacts_ = contacts;
+    slotOfBody_ = slotOfBody;
+    starts_ = starts;
+    solverBodies_ = solverBodies;
+    settings_ = &settings;
     batches_ = &batches;
     const uint32_t colors = batches.Colors();
     colorGroupBegin_.assign(1, 0);
@@ -384,34 +402,41 @@ void ContactRows::Build(std::span<const Contact> contacts, std::span<const uint3
     for (uint32_t g = 0; g < groups; ++g) groupRowBegin_[g + 1] += groupRowBegin_[g];
     rows_.resize(groupRowBegin_[groups]);
     rolling_.resize(rows_.size());
+}
 
-    ParallelFor(0, groups, 64, [&](size_t g) {
-        const auto group = static_cast<uint32_t>(g);
-        const uint8_t* laneOf = laneOf_.data() + g * kGroupManifolds;
-        const auto [first, last] = GroupManifolds(group);
-        const uint32_t rowBegin = groupRowBegin_[group];
-        const uint32_t rowEnd = groupRowBegin_[group + 1];
-        for (uint32_t r = rowBegin; r < rowEnd; ++r) rows_[r] = ContactRow{};
-        std::array<uint32_t, kLanes> next{};
-        for (uint32_t m = first; m < last; ++m) {
-            const uint8_t l = laneOf[m - first];
-            for (uint32_t k = batches.manifoldBegin[m]; k < batches.manifoldBegin[m + 1]; ++k) {
-                const uint32_t r = rowBegin + next[l]++;
-                FillLane(rows_[r], rolling_[r], l, k, contacts[k], slotOfBody, starts, solverBodies,
-                         settings);
-            }
+void ContactRows::Fill(uint32_t begin, uint32_t end) {
+    // Every group has a row, so a group boundary is one group's first row.
+    auto group = static_cast<uint32_t>(
+        std::lower_bound(groupRowBegin_.begin(), groupRowBegin_.end(), begin) -
+        groupRowBegin_.begin());
+    for (; groupRowBegin_[group] < end; ++group) FillGroup(group);
+}
+
+void ContactRows::FillGroup(uint32_t group) {
+    const uint8_t* laneOf = laneOf_.data() + size_t{group} * kGroupManifolds;
+    const auto [first, last] = GroupManifolds(group);
+    const uint32_t rowBegin = groupRowBegin_[group];
+    const uint32_t rowEnd = groupRowBegin_[group + 1];
+    for (uint32_t r = rowBegin; r < rowEnd; ++r) rows_[r] = ContactRow{};
+    std::array<uint32_t, kLanes> next{};
+    for (uint32_t m = first; m < last; ++m) {
+        const uint8_t l = laneOf[m - first];
+        for (uint32_t k = batches_->manifoldBegin[m]; k < batches_->manifoldBegin[m + 1]; ++k) {
+            const uint32_t r = rowBegin + next[l]++;
+            FillLane(rows_[r], rolling_[r], l, k, contacts_[k], slotOfBody_, starts_, solverBodies_,
+                     *settings_);
         }
-        // Empty lanes read the bodies of an active one: real memory, never written.
-        for (uint32_t r = rowBegin; r < rowEnd; ++r) {
-            ContactRow& row = rows_[r];
-            const int active = __builtin_ctz(row.activeLanes);
-            for (int l = 0; l < kLanes; ++l) {
-                if ((row.activeLanes >> l & 1u) != 0) continue;
-                row.slotA[l] = row.slotA[active];
-                row.slotB[l] = row.slotB[active];
-            }
+    }
+    // Empty lanes read the bodies of an active one: real memory, never written.
+    for (uint32_t r = rowBegin; r < rowEnd; ++r) {
+        ContactRow& row = rows_[r];
+        const int active = __builtin_ctz(row.activeLanes);
+        for (int l = 0; l < kLanes; ++l) {
+            if ((row.activeLanes >> l & 1u) != 0) continue;
+            row.slotA[l] = row.slotA[active];
+            row.slotB[l] = row.slotB[active];
         }
-    });
+    }
 }
 
 void ContactRows::Solve(std::span<SolverBody> bodies, std::span<PseudoVelocity> pseudo,

@@ -71,10 +71,20 @@ class ContactRows {
     static constexpr uint32_t kGroupManifolds = 4 * kLanes;
 
     // Lays out the contacts of batches, with their effective masses and targets from the bodies
-    // at the start of the passes (starts and solverBodies, indexed by slotOfBody).
+    // at the start of the passes (starts and solverBodies, indexed by slotOfBody): Plan, then
+    // Fill of every row.
     void Build(std::span<const Contact> contacts, std::span<const uint32_t> slotOfBody,
                std::span<const BodyAtStart> starts, std::span<const SolverBody> solverBodies,
                const ContactBatches& batches, const SolverSettings& settings);
+    // Deals the contacts to rows (how many, and which lane holds which contact), without filling
+    // them. The arguments must outlive the Fill calls that follow.
+    void Plan(std::span<const Contact> contacts, std::span<const uint32_t> slotOfBody,
+              std::span<const BodyAtStart> starts, std::span<const SolverBody> solverBodies,
+              const ContactBatches& batches, const SolverSettings& settings);
+    // Fills rows [begin, end), which start and end at groups (RowBegin's): the solver fills a
+    // block's rows in its first pass, on the thread that then solves them, so that they are
+    // written where they are read instead of in another core's cache.
+    void Fill(uint32_t begin, uint32_t end);
 
     // The first row of manifold in colour color, which must be a group boundary of that colour
     // (GroupStart) or its end: rows [RowBegin(c, m0), RowBegin(c, m1)) hold manifolds [m0, m1).
@@ -102,6 +112,14 @@ class ContactRows {
     // Deals group g's manifolds to lanes: lane of each manifold in laneOf, returns the rows.
     uint32_t Deal(uint32_t group, std::span<uint8_t> laneOf) const;
 
+    void FillGroup(uint32_t group);
+
+    // Plan's inputs, for Fill.
+    std::span<const Contact> contacts_;
+    std::span<const uint32_t> slotOfBody_;
+    std::span<const BodyAtStart> starts_;
+    std::span<const SolverBody> solverBodies_;
+    const SolverSettings* settings_ = nullptr;
     const ContactBatches* batches_ = nullptr;
     std::vector<uint32_t> colorGroupBegin_;  // per colour, and the total at the end
     std::vector<uint32_t> groupColor_;

@@ -120,7 +120,7 @@ void SolveContacts(std::span<const uint32_t> slotOfBody, std::span<const BodyAtS
     const uint32_t colors = batches.Colors();
     if (colors == 0) return;
     ContactRows& rows = scratch.rows;
-    rows.Build(contacts, slotOfBody, starts, solverBodies, batches, settings);
+    rows.Plan(contacts, slotOfBody, starts, solverBodies, batches, settings);
     const int threads =
         batches.Manifolds() < kParallelManifolds ? 1 : StageRunner::AvailableThreads();
     const auto shareCount = static_cast<uint32_t>(threads);
@@ -151,6 +151,7 @@ void SolveContacts(std::span<const uint32_t> slotOfBody, std::span<const BodyAtS
         const ContactSolverScratch::Stage& stage = scratch.stages[stageIndex];
         const ContactSolverScratch::Block& rowsOf =
             scratch.blockRows[scratch.firstBlock[stage.span * shareCount + s] + block];
+        if (stage.pass == RowPass::kWarmStart) rows.Fill(rowsOf.rowBegin, rowsOf.rowEnd);
         rows.Solve(solverBodies, pseudo, rowsOf.rowBegin, rowsOf.rowEnd, stage.pass, rate);
         if (stage.writeBack) rows.WriteBack(contacts, rowsOf.rowBegin, rowsOf.rowEnd);
     });
