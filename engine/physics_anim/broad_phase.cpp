@@ -70,7 +70,8 @@ constexpr size_t kMaxDealChunks = 64;
 }  // namespace
 
 void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
-                              std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+                              std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+                              std::span<const uint32_t> names) {
     pairs.clear();
     if (boxes.size() < 2) {
         order_.assign(boxes.size(), {0.0f, 0});
@@ -128,8 +129,12 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
     }
     pairs.resize(pairStart_[strips.count]);
     tbb::parallel_for(uint32_t{0}, strips.count, [&](uint32_t strip) {
-        std::copy(stripPairs_[strip].begin(), stripPairs_[strip].end(),
-                  pairs.begin() + pairStart_[strip]);
+        auto out = pairs.begin() + pairStart_[strip];
+        if (names.empty()) {
+            std::copy(stripPairs_[strip].begin(), stripPairs_[strip].end(), out);
+            return;
+        }
+        for (const auto [i, j] : stripPairs_[strip]) *out++ = {names[i], names[j]};
     });
 }
 
@@ -225,6 +230,15 @@ void SweepAndPrune::Ranks(std::vector<uint32_t>& rankOfBox) const {
                       [&](const tbb::blocked_range<uint32_t>& r) {
                           for (uint32_t rank = r.begin(); rank < r.end(); ++rank) {
                               rankOfBox[order_[rank].box] = rank;
+                          }
+                      });
+}
+
+void SweepAndPrune::Ranks(std::span<const uint32_t> to, std::span<uint32_t> out) const {
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(order_.size()), 4096),
+                      [&](const tbb::blocked_range<uint32_t>& r) {
+                          for (uint32_t rank = r.begin(); rank < r.end(); ++rank) {
+                              out[to[order_[rank].box]] = rank;
                           }
                       });
 }

@@ -26,12 +26,16 @@ struct BroadPhaseBox {
 class SweepAndPrune {
   public:
     // Replaces pairs with every overlapping (i, j), i < j, that is not static-static; touching
-    // boxes (equal bounds) overlap.
+    // boxes (equal bounds) overlap. With names, box i is named names[i] in the pairs instead
+    // (names must increase with i, so that the pairs stay in order).
     void FindPairs(std::span<const BroadPhaseBox> boxes,
-                   std::vector<std::pair<uint32_t, uint32_t>>& pairs);
+                   std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+                   std::span<const uint32_t> names = {});
     // After FindPairs: each box's place in the sweep order, a spatial key (nearby boxes have
     // nearby ranks along the sweep axis).
     void Ranks(std::vector<uint32_t>& rankOfBox) const;
+    // The same ranks, each box's written to out[to[box]].
+    void Ranks(std::span<const uint32_t> to, std::span<uint32_t> out) const;
 
   private:
     struct Entry {

@@ -22,7 +22,8 @@ size_t ContactCache::Hash(uint64_t key) {
 void ContactCache::Index() {
     // At most half full, so that a probe ends within a few slots.
     const size_t slots = std::bit_ceil(std::max<size_t>(16, 2 * entries_.size()));
-    table_.assign(slots, Run{kEmpty, kEmpty});
+    table_.resize(slots);
+    ParallelFor(0, slots, 8192, [&](size_t slot) { table_[slot] = Run{kEmpty, kEmpty}; });
     mask_ = slots - 1;
     // In parallel, each run inserted by the thread that meets its first entry. A slot is claimed
     // for a key (the two indices) by a compare-and-swap; its run follows as one 64-bit store, so

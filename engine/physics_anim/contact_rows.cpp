@@ -469,6 +469,15 @@ void ContactRows::SolveRows(std::span<SolverBody> bodies, std::span<PseudoVeloci
         kPass == RowPass::kPosition || kPass == RowPass::kVelocityAndPosition;
     for (uint32_t r = begin; r < end; ++r) {
         ContactRow& row = rows_[r];
+        // The next row's bodies are fetched while this row is solved: its arithmetic depends on
+        // its own bodies' loads, and the stores to them would hold the next row's loads back.
+        if (r + 1 < end) {
+            const ContactRow& next = rows_[r + 1];
+            for (int l = 0; l < kLanes; ++l) {
+                _mm_prefetch(reinterpret_cast<const char*>(&bodies[next.slotA[l]]), _MM_HINT_T0);
+                _mm_prefetch(reinterpret_cast<const char*>(&bodies[next.slotB[l]]), _MM_HINT_T0);
+            }
+        }
         BodyLanes a = Gather(bodies, row.slotA);
         BodyLanes b = Gather(bodies, row.slotB);
         if constexpr (kPass == RowPass::kWarmStart) WarmStart(a, b, row);

@@ -100,9 +100,11 @@ void PlanBlocks(const ContactBatches& batches, const ContactRows& rows, uint32_t
 }  // namespace
 
 void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
-                        std::span<SolverBody> out, std::span<BodyAtStart> starts) {
+                        std::span<SolverBody> out, std::span<BodyAtStart> starts,
+                        std::span<PseudoVelocity> pseudo) {
     ParallelFor(0, bodies.size(), 1024, [&](size_t i) {
         const SimBody& s = bodies[i];
+        pseudo[slotOfBody[i]] = PseudoVelocity{};
         starts[slotOfBody[i]] = {s.position, s.friction, s.startVelocity, s.restitution,
                                  s.startAngularVelocity};
         SolverBody& b = out[slotOfBody[i]];

@@ -15,11 +15,12 @@
 namespace rtrt::physics {
 
 // The solver's view of the bodies at the start of the contact passes: body i goes to
-// out[slotOfBody[i]] and starts[slotOfBody[i]]. The caller orders the slots by place, so that the
-// bodies that one thread solves (a run of regions, see ContactBatches) lie together in memory and
-// share no cache line with another thread's.
+// out[slotOfBody[i]] and starts[slotOfBody[i]], and its pseudo velocity there starts at zero. The
+// caller orders the slots by place, so that the bodies that one thread solves (a run of regions,
+// see ContactBatches) lie together in memory and share no cache line with another thread's.
 void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
-                        std::span<SolverBody> out, std::span<BodyAtStart> starts);
+                        std::span<SolverBody> out, std::span<BodyAtStart> starts,
+                        std::span<PseudoVelocity> pseudo);
 
 // What SolveContacts keeps between steps, so that a step allocates nothing.
 struct ContactSolverScratch {

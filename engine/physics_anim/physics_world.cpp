@@ -115,9 +115,8 @@ void PhysicsWorld::TakeStep() {
     clock.Restart();
     solverBodies_.resize(bodies_.size());
     bodyStarts_.resize(bodies_.size());
-    GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_);
-    SeedFromLastStep();
-    pseudoVelocities_.assign(bodies_.size(), PseudoVelocity{});
+    pseudoVelocities_.resize(bodies_.size());
+    GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_, pseudoVelocities_);
     if (gpuSolver_) {
         gpuSolver_->Solve(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_,
                           batches_, solver_);
@@ -132,7 +131,6 @@ void PhysicsWorld::TakeStep() {
     times.solverMs += clock.Milliseconds();
     clock.Restart();
     IntegratePositions();
-    UpdateSleep();
     times.integrateMs += clock.Milliseconds();
 }
 
@@ -147,11 +145,6 @@ float PhysicsWorld::Margin(const SimBody& s) const {
 }
 
 void PhysicsWorld::FindPairs() {
-    broadBodies_.clear();
-    for (uint32_t i = 0; i < bodies_.size(); ++i) {
-        const SimBody& s = bodies_[i];
-        if (s.hasCollider && s.collider.shape != ColliderShape::kPlane) broadBodies_.push_back(i);
-    }
     boxes_.resize(broadBodies_.size());
     ParallelFor(0, broadBodies_.size(), kBodyGrain, [&](size_t k) {
         const SimBody& s = bodies_[broadBodies_[k]];
@@ -167,19 +160,13 @@ void PhysicsWorld::FindPairs() {
         extent += vec3(Margin(s));
         boxes_[k] = {s.position - extent, s.position + extent, !s.dynamic};
     });
-    sweep_.FindPairs(boxes_, pairs_);
-    sweep_.Ranks(boxRanks_);
+    sweep_.FindPairs(boxes_, pairs_, broadBodies_);
     // Solver slots in sweep order, then the bodies outside the broad phase (planes, bodies
     // without a collider) in body order.
     solverSlots_.resize(bodies_.size());
+    sweep_.Ranks(broadBodies_, solverSlots_);
     auto outside = static_cast<uint32_t>(broadBodies_.size());
-    for (uint32_t i = 0, k = 0; i < bodies_.size(); ++i) {
-        const bool inBroadPhase = k < broadBodies_.size() && broadBodies_[k] == i;
-        solverSlots_[i] = inBroadPhase ? boxRanks_[k++] : outside++;
-    }
-    ParallelFor(0, pairs_.size(), kPairGrain, [&](size_t k) {
-        pairs_[k] = {broadBodies_[pairs_[k].first], broadBodies_[pairs_[k].second]};
-    });
+    for (const uint32_t i : outsideBodies_) solverSlots_[i] = outside++;
     stats_.lastPairs = static_cast<uint32_t>(pairs_.size());
 }
 
@@ -228,8 +215,9 @@ void PhysicsWorld::IntegrateVelocities() {
         ClampLength(s.velocity, settings_.maxLinearSpeed);
         ClampLength(s.angularVelocity, settings_.maxAngularSpeed);
     });
+    // The flags, not the bodies: 1 byte each instead of a cache line.
     stats_.lastAwake = static_cast<uint32_t>(
-        std::count_if(bodies_.begin(), bodies_.end(), [](const SimBody& s) { return s.awake; }));
+        std::count_if(motion_.begin(), motion_.end(), [](uint8_t m) { return (m & kAwake) != 0; }));
 }
 
 void PhysicsWorld::FindContacts() {
@@ -243,7 +231,8 @@ void PhysicsWorld::CollideCandidates() {
     const float h = settings_.fixedStep;
     const size_t bodyCount = bodies_.size();
     candidates_.resize(pairs_.size() + planes_.size() * bodyCount);
-    ParallelFor(0, pairs_.size(), kPairGrain, [&](size_t k) {
+    candidatePoints_.resize(candidates_.size());
+    const auto collidePair = [&](size_t k) {
         const auto [i, j] = pairs_[k];
         Candidate& out = candidates_[k];
         out.manifold.count = 0;
@@ -286,6 +275,12 @@ void PhysicsWorld::CollideCandidates() {
             return;
         }
         m.count = 0;
+    };
+    // Each candidate's number of points beside it, so that LayOutContacts finds the hits in a
+    // byte array instead of a cache line per candidate.
+    ParallelFor(0, pairs_.size(), kPairGrain, [&](size_t k) {
+        collidePair(k);
+        candidatePoints_[k] = static_cast<uint8_t>(candidates_[k].manifold.count);
     });
     for (size_t p = 0; p < planes_.size(); ++p) {
         const uint32_t planeBody = planes_[p];
@@ -294,7 +289,7 @@ void PhysicsWorld::CollideCandidates() {
         shape.normal = glm::normalize(plane.orientation * plane.collider.normal);
         shape.offset = glm::dot(shape.normal, plane.position);
         Candidate* const row = candidates_.data() + pairs_.size() + p * bodyCount;
-        ParallelFor(0, bodyCount, kBodyGrain, [&](size_t i) {
+        const auto collidePlane = [&](size_t i) {
             Candidate& out = row[i];
             out.manifold.count = 0;
             const SimBody& s = bodies_[i];
@@ -319,6 +314,11 @@ void PhysicsWorld::CollideCandidates() {
                 }
             }
             m.count = 0;
+        };
+        uint8_t* const points = candidatePoints_.data() + pairs_.size() + p * bodyCount;
+        ParallelFor(0, bodyCount, kBodyGrain, [&](size_t i) {
+            collidePlane(i);
+            points[i] = static_cast<uint8_t>(row[i].manifold.count);
         });
     }
 }
@@ -337,8 +337,7 @@ void PhysicsWorld::LayOutContacts() {
     const uint64_t ranks = std::max<uint64_t>(1, boxes_.size());
     hits_.resize(candidates_.size());
     hits_.resize(ParallelCompact(
-        candidates_.size(), chunkStarts_,
-        [&](size_t k) { return candidates_[k].manifold.count > 0; },
+        candidates_.size(), chunkStarts_, [&](size_t k) { return candidatePoints_[k] > 0; },
         [&](size_t k, uint32_t out) {
             const Candidate& c = candidates_[k];
             const bool firstMoves = (motion_[c.first] & kAwake) != 0;
@@ -412,37 +411,34 @@ void PhysicsWorld::WriteContacts(const Candidate& candidate, Contact* out) const
                   0.0f,
                   0.0f};
     }
+    SeedFromLastStep(candidate, out);
 }
 
-void PhysicsWorld::SeedFromLastStep() {
+void PhysicsWorld::SeedFromLastStep(const Candidate& candidate, Contact* out) const {
+    const SimBody& a = bodies_[candidate.first];
+    const std::span<const CachedContact> cached =
+        cache_.Find(a.entity, bodies_[candidate.second].entity);
+    if (cached.empty()) return;
     const float maxDistance2 = settings_.warmStartDistance * settings_.warmStartDistance;
-    ParallelFor(0, batches_.Manifolds(), kPairGrain, [&](size_t m) {
-        const uint32_t begin = batches_.manifoldBegin[m];
-        const uint32_t end = batches_.manifoldBegin[m + 1];
-        const SimBody& a = bodies_[contacts_[begin].a];
-        const std::span<const CachedContact> cached =
-            cache_.Find(a.entity, bodies_[contacts_[begin].b].entity);
-        if (cached.empty()) return;
-        const glm::mat3 toLocal = glm::transpose(a.rotation);
-        for (uint32_t k = begin; k < end; ++k) {
-            Contact& c = contacts_[k];
-            const vec3 local = toLocal * (c.point - a.position);
-            const CachedContact* best = nullptr;
-            float bestDistance2 = maxDistance2;
-            for (const CachedContact& old : cached) {
-                const vec3 d = old.localPoint - local;
-                const float distance2 = glm::dot(d, d);
-                if (distance2 < bestDistance2) {
-                    bestDistance2 = distance2;
-                    best = &old;
-                }
+    const glm::mat3 toLocal = glm::transpose(a.rotation);
+    for (int k = 0; k < candidate.manifold.count; ++k) {
+        Contact& c = out[k];
+        const vec3 local = toLocal * (c.point - a.position);
+        const CachedContact* best = nullptr;
+        float bestDistance2 = maxDistance2;
+        for (const CachedContact& old : cached) {
+            const vec3 d = old.localPoint - local;
+            const float distance2 = glm::dot(d, d);
+            if (distance2 < bestDistance2) {
+                bestDistance2 = distance2;
+                best = &old;
             }
-            if (best == nullptr) continue;
-            c.normalImpulse = best->normalImpulse;
-            c.tangentImpulse1 = best->tangentImpulse1;
-            c.tangentImpulse2 = best->tangentImpulse2;
         }
-    });
+        if (best == nullptr) continue;
+        c.normalImpulse = best->normalImpulse;
+        c.tangentImpulse1 = best->tangentImpulse1;
+        c.tangentImpulse2 = best->tangentImpulse2;
+    }
 }
 
 void PhysicsWorld::RememberImpulses() {
@@ -469,6 +465,8 @@ void PhysicsWorld::RememberImpulses() {
 
 void PhysicsWorld::IntegratePositions() {
     const float h = settings_.fixedStep;
+    const float linear2 = settings_.sleepLinearSpeed * settings_.sleepLinearSpeed;
+    const float angular2 = settings_.sleepAngularSpeed * settings_.sleepAngularSpeed;
     ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
         SimBody& s = bodies_[i];
         if (!s.awake) return;
@@ -481,16 +479,7 @@ void PhysicsWorld::IntegratePositions() {
         // dq/dt = 1/2 (0, w) q, then renormalised.
         s.orientation = glm::normalize(s.orientation +
                                        glm::quat(0.0f, w.x, w.y, w.z) * s.orientation * (0.5f * h));
-    });
-}
-
-void PhysicsWorld::UpdateSleep() {
-    const float h = settings_.fixedStep;
-    const float linear2 = settings_.sleepLinearSpeed * settings_.sleepLinearSpeed;
-    const float angular2 = settings_.sleepAngularSpeed * settings_.sleepAngularSpeed;
-    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
-        SimBody& s = bodies_[i];
-        if (!s.awake) return;
+        // Sleep: a body slow for timeToSleep stops.
         const bool slow = glm::dot(s.velocity, s.velocity) < linear2 &&
                           glm::dot(s.angularVelocity, s.angularVelocity) < angular2;
         s.restingTime = slow ? s.restingTime + h : 0.0f;

@@ -142,11 +142,12 @@ class PhysicsWorld {
     };
     void CollideCandidates();
     void LayOutContacts();
+    // The candidate's contacts, with the impulses of last step's nearby contacts of the pair.
     void WriteContacts(const Candidate& candidate, Contact* out) const;
-    void SeedFromLastStep();
+    void SeedFromLastStep(const Candidate& candidate, Contact* out) const;
     void RememberImpulses();
+    // Positions from the solved velocities, then sleep (a body slow for timeToSleep stops).
     void IntegratePositions();
-    void UpdateSleep();
     void WriteBack(ecs::Registry& registry, float alpha);
     float Margin(const SimBody& body) const;
 
@@ -156,15 +157,23 @@ class PhysicsWorld {
     PhysicsStats stats_;
 
     std::vector<SimBody> bodies_;
+    struct BodyComponents {
+        Entity entity;
+        RigidBody* body;
+        LocalTransform* local;
+    };
+    std::vector<BodyComponents> components_;  // Gather's: each body's, in view order
     // Per body, kDynamic | kAwake | kResting as the step's serial passes need them (WakeTouched,
     // the colouring): 1 byte each instead of a cache miss on the body.
     std::vector<uint8_t> motion_;
-    std::vector<uint32_t> planes_;       // bodies with a plane collider
-    std::vector<uint8_t> moved_;         // WriteBack's: the body's transform changed
-    std::vector<uint32_t> broadBodies_;  // body of each broad-phase box
+    std::vector<uint32_t> planes_;         // bodies with a plane collider
+    std::vector<uint8_t> moved_;           // WriteBack's: the body's transform changed
+    std::vector<uint32_t> broadBodies_;    // body of each broad-phase box (Gather's)
+    std::vector<uint32_t> outsideBodies_;  // the others: planes, bodies without a collider
     std::vector<BroadPhaseBox> boxes_;
     std::vector<std::pair<uint32_t, uint32_t>> pairs_;  // body indices
     std::vector<Candidate> candidates_;                 // the pairs, then a row of bodies per plane
+    std::vector<uint8_t> candidatePoints_;              // each candidate's manifold.count
     struct Hit {
         uint32_t candidate;  // that has contacts
         uint32_t slot;       // colour * regions + region (LayOutContacts)
@@ -178,7 +187,6 @@ class PhysicsWorld {
     std::vector<Hit> hits_;
     std::vector<uint32_t> slotManifolds_;
     std::vector<uint32_t> slotPoints_;
-    std::vector<uint32_t> boxRanks_;     // each broad-phase box's place in the sweep
     std::vector<uint32_t> solverSlots_;  // each body's place among the solver bodies
     ContactColoring coloring_;
     std::vector<Contact> contacts_;  // colour by colour, as batches_ says

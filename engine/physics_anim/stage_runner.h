@@ -78,6 +78,12 @@ class StageRunner {
                 for (uint32_t k = 0; k < shares; ++k) {
                     const uint32_t share = (home + k) % shares;
                     std::atomic<uint32_t>& claimed = claimed_[t * shares + share].value;
+                    // Another share's counter is read before it is bumped: most are done by
+                    // then, and a read leaves the line shared where a bump would take it away
+                    // from every other thread that checks it.
+                    if (k > 0 && claimed.load(std::memory_order_relaxed) >= blocks[share]) {
+                        continue;
+                    }
                     for (uint32_t b = claimed.fetch_add(1, std::memory_order_relaxed);
                          b < blocks[share]; b = claimed.fetch_add(1, std::memory_order_relaxed)) {
                         work(t, share, b);

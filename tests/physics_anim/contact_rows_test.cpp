@@ -25,6 +25,7 @@ struct Scene {
     std::vector<uint32_t> slots;
     std::vector<SolverBody> solverBodies;
     std::vector<BodyAtStart> starts;
+    std::vector<PseudoVelocity> pseudo;
     std::vector<Contact> contacts;
     ContactBatches batches;
 
@@ -47,7 +48,8 @@ struct Scene {
     void Build(ContactRows& rows) {
         solverBodies.resize(bodies.size());
         starts.resize(bodies.size());
-        GatherSolverBodies(bodies, slots, solverBodies, starts);
+        pseudo.resize(bodies.size());
+        GatherSolverBodies(bodies, slots, solverBodies, starts, pseudo);
         rows.Build(contacts, slots, starts, solverBodies, batches, Settings());
     }
 };
