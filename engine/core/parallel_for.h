@@ -4,6 +4,7 @@
 // one CUDA thread per index. Bodies that run on both are RT_HD function objects.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include <cstddef>
 
@@ -15,6 +16,20 @@ void ParallelFor(size_t begin, size_t end, size_t grain, const Body& body) {
                       [&](const tbb::blocked_range<size_t>& r) {
                           for (size_t i = r.begin(); i != r.end(); ++i) body(i);
                       });
+}
+
+// The same, with TBB's affinity partitioner: loops over the same range that share one partitioner
+// run each chunk on the thread that ran it the last time, so that its data is still in that core's
+// cache.
+template <typename Body>
+void ParallelFor(size_t begin, size_t end, size_t grain, tbb::affinity_partitioner& affinity,
+                 const Body& body) {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(begin, end, grain),
+        [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i != r.end(); ++i) body(i);
+        },
+        affinity);
 }
 
 }  // namespace rtrt

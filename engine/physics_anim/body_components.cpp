@@ -27,7 +27,7 @@ void PhysicsWorld::Gather(Registry& registry) {
             components_.push_back({e, &rb, &local});
         });
     bodies_.resize(components_.size());
-    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+    ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
         SimBody& s = bodies_[i];
         const auto [e, body, transform] = components_[i];
         s = SimBody{};
@@ -89,7 +89,7 @@ void PhysicsWorld::WriteBack(Registry& registry, float alpha) {
     // In parallel, each body to its own components; then the moved transforms are marked in body
     // order.
     moved_.assign(bodies_.size(), 0);
-    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+    ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
         const SimBody& s = bodies_[i];
         if (!s.dynamic) return;
         RigidBody& rb = *s.body;

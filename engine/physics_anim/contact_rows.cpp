@@ -299,10 +299,16 @@ void FillLane(ContactRow& row, RollingLanes& rolling, int l, uint32_t k, const C
              row.tangentImpulse2 * row.tangent2);
 }
 
+// The lanes whose contact bounces: it touches (pushes) and approached faster than the threshold.
+[[gnu::always_inline]] inline LaneMask Bounces(const ContactRow& row) {
+    const Lanes zero = Splat(0.0f);
+    return (row.bounce > zero) & (row.normalImpulse > zero);
+}
+
 // A touching contact that approached faster than the threshold leaves at its bounce speed.
 [[gnu::always_inline]] inline void Restitute(BodyLanes& a, BodyLanes& b, ContactRow& row) {
     const Lanes zero = Splat(0.0f);
-    const LaneMask bounces = (row.bounce > zero) & (row.normalImpulse > zero);
+    const LaneMask bounces = Bounces(row);
     if (!AnyLane(bounces)) return;
     const Lanes vn = Dot(row.normal, RelativeVelocity(a, b, row));
     const Lanes impulse = Max(row.normalImpulse - row.normalMass * (vn - row.bounce), zero);
@@ -477,6 +483,10 @@ void ContactRows::SolveRows(std::span<SolverBody> bodies, std::span<PseudoVeloci
                 _mm_prefetch(reinterpret_cast<const char*>(&bodies[next.slotA[l]]), _MM_HINT_T0);
                 _mm_prefetch(reinterpret_cast<const char*>(&bodies[next.slotB[l]]), _MM_HINT_T0);
             }
+        }
+        if constexpr (kPass == RowPass::kRestitution) {
+            // Most rows have nothing to bounce: their bodies would be read and written unchanged.
+            if (!AnyLane(Bounces(row))) continue;
         }
         BodyLanes a = Gather(bodies, row.slotA);
         BodyLanes b = Gather(bodies, row.slotB);

@@ -101,8 +101,8 @@ void PlanBlocks(const ContactBatches& batches, const ContactRows& rows, uint32_t
 
 void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
                         std::span<SolverBody> out, std::span<BodyAtStart> starts,
-                        std::span<PseudoVelocity> pseudo) {
-    ParallelFor(0, bodies.size(), 1024, [&](size_t i) {
+                        std::span<PseudoVelocity> pseudo, tbb::affinity_partitioner& affinity) {
+    ParallelFor(0, bodies.size(), 1024, affinity, [&](size_t i) {
         const SimBody& s = bodies[i];
         pseudo[slotOfBody[i]] = PseudoVelocity{};
         starts[slotOfBody[i]] = {s.position, s.friction, s.startVelocity, s.restitution,

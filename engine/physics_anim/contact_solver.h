@@ -2,6 +2,8 @@
 // Sequential impulses over the step's contacts (Catto 2005, "Iterative Dynamics with Temporal
 // Coherence"): warm starting, Coulomb friction, rolling resistance, speculative contacts,
 // restitution, and split-impulse position correction. The arithmetic is in contact_rows.h.
+#include <tbb/partitioner.h>
+
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -20,7 +22,7 @@ namespace rtrt::physics {
 // see ContactBatches) lie together in memory and share no cache line with another thread's.
 void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
                         std::span<SolverBody> out, std::span<BodyAtStart> starts,
-                        std::span<PseudoVelocity> pseudo);
+                        std::span<PseudoVelocity> pseudo, tbb::affinity_partitioner& affinity);
 
 // What SolveContacts keeps between steps, so that a step allocates nothing.
 struct ContactSolverScratch {

@@ -92,7 +92,7 @@ void PhysicsWorld::TakeStep() {
     stats_.bodySteps += bodies_.size();
     stats_.lastBodies = static_cast<uint32_t>(bodies_.size());
     motion_.resize(bodies_.size());
-    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+    ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
         SimBody& s = bodies_[i];
         motion_[i] = MotionOf(s);
         s.previousPosition = s.position;
@@ -116,7 +116,8 @@ void PhysicsWorld::TakeStep() {
     solverBodies_.resize(bodies_.size());
     bodyStarts_.resize(bodies_.size());
     pseudoVelocities_.resize(bodies_.size());
-    GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_, pseudoVelocities_);
+    GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_, pseudoVelocities_,
+                       bodyAffinity_);
     if (gpuSolver_) {
         gpuSolver_->Solve(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_,
                           batches_, solver_);
@@ -146,7 +147,7 @@ float PhysicsWorld::Margin(const SimBody& s) const {
 
 void PhysicsWorld::FindPairs() {
     boxes_.resize(broadBodies_.size());
-    ParallelFor(0, broadBodies_.size(), kBodyGrain, [&](size_t k) {
+    ParallelFor(0, broadBodies_.size(), kBodyGrain, boxAffinity_, [&](size_t k) {
         const SimBody& s = bodies_[broadBodies_[k]];
         vec3 extent(s.collider.radius);
         if (s.collider.shape == ColliderShape::kBox) {
@@ -207,7 +208,7 @@ void PhysicsWorld::IntegrateVelocities() {
     const float h = settings_.fixedStep;
     const float linearDamping = 1.0f / (1.0f + h * settings_.linearDamping);
     const float angularDamping = 1.0f / (1.0f + h * settings_.angularDamping);
-    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+    ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
         SimBody& s = bodies_[i];
         if (!s.awake) return;
         s.velocity = (s.velocity + settings_.gravity * h) * linearDamping;
@@ -316,7 +317,7 @@ void PhysicsWorld::CollideCandidates() {
             m.count = 0;
         };
         uint8_t* const points = candidatePoints_.data() + pairs_.size() + p * bodyCount;
-        ParallelFor(0, bodyCount, kBodyGrain, [&](size_t i) {
+        ParallelFor(0, bodyCount, kBodyGrain, bodyAffinity_, [&](size_t i) {
             collidePlane(i);
             points[i] = static_cast<uint8_t>(row[i].manifold.count);
         });
@@ -344,10 +345,14 @@ void PhysicsWorld::LayOutContacts() {
             const bool secondMoves = (motion_[c.second] & kAwake) != 0;
             // A moving body has a collider, so its slot is its sweep rank.
             const uint64_t rank = solverSlots_[firstMoves ? c.first : c.second];
-            hits_[out] = {uint32_t(k), static_cast<uint32_t>(rank * kRegions / ranks),
-                          0,           c.first,
-                          c.second,    static_cast<uint8_t>(c.manifold.count),
-                          firstMoves,  secondMoves};
+            Hit& hit = hits_[out];
+            hit.candidate = static_cast<uint32_t>(k);
+            hit.slot = static_cast<uint32_t>(rank * kRegions / ranks);
+            hit.first = c.first;
+            hit.second = c.second;
+            hit.points = candidatePoints_[k];
+            hit.firstMoves = firstMoves;
+            hit.secondMoves = secondMoves;
         }));
     coloring_.Reset(static_cast<uint32_t>(bodies_.size()));
     slotManifolds_.assign(kSlots * kRegions, 0);
@@ -357,7 +362,9 @@ void PhysicsWorld::LayOutContacts() {
         const uint32_t color =
             coloring_.Assign(hit.first, hit.firstMoves, hit.second, hit.secondMoves);
         hit.slot += color * kRegions;  // the region, now with its colour
-        ++slotManifolds_[hit.slot];
+        // Places within the slot, made absolute once the slots' starts are known.
+        hit.manifold = slotManifolds_[hit.slot]++;
+        hit.firstPoint = slotPoints_[hit.slot];
         slotPoints_[hit.slot] += hit.points;
         ++colorManifolds[color];
     }
@@ -382,17 +389,13 @@ void PhysicsWorld::LayOutContacts() {
     }
     batches_.manifoldBegin.resize(manifoldTotal + 1);
     batches_.manifoldBegin[manifoldTotal] = pointTotal;
-    for (Hit& hit : hits_) {
-        const uint32_t manifold = slotManifolds_[hit.slot]++;
-        batches_.manifoldBegin[manifold] = slotPoints_[hit.slot];
-        slotPoints_[hit.slot] += hit.points;
-        hit.manifold = manifold;
-    }
     contacts_.resize(pointTotal);
     ParallelFor(0, hits_.size(), kPairGrain, [&](size_t k) {
-        const Hit& hit = hits_[k];
-        WriteContacts(candidates_[hit.candidate],
-                      contacts_.data() + batches_.manifoldBegin[hit.manifold]);
+        Hit& hit = hits_[k];
+        hit.manifold += slotManifolds_[hit.slot];
+        hit.firstPoint += slotPoints_[hit.slot];
+        batches_.manifoldBegin[hit.manifold] = hit.firstPoint;
+        WriteContacts(candidates_[hit.candidate], contacts_.data() + hit.firstPoint);
     });
 }
 
@@ -467,7 +470,7 @@ void PhysicsWorld::IntegratePositions() {
     const float h = settings_.fixedStep;
     const float linear2 = settings_.sleepLinearSpeed * settings_.sleepLinearSpeed;
     const float angular2 = settings_.sleepAngularSpeed * settings_.sleepAngularSpeed;
-    ParallelFor(0, bodies_.size(), kBodyGrain, [&](size_t i) {
+    ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
         SimBody& s = bodies_[i];
         if (!s.awake) return;
         const uint32_t slot = solverSlots_[i];

@@ -1,5 +1,7 @@
 #pragma once
 // The rigid-body simulation: fixed steps from an accumulator, interpolated rendering poses.
+#include <tbb/partitioner.h>
+
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -175,10 +177,11 @@ class PhysicsWorld {
     std::vector<Candidate> candidates_;                 // the pairs, then a row of bodies per plane
     std::vector<uint8_t> candidatePoints_;              // each candidate's manifold.count
     struct Hit {
-        uint32_t candidate;  // that has contacts
-        uint32_t slot;       // colour * regions + region (LayOutContacts)
-        uint32_t manifold;   // its place in batches_
-        uint32_t first;      // the candidate's bodies and points, for the serial passes
+        uint32_t candidate;   // that has contacts
+        uint32_t slot;        // colour * regions + region (LayOutContacts)
+        uint32_t manifold;    // its place in batches_
+        uint32_t firstPoint;  // its first contact's place in contacts_
+        uint32_t first;       // the candidate's bodies and points, for the serial passes
         uint32_t second;
         uint8_t points;
         bool firstMoves;
@@ -202,6 +205,10 @@ class PhysicsWorld {
     std::vector<uint32_t> chunkStarts_;   // ParallelCompact's scratch
     std::vector<uint32_t> sleeperPairs_;  // pairs_ holding a sleeper (WakeTouched)
     SweepAndPrune sweep_;
+    // The loops over bodies_ (and over the broad-phase boxes) run each chunk of bodies on the
+    // same thread from loop to loop, so that a body's cache lines stay with one core.
+    tbb::affinity_partitioner bodyAffinity_;
+    tbb::affinity_partitioner boxAffinity_;
 };
 
 // Adds world.Advance to phase "simulation" under the name "physics".

@@ -49,7 +49,8 @@ struct Scene {
         solverBodies.resize(bodies.size());
         starts.resize(bodies.size());
         pseudo.resize(bodies.size());
-        GatherSolverBodies(bodies, slots, solverBodies, starts, pseudo);
+        tbb::affinity_partitioner affinity;
+        GatherSolverBodies(bodies, slots, solverBodies, starts, pseudo, affinity);
         rows.Build(contacts, slots, starts, solverBodies, batches, Settings());
     }
 };
