@@ -118,6 +118,7 @@ void PhysicsWorld::TakeStep() {
     pseudoVelocities_.resize(bodies_.size());
     GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_, pseudoVelocities_,
                        bodyAffinity_);
+    SeedFromLastStep();
     if (gpuSolver_) {
         gpuSolver_->Solve(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_,
                           batches_, solver_);
@@ -414,34 +415,37 @@ void PhysicsWorld::WriteContacts(const Candidate& candidate, Contact* out) const
                   0.0f,
                   0.0f};
     }
-    SeedFromLastStep(candidate, out);
 }
 
-void PhysicsWorld::SeedFromLastStep(const Candidate& candidate, Contact* out) const {
-    const SimBody& a = bodies_[candidate.first];
-    const std::span<const CachedContact> cached =
-        cache_.Find(a.entity, bodies_[candidate.second].entity);
-    if (cached.empty()) return;
+void PhysicsWorld::SeedFromLastStep() {
     const float maxDistance2 = settings_.warmStartDistance * settings_.warmStartDistance;
-    const glm::mat3 toLocal = glm::transpose(a.rotation);
-    for (int k = 0; k < candidate.manifold.count; ++k) {
-        Contact& c = out[k];
-        const vec3 local = toLocal * (c.point - a.position);
-        const CachedContact* best = nullptr;
-        float bestDistance2 = maxDistance2;
-        for (const CachedContact& old : cached) {
-            const vec3 d = old.localPoint - local;
-            const float distance2 = glm::dot(d, d);
-            if (distance2 < bestDistance2) {
-                bestDistance2 = distance2;
-                best = &old;
+    ParallelFor(0, batches_.Manifolds(), kPairGrain, [&](size_t m) {
+        const uint32_t begin = batches_.manifoldBegin[m];
+        const uint32_t end = batches_.manifoldBegin[m + 1];
+        const SimBody& a = bodies_[contacts_[begin].a];
+        const std::span<const CachedContact> cached =
+            cache_.Find(a.entity, bodies_[contacts_[begin].b].entity);
+        if (cached.empty()) return;
+        const glm::mat3 toLocal = glm::transpose(a.rotation);
+        for (uint32_t k = begin; k < end; ++k) {
+            Contact& c = contacts_[k];
+            const vec3 local = toLocal * (c.point - a.position);
+            const CachedContact* best = nullptr;
+            float bestDistance2 = maxDistance2;
+            for (const CachedContact& old : cached) {
+                const vec3 d = old.localPoint - local;
+                const float distance2 = glm::dot(d, d);
+                if (distance2 < bestDistance2) {
+                    bestDistance2 = distance2;
+                    best = &old;
+                }
             }
+            if (best == nullptr) continue;
+            c.normalImpulse = best->normalImpulse;
+            c.tangentImpulse1 = best->tangentImpulse1;
+            c.tangentImpulse2 = best->tangentImpulse2;
         }
-        if (best == nullptr) continue;
-        c.normalImpulse = best->normalImpulse;
-        c.tangentImpulse1 = best->tangentImpulse1;
-        c.tangentImpulse2 = best->tangentImpulse2;
-    }
+    });
 }
 
 void PhysicsWorld::RememberImpulses() {

@@ -144,9 +144,9 @@ class PhysicsWorld {
     };
     void CollideCandidates();
     void LayOutContacts();
-    // The candidate's contacts, with the impulses of last step's nearby contacts of the pair.
     void WriteContacts(const Candidate& candidate, Contact* out) const;
-    void SeedFromLastStep(const Candidate& candidate, Contact* out) const;
+    // Each contact starts from the impulses of last step's nearby contact of the pair, if any.
+    void SeedFromLastStep();
     void RememberImpulses();
     // Positions from the solved velocities, then sleep (a body slow for timeToSleep stops).
     void IntegratePositions();
