@@ -121,6 +121,30 @@ TEST(BroadPhaseTest, StripsFindEachPairOnceAmongLargeAndTouchingBoxes) {
     EXPECT_EQ(found, BruteForce(boxes));
 }
 
+// Named boxes: the same pairs in the same order with each index replaced by its name, and each
+// box's rank written under its name.
+TEST(BroadPhaseTest, NamedBoxesGiveTheIndexPairsRenamed) {
+    const std::vector<BroadPhaseBox> boxes = RandomBoxes(1500, 4);
+    std::vector<uint32_t> names(boxes.size());
+    for (uint32_t i = 0; i < names.size(); ++i) names[i] = 3 * i + 1 + (i % 2);  // increasing
+    SweepAndPrune byIndex;
+    Pairs indexed;
+    byIndex.FindPairs(boxes, indexed);
+    SweepAndPrune byName;
+    Pairs named;
+    byName.FindPairs(boxes, named, names);
+    ASSERT_EQ(named.size(), indexed.size());
+    ASSERT_FALSE(named.empty());
+    for (size_t k = 0; k < named.size(); ++k) {
+        EXPECT_EQ(named[k], std::make_pair(names[indexed[k].first], names[indexed[k].second]));
+    }
+    std::vector<uint32_t> ranks;
+    byIndex.Ranks(ranks);
+    std::vector<uint32_t> rankByName(names.back() + 1, ~0u);
+    byName.Ranks(names, rankByName);
+    for (uint32_t i = 0; i < boxes.size(); ++i) EXPECT_EQ(rankByName[names[i]], ranks[i]);
+}
+
 TEST(BroadPhaseTest, TouchingBoxesPairButStaticPairsDoNot) {
     std::vector<BroadPhaseBox> boxes{
         {vec3(0.0f), vec3(1.0f), false},

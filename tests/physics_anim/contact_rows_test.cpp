@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
 #include <map>
 #include <numeric>
 #include <set>
@@ -112,6 +114,46 @@ TEST(ContactRowsTest, ManifoldsWithMostContactsAreDealtFirst) {
     ContactRows rows;
     scene.Build(rows);
     EXPECT_EQ(rows.Rows(), 8u);
+}
+
+// The solver fills rows block by block (Plan, then Fill of group-aligned ranges, in any order):
+// the same rows, byte for byte, as Build.
+TEST(ContactRowsTest, FillingBlocksInAnyOrderGivesBuildsRows) {
+    Scene scene(400);
+    for (uint32_t i = 0; i < 100; ++i) scene.AddManifold(2 * i, 2 * i + 1, int(i * 3 % 8) + 1);
+    scene.EndColor();
+    for (uint32_t i = 0; i < 50; ++i) scene.AddManifold(200 + i, 300 + i, int(i % 4) + 1);
+    scene.EndColor();
+    for (uint32_t k = 0; k < scene.contacts.size(); ++k) {
+        scene.contacts[k].normalImpulse = 0.5f + 0.01f * float(k);
+        scene.contacts[k].separation = 0.02f - 0.001f * float(k % 40);
+    }
+    ContactRows built;
+    scene.Build(built);
+    ContactRows planned;
+    const SolverSettings settings = Settings();  // Plan keeps its inputs for Fill
+    planned.Plan(scene.contacts, scene.slots, scene.starts, scene.solverBodies, scene.batches,
+                 settings);
+    ASSERT_EQ(planned.Rows(), built.Rows());
+    // Blocks of two groups each (and what is left), filled last first.
+    const ContactBatches& b = scene.batches;
+    std::vector<std::pair<uint32_t, uint32_t>> blocks;
+    for (uint32_t color = 0; color < b.Colors(); ++color) {
+        for (uint32_t m = b.colorBegin[color]; m < b.colorBegin[color + 1];
+             m += 2 * ContactRows::kGroupManifolds) {
+            const uint32_t end =
+                std::min(b.colorBegin[color + 1], m + 2 * ContactRows::kGroupManifolds);
+            blocks.emplace_back(planned.RowBegin(color, m), planned.RowBegin(color, end));
+        }
+    }
+    ASSERT_GT(blocks.size(), 2u);
+    for (auto block = blocks.rbegin(); block != blocks.rend(); ++block) {
+        planned.Fill(block->first, block->second);
+    }
+    for (uint32_t r = 0; r < built.Rows(); ++r) {
+        EXPECT_EQ(std::memcmp(&planned.Row(r), &built.Row(r), sizeof(ContactRow)), 0)
+            << "row " << r;
+    }
 }
 
 TEST(ContactRowsTest, NormalImpulseStopsABodyOrLetsItCloseItsGap) {
