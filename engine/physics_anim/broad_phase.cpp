@@ -9,26 +9,57 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 namespace rtrt::physics {
 
 namespace {
 
-// The axes ordered by the variance of the box centres, largest first (computed in double: many
-// boxes far from the origin would lose the variance to cancellation in float).
-std::array<int, 3> AxesBySpread(std::span<const BroadPhaseBox> boxes) {
+// The spread of the box centres (sums in double: many boxes far from the origin would lose the
+// variance to cancellation in float) and the bounds of all boxes, in one parallel pass. The
+// deterministic reduce cuts the boxes the same way on any number of threads, so the sums are
+// the same bits.
+struct Spread {
     double sum[3] = {0.0, 0.0, 0.0};
     double sumSquares[3] = {0.0, 0.0, 0.0};
-    for (const BroadPhaseBox& box : boxes) {
-        for (int k = 0; k < 3; ++k) {
-            const double c = 0.5 * (static_cast<double>(box.min[k]) + box.max[k]);
-            sum[k] += c;
-            sumSquares[k] += c * c;
-        }
-    }
-    const auto n = static_cast<double>(boxes.size());
+    vec3 low{std::numeric_limits<float>::infinity()};
+    vec3 high{-std::numeric_limits<float>::infinity()};
+};
+
+Spread SpreadOf(std::span<const BroadPhaseBox> boxes) {
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<size_t>(0, boxes.size(), 2048), Spread{},
+        [&](const tbb::blocked_range<size_t>& r, Spread s) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const BroadPhaseBox& box = boxes[i];
+                for (int k = 0; k < 3; ++k) {
+                    const double c = 0.5 * (static_cast<double>(box.min[k]) + box.max[k]);
+                    s.sum[k] += c;
+                    s.sumSquares[k] += c * c;
+                }
+                s.low = glm::min(s.low, box.min);
+                s.high = glm::max(s.high, box.max);
+            }
+            return s;
+        },
+        [](Spread a, const Spread& b) {
+            for (int k = 0; k < 3; ++k) {
+                a.sum[k] += b.sum[k];
+                a.sumSquares[k] += b.sumSquares[k];
+            }
+            a.low = glm::min(a.low, b.low);
+            a.high = glm::max(a.high, b.high);
+            return a;
+        });
+}
+
+// The axes ordered by the variance of the box centres, largest first.
+std::array<int, 3> AxesBySpread(const Spread& spread, size_t boxes) {
+    const auto n = static_cast<double>(boxes);
     double variance[3];
-    for (int k = 0; k < 3; ++k) variance[k] = sumSquares[k] / n - (sum[k] / n) * (sum[k] / n);
+    for (int k = 0; k < 3; ++k) {
+        variance[k] = spread.sumSquares[k] / n - (spread.sum[k] / n) * (spread.sum[k] / n);
+    }
     std::array<int, 3> axes{0, 1, 2};
     std::stable_sort(axes.begin(), axes.end(),
                      [&](int a, int b) { return variance[a] > variance[b]; });
@@ -77,7 +108,8 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
         order_.assign(boxes.size(), {0.0f, 0});
         return;
     }
-    const std::array<int, 3> axes = AxesBySpread(boxes);
+    const Spread spread = SpreadOf(boxes);
+    const std::array<int, 3> axes = AxesBySpread(spread, boxes.size());
     const int axis = axes[0];
     const int stripAxis = axes[1];
     const int other2 = axes[2];
@@ -90,7 +122,12 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
     };
     const bool coherent = order_.size() == boxes.size() && axis == lastAxis_;
     if (coherent) {
-        for (Entry& entry : order_) entry.min = boxes[entry.box].min[axis];
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, order_.size(), 4096),
+                          [&](const tbb::blocked_range<size_t>& r) {
+                              for (size_t i = r.begin(); i < r.end(); ++i) {
+                                  order_[i].min = boxes[order_[i].box].min[axis];
+                              }
+                          });
     } else {
         order_.resize(boxes.size());
         for (uint32_t i = 0; i < boxes.size(); ++i) order_[i] = {boxes[i].min[axis], i};
@@ -99,7 +136,8 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
     if (!coherent || !SortByInsertion(order_, kMaxInsertionShiftsPerBox * order_.size(), before)) {
         tbb::parallel_sort(order_.begin(), order_.end(), before);
     }
-    const Strips strips = PlanStrips(boxes, stripAxis);
+    const Strips strips =
+        PlanStrips(boxes, stripAxis, spread.low[stripAxis], spread.high[stripAxis]);
     DealIntoStrips(boxes, strips, axis, stripAxis, other2);
     // Each strip swept on its own, its pairs kept apart and joined in strip order: the same pairs
     // in the same order on any number of threads. Two boxes that share several strips are paired
@@ -185,16 +223,10 @@ void SweepAndPrune::DealIntoStrips(std::span<const BroadPhaseBox> boxes, const S
     });
 }
 
-SweepAndPrune::Strips SweepAndPrune::PlanStrips(std::span<const BroadPhaseBox> boxes,
-                                                int stripAxis) {
+SweepAndPrune::Strips SweepAndPrune::PlanStrips(std::span<const BroadPhaseBox> boxes, int stripAxis,
+                                                float low, float high) {
     Strips one;
     const size_t n = boxes.size();
-    float low = boxes[0].min[stripAxis];
-    float high = boxes[0].max[stripAxis];
-    for (const BroadPhaseBox& box : boxes) {
-        low = std::min(low, box.min[stripAxis]);
-        high = std::max(high, box.max[stripAxis]);
-    }
     // Strips twice as wide as the median box, so that most boxes lie in one or two; the median
     // of an even sample of at most kWidthSamples boxes is as good a guide.
     const size_t stride = (n + kWidthSamples - 1) / kWidthSamples;

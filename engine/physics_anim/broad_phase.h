@@ -59,7 +59,8 @@ class SweepAndPrune {
             return k >= static_cast<float>(count) ? count - 1 : static_cast<uint32_t>(k);
         }
     };
-    Strips PlanStrips(std::span<const BroadPhaseBox> boxes, int stripAxis);
+    // low and high: the boxes' bounds on the strip axis.
+    Strips PlanStrips(std::span<const BroadPhaseBox> boxes, int stripAxis, float low, float high);
     // Fills sorted_ and stripBegin_ from order_.
     void DealIntoStrips(std::span<const BroadPhaseBox> boxes, const Strips& strips, int axis,
                         int stripAxis, int other2);

@@ -1,5 +1,7 @@
 #include "engine/physics_anim/physics_world.h"
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -74,35 +76,35 @@ void PhysicsWorld::Advance(Registry& registry, float frameDt) {
     if (accumulator_ >= step) accumulator_ = std::fmod(accumulator_, step);  // drop what is late
 
     stats_.lastTimes = {};
-    Gather(registry);
-    for (int i = 0; i < steps; ++i) TakeStep();
+    Gather(registry, steps > 0);
+    for (int i = 0; i < steps; ++i) TakeStep(i + 1 < steps);
     WriteBack(registry, InterpolationAlpha());
 }
 
 void PhysicsWorld::Step(Registry& registry, int steps) {
     if (registry.Count<RigidBody>() == 0) return;
     stats_.lastTimes = {};
-    Gather(registry);
-    for (int i = 0; i < steps; ++i) TakeStep();
+    Gather(registry, steps > 0);
+    for (int i = 0; i < steps; ++i) TakeStep(i + 1 < steps);
     WriteBack(registry, 1.0f);
 }
 
-void PhysicsWorld::TakeStep() {
+void PhysicsWorld::StartStep(size_t i) {
+    SimBody& s = bodies_[i];
+    motion_[i] = MotionOf(s);
+    s.previousPosition = s.position;
+    s.previousOrientation = s.orientation;
+    s.rotation = glm::mat3_cast(s.orientation);
+    s.startVelocity = s.velocity;
+    s.startAngularVelocity = s.angularVelocity;
+    s.invInertiaWorld =
+        s.awake ? WorldInverseInertia(s.rotation, s.invInertiaLocal) : glm::mat3(0.0f);
+}
+
+void PhysicsWorld::TakeStep(bool anotherFollows) {
     ++stats_.steps;
     stats_.bodySteps += bodies_.size();
     stats_.lastBodies = static_cast<uint32_t>(bodies_.size());
-    motion_.resize(bodies_.size());
-    ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
-        SimBody& s = bodies_[i];
-        motion_[i] = MotionOf(s);
-        s.previousPosition = s.position;
-        s.previousOrientation = s.orientation;
-        s.rotation = glm::mat3_cast(s.orientation);
-        s.startVelocity = s.velocity;
-        s.startAngularVelocity = s.angularVelocity;
-        s.invInertiaWorld =
-            s.awake ? WorldInverseInertia(s.rotation, s.invInertiaLocal) : glm::mat3(0.0f);
-    });
     PhysicsTimes& times = stats_.lastTimes;
     Stopwatch clock;
     FindPairs();
@@ -113,11 +115,6 @@ void PhysicsWorld::TakeStep() {
     FindContacts();
     times.narrowPhaseMs += clock.Milliseconds();
     clock.Restart();
-    solverBodies_.resize(bodies_.size());
-    bodyStarts_.resize(bodies_.size());
-    pseudoVelocities_.resize(bodies_.size());
-    GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_, pseudoVelocities_,
-                       bodyAffinity_);
     SeedFromLastStep();
     if (gpuSolver_) {
         gpuSolver_->Solve(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_,
@@ -132,7 +129,7 @@ void PhysicsWorld::TakeStep() {
     RememberImpulses();
     times.solverMs += clock.Milliseconds();
     clock.Restart();
-    IntegratePositions();
+    IntegratePositions(anotherFollows);
     times.integrateMs += clock.Milliseconds();
 }
 
@@ -355,6 +352,16 @@ void PhysicsWorld::LayOutContacts() {
             hit.firstMoves = firstMoves;
             hit.secondMoves = secondMoves;
         }));
+    // The other threads gather the solver's bodies while this one colours: the colouring is
+    // serial, and the two share nothing.
+    solverBodies_.resize(bodies_.size());
+    bodyStarts_.resize(bodies_.size());
+    pseudoVelocities_.resize(bodies_.size());
+    tbb::task_group gatherer;
+    gatherer.run([&] {
+        GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_, pseudoVelocities_,
+                           bodyAffinity_);
+    });
     coloring_.Reset(static_cast<uint32_t>(bodies_.size()));
     slotManifolds_.assign(kSlots * kRegions, 0);
     slotPoints_.assign(kSlots * kRegions, 0);
@@ -369,6 +376,7 @@ void PhysicsWorld::LayOutContacts() {
         slotPoints_[hit.slot] += hit.points;
         ++colorManifolds[color];
     }
+    gatherer.wait();
     batches_.colorBegin.assign(1, 0);
     batches_.regionBegin.clear();
     batches_.regions = kRegions;
@@ -450,10 +458,12 @@ void PhysicsWorld::SeedFromLastStep() {
 
 void PhysicsWorld::RememberImpulses() {
     // The contacts that pushed, in contact order (the same on any number of threads), so each
-    // manifold's stay together.
+    // manifold's stay together. A manifold's first kept contact adds its run to the cache's
+    // table as it is written, instead of a pass over the entries afterwards to find the runs.
     auto pushed = [&](size_t k) { return contacts_[k].normalImpulse > 0.0f; };
     std::vector<CachedContact>& entries = nextCache_.Entries();
     entries.resize(contacts_.size());
+    nextCache_.ClearTable(contacts_.size());
     const uint32_t kept =
         ParallelCompact(contacts_.size(), chunkStarts_, pushed, [&](size_t k, uint32_t out) {
             const Contact& c = contacts_[k];
@@ -464,20 +474,26 @@ void PhysicsWorld::RememberImpulses() {
                             c.normalImpulse,
                             c.tangentImpulse1,
                             c.tangentImpulse2};
+            // A manifold's contacts are the pair's, one after another.
+            const auto samePair = [&](size_t j) {
+                return contacts_[j].a == c.a && contacts_[j].b == c.b;
+            };
+            for (size_t j = k; j-- > 0 && samePair(j);) {
+                if (pushed(j)) return;  // not the manifold's first kept contact
+            }
+            uint32_t end = out + 1;
+            for (size_t j = k + 1; j < contacts_.size() && samePair(j); ++j) end += pushed(j);
+            nextCache_.AddRun(out, end);
         });
     entries.resize(kept);
-    nextCache_.Index();
     std::swap(cache_, nextCache_);
 }
 
-void PhysicsWorld::IntegratePositions() {
+void PhysicsWorld::IntegratePositions(bool anotherFollows) {
     const float h = settings_.fixedStep;
     const float linear2 = settings_.sleepLinearSpeed * settings_.sleepLinearSpeed;
     const float angular2 = settings_.sleepAngularSpeed * settings_.sleepAngularSpeed;
-    ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
-        SimBody& s = bodies_[i];
-        if (!s.awake) return;
-        const uint32_t slot = solverSlots_[i];
+    const auto integrate = [&](SimBody& s, uint32_t slot) {
         s.velocity = solverBodies_[slot].velocity;
         s.angularVelocity = solverBodies_[slot].angularVelocity;
         const PseudoVelocity& pseudo = pseudoVelocities_[slot];
@@ -495,6 +511,11 @@ void PhysicsWorld::IntegratePositions() {
             s.velocity = vec3(0.0f);
             s.angularVelocity = vec3(0.0f);
         }
+    };
+    ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
+        SimBody& s = bodies_[i];
+        if (s.awake) integrate(s, solverSlots_[i]);
+        if (anotherFollows) StartStep(i);
     });
 }
 

@@ -128,8 +128,14 @@ class PhysicsWorld {
     }
 
   private:
-    void Gather(ecs::Registry& registry);
-    void TakeStep();
+    // stepFollows: a step follows (StartStep is done for it while the bodies are filled).
+    void Gather(ecs::Registry& registry, bool stepFollows);
+    // A body's state at the start of a step: its motion flags, the pose and velocities the step
+    // starts from, its rotation matrix and world inverse inertia. Per body, so that it rides in
+    // the loop over the bodies before the step (the gathering, or the last step's positions).
+    void StartStep(size_t body);
+    // anotherFollows: the frame takes another step after this one.
+    void TakeStep(bool anotherFollows);
     void FindPairs();
     void WakeTouched();
     void IntegrateVelocities();
@@ -148,8 +154,9 @@ class PhysicsWorld {
     // Each contact starts from the impulses of last step's nearby contact of the pair, if any.
     void SeedFromLastStep();
     void RememberImpulses();
-    // Positions from the solved velocities, then sleep (a body slow for timeToSleep stops).
-    void IntegratePositions();
+    // Positions from the solved velocities, then sleep (a body slow for timeToSleep stops); then
+    // StartStep when another step follows.
+    void IntegratePositions(bool anotherFollows);
     void WriteBack(ecs::Registry& registry, float alpha);
     float Margin(const SimBody& body) const;
 
@@ -170,6 +177,7 @@ class PhysicsWorld {
     std::vector<uint8_t> motion_;
     std::vector<uint32_t> planes_;         // bodies with a plane collider
     std::vector<uint8_t> moved_;           // WriteBack's: the body's transform changed
+    std::vector<uint8_t> places_;          // Gather's: each body's list (broad phase or not)
     std::vector<uint32_t> broadBodies_;    // body of each broad-phase box (Gather's)
     std::vector<uint32_t> outsideBodies_;  // the others: planes, bodies without a collider
     std::vector<BroadPhaseBox> boxes_;
