@@ -19,17 +19,17 @@ size_t ContactCache::Hash(uint64_t key) {
     return static_cast<size_t>(key);
 }
 
-void ContactCache::ClearTable(size_t maxEntries) {
+void ContactCache::Index() {
     // At most half full, so that a probe ends within a few slots.
-    const size_t slots = std::bit_ceil(std::max<size_t>(16, 2 * maxEntries));
+    const size_t slots = std::bit_ceil(std::max<size_t>(16, 2 * entries_.size()));
     table_.resize(slots);
     ParallelFor(0, slots, 8192, [&](size_t slot) { table_[slot] = Run{kEmpty, kEmpty}; });
     mask_ = slots - 1;
-}
-
-void ContactCache::Index() {
-    ClearTable(entries_.size());
-    // In parallel, each run added by the thread that meets its first entry.
+    // In parallel, each run inserted by the thread that meets its first entry. A slot is claimed
+    // for a key (the two indices) by a compare-and-swap; its run follows as one 64-bit store, so
+    // a thread that finds the key waits for the run before it compares entities (the same indices
+    // may name other generations: another pair, which probes on). A pair in two runs keeps its
+    // first, by an atomic minimum. Slots may differ from run to run; what Find returns does not.
     ParallelFor(0, entries_.size(), 2048, [&](size_t begin) {
         const CachedContact& first = entries_[begin];
         if (begin > 0 && entries_[begin - 1].a == first.a && entries_[begin - 1].b == first.b) {
@@ -39,38 +39,28 @@ void ContactCache::Index() {
         while (end < entries_.size() && entries_[end].a == first.a && entries_[end].b == first.b) {
             ++end;
         }
-        AddRun(static_cast<uint32_t>(begin), static_cast<uint32_t>(end));
-    });
-}
-
-void ContactCache::AddRun(uint32_t begin, uint32_t end) {
-    // A slot is claimed for a key (the two indices) by a compare-and-swap; its run follows as one
-    // 64-bit store, so a thread that finds the key waits for the run before it compares entities
-    // (the same indices may name other generations: another pair, which probes on). A pair in two
-    // runs keeps its first, by an atomic minimum. Slots may differ from run to run; what Find
-    // returns does not.
-    const CachedContact& first = entries_[begin];
-    const uint64_t key = Key(first.a, first.b);
-    const uint64_t span = (uint64_t{begin} << 32) | end;
-    for (size_t slot = Hash(key) & mask_;; slot = (slot + 1) & mask_) {
-        std::atomic_ref<uint64_t> slotKey(table_[slot].key);
-        std::atomic_ref<uint64_t> slotSpan(table_[slot].span);
-        uint64_t held = kEmpty;
-        if (slotKey.compare_exchange_strong(held, key, std::memory_order_acq_rel)) {
-            uint64_t current = kEmpty;
+        const uint64_t key = Key(first.a, first.b);
+        const uint64_t span = (uint64_t{begin} << 32) | end;
+        for (size_t slot = Hash(key) & mask_;; slot = (slot + 1) & mask_) {
+            std::atomic_ref<uint64_t> slotKey(table_[slot].key);
+            std::atomic_ref<uint64_t> slotSpan(table_[slot].span);
+            uint64_t held = kEmpty;
+            if (slotKey.compare_exchange_strong(held, key, std::memory_order_acq_rel)) {
+                uint64_t current = kEmpty;
+                while (span < current && !slotSpan.compare_exchange_weak(current, span)) {
+                }
+                return;
+            }
+            if (held != key) continue;
+            uint64_t current = slotSpan.load(std::memory_order_acquire);
+            while (current == kEmpty) current = slotSpan.load(std::memory_order_acquire);
+            const CachedContact& owner = entries_[current >> 32];
+            if (owner.a != first.a || owner.b != first.b) continue;
             while (span < current && !slotSpan.compare_exchange_weak(current, span)) {
             }
             return;
         }
-        if (held != key) continue;
-        uint64_t current = slotSpan.load(std::memory_order_acquire);
-        while (current == kEmpty) current = slotSpan.load(std::memory_order_acquire);
-        const CachedContact& owner = entries_[current >> 32];
-        if (owner.a != first.a || owner.b != first.b) continue;
-        while (span < current && !slotSpan.compare_exchange_weak(current, span)) {
-        }
-        return;
-    }
+    });
 }
 
 std::span<const CachedContact> ContactCache::Find(ecs::Entity a, ecs::Entity b) const {

@@ -22,17 +22,11 @@ struct CachedContact {
 
 class ContactCache {
   public:
-    // Filled by the caller, each pair's contacts in one run; Index() must follow, or the runs
-    // are added as they are written (ClearTable, then AddRun).
+    // Filled by the caller, each pair's contacts in one run; Index() must follow.
     std::vector<CachedContact>& Entries() { return entries_; }
     // Builds the table of runs (an open-addressing hash table, linear probing), in parallel. A
     // pair that appears in two runs is found with its first.
     void Index();
-    // Empties the table, sized for at most maxEntries entries.
-    void ClearTable(size_t maxEntries);
-    // Adds the run of entries [begin, end), whose first entry is written; safe to call from
-    // several threads at once (not at once with Find).
-    void AddRun(uint32_t begin, uint32_t end);
     // The contacts of (a, b) in that order, or none.
     std::span<const CachedContact> Find(ecs::Entity a, ecs::Entity b) const;
 

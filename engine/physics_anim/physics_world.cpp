@@ -1,7 +1,5 @@
 #include "engine/physics_anim/physics_world.h"
 
-#include <tbb/task_group.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -115,6 +113,11 @@ void PhysicsWorld::TakeStep(bool anotherFollows) {
     FindContacts();
     times.narrowPhaseMs += clock.Milliseconds();
     clock.Restart();
+    solverBodies_.resize(bodies_.size());
+    bodyStarts_.resize(bodies_.size());
+    pseudoVelocities_.resize(bodies_.size());
+    GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_, pseudoVelocities_,
+                       bodyAffinity_);
     SeedFromLastStep();
     if (gpuSolver_) {
         gpuSolver_->Solve(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_,
@@ -352,16 +355,6 @@ void PhysicsWorld::LayOutContacts() {
             hit.firstMoves = firstMoves;
             hit.secondMoves = secondMoves;
         }));
-    // The other threads gather the solver's bodies while this one colours: the colouring is
-    // serial, and the two share nothing.
-    solverBodies_.resize(bodies_.size());
-    bodyStarts_.resize(bodies_.size());
-    pseudoVelocities_.resize(bodies_.size());
-    tbb::task_group gatherer;
-    gatherer.run([&] {
-        GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_, pseudoVelocities_,
-                           bodyAffinity_);
-    });
     coloring_.Reset(static_cast<uint32_t>(bodies_.size()));
     slotManifolds_.assign(kSlots * kRegions, 0);
     slotPoints_.assign(kSlots * kRegions, 0);
@@ -376,7 +369,6 @@ void PhysicsWorld::LayOutContacts() {
         slotPoints_[hit.slot] += hit.points;
         ++colorManifolds[color];
     }
-    gatherer.wait();
     batches_.colorBegin.assign(1, 0);
     batches_.regionBegin.clear();
     batches_.regions = kRegions;
@@ -458,12 +450,10 @@ void PhysicsWorld::SeedFromLastStep() {
 
 void PhysicsWorld::RememberImpulses() {
     // The contacts that pushed, in contact order (the same on any number of threads), so each
-    // manifold's stay together. A manifold's first kept contact adds its run to the cache's
-    // table as it is written, instead of a pass over the entries afterwards to find the runs.
+    // manifold's stay together.
     auto pushed = [&](size_t k) { return contacts_[k].normalImpulse > 0.0f; };
     std::vector<CachedContact>& entries = nextCache_.Entries();
     entries.resize(contacts_.size());
-    nextCache_.ClearTable(contacts_.size());
     const uint32_t kept =
         ParallelCompact(contacts_.size(), chunkStarts_, pushed, [&](size_t k, uint32_t out) {
             const Contact& c = contacts_[k];
@@ -474,18 +464,9 @@ void PhysicsWorld::RememberImpulses() {
                             c.normalImpulse,
                             c.tangentImpulse1,
                             c.tangentImpulse2};
-            // A manifold's contacts are the pair's, one after another.
-            const auto samePair = [&](size_t j) {
-                return contacts_[j].a == c.a && contacts_[j].b == c.b;
-            };
-            for (size_t j = k; j-- > 0 && samePair(j);) {
-                if (pushed(j)) return;  // not the manifold's first kept contact
-            }
-            uint32_t end = out + 1;
-            for (size_t j = k + 1; j < contacts_.size() && samePair(j); ++j) end += pushed(j);
-            nextCache_.AddRun(out, end);
         });
     entries.resize(kept);
+    nextCache_.Index();
     std::swap(cache_, nextCache_);
 }
 
