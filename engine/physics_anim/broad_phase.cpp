@@ -133,7 +133,6 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
         for (uint32_t i = 0; i < boxes.size(); ++i) order_[i] = {boxes[i].min[axis], i};
     }
     lastAxis_ = axis;
-    crossAxis_ = stripAxis;
     if (!coherent || !SortByInsertion(order_, kMaxInsertionShiftsPerBox * order_.size(), before)) {
         tbb::parallel_sort(order_.begin(), order_.end(), before);
     }
@@ -263,6 +262,15 @@ void SweepAndPrune::Ranks(std::vector<uint32_t>& rankOfBox) const {
                       [&](const tbb::blocked_range<uint32_t>& r) {
                           for (uint32_t rank = r.begin(); rank < r.end(); ++rank) {
                               rankOfBox[order_[rank].box] = rank;
+                          }
+                      });
+}
+
+void SweepAndPrune::Ranks(std::span<const uint32_t> to, std::span<uint32_t> out) const {
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(order_.size()), 4096),
+                      [&](const tbb::blocked_range<uint32_t>& r) {
+                          for (uint32_t rank = r.begin(); rank < r.end(); ++rank) {
+                              out[to[order_[rank].box]] = rank;
                           }
                       });
 }

@@ -34,10 +34,8 @@ class SweepAndPrune {
     // After FindPairs: each box's place in the sweep order, a spatial key (nearby boxes have
     // nearby ranks along the sweep axis).
     void Ranks(std::vector<uint32_t>& rankOfBox) const;
-    // After FindPairs: the box of sweep rank rank, and the axis of the strips (the centres'
-    // second spread).
-    uint32_t BoxAt(uint32_t rank) const { return order_[rank].box; }
-    int CrossAxis() const { return crossAxis_; }
+    // The same ranks, each box's written to out[to[box]].
+    void Ranks(std::span<const uint32_t> to, std::span<uint32_t> out) const;
 
   private:
     struct Entry {
@@ -69,7 +67,6 @@ class SweepAndPrune {
 
     std::vector<Entry> order_;  // the sweep order, kept for the next step's sort
     int lastAxis_ = -1;
-    int crossAxis_ = 0;
     std::vector<float> extents_;             // PlanStrips' scratch
     std::vector<uint32_t> stripBegin_;       // each strip's boxes in sorted_
     std::vector<uint32_t> chunkStripCount_;  // DealIntoStrips' scratch

@@ -163,11 +163,10 @@ void PhysicsWorld::FindPairs() {
         boxes_[k] = {s.position - extent, s.position + extent, !s.dynamic};
     });
     sweep_.FindPairs(boxes_, pairs_, broadBodies_);
-    // Solver slots tile by tile, then the bodies outside the broad phase (planes, bodies without
-    // a collider) in body order.
+    // Solver slots in sweep order, then the bodies outside the broad phase (planes, bodies
+    // without a collider) in body order.
     solverSlots_.resize(bodies_.size());
-    tileOfBody_.resize(bodies_.size());
-    tiles_.Assign(boxes_, sweep_, broadBodies_, tileOfBody_, solverSlots_);
+    sweep_.Ranks(broadBodies_, solverSlots_);
     auto outside = static_cast<uint32_t>(broadBodies_.size());
     for (const uint32_t i : outsideBodies_) solverSlots_[i] = outside++;
     stats_.lastPairs = static_cast<uint32_t>(pairs_.size());
@@ -328,14 +327,16 @@ void PhysicsWorld::CollideCandidates() {
 
 void PhysicsWorld::LayOutContacts() {
     // Colours are assigned serially in candidate order. Within a colour the manifolds are then
-    // ordered by region, the tile of their moving body (SolverTiles): the solver gives each
-    // thread a run of regions, the same in every colour, so a body's cache line mostly stays
-    // with one core. A counting sort keeps candidate order within a region: the layout depends
-    // only on the candidates, never on the threads that found them.
+    // ordered by region, the sweep rank of their moving body cut into kRegions: the solver splits
+    // each colour evenly among its threads in that order, so a thread gets about the same region
+    // in every colour and a body's cache line mostly stays with one core. A counting sort keeps
+    // candidate order within a region: the layout depends only on the candidates, never on the
+    // threads that found them.
     constexpr uint32_t kSlots = ContactColoring::kColors + 1;  // the colours and the overflow
-    constexpr uint32_t kRegions = SolverTiles::kTiles;
+    constexpr uint32_t kRegions = 256;
     // What the serial passes need of each hit is gathered in parallel first: they then read 24
     // bytes per hit in order instead of a candidate and two bodies' flags.
+    const uint64_t ranks = std::max<uint64_t>(1, boxes_.size());
     hits_.resize(candidates_.size());
     hits_.resize(ParallelCompact(
         candidates_.size(), chunkStarts_, [&](size_t k) { return candidatePoints_[k] > 0; },
@@ -343,11 +344,11 @@ void PhysicsWorld::LayOutContacts() {
             const Candidate& c = candidates_[k];
             const bool firstMoves = (motion_[c.first] & kAwake) != 0;
             const bool secondMoves = (motion_[c.second] & kAwake) != 0;
-            // A moving body has a collider, so it has a tile.
-            const uint32_t moving = firstMoves ? c.first : c.second;
+            // A moving body has a collider, so its slot is its sweep rank.
+            const uint64_t rank = solverSlots_[firstMoves ? c.first : c.second];
             Hit& hit = hits_[out];
             hit.candidate = static_cast<uint32_t>(k);
-            hit.slot = tileOfBody_[moving];
+            hit.slot = static_cast<uint32_t>(rank * kRegions / ranks);
             hit.first = c.first;
             hit.second = c.second;
             hit.points = candidatePoints_[k];

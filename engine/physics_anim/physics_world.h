@@ -15,7 +15,6 @@
 #include "engine/physics_anim/gpu_contact_solver.h"
 #include "engine/physics_anim/narrow_phase.h"
 #include "engine/physics_anim/sim_body.h"
-#include "engine/physics_anim/solver_tiles.h"
 
 namespace rtrt::physics {
 
@@ -85,8 +84,8 @@ struct PhysicsStats {
 // friction, rolling resistance, restitution and split-impulse correction; symplectic Euler
 // positions; sleeping. Gyroscopic torque is ignored (a tumbling box keeps its angular velocity).
 // Parallel on TBB: per-body passes, the sweep and the narrow phase split their arrays; the solver
-// runs the manifolds of one colour (contact_coloring.h) at once, each thread on the same patch of
-// the floor (a run of SolverTiles' tiles, its solver bodies together in memory) in every colour.
+// runs the manifolds of one colour (contact_coloring.h) at once, each thread on the same region
+// (a run of solver bodies laid out in sweep order) in every colour.
 // Deterministic whatever the number of threads: bodies are visited in pool order, pairs in strip
 // and sweep order with index tie-breaks, the colours are assigned serially in that order, and
 // parallel passes write disjoint data, so the same registry contents and calls give bit-identical
@@ -200,7 +199,6 @@ class PhysicsWorld {
     std::vector<uint32_t> slotManifolds_;
     std::vector<uint32_t> slotPoints_;
     std::vector<uint32_t> solverSlots_;  // each body's place among the solver bodies
-    std::vector<uint8_t> tileOfBody_;    // each broad-phase body's SolverTiles tile
     ContactColoring coloring_;
     std::vector<Contact> contacts_;  // colour by colour, as batches_ says
     ContactBatches batches_;
@@ -215,7 +213,6 @@ class PhysicsWorld {
     std::vector<uint32_t> chunkStarts_;   // ParallelCompact's scratch
     std::vector<uint32_t> sleeperPairs_;  // pairs_ holding a sleeper (WakeTouched)
     SweepAndPrune sweep_;
-    SolverTiles tiles_;
     // The loops over bodies_ (and over the broad-phase boxes) run each chunk of bodies on the
     // same thread from loop to loop, so that a body's cache lines stay with one core.
     tbb::affinity_partitioner bodyAffinity_;
