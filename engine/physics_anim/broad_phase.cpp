@@ -11,6 +11,8 @@
 #include <functional>
 #include <limits>
 
+#include "engine/physics_anim/lanes.h"
+
 namespace rtrt::physics {
 
 namespace {
@@ -144,21 +146,8 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
     // only in the strip that holds the larger of their lower bounds on the strip axis.
     if (stripPairs_.size() < strips.count) stripPairs_.resize(strips.count);
     tbb::parallel_for(uint32_t{0}, strips.count, [&](uint32_t strip) {
-        std::vector<std::pair<uint32_t, uint32_t>>& out = stripPairs_[strip];
-        out.clear();
-        const uint32_t begin = stripBegin_[strip];
-        const uint32_t end = stripBegin_[strip + 1];
-        for (uint32_t i = begin; i < end; ++i) {
-            const SweptBox& a = sorted_[i];
-            for (uint32_t j = i + 1; j < end && sorted_[j].min0 <= a.max0; ++j) {
-                const SweptBox& b = sorted_[j];
-                const bool overlap = a.min1 <= b.max1 && b.min1 <= a.max1 && a.min2 <= b.max2 &&
-                                     b.min2 <= a.max2 && !(a.isStatic && b.isStatic);
-                if (overlap && strips.Of(std::max(a.min1, b.min1)) == strip) {
-                    out.emplace_back(std::min(a.box, b.box), std::max(a.box, b.box));
-                }
-            }
-        }
+        stripPairs_[strip].clear();
+        SweepStrip(strips, strip, stripPairs_[strip]);
     });
     pairStart_.assign(strips.count + 1, 0);
     for (uint32_t strip = 0; strip < strips.count; ++strip) {
@@ -172,8 +161,54 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
             std::copy(stripPairs_[strip].begin(), stripPairs_[strip].end(), out);
             return;
         }
-        for (const auto [i, j] : stripPairs_[strip]) *out++ = {names[i], names[j]};
+        for (const auto& [i, j] : stripPairs_[strip]) *out++ = {names[i], names[j]};
     });
+}
+
+void SweepAndPrune::SweptBoxes::Resize(size_t n) {
+    // Room for a full row of lanes read from the last box.
+    const size_t padded = n + kLanes - 1;
+    for (std::vector<float>* bound : {&min0, &max0, &min1, &max1, &min2, &max2}) {
+        bound->resize(padded);
+    }
+    box.resize(padded);
+    isStatic.resize(padded);
+}
+
+void SweepAndPrune::SweepStrip(const Strips& strips, uint32_t strip,
+                               std::vector<std::pair<uint32_t, uint32_t>>& out) const {
+    // Box i is tested against the boxes after it eight at a time, until one's lower bound on the
+    // sweep axis passes its upper bound: the lanes before that box are the candidates, tested
+    // as the scalar sweep would test them, and the hits are kept in sweep order.
+    const uint32_t begin = stripBegin_[strip];
+    const uint32_t end = stripBegin_[strip + 1];
+    const SweptBoxes& s = sorted_;
+    const LaneMask laneIndex = {0, 1, 2, 3, 4, 5, 6, 7};
+    for (uint32_t i = begin; i < end; ++i) {
+        const Lanes aMax0 = Splat(s.max0[i]);
+        const Lanes aMin1 = Splat(s.min1[i]);
+        const Lanes aMax1 = Splat(s.max1[i]);
+        const Lanes aMin2 = Splat(s.min2[i]);
+        const Lanes aMax2 = Splat(s.max2[i]);
+        const LaneMask aStatic = LaneMask{} + s.isStatic[i];
+        for (uint32_t j = i + 1; j < end; j += kLanes) {
+            const LaneMask inStrip = laneIndex < LaneMask{} + static_cast<int32_t>(end - j);
+            const uint32_t ahead = LaneBits((LoadLanes(&s.min0[j]) <= aMax0) & inStrip);
+            const uint32_t candidates = ahead & ~(ahead + 1);  // up to the first lane that is not
+            if (candidates == 0) break;
+            const LaneMask overlap =
+                (aMin1 <= LoadLanes(&s.max1[j])) & (LoadLanes(&s.min1[j]) <= aMax1) &
+                (aMin2 <= LoadLanes(&s.max2[j])) & (LoadLanes(&s.min2[j]) <= aMax2) &
+                ~(aStatic & LoadMask(&s.isStatic[j]));
+            for (uint32_t hits = LaneBits(overlap) & candidates; hits != 0; hits &= hits - 1) {
+                const uint32_t b = j + static_cast<uint32_t>(__builtin_ctz(hits));
+                if (strips.Of(std::max(s.min1[i], s.min1[b])) == strip) {
+                    out.emplace_back(std::min(s.box[i], s.box[b]), std::max(s.box[i], s.box[b]));
+                }
+            }
+            if (candidates != (1u << kLanes) - 1) break;
+        }
+    }
 }
 
 void SweepAndPrune::DealIntoStrips(std::span<const BroadPhaseBox> boxes, const Strips& strips,
@@ -212,13 +247,19 @@ void SweepAndPrune::DealIntoStrips(std::span<const BroadPhaseBox> boxes, const S
         }
     }
     stripBegin_[count] = place;
-    sorted_.resize(place);
+    sorted_.Resize(place);
     tbb::parallel_for(uint32_t{0}, chunks, [&](uint32_t chunk) {
         uint32_t* next = chunkStripCount_.data() + size_t{chunk} * count;
         forChunk(chunk, [&](uint32_t k, size_t i, const BroadPhaseBox& box) {
-            sorted_[next[k]++] = {box.min[axis],      box.max[axis],   box.min[stripAxis],
-                                  box.max[stripAxis], box.min[other2], box.max[other2],
-                                  order_[i].box,      box.isStatic};
+            const uint32_t at = next[k]++;
+            sorted_.min0[at] = box.min[axis];
+            sorted_.max0[at] = box.max[axis];
+            sorted_.min1[at] = box.min[stripAxis];
+            sorted_.max1[at] = box.max[stripAxis];
+            sorted_.min2[at] = box.min[other2];
+            sorted_.max2[at] = box.max[other2];
+            sorted_.box[at] = order_[i].box;
+            sorted_.isStatic[at] = box.isStatic ? -1 : 0;
         });
     });
 }

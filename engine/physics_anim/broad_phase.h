@@ -42,11 +42,14 @@ class SweepAndPrune {
         float min;
         uint32_t box;
     };
-    // A box with its bounds on the sweep axis (0), the strip axis (1) and the third (2); 32 bytes.
-    struct SweptBox {
-        float min0, max0, min1, max1, min2, max2;
-        uint32_t box;
-        uint32_t isStatic;
+    // The boxes strip by strip, each strip in sweep order: their bounds on the sweep axis (0),
+    // the strip axis (1) and the third (2), apart, so that a box is tested against eight
+    // following ones at once (lanes.h). Padded at the end so that eight can always be read.
+    struct SweptBoxes {
+        std::vector<float> min0, max0, min1, max1, min2, max2;
+        std::vector<uint32_t> box;
+        std::vector<int32_t> isStatic;  // -1 (all bits, a lane mask) or 0
+        void Resize(size_t n);
     };
     // Strips across the strip axis, of equal width from `low`; one strip holds every box.
     struct Strips {
@@ -64,6 +67,9 @@ class SweepAndPrune {
     // Fills sorted_ and stripBegin_ from order_.
     void DealIntoStrips(std::span<const BroadPhaseBox> boxes, const Strips& strips, int axis,
                         int stripAxis, int other2);
+    // Appends the pairs of strip's boxes to out, in sweep order.
+    void SweepStrip(const Strips& strips, uint32_t strip,
+                    std::vector<std::pair<uint32_t, uint32_t>>& out) const;
 
     std::vector<Entry> order_;  // the sweep order, kept for the next step's sort
     int lastAxis_ = -1;
@@ -71,7 +77,7 @@ class SweepAndPrune {
     std::vector<uint32_t> stripBegin_;       // each strip's boxes in sorted_
     std::vector<uint32_t> chunkStripCount_;  // DealIntoStrips' scratch
     std::vector<uint32_t> pairStart_;        // each strip's pairs in the output
-    std::vector<SweptBox> sorted_;           // strip by strip, each in sweep order
+    SweptBoxes sorted_;
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> stripPairs_;
 };
 

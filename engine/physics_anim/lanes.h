@@ -29,6 +29,29 @@ inline Lanes Sqrt(Lanes x) {
 #endif
 }
 
+// Eight consecutive values from p, which need not be aligned.
+inline Lanes LoadLanes(const float* p) {
+    Lanes v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+}
+inline LaneMask LoadMask(const int32_t* p) {
+    LaneMask v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+}
+
+// Bit l set where lane l of mask is.
+inline uint32_t LaneBits(LaneMask mask) {
+#if defined(__AVX__)
+    return static_cast<uint32_t>(_mm256_movemask_ps(reinterpret_cast<__m256>(mask)));
+#else
+    uint32_t bits = 0;
+    for (int l = 0; l < kLanes; ++l) bits |= (mask[l] != 0 ? 1u : 0u) << l;
+    return bits;
+#endif
+}
+
 inline bool AnyLane(LaneMask mask) {
     for (int l = 0; l < kLanes; ++l) {
         if (mask[l] != 0) return true;
