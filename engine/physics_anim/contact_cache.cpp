@@ -1,5 +1,7 @@
 #include "engine/physics_anim/contact_cache.h"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -61,6 +63,11 @@ void ContactCache::Index() {
             return;
         }
     });
+}
+
+void ContactCache::Prefetch(ecs::Entity a, ecs::Entity b) const {
+    if (table_.empty()) return;
+    _mm_prefetch(reinterpret_cast<const char*>(&table_[Hash(Key(a, b)) & mask_]), _MM_HINT_T0);
 }
 
 std::span<const CachedContact> ContactCache::Find(ecs::Entity a, ecs::Entity b) const {

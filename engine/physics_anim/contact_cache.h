@@ -29,6 +29,9 @@ class ContactCache {
     void Index();
     // The contacts of (a, b) in that order, or none.
     std::span<const CachedContact> Find(ecs::Entity a, ecs::Entity b) const;
+    // Starts loading the table slot where Find(a, b) begins: a caller that knows its next keys
+    // overlaps their cache misses.
+    void Prefetch(ecs::Entity a, ecs::Entity b) const;
 
   private:
     struct Run {
