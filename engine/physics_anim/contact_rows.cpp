@@ -3,168 +3,18 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <iterator>
 #include <utility>
 
 #include "engine/core/parallel_for.h"
-#include "engine/physics_anim/contact_setup.h"
+#include "engine/physics_anim/body_lanes.h"
+#include "engine/physics_anim/contact_row_setup.h"
 
 namespace rtrt::physics {
 
 namespace {
 
-// The velocities and inverse masses of one body per lane.
-struct BodyLanes {
-    Lanes3 velocity;
-    Lanes3 angularVelocity;
-    Lanes invMass;
-    Lanes33 invInertia;
-};
-
-// A SolverBody is 16 floats: velocity, invMass, angularVelocity, then the inertia's columns.
-static_assert(sizeof(SolverBody) == 16 * sizeof(float));
-static_assert(offsetof(SolverBody, angularVelocity) == 4 * sizeof(float));
-static_assert(offsetof(SolverBody, invInertia) == 7 * sizeof(float));
-
-#if defined(__AVX__)
-// rows[i][j] -> rows[j][i], for eight rows of eight floats.
-[[gnu::always_inline]] inline void Transpose8(__m256 (&rows)[8]) {
-    __m256 t[8];
-    __m256 s[8];
-    for (int i = 0; i < 4; ++i) {
-        t[2 * i] = _mm256_unpacklo_ps(rows[2 * i], rows[2 * i + 1]);
-        t[2 * i + 1] = _mm256_unpackhi_ps(rows[2 * i], rows[2 * i + 1]);
-    }
-    for (int i = 0; i < 2; ++i) {
-        s[4 * i] = _mm256_shuffle_ps(t[4 * i], t[4 * i + 2], _MM_SHUFFLE(1, 0, 1, 0));
-        s[4 * i + 1] = _mm256_shuffle_ps(t[4 * i], t[4 * i + 2], _MM_SHUFFLE(3, 2, 3, 2));
-        s[4 * i + 2] = _mm256_shuffle_ps(t[4 * i + 1], t[4 * i + 3], _MM_SHUFFLE(1, 0, 1, 0));
-        s[4 * i + 3] = _mm256_shuffle_ps(t[4 * i + 1], t[4 * i + 3], _MM_SHUFFLE(3, 2, 3, 2));
-    }
-    for (int i = 0; i < 4; ++i) {
-        rows[i] = _mm256_permute2f128_ps(s[i], s[i + 4], 0x20);
-        rows[i + 4] = _mm256_permute2f128_ps(s[i], s[i + 4], 0x31);
-    }
-}
-#endif
-
-// The bodies' 16 floats as 16 lanes vectors: element f of lane l is float f of body slots[l].
-[[gnu::always_inline]] inline void GatherFloats(std::span<const SolverBody> bodies,
-                                                const uint32_t (&slots)[kLanes], Lanes (&out)[16]) {
-#if defined(__AVX__)
-    for (int half = 0; half < 2; ++half) {
-        __m256 rows[8];
-        for (int l = 0; l < kLanes; ++l) {
-            rows[l] = _mm256_load_ps(reinterpret_cast<const float*>(&bodies[slots[l]]) + 8 * half);
-        }
-        Transpose8(rows);
-        for (int f = 0; f < 8; ++f) out[8 * half + f] = reinterpret_cast<const Lanes&>(rows[f]);
-    }
-#else
-    for (int l = 0; l < kLanes; ++l) {
-        const float* body = reinterpret_cast<const float*>(&bodies[slots[l]]);
-        for (int f = 0; f < 16; ++f) out[f][l] = body[f];
-    }
-#endif
-}
-
-[[gnu::always_inline]] inline BodyLanes Gather(std::span<const SolverBody> bodies,
-                                               const uint32_t (&slots)[kLanes]) {
-    Lanes f[16];
-    GatherFloats(bodies, slots, f);
-    BodyLanes out;
-    out.velocity = {f[0], f[1], f[2]};
-    out.invMass = f[3];
-    out.angularVelocity = {f[4], f[5], f[6]};
-    for (int c = 0; c < 3; ++c)
-        out.invInertia.column[c] = {f[7 + 3 * c], f[8 + 3 * c], f[9 + 3 * c]};
-    return out;
-}
-
-// Writes the velocities of the active lanes' moving bodies (a body that does not move may be read
-// by other threads at the same time, and its velocities did not change). The first eight floats
-// of a body go back whole: its inverse mass and first inertia entry are unchanged.
-[[gnu::always_inline]] inline void Scatter(std::span<SolverBody> bodies,
-                                           const uint32_t (&slots)[kLanes], uint32_t activeLanes,
-                                           const BodyLanes& in) {
-#if defined(__AVX__)
-    const Lanes first[8] = {in.velocity.x,        in.velocity.y,
-                            in.velocity.z,        in.invMass,
-                            in.angularVelocity.x, in.angularVelocity.y,
-                            in.angularVelocity.z, in.invInertia.column[0].x};
-    __m256 rows[8];
-    for (int f = 0; f < 8; ++f) rows[f] = reinterpret_cast<const __m256&>(first[f]);
-    Transpose8(rows);
-    for (int l = 0; l < kLanes; ++l) {
-        if ((activeLanes >> l & 1u) == 0 || !(in.invMass[l] > 0.0f)) continue;
-        _mm256_store_ps(reinterpret_cast<float*>(&bodies[slots[l]]), rows[l]);
-    }
-#else
-    for (int l = 0; l < kLanes; ++l) {
-        if ((activeLanes >> l & 1u) == 0 || !(in.invMass[l] > 0.0f)) continue;
-        SolverBody& s = bodies[slots[l]];
-        s.velocity = vec3(in.velocity.x[l], in.velocity.y[l], in.velocity.z[l]);
-        s.angularVelocity =
-            vec3(in.angularVelocity.x[l], in.angularVelocity.y[l], in.angularVelocity.z[l]);
-    }
-#endif
-}
-
 // The velocity of b's point of contact relative to a's.
-// A PseudoVelocity is 8 floats: linear, angular, two of padding.
-static_assert(sizeof(PseudoVelocity) == 8 * sizeof(float));
-static_assert(offsetof(PseudoVelocity, angular) == 3 * sizeof(float));
-
-struct PseudoLanes {
-    Lanes3 linear;
-    Lanes3 angular;
-};
-
-[[gnu::always_inline]] inline PseudoLanes GatherPseudo(std::span<const PseudoVelocity> pseudo,
-                                                       const uint32_t (&slots)[kLanes]) {
-#if defined(__AVX__)
-    __m256 rows[8];
-    for (int l = 0; l < kLanes; ++l) {
-        rows[l] = _mm256_load_ps(reinterpret_cast<const float*>(&pseudo[slots[l]]));
-    }
-    Transpose8(rows);
-    Lanes f[8];
-    for (int i = 0; i < 8; ++i) f[i] = reinterpret_cast<const Lanes&>(rows[i]);
-#else
-    Lanes f[8];
-    for (int l = 0; l < kLanes; ++l) {
-        const float* p = reinterpret_cast<const float*>(&pseudo[slots[l]]);
-        for (int i = 0; i < 6; ++i) f[i][l] = p[i];
-    }
-#endif
-    return {{f[0], f[1], f[2]}, {f[3], f[4], f[5]}};
-}
-
-// Writes the pseudo velocities of the active lanes' moving bodies (moving: invMass > 0).
-[[gnu::always_inline]] inline void ScatterPseudo(std::span<PseudoVelocity> pseudo,
-                                                 const uint32_t (&slots)[kLanes],
-                                                 uint32_t activeLanes, const Lanes& invMass,
-                                                 const PseudoLanes& in) {
-#if defined(__AVX__)
-    const Lanes zero = Splat(0.0f);
-    const Lanes f[8] = {in.linear.x,  in.linear.y,  in.linear.z, in.angular.x,
-                        in.angular.y, in.angular.z, zero,        zero};
-    __m256 rows[8];
-    for (int i = 0; i < 8; ++i) rows[i] = reinterpret_cast<const __m256&>(f[i]);
-    Transpose8(rows);
-    for (int l = 0; l < kLanes; ++l) {
-        if ((activeLanes >> l & 1u) == 0 || !(invMass[l] > 0.0f)) continue;
-        _mm256_store_ps(reinterpret_cast<float*>(&pseudo[slots[l]]), rows[l]);
-    }
-#else
-    for (int l = 0; l < kLanes; ++l) {
-        if ((activeLanes >> l & 1u) == 0 || !(invMass[l] > 0.0f)) continue;
-        PseudoVelocity& p = pseudo[slots[l]];
-        p.linear = vec3(in.linear.x[l], in.linear.y[l], in.linear.z[l]);
-        p.angular = vec3(in.angular.x[l], in.angular.y[l], in.angular.z[l]);
-    }
-#endif
-}
-
 [[gnu::always_inline]] inline Lanes3 RelativeVelocity(const BodyLanes& a, const BodyLanes& b,
                                                       const ContactRow& row) {
     return b.velocity + Cross(b.angularVelocity, row.anchorB) - a.velocity -
@@ -183,12 +33,6 @@ struct PseudoLanes {
 
 [[gnu::always_inline]] inline Lanes3 Select3(LaneMask mask, const Lanes3& yes, const Lanes3& no) {
     return {Select(mask, yes.x, no.x), Select(mask, yes.y, no.y), Select(mask, yes.z, no.z)};
-}
-
-void SetLane(Lanes3& lanes, int l, vec3 v) {
-    lanes.x[l] = v.x;
-    lanes.y[l] = v.y;
-    lanes.z[l] = v.z;
 }
 
 // Rolling resistance, friction and the normal impulse of one row, on the bodies' lanes.
@@ -256,40 +100,6 @@ void SetLane(Lanes3& lanes, int l, vec3 v) {
     pb.angular = pb.angular + b.invInertia * Cross(row.anchorB, push);
     ScatterPseudo(pseudo, row.slotA, row.activeLanes, a.invMass, pa);
     ScatterPseudo(pseudo, row.slotB, row.activeLanes, b.invMass, pb);
-}
-
-// Lane l of row (and of its rolling lanes) from contact k.
-void FillLane(ContactRow& row, RollingLanes& rolling, int l, uint32_t k, const Contact& c,
-              std::span<const uint32_t> slotOfBody, std::span<const BodyAtStart> starts,
-              std::span<const SolverBody> solverBodies, const SolverSettings& settings) {
-    row.slotA[l] = slotOfBody[c.a];
-    row.slotB[l] = slotOfBody[c.b];
-    row.contact[l] = k;
-    row.activeLanes |= 1u << l;
-    const ContactSetUp setUp =
-        SetUpContact(c, starts[row.slotA[l]], starts[row.slotB[l]], solverBodies[row.slotA[l]],
-                     solverBodies[row.slotB[l]], settings);
-    SetLane(row.normal, l, c.normal);
-    SetLane(row.tangent1, l, setUp.tangent1);
-    SetLane(row.tangent2, l, setUp.tangent2);
-    SetLane(row.anchorA, l, setUp.anchorA);
-    SetLane(row.anchorB, l, setUp.anchorB);
-    row.normalMass[l] = setUp.normalMass;
-    row.tangentMass1[l] = setUp.tangentMass1;
-    row.tangentMass2[l] = setUp.tangentMass2;
-    row.normalImpulse[l] = c.normalImpulse;
-    row.tangentImpulse1[l] = c.tangentImpulse1;
-    row.tangentImpulse2[l] = c.tangentImpulse2;
-    row.friction[l] = setUp.friction;
-    row.allowedApproach[l] = setUp.allowedApproach;
-    row.overlap[l] = setUp.overlap;
-    row.bounce[l] = setUp.bounce;
-    if (setUp.rollingLimit > 0.0f) {
-        if (!row.rolling) rolling = RollingLanes{};
-        row.rolling = true;
-        rolling.limit[l] = setUp.rollingLimit;
-        for (int i = 0; i < 3; ++i) SetLane(rolling.mass.column[i], l, setUp.rollingMass[i]);
-    }
 }
 
 // Applies the seeded impulses.
@@ -423,25 +233,32 @@ void ContactRows::FillGroup(uint32_t group) {
     const auto [first, last] = GroupManifolds(group);
     const uint32_t rowBegin = groupRowBegin_[group];
     const uint32_t rowEnd = groupRowBegin_[group + 1];
-    for (uint32_t r = rowBegin; r < rowEnd; ++r) rows_[r] = ContactRow{};
+    for (uint32_t r = rowBegin; r < rowEnd; ++r) {
+        ContactRow& row = rows_[r];
+        row.activeLanes = 0;
+        std::fill(std::begin(row.contact), std::end(row.contact), 0u);
+    }
     std::array<uint32_t, kLanes> next{};
     for (uint32_t m = first; m < last; ++m) {
         const uint8_t l = laneOf[m - first];
         for (uint32_t k = batches_->manifoldBegin[m]; k < batches_->manifoldBegin[m + 1]; ++k) {
-            const uint32_t r = rowBegin + next[l]++;
-            FillLane(rows_[r], rolling_[r], l, k, contacts_[k], slotOfBody_, starts_, solverBodies_,
-                     *settings_);
+            ContactRow& row = rows_[rowBegin + next[l]++];
+            row.slotA[l] = slotOfBody_[contacts_[k].a];
+            row.slotB[l] = slotOfBody_[contacts_[k].b];
+            row.contact[l] = k;
+            row.activeLanes |= 1u << l;
         }
     }
-    // Empty lanes read the bodies of an active one: real memory, never written.
     for (uint32_t r = rowBegin; r < rowEnd; ++r) {
         ContactRow& row = rows_[r];
+        // Empty lanes read the bodies of an active one: real memory, never written.
         const int active = __builtin_ctz(row.activeLanes);
         for (int l = 0; l < kLanes; ++l) {
             if ((row.activeLanes >> l & 1u) != 0) continue;
             row.slotA[l] = row.slotA[active];
             row.slotB[l] = row.slotB[active];
         }
+        SetUpRow(row, rolling_[r], contacts_, starts_, solverBodies_, *settings_);
     }
 }
 

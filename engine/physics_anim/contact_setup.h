@@ -1,7 +1,8 @@
 #pragma once
 // What the contact passes need of one contact point, computed from the bodies at the start of the
-// passes: the CPU rows (contact_rows.h) and the GPU solver (gpu_contact_solver.h) share this code,
-// and with contraction off on both (-ffp-contract=off, -fmad=false) they get the same bits.
+// passes. The GPU solver (gpu_contact_solver.h) runs this code; the CPU rows do the same operations
+// in the same order eight contacts at a time (contact_row_setup.h), and with contraction off on
+// both (-ffp-contract=off, -fmad=false) they get the same bits (contact_rows_test checks them).
 #include <glm/mat3x3.hpp>
 
 #include "engine/core/math.h"

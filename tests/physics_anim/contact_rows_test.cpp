@@ -9,9 +9,12 @@
 #include <cstring>
 #include <map>
 #include <numeric>
+#include <random>
 #include <set>
+#include <string>
 #include <vector>
 
+#include "engine/physics_anim/contact_setup.h"
 #include "engine/physics_anim/contact_solver.h"
 
 namespace rtrt::physics {
@@ -154,6 +157,108 @@ TEST(ContactRowsTest, FillingBlocksInAnyOrderGivesBuildsRows) {
         EXPECT_EQ(std::memcmp(&planned.Row(r), &built.Row(r), sizeof(ContactRow)), 0)
             << "row " << r;
     }
+}
+
+glm::mat3 Diagonal(vec3 d) {
+    glm::mat3 m(0.0f);
+    for (int i = 0; i < 3; ++i) m[i][i] = d[i];
+    return m;
+}
+
+// The rows set up eight contacts at once: each active lane holds exactly the bits that
+// SetUpContact (contact_setup.h, which the GPU solver uses) gives for its contact, over bodies of
+// every kind of inertia, resting and approaching, rolling and not; inactive lanes hold zeros.
+TEST(ContactRowsTest, LanesHoldSetUpContactsBitsForEveryContact) {
+    Scene scene(300);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    const auto randomVector = [&] { return vec3(unit(random), unit(random), unit(random)); };
+    for (uint32_t i = 0; i < scene.bodies.size(); ++i) {
+        SimBody& body = scene.bodies[i];
+        body.position = 3.0f * randomVector();
+        body.velocity = body.startVelocity = randomVector();
+        body.angularVelocity = body.startAngularVelocity = 2.0f * randomVector();
+        body.friction = 0.5f + 0.5f * unit(random);
+        body.restitution = 0.5f + 0.5f * unit(random);
+        const glm::mat3 turn = glm::mat3_cast(glm::normalize(glm::quat(0.5f, randomVector())));
+        body.invInertiaWorld = turn * Diagonal(vec3(1.5f) + randomVector()) * glm::transpose(turn);
+        if (i % 7 == 0) body.invInertiaWorld = glm::mat3(0.0f);  // fixed rotation
+        if (i % 11 == 0) body.awake = false;  // does not move: zero inverse mass and inertia
+    }
+    for (uint32_t i = 0; i + 1 < scene.bodies.size(); i += 2) {
+        const int points = int(i * 5 % 8) + 1;
+        for (int k = 0; k < points; ++k) {
+            const vec3 normal = glm::normalize(randomVector() + vec3(0.0f, 0.01f, 0.0f));
+            const float separation = 0.05f * unit(random);
+            const float rolling = i % 3 == 0 ? 0.02f : 0.0f;
+            scene.contacts.push_back({i, i + 1, normal, scene.bodies[i].position + randomVector(),
+                                      separation, rolling, unit(random) + 1.0f, 0.1f * unit(random),
+                                      0.1f * unit(random)});
+        }
+        scene.batches.manifoldBegin.push_back(static_cast<uint32_t>(scene.contacts.size()));
+    }
+    scene.EndColor();
+    // Rows are reused from step to step: a first build and passes leave impulses everywhere.
+    ContactRows rows;
+    scene.Build(rows);
+    for (const RowPass pass : {RowPass::kWarmStart, RowPass::kVelocityAndPosition}) {
+        rows.Solve(scene.solverBodies, scene.pseudo, 0, rows.Rows(), pass, 10.0f);
+    }
+    scene.Build(rows);
+    const auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    uint32_t rolled = 0;
+    uint32_t bounced = 0;
+    for (uint32_t r = 0; r < rows.Rows(); ++r) {
+        const ContactRow& row = rows.Row(r);
+        for (int l = 0; l < kLanes; ++l) {
+            if ((row.activeLanes >> l & 1u) == 0) {
+                EXPECT_EQ(row.normalMass[l], 0.0f);
+                EXPECT_EQ(row.tangentMass1[l], 0.0f);
+                EXPECT_EQ(row.tangentMass2[l], 0.0f);
+                EXPECT_EQ(row.normalImpulse[l], 0.0f);
+                continue;
+            }
+            const Contact& c = scene.contacts[row.contact[l]];
+            const ContactSetUp want = SetUpContact(
+                c, scene.starts[row.slotA[l]], scene.starts[row.slotB[l]],
+                scene.solverBodies[row.slotA[l]], scene.solverBodies[row.slotB[l]], Settings());
+            const auto lane3 = [&](const Lanes3& v) { return vec3(v.x[l], v.y[l], v.z[l]); };
+            const auto same3 = [&](vec3 a, vec3 b) {
+                return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z);
+            };
+            SCOPED_TRACE("contact " + std::to_string(row.contact[l]));
+            EXPECT_TRUE(same3(lane3(row.normal), c.normal));
+            EXPECT_TRUE(same3(lane3(row.tangent1), want.tangent1));
+            EXPECT_TRUE(same3(lane3(row.tangent2), want.tangent2));
+            EXPECT_TRUE(same3(lane3(row.anchorA), want.anchorA));
+            EXPECT_TRUE(same3(lane3(row.anchorB), want.anchorB));
+            EXPECT_TRUE(same(row.normalMass[l], want.normalMass));
+            EXPECT_TRUE(same(row.tangentMass1[l], want.tangentMass1));
+            EXPECT_TRUE(same(row.tangentMass2[l], want.tangentMass2));
+            EXPECT_TRUE(same(row.friction[l], want.friction));
+            EXPECT_TRUE(same(row.allowedApproach[l], want.allowedApproach));
+            EXPECT_TRUE(same(row.overlap[l], want.overlap));
+            EXPECT_TRUE(same(row.bounce[l], want.bounce));
+            EXPECT_TRUE(same(row.normalImpulse[l], c.normalImpulse));
+            EXPECT_TRUE(same(row.tangentImpulse1[l], c.tangentImpulse1));
+            EXPECT_TRUE(same(row.tangentImpulse2[l], c.tangentImpulse2));
+            EXPECT_EQ(row.pseudoImpulse[l], 0.0f);
+            bounced += want.bounce > 0.0f ? 1 : 0;
+            if (want.rollingLimit > 0.0f) {
+                ++rolled;
+                ASSERT_TRUE(row.rolling);
+                const RollingLanes& rolling = rows.Rolling(r);
+                EXPECT_TRUE(same(rolling.limit[l], want.rollingLimit));
+                for (int i = 0; i < 3; ++i) {
+                    EXPECT_TRUE(same3(lane3(rolling.mass.column[i]), want.rollingMass[i]));
+                }
+            } else if (row.rolling) {
+                EXPECT_EQ(rows.Rolling(r).limit[l], 0.0f);
+            }
+        }
+    }
+    EXPECT_GT(rolled, 50u);
+    EXPECT_GT(bounced, 50u);
 }
 
 TEST(ContactRowsTest, NormalImpulseStopsABodyOrLetsItCloseItsGap) {
