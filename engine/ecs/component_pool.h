@@ -51,6 +51,14 @@ class PoolBase {
     void MarkChanged(Entity e) {
         if (owners_.Contains(e) && !changed_.Contains(e)) changed_.Insert(e);
     }
+    // Marks entities as MarkChanged would one after another, the checks in parallel. No two may
+    // share an index (the same entity twice, or two generations of one).
+    void MarkChanged(std::span<const Entity> entities) {
+        changed_.CoverPagesOf(owners_);
+        changed_.AppendWhere(entities, markChunks_, [&](size_t i) {
+            return owners_.Contains(entities[i]) && !changed_.Contains(entities[i]);
+        });
+    }
     bool IsChanged(Entity e) const { return changed_.Contains(e); }
     std::span<const Entity> ChangedEntities() const { return changed_.Entities(); }
     void ClearChanged() { changed_.Clear(); }
@@ -72,6 +80,7 @@ class PoolBase {
   private:
     SparseSet owners_;
     SparseSet changed_;
+    std::vector<uint32_t> markChunks_;  // the bulk MarkChanged's scratch
 };
 
 // Components of one type, packed in the owners' dense order so views walk contiguous memory.

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -84,6 +85,12 @@ class Registry {
     template <typename T>
     void MarkChanged(Entity e) {
         if (ComponentPool<T>* pool = FindPool<T>()) pool->MarkChanged(e);
+    }
+    // Marks many, as one by one in their order, checked in parallel: for systems that move
+    // thousands of entities a frame. No two may share an index.
+    template <typename T>
+    void MarkChanged(std::span<const Entity> entities) {
+        if (ComponentPool<T>* pool = FindPool<T>()) pool->MarkChanged(entities);
     }
     template <typename T, typename Fn>
     void EachChanged(Fn&& fn) {

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "engine/core/parallel_compact.h"
 #include "engine/ecs/entity.h"
 
 namespace rtrt::ecs {
@@ -48,6 +49,32 @@ class SparseSet {
         dense_.pop_back();
     }
 
+    // Appends entities[i] for every i where keep(i) holds, in order: the positions that Insert
+    // one after another would give, found in parallel (ParallelCompact, which calls keep twice
+    // per entity). None may be in the set already, no two may share an index, and the set must
+    // have a page for each (CoverPagesOf): the parallel writes then touch only their own slots.
+    template <typename Keep>
+    void AppendWhere(std::span<const Entity> entities, std::vector<uint32_t>& chunkStarts,
+                     const Keep& keep) {
+        const size_t base = dense_.size();
+        dense_.resize(base + entities.size());
+        const uint32_t added =
+            ParallelCompact(entities.size(), chunkStarts, keep, [&](size_t i, uint32_t at) {
+                const Entity e = entities[i];
+                const auto pos = static_cast<uint32_t>(base + at);
+                dense_[pos] = e;
+                pages_[e.index >> kPageBits][e.index & kPageMask] = pos;
+            });
+        dense_.resize(base + added);
+    }
+    // Gives this set a sparse page wherever other has one, so that other's entities can be
+    // added without allocating.
+    void CoverPagesOf(const SparseSet& other) {
+        for (uint32_t page = 0; page < other.pages_.size(); ++page) {
+            if (other.pages_[page]) Page(page);
+        }
+    }
+
     void Clear() {
         for (const Entity e : dense_) SparseSlot(e.index) = kAbsent;
         dense_.clear();
@@ -62,14 +89,14 @@ class SparseSet {
     static constexpr uint32_t kPageSize = 1u << kPageBits;
     static constexpr uint32_t kPageMask = kPageSize - 1;
 
-    uint32_t& SparseSlot(uint32_t index) {
-        const uint32_t page = index >> kPageBits;
+    uint32_t& SparseSlot(uint32_t index) { return Page(index >> kPageBits)[index & kPageMask]; }
+    uint32_t* Page(uint32_t page) {
         if (page >= pages_.size()) pages_.resize(page + 1);
         if (!pages_[page]) {
             pages_[page] = std::make_unique_for_overwrite<uint32_t[]>(kPageSize);
             std::fill_n(pages_[page].get(), kPageSize, kAbsent);
         }
-        return pages_[page][index & kPageMask];
+        return pages_[page].get();
     }
 
     std::vector<std::unique_ptr<uint32_t[]>> pages_;

@@ -1,5 +1,6 @@
 // PhysicsWorld::Gather and WriteBack: the world's bodies read from the registry's components
 // before a frame's steps, and written back to them after.
+#include "engine/core/parallel_compact.h"
 #include "engine/core/parallel_for.h"
 #include "engine/physics_anim/physics_world.h"
 #include "engine/physics_anim/quat_interp.h"
@@ -94,7 +95,7 @@ void PhysicsWorld::Gather(Registry& registry, bool stepFollows) {
 
 void PhysicsWorld::WriteBack(Registry& registry, float alpha) {
     // In parallel, each body to its own components; then the moved transforms are marked in body
-    // order.
+    // order (in parallel too: the marks took a serial pass over the bodies).
     moved_.assign(bodies_.size(), 0);
     ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
         const SimBody& s = bodies_[i];
@@ -121,9 +122,11 @@ void PhysicsWorld::WriteBack(Registry& registry, float alpha) {
         local.rotation = rotation;
         moved_[i] = 1;
     });
-    for (size_t i = 0; i < bodies_.size(); ++i) {
-        if (moved_[i] != 0) registry.MarkChanged<LocalTransform>(bodies_[i].entity);
-    }
+    movedEntities_.resize(bodies_.size());
+    movedEntities_.resize(ParallelCompact(
+        bodies_.size(), chunkStarts_, [&](size_t i) { return moved_[i] != 0; },
+        [&](size_t i, uint32_t at) { movedEntities_[at] = bodies_[i].entity; }));
+    registry.MarkChanged<LocalTransform>(std::span<const ecs::Entity>(movedEntities_));
 }
 
 }  // namespace rtrt::physics

@@ -175,11 +175,12 @@ class PhysicsWorld {
     // Per body, kDynamic | kAwake | kResting as the step's serial passes need them (WakeTouched,
     // the colouring): 1 byte each instead of a cache miss on the body.
     std::vector<uint8_t> motion_;
-    std::vector<uint32_t> planes_;         // bodies with a plane collider
-    std::vector<uint8_t> moved_;           // WriteBack's: the body's transform changed
-    std::vector<uint8_t> places_;          // Gather's: each body's list (broad phase or not)
-    std::vector<uint32_t> broadBodies_;    // body of each broad-phase box (Gather's)
-    std::vector<uint32_t> outsideBodies_;  // the others: planes, bodies without a collider
+    std::vector<uint32_t> planes_;            // bodies with a plane collider
+    std::vector<uint8_t> moved_;              // WriteBack's: the body's transform changed
+    std::vector<ecs::Entity> movedEntities_;  // and those bodies' entities, in body order
+    std::vector<uint8_t> places_;             // Gather's: each body's list (broad phase or not)
+    std::vector<uint32_t> broadBodies_;       // body of each broad-phase box (Gather's)
+    std::vector<uint32_t> outsideBodies_;     // the others: planes, bodies without a collider
     std::vector<BroadPhaseBox> boxes_;
     std::vector<std::pair<uint32_t, uint32_t>> pairs_;  // body indices
     std::vector<Candidate> candidates_;                 // the pairs, then a row of bodies per plane

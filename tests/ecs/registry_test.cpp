@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <span>
 #include <vector>
 
 namespace rtrt::ecs {
@@ -271,6 +272,52 @@ TEST(RegistryTest, ChangeTrackingListsMarkedEntitiesOnceUntilCleared) {
     registry.MarkChanged<Health>(entities[2]);
     EXPECT_EQ(ChangedHealth(registry), (std::vector<int>{30}));
     EXPECT_EQ(registry.ChangedCount<Health>(), 1u);
+}
+
+// The bulk MarkChanged (checked in parallel) lists what marking one after another lists, in the
+// same order: over several sparse pages and compaction chunks, with entities already marked, ones
+// without the component and stale handles.
+TEST(RegistryTest, BulkMarkingListsWhatMarkingOneByOneLists) {
+    constexpr int kEntities = 9000;
+    Registry one;
+    Registry bulk;
+    std::vector<Entity> entities;
+    for (int i = 0; i < kEntities; ++i) {
+        const Entity e = one.Create();
+        ASSERT_EQ(bulk.Create(), e);
+        entities.push_back(e);
+        if (i % 5 != 0) {  // every fifth has no Health
+            one.Add(e, Health{i});
+            bulk.Add(e, Health{i});
+        }
+    }
+    for (Registry* registry : {&one, &bulk}) {
+        registry->ClearChanged<Health>();
+        for (int i = 0; i < kEntities; i += 7) registry->MarkChanged<Health>(entities[i]);
+        registry->Destroy(entities[kEntities - 3]);  // a stale handle
+    }
+    std::vector<Entity> marks;
+    for (int i = kEntities - 1; i >= 0; i -= 2) marks.push_back(entities[i]);  // backwards
+    for (const Entity e : marks) one.MarkChanged<Health>(e);
+    bulk.MarkChanged<Health>(std::span<const Entity>(marks));
+    std::vector<Entity> listedOne;
+    std::vector<Entity> listedBulk;
+    one.EachChanged<Health>([&](Entity e, Health&) { listedOne.push_back(e); });
+    bulk.EachChanged<Health>([&](Entity e, Health&) { listedBulk.push_back(e); });
+    EXPECT_GT(listedOne.size(), 4000u);
+    EXPECT_EQ(listedBulk, listedOne);
+    // And the marks behave as ever afterwards: found, cleared, removed.
+    EXPECT_TRUE(bulk.IsChanged<Health>(entities[kEntities - 1]));
+    EXPECT_FALSE(bulk.IsChanged<Health>(entities[kEntities - 3]));
+    bulk.Remove<Health>(entities[1]);
+    EXPECT_FALSE(bulk.IsChanged<Health>(entities[1]));
+    EXPECT_EQ(bulk.ChangedCount<Health>(), listedOne.size() - 1);
+    bulk.ClearChanged<Health>();
+    EXPECT_EQ(bulk.ChangedCount<Health>(), 0u);
+    bulk.MarkChanged<Health>(std::span<const Entity>(marks));
+    const auto withHealth =
+        std::count_if(marks.begin(), marks.end(), [&](Entity e) { return bulk.Has<Health>(e); });
+    EXPECT_EQ(bulk.ChangedCount<Health>(), static_cast<size_t>(withHealth));
 }
 
 TEST(RegistryTest, EachChangedGivesMutableComponentsAndConstAccess) {
