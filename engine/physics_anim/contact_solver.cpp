@@ -102,17 +102,8 @@ void PlanBlocks(const ContactBatches& batches, const ContactRows& rows, uint32_t
 void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
                         std::span<SolverBody> out, std::span<BodyAtStart> starts,
                         std::span<PseudoVelocity> pseudo, tbb::affinity_partitioner& affinity) {
-    ParallelFor(0, bodies.size(), 1024, affinity, [&](size_t i) {
-        const SimBody& s = bodies[i];
-        pseudo[slotOfBody[i]] = PseudoVelocity{};
-        starts[slotOfBody[i]] = {s.position, s.friction, s.startVelocity, s.restitution,
-                                 s.startAngularVelocity};
-        SolverBody& b = out[slotOfBody[i]];
-        b.velocity = s.velocity;
-        b.angularVelocity = s.angularVelocity;
-        b.invMass = s.awake ? s.invMass : 0.0f;
-        b.invInertia = s.awake ? s.invInertiaWorld : glm::mat3(0.0f);
-    });
+    ParallelFor(0, bodies.size(), 1024, affinity,
+                [&](size_t i) { GatherSolverBody(bodies[i], slotOfBody[i], out, starts, pseudo); });
 }
 
 void SolveContacts(std::span<const uint32_t> slotOfBody, std::span<const BodyAtStart> starts,

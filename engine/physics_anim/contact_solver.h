@@ -16,10 +16,22 @@
 
 namespace rtrt::physics {
 
-// The solver's view of the bodies at the start of the contact passes: body i goes to
-// out[slotOfBody[i]] and starts[slotOfBody[i]], and its pseudo velocity there starts at zero. The
-// caller orders the slots by place, so that the bodies that one thread solves (a run of regions,
-// see ContactBatches) lie together in memory and share no cache line with another thread's.
+// The solver's view of a body at the start of the contact passes, written to its slot in out and
+// starts, with its pseudo velocity there at zero. The caller orders the slots by place, so that
+// the bodies that one thread solves (a run of regions, see ContactBatches) lie together in memory
+// and share no cache line with another thread's.
+inline void GatherSolverBody(const SimBody& s, uint32_t slot, std::span<SolverBody> out,
+                             std::span<BodyAtStart> starts, std::span<PseudoVelocity> pseudo) {
+    pseudo[slot] = PseudoVelocity{};
+    starts[slot] = {s.position, s.friction, s.startVelocity, s.restitution, s.startAngularVelocity};
+    SolverBody& b = out[slot];
+    b.velocity = s.velocity;
+    b.angularVelocity = s.angularVelocity;
+    b.invMass = s.awake ? s.invMass : 0.0f;
+    b.invInertia = s.awake ? s.invInertiaWorld : glm::mat3(0.0f);
+}
+
+// GatherSolverBody of every body, body i to slot slotOfBody[i].
 void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
                         std::span<SolverBody> out, std::span<BodyAtStart> starts,
                         std::span<PseudoVelocity> pseudo, tbb::affinity_partitioner& affinity);

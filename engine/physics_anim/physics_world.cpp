@@ -115,11 +115,6 @@ void PhysicsWorld::TakeStep(bool anotherFollows) {
     FindContacts();
     times.narrowPhaseMs += clock.Milliseconds();
     clock.Restart();
-    solverBodies_.resize(bodies_.size());
-    bodyStarts_.resize(bodies_.size());
-    pseudoVelocities_.resize(bodies_.size());
-    GatherSolverBodies(bodies_, solverSlots_, solverBodies_, bodyStarts_, pseudoVelocities_,
-                       bodyAffinity_);
     SeedFromLastStep();
     if (gpuSolver_) {
         gpuSolver_->Solve(solverSlots_, bodyStarts_, solverBodies_, pseudoVelocities_, contacts_,
@@ -211,13 +206,20 @@ void PhysicsWorld::IntegrateVelocities() {
     const float h = settings_.fixedStep;
     const float linearDamping = 1.0f / (1.0f + h * settings_.linearDamping);
     const float angularDamping = 1.0f / (1.0f + h * settings_.angularDamping);
+    // The narrow phase changes no body, so each is handed to the solver here, while it is in
+    // this core's cache, instead of in a pass of its own.
+    solverBodies_.resize(bodies_.size());
+    bodyStarts_.resize(bodies_.size());
+    pseudoVelocities_.resize(bodies_.size());
     ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
         SimBody& s = bodies_[i];
-        if (!s.awake) return;
-        s.velocity = (s.velocity + settings_.gravity * h) * linearDamping;
-        s.angularVelocity *= angularDamping;
-        ClampLength(s.velocity, settings_.maxLinearSpeed);
-        ClampLength(s.angularVelocity, settings_.maxAngularSpeed);
+        if (s.awake) {
+            s.velocity = (s.velocity + settings_.gravity * h) * linearDamping;
+            s.angularVelocity *= angularDamping;
+            ClampLength(s.velocity, settings_.maxLinearSpeed);
+            ClampLength(s.angularVelocity, settings_.maxAngularSpeed);
+        }
+        GatherSolverBody(s, solverSlots_[i], solverBodies_, bodyStarts_, pseudoVelocities_);
     });
     // The flags, not the bodies: 1 byte each instead of a cache line.
     stats_.lastAwake = static_cast<uint32_t>(

@@ -138,6 +138,7 @@ class PhysicsWorld {
     void TakeStep(bool anotherFollows);
     void FindPairs();
     void WakeTouched();
+    // Gravity and damping, and each body's solver view (GatherSolverBody) for the contact passes.
     void IntegrateVelocities();
     void FindContacts();
     // A pair's or a plane and body's manifold, first to second; no contact when manifold.count
