@@ -47,6 +47,14 @@ void ClampLength(vec3& v, float maxLength) {
     if (length2 > maxLength * maxLength) v *= maxLength / std::sqrt(length2);
 }
 
+// Starts loading what the passes over contacts read of a contact's first body, which they meet
+// in no order: its handle, position and rotation (a SimBody's first two or three cache lines).
+void PrefetchPose(const SimBody& s) {
+    _mm_prefetch(reinterpret_cast<const char*>(&s.entity), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(&s.position), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(&s.rotation + 1) - 1, _MM_HINT_T0);
+}
+
 }  // namespace
 
 PhysicsWorld::PhysicsWorld(PhysicsSettings settings)
@@ -434,7 +442,7 @@ void PhysicsWorld::SeedFromLastStep() {
     ParallelFor(0, manifolds, kPairGrain, [&](size_t m) {
         if (m + 2 * kAhead < manifolds) {
             const Contact& later = firstContact(m + 2 * kAhead);
-            _mm_prefetch(reinterpret_cast<const char*>(&bodies_[later.a].entity), _MM_HINT_T0);
+            PrefetchPose(bodies_[later.a]);
             _mm_prefetch(reinterpret_cast<const char*>(&bodies_[later.b].entity), _MM_HINT_T0);
         }
         if (m + kAhead < manifolds) {
@@ -475,17 +483,25 @@ void PhysicsWorld::RememberImpulses() {
     auto pushed = [&](size_t k) { return contacts_[k].normalImpulse > 0.0f; };
     std::vector<CachedContact>& entries = nextCache_.Entries();
     entries.resize(contacts_.size());
-    const uint32_t kept =
-        ParallelCompact(contacts_.size(), chunkStarts_, pushed, [&](size_t k, uint32_t out) {
-            const Contact& c = contacts_[k];
-            const SimBody& a = bodies_[c.a];
-            entries[out] = {a.entity,
-                            bodies_[c.b].entity,
-                            glm::transpose(a.rotation) * (c.point - a.position),
-                            c.normalImpulse,
-                            c.tangentImpulse1,
-                            c.tangentImpulse2};
-        });
+    // The contacts' bodies are scattered: those of the contacts ahead are fetched while this
+    // one is written, as in the seeding.
+    constexpr size_t kAhead = 8;
+    const size_t n = contacts_.size();
+    const uint32_t kept = ParallelCompact(n, chunkStarts_, pushed, [&](size_t k, uint32_t out) {
+        if (k + kAhead < n) {
+            const Contact& later = contacts_[k + kAhead];
+            PrefetchPose(bodies_[later.a]);
+            _mm_prefetch(reinterpret_cast<const char*>(&bodies_[later.b].entity), _MM_HINT_T0);
+        }
+        const Contact& c = contacts_[k];
+        const SimBody& a = bodies_[c.a];
+        entries[out] = {a.entity,
+                        bodies_[c.b].entity,
+                        glm::transpose(a.rotation) * (c.point - a.position),
+                        c.normalImpulse,
+                        c.tangentImpulse1,
+                        c.tangentImpulse2};
+    });
     entries.resize(kept);
     nextCache_.Index();
     std::swap(cache_, nextCache_);
@@ -514,7 +530,14 @@ void PhysicsWorld::IntegratePositions(bool anotherFollows) {
             s.angularVelocity = vec3(0.0f);
         }
     };
+    // Bodies in body order meet their solver slots in sweep order: the slots ahead are fetched.
+    constexpr size_t kAhead = 8;
     ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
+        if (i + kAhead < bodies_.size()) {
+            const uint32_t slot = solverSlots_[i + kAhead];
+            _mm_prefetch(reinterpret_cast<const char*>(&solverBodies_[slot]), _MM_HINT_T0);
+            _mm_prefetch(reinterpret_cast<const char*>(&pseudoVelocities_[slot]), _MM_HINT_T0);
+        }
         SimBody& s = bodies_[i];
         if (s.awake) integrate(s, solverSlots_[i]);
         if (anotherFollows) StartStep(i);
