@@ -250,6 +250,11 @@ void PhysicsWorld::CollideCandidates() {
         const auto [i, j] = pairs_[k];
         Candidate& out = candidates_[k];
         out.manifold.count = 0;
+        const auto touch = [&](uint32_t first, uint32_t second, float lever) {
+            out.first = first;
+            out.second = second;
+            out.rolling = RollingLimit(first, second, lever);
+        };
         const SimBody& a = bodies_[i];
         const SimBody& b = bodies_[j];
         if (!a.awake && !b.awake) return;
@@ -263,29 +268,21 @@ void PhysicsWorld::CollideCandidates() {
         if (aSphere && bSphere) {
             if (CollideSpheres(a.position, a.collider.radius, b.position, b.collider.radius, margin,
                                m)) {
-                out.first = i;
-                out.second = j;
-                out.lever = std::min(a.collider.radius, b.collider.radius);
+                touch(i, j, std::min(a.collider.radius, b.collider.radius));
                 return;
             }
         } else if (aSphere) {
             if (CollideBoxSphere(BoxOf(b), a.position, a.collider.radius, margin, m)) {
-                out.first = j;
-                out.second = i;
-                out.lever = a.collider.radius;
+                touch(j, i, a.collider.radius);
                 return;
             }
         } else if (bSphere) {
             if (CollideBoxSphere(BoxOf(a), b.position, b.collider.radius, margin, m)) {
-                out.first = i;
-                out.second = j;
-                out.lever = b.collider.radius;
+                touch(i, j, b.collider.radius);
                 return;
             }
         } else if (CollideBoxes(BoxOf(a), BoxOf(b), margin, m)) {
-            out.first = i;
-            out.second = j;
-            out.lever = 0.0f;
+            touch(i, j, 0.0f);
             return;
         }
         m.count = 0;
@@ -311,19 +308,20 @@ void PhysicsWorld::CollideCandidates() {
             const float margin = settings_.contactMargin + glm::length(s.velocity) * h +
                                  glm::length(s.angularVelocity) * s.boundingRadius * h;
             const auto body = static_cast<uint32_t>(i);
+            const auto touch = [&](float lever) {
+                out.first = planeBody;
+                out.second = body;
+                out.rolling = RollingLimit(planeBody, body, lever);
+            };
             Manifold& m = out.manifold;
             if (s.collider.shape == ColliderShape::kSphere) {
                 if (CollidePlaneSphere(shape, s.position, s.collider.radius, margin, m)) {
-                    out.first = planeBody;
-                    out.second = body;
-                    out.lever = s.collider.radius;
+                    touch(s.collider.radius);
                     return;
                 }
             } else if (s.collider.shape == ColliderShape::kBox) {
                 if (CollidePlaneBox(shape, BoxOf(s), margin, m)) {
-                    out.first = planeBody;
-                    out.second = body;
-                    out.lever = 0.0f;
+                    touch(0.0f);
                     return;
                 }
             }
@@ -403,7 +401,16 @@ void PhysicsWorld::LayOutContacts() {
     batches_.manifoldBegin.resize(manifoldTotal + 1);
     batches_.manifoldBegin[manifoldTotal] = pointTotal;
     contacts_.resize(pointTotal);
+    // The hits are in layout order now, their candidates scattered: those ahead are fetched.
+    constexpr size_t kAhead = 8;
     ParallelFor(0, hits_.size(), kPairGrain, [&](size_t k) {
+        if (k + kAhead < hits_.size()) {
+            const char* later =
+                reinterpret_cast<const char*>(&candidates_[hits_[k + kAhead].candidate]);
+            for (size_t at = 0; at < sizeof(Candidate); at += 64) {
+                _mm_prefetch(later + at, _MM_HINT_T0);
+            }
+        }
         Hit& hit = hits_[k];
         hit.manifold += slotManifolds_[hit.slot];
         hit.firstPoint += slotPoints_[hit.slot];
@@ -412,10 +419,13 @@ void PhysicsWorld::LayOutContacts() {
     });
 }
 
+float PhysicsWorld::RollingLimit(uint32_t first, uint32_t second, float lever) const {
+    return lever * std::max(bodies_[first].rollingResistance, bodies_[second].rollingResistance);
+}
+
 void PhysicsWorld::WriteContacts(const Candidate& candidate, Contact* out) const {
     const Manifold& manifold = candidate.manifold;
-    const float rolling = candidate.lever * std::max(bodies_[candidate.first].rollingResistance,
-                                                     bodies_[candidate.second].rollingResistance);
+    const float rolling = candidate.rolling;
     for (int k = 0; k < manifold.count; ++k) {
         out[k] = {candidate.first,
                   candidate.second,

@@ -142,13 +142,17 @@ class PhysicsWorld {
     void IntegrateVelocities();
     void FindContacts();
     // A pair's or a plane and body's manifold, first to second; no contact when manifold.count
-    // is 0. lever: the radius of the sphere that can roll on it (0 when none can).
+    // is 0. rolling: the contacts' rolling limit (RollingLimit).
     struct Candidate {
         Manifold manifold;
         uint32_t first;
         uint32_t second;
-        float lever;
+        float rolling;
     };
+    // The rolling resistance of a contact between first and second, as the largest rolling
+    // impulse per unit normal impulse: lever is the radius of the sphere that can roll on it (0
+    // when none can).
+    float RollingLimit(uint32_t first, uint32_t second, float lever) const;
     void CollideCandidates();
     void LayOutContacts();
     void WriteContacts(const Candidate& candidate, Contact* out) const;

@@ -34,9 +34,9 @@ struct SimBody {
     vec3 invInertiaLocal{0.0f};       // principal, zero for fixed rotation
     glm::mat3 invInertiaWorld{0.0f};  // zero when not awake
     float boundingRadius = 0.0f;
+    float rollingResistance = 0.0f;  // beside the bounding radius: the narrow phase reads both
     float restitution = 0.0f;
     float friction = 0.0f;
-    float rollingResistance = 0.0f;
     float restingTime = 0.0f;
 };
 
