@@ -51,7 +51,8 @@ class SparseSet {
 
     // Appends entities[i] for every i where keep(i) holds, in order: the positions that Insert
     // one after another would give, found in parallel (ParallelCompact, which calls keep twice
-    // per entity). None may be in the set already, no two may share an index, and the set must
+    // per entity). None that keep accepts may be in the set already, no two entities may share
+    // an index (the caller's contract: a breach leaves the set inconsistent), and the set must
     // have a page for each (CoverPagesOf): the parallel writes then touch only their own slots.
     template <typename Keep>
     void AppendWhere(std::span<const Entity> entities, std::vector<uint32_t>& chunkStarts,

@@ -94,8 +94,8 @@ void PhysicsWorld::Gather(Registry& registry, bool stepFollows) {
 }
 
 void PhysicsWorld::WriteBack(Registry& registry, float alpha) {
-    // In parallel, each body to its own components; then the moved transforms are marked in body
-    // order (in parallel too: the marks took a serial pass over the bodies).
+    // In parallel, each body to its own components; then the moved transforms are marked, in body
+    // order, by the registry's bulk MarkChanged (also parallel).
     moved_.assign(bodies_.size(), 0);
     ParallelFor(0, bodies_.size(), kBodyGrain, bodyAffinity_, [&](size_t i) {
         const SimBody& s = bodies_[i];

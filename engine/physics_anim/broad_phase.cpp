@@ -183,6 +183,7 @@ void SweepAndPrune::SweepStrip(const Strips& strips, uint32_t strip,
     const uint32_t begin = stripBegin_[strip];
     const uint32_t end = stripBegin_[strip + 1];
     const SweptBoxes& s = sorted_;
+    static_assert(kLanes == 8, "laneIndex and the full-row mask below count eight lanes");
     const LaneMask laneIndex = {0, 1, 2, 3, 4, 5, 6, 7};
     for (uint32_t i = begin; i < end; ++i) {
         const Lanes aMax0 = Splat(s.max0[i]);

@@ -1,13 +1,7 @@
 #include "engine/physics_anim/contact_solver.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
-
 #include <algorithm>
 #include <cmath>
-
-#include "engine/core/parallel_for.h"
 
 namespace rtrt::physics {
 
@@ -98,13 +92,6 @@ void PlanBlocks(const ContactBatches& batches, const ContactRows& rows, uint32_t
 }
 
 }  // namespace
-
-void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
-                        std::span<SolverBody> out, std::span<BodyAtStart> starts,
-                        std::span<PseudoVelocity> pseudo, tbb::affinity_partitioner& affinity) {
-    ParallelFor(0, bodies.size(), 1024, affinity,
-                [&](size_t i) { GatherSolverBody(bodies[i], slotOfBody[i], out, starts, pseudo); });
-}
 
 void SolveContacts(std::span<const uint32_t> slotOfBody, std::span<const BodyAtStart> starts,
                    std::span<SolverBody> solverBodies, std::span<PseudoVelocity> pseudo,

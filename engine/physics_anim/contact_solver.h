@@ -1,9 +1,8 @@
 #pragma once
 // Sequential impulses over the step's contacts (Catto 2005, "Iterative Dynamics with Temporal
 // Coherence"): warm starting, Coulomb friction, rolling resistance, speculative contacts,
-// restitution, and split-impulse position correction. The arithmetic is in contact_rows.h.
-#include <tbb/partitioner.h>
-
+// restitution, and split-impulse position correction. The arithmetic is in contact_rows.cpp and
+// contact_row_setup.cpp.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -30,11 +29,6 @@ inline void GatherSolverBody(const SimBody& s, uint32_t slot, std::span<SolverBo
     b.invMass = s.awake ? s.invMass : 0.0f;
     b.invInertia = s.awake ? s.invInertiaWorld : glm::mat3(0.0f);
 }
-
-// GatherSolverBody of every body, body i to slot slotOfBody[i].
-void GatherSolverBodies(std::span<const SimBody> bodies, std::span<const uint32_t> slotOfBody,
-                        std::span<SolverBody> out, std::span<BodyAtStart> starts,
-                        std::span<PseudoVelocity> pseudo, tbb::affinity_partitioner& affinity);
 
 // What SolveContacts keeps between steps, so that a step allocates nothing.
 struct ContactSolverScratch {

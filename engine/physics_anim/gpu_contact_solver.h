@@ -3,8 +3,9 @@
 // bodies go to the GPU, one thread per manifold solves a colour's manifolds at once, one colour
 // after another with a grid-wide barrier between them, and the velocities, pseudo velocities and
 // impulses come back. Each manifold's contacts are solved in their order with the arithmetic of
-// the CPU rows in the same order (contact_setup.h is shared; no fused multiply-adds on either
-// side), and the manifolds of a colour share no moving body, so the result is the CPU solver's,
+// the CPU rows in the same order (contact_setup.h here, its lane-wise twin contact_row_setup.h
+// there, which contact_rows_test holds to the same bits; no fused multiply-adds on either side),
+// and the manifolds of a colour share no moving body, so the result is the CPU solver's,
 // whatever the number of CPU threads. One difference: where a lane of a CPU row has nothing to
 // do while others in its row work, the CPU applies a zero impulse to its bodies and the GPU
 // skips it, which can turn a velocity component of -0 into +0 on the CPU alone; every other bit

@@ -1,8 +1,9 @@
 #pragma once
 // Eight floats computed as one: the contact solver's rows (contact_rows.h) solve eight contacts
-// of eight different manifolds at once. GCC's vector extension gives the arithmetic (+ - * / and
-// comparisons lane by lane, ?: as a per-lane select) on any x86 target: AVX registers where the
-// build has them, pairs of SSE registers where it does not.
+// of eight different manifolds at once, and the broad phase tests a box against eight others. GCC's
+// vector extension gives the arithmetic (+ - * / and comparisons lane by lane, ?: as a per-lane
+// select) on any x86 target: AVX registers where the build has them, pairs of SSE registers where
+// it does not.
 #include <immintrin.h>
 
 #include <cstdint>

@@ -214,8 +214,8 @@ void PhysicsWorld::IntegrateVelocities() {
     const float h = settings_.fixedStep;
     const float linearDamping = 1.0f / (1.0f + h * settings_.linearDamping);
     const float angularDamping = 1.0f / (1.0f + h * settings_.angularDamping);
-    // The narrow phase changes no body, so each is handed to the solver here, while it is in
-    // this core's cache, instead of in a pass of its own.
+    // The narrow phase changes no body, so each is handed to the solver here (GatherSolverBody),
+    // while it is in this core's cache.
     solverBodies_.resize(bodies_.size());
     bodyStarts_.resize(bodies_.size());
     pseudoVelocities_.resize(bodies_.size());
@@ -405,10 +405,11 @@ void PhysicsWorld::LayOutContacts() {
     constexpr size_t kAhead = 8;
     ParallelFor(0, hits_.size(), kPairGrain, [&](size_t k) {
         if (k + kAhead < hits_.size()) {
-            const char* later =
-                reinterpret_cast<const char*>(&candidates_[hits_[k + kAhead].candidate]);
-            for (size_t at = 0; at < sizeof(Candidate); at += 64) {
-                _mm_prefetch(later + at, _MM_HINT_T0);
+            const auto later =
+                reinterpret_cast<uintptr_t>(&candidates_[hits_[k + kAhead].candidate]);
+            for (uintptr_t line = later & ~uintptr_t{63}; line < later + sizeof(Candidate);
+                 line += 64) {
+                _mm_prefetch(reinterpret_cast<const char*>(line), _MM_HINT_T0);
             }
         }
         Hit& hit = hits_[k];

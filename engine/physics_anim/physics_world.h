@@ -55,7 +55,7 @@ struct PhysicsSettings {
 
 // Where the last Advance or Step call spent its time, summed over its steps.
 struct PhysicsTimes {
-    double broadPhaseMs = 0.0;   // boxes, pairs, waking, gravity
+    double broadPhaseMs = 0.0;   // boxes, pairs, waking, gravity, the solver's view of the bodies
     double narrowPhaseMs = 0.0;  // contacts, colouring and layout
     double solverMs = 0.0;       // warm start, velocity and position iterations, impulse cache
     double integrateMs = 0.0;    // positions and sleep
