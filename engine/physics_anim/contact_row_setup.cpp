@@ -79,17 +79,6 @@ template <typename T>
             {high[4], high[5], high[6]}};
 }
 
-[[gnu::always_inline]] inline Lanes Abs(Lanes x) {
-    return reinterpret_cast<Lanes>(reinterpret_cast<LaneMask>(x) & 0x7fffffff);
-}
-[[gnu::always_inline]] inline Lanes CopySign(Lanes magnitude, Lanes sign) {
-    const LaneMask signBit = reinterpret_cast<LaneMask>(sign) & static_cast<int32_t>(0x80000000u);
-    return reinterpret_cast<Lanes>((reinterpret_cast<LaneMask>(magnitude) & 0x7fffffff) | signBit);
-}
-[[gnu::always_inline]] inline Lanes33 operator+(const Lanes33& a, const Lanes33& b) {
-    return {{a.column[0] + b.column[0], a.column[1] + b.column[1], a.column[2] + b.column[2]}};
-}
-
 // The lanes of AxisMass (contact_setup.h), operation for operation.
 [[gnu::always_inline]] inline Lanes AxisMassLanes(const BodyLanes& a, const BodyLanes& b,
                                                   const Lanes3& rA, const Lanes3& rB,
@@ -133,11 +122,6 @@ template <typename T>
     return out;
 }
 
-[[gnu::always_inline]] inline Lanes3 Select3(LaneMask mask, const Lanes3& yes) {
-    const Lanes zero = Splat(0.0f);
-    return {Select(mask, yes.x, zero), Select(mask, yes.y, zero), Select(mask, yes.z, zero)};
-}
-
 }  // namespace
 
 void SetUpRow(ContactRow& row, RollingLanes& rolling, std::span<const Contact> contacts,
@@ -145,6 +129,7 @@ void SetUpRow(ContactRow& row, RollingLanes& rolling, std::span<const Contact> c
               const SolverSettings& settings) {
     const Lanes zero = Splat(0.0f);
     const Lanes one = Splat(1.0f);
+    const Lanes3 none = {zero, zero, zero};
     LaneMask active;
     for (int l = 0; l < kLanes; ++l) active[l] = (row.activeLanes >> l & 1u) != 0 ? -1 : 0;
     // An inactive lane reads an active lane's contact: real numbers, then discarded.
@@ -169,11 +154,11 @@ void SetUpRow(ContactRow& row, RollingLanes& rolling, std::span<const Contact> c
                              -sign * c.normal.x};
     const Lanes3 tangent2 = {cross, sign + c.normal.y * c.normal.y * basis, -c.normal.y};
 
-    row.normal = Select3(active, c.normal);
-    row.tangent1 = Select3(active, tangent1);
-    row.tangent2 = Select3(active, tangent2);
-    row.anchorA = Select3(active, anchorA);
-    row.anchorB = Select3(active, anchorB);
+    row.normal = Select3(active, c.normal, none);
+    row.tangent1 = Select3(active, tangent1, none);
+    row.tangent2 = Select3(active, tangent2, none);
+    row.anchorA = Select3(active, anchorA, none);
+    row.anchorB = Select3(active, anchorB, none);
     row.normalMass = Select(active, AxisMassLanes(sa, sb, anchorA, anchorB, c.normal), zero);
     row.tangentMass1 = Select(active, AxisMassLanes(sa, sb, anchorA, anchorB, tangent1), zero);
     row.tangentMass2 = Select(active, AxisMassLanes(sa, sb, anchorA, anchorB, tangent2), zero);
@@ -207,7 +192,7 @@ void SetUpRow(ContactRow& row, RollingLanes& rolling, std::span<const Contact> c
     row.rolling = true;
     rolling.limit = Select(turns, c.rollingLimit, zero);
     rolling.impulse = {zero, zero, zero};
-    for (int i = 0; i < 3; ++i) rolling.mass.column[i] = Select3(turns, mass.column[i]);
+    for (int i = 0; i < 3; ++i) rolling.mass.column[i] = Select3(turns, mass.column[i], none);
 }
 
 }  // namespace rtrt::physics

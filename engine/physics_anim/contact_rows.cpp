@@ -31,10 +31,6 @@ namespace {
     b.angularVelocity = b.angularVelocity + b.invInertia * Cross(row.anchorB, impulse);
 }
 
-[[gnu::always_inline]] inline Lanes3 Select3(LaneMask mask, const Lanes3& yes, const Lanes3& no) {
-    return {Select(mask, yes.x, no.x), Select(mask, yes.y, no.y), Select(mask, yes.z, no.z)};
-}
-
 // Rolling resistance, friction and the normal impulse of one row, on the bodies' lanes.
 [[gnu::always_inline]] inline void SolveVelocity(BodyLanes& a, BodyLanes& b, ContactRow& row,
                                                  RollingLanes* rolling) {

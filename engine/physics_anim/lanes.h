@@ -20,6 +20,15 @@ inline Lanes Select(LaneMask mask, Lanes yes, Lanes no) { return mask ? yes : no
 
 inline Lanes Max(Lanes a, Lanes b) { return a > b ? a : b; }
 
+// fabsf and copysignf lane by lane, on the sign bit as they work.
+inline Lanes Abs(Lanes x) {
+    return reinterpret_cast<Lanes>(reinterpret_cast<LaneMask>(x) & 0x7fffffff);
+}
+inline Lanes CopySign(Lanes magnitude, Lanes sign) {
+    const LaneMask signBit = reinterpret_cast<LaneMask>(sign) & static_cast<int32_t>(0x80000000u);
+    return reinterpret_cast<Lanes>((reinterpret_cast<LaneMask>(magnitude) & 0x7fffffff) | signBit);
+}
+
 inline Lanes Sqrt(Lanes x) {
 #if defined(__AVX__)
     return reinterpret_cast<Lanes>(_mm256_sqrt_ps(reinterpret_cast<__m256>(x)));
@@ -78,6 +87,12 @@ inline Lanes3 operator*(Lanes s, const Lanes3& a) { return {s * a.x, s * a.y, s 
 inline Lanes Dot(const Lanes3& a, const Lanes3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline Lanes3 Cross(const Lanes3& a, const Lanes3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline Lanes3 Select3(LaneMask mask, const Lanes3& yes, const Lanes3& no) {
+    return {Select(mask, yes.x, no.x), Select(mask, yes.y, no.y), Select(mask, yes.z, no.z)};
+}
+inline Lanes33 operator+(const Lanes33& a, const Lanes33& b) {
+    return {{a.column[0] + b.column[0], a.column[1] + b.column[1], a.column[2] + b.column[2]}};
 }
 inline Lanes3 operator*(const Lanes33& m, const Lanes3& v) {
     return {m.column[0].x * v.x + m.column[1].x * v.y + m.column[2].x * v.z,
