@@ -246,13 +246,13 @@ void PhysicsWorld::CollideCandidates() {
     const size_t bodyCount = bodies_.size();
     candidates_.resize(pairs_.size() + planes_.size() * bodyCount);
     candidatePoints_.resize(candidates_.size());
+    candidateBodies_.resize(candidates_.size());
     const auto collidePair = [&](size_t k) {
         const auto [i, j] = pairs_[k];
         Candidate& out = candidates_[k];
         out.manifold.count = 0;
         const auto touch = [&](uint32_t first, uint32_t second, float lever) {
-            out.first = first;
-            out.second = second;
+            candidateBodies_[k] = {first, second};
             out.rolling = RollingLimit(first, second, lever);
         };
         const SimBody& a = bodies_[i];
@@ -299,7 +299,8 @@ void PhysicsWorld::CollideCandidates() {
         PlaneShape shape;
         shape.normal = glm::normalize(plane.orientation * plane.collider.normal);
         shape.offset = glm::dot(shape.normal, plane.position);
-        Candidate* const row = candidates_.data() + pairs_.size() + p * bodyCount;
+        const size_t rowStart = pairs_.size() + p * bodyCount;
+        Candidate* const row = candidates_.data() + rowStart;
         const auto collidePlane = [&](size_t i) {
             Candidate& out = row[i];
             out.manifold.count = 0;
@@ -309,8 +310,7 @@ void PhysicsWorld::CollideCandidates() {
                                  glm::length(s.angularVelocity) * s.boundingRadius * h;
             const auto body = static_cast<uint32_t>(i);
             const auto touch = [&](float lever) {
-                out.first = planeBody;
-                out.second = body;
+                candidateBodies_[rowStart + i] = {planeBody, body};
                 out.rolling = RollingLimit(planeBody, body, lever);
             };
             Manifold& m = out.manifold;
@@ -327,7 +327,7 @@ void PhysicsWorld::CollideCandidates() {
             }
             m.count = 0;
         };
-        uint8_t* const points = candidatePoints_.data() + pairs_.size() + p * bodyCount;
+        uint8_t* const points = candidatePoints_.data() + rowStart;
         ParallelFor(0, bodyCount, kBodyGrain, bodyAffinity_, [&](size_t i) {
             collidePlane(i);
             points[i] = static_cast<uint8_t>(row[i].manifold.count);
@@ -351,16 +351,16 @@ void PhysicsWorld::LayOutContacts() {
     hits_.resize(ParallelCompact(
         candidates_.size(), chunkStarts_, [&](size_t k) { return candidatePoints_[k] > 0; },
         [&](size_t k, uint32_t out) {
-            const Candidate& c = candidates_[k];
-            const bool firstMoves = (motion_[c.first] & kAwake) != 0;
-            const bool secondMoves = (motion_[c.second] & kAwake) != 0;
+            const auto [first, second] = candidateBodies_[k];
+            const bool firstMoves = (motion_[first] & kAwake) != 0;
+            const bool secondMoves = (motion_[second] & kAwake) != 0;
             // A moving body has a collider, so its slot is its sweep rank.
-            const uint64_t rank = solverSlots_[firstMoves ? c.first : c.second];
+            const uint64_t rank = solverSlots_[firstMoves ? first : second];
             Hit& hit = hits_[out];
             hit.candidate = static_cast<uint32_t>(k);
             hit.slot = static_cast<uint32_t>(rank * kRegions / ranks);
-            hit.first = c.first;
-            hit.second = c.second;
+            hit.first = first;
+            hit.second = second;
             hit.points = candidatePoints_[k];
             hit.firstMoves = firstMoves;
             hit.secondMoves = secondMoves;
@@ -416,7 +416,8 @@ void PhysicsWorld::LayOutContacts() {
         hit.manifold += slotManifolds_[hit.slot];
         hit.firstPoint += slotPoints_[hit.slot];
         batches_.manifoldBegin[hit.manifold] = hit.firstPoint;
-        WriteContacts(candidates_[hit.candidate], contacts_.data() + hit.firstPoint);
+        WriteContacts(candidates_[hit.candidate], hit.first, hit.second,
+                      contacts_.data() + hit.firstPoint);
     });
 }
 
@@ -424,12 +425,13 @@ float PhysicsWorld::RollingLimit(uint32_t first, uint32_t second, float lever) c
     return lever * std::max(bodies_[first].rollingResistance, bodies_[second].rollingResistance);
 }
 
-void PhysicsWorld::WriteContacts(const Candidate& candidate, Contact* out) const {
+void PhysicsWorld::WriteContacts(const Candidate& candidate, uint32_t first, uint32_t second,
+                                 Contact* out) const {
     const Manifold& manifold = candidate.manifold;
     const float rolling = candidate.rolling;
     for (int k = 0; k < manifold.count; ++k) {
-        out[k] = {candidate.first,
-                  candidate.second,
+        out[k] = {first,
+                  second,
                   manifold.normal,
                   manifold.points[k].point,
                   manifold.points[k].separation,
