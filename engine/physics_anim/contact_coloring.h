@@ -4,6 +4,7 @@
 // colour share no awake body, so solving them in any order, or at once, does the same arithmetic
 // on the same values. Colours are solved one after another, like the serial Gauss-Seidel sweep
 // over a fixed order that they replace.
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -46,7 +47,15 @@ class ContactColoring {
     void Reset(uint32_t bodyCount);
     // The colour of a manifold between bodies a and b (kOverflow when none is left); aMoves and
     // bMoves say whether the solver changes that body's velocities.
-    uint32_t Assign(uint32_t a, bool aMoves, uint32_t b, bool bMoves);
+    uint32_t Assign(uint32_t a, bool aMoves, uint32_t b, bool bMoves) {
+        const uint64_t taken = (aMoves ? used_[a] : 0) | (bMoves ? used_[b] : 0);
+        if (taken == ~uint64_t{0}) return kOverflow;
+        const auto color = static_cast<uint32_t>(std::countr_one(taken));
+        const uint64_t bit = uint64_t{1} << color;
+        if (aMoves) used_[a] |= bit;
+        if (bMoves) used_[b] |= bit;
+        return color;
+    }
 
   private:
     std::vector<uint64_t> used_;  // per body, a bit per colour its manifolds have

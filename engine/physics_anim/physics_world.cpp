@@ -385,18 +385,18 @@ void PhysicsWorld::LayOutContacts() {
     batches_.lastIsOverflow = colorManifolds[ContactColoring::kOverflow] > 0;
     uint32_t manifoldTotal = 0;
     uint32_t pointTotal = 0;
-    for (uint32_t slot = 0; slot < kSlots * kRegions; ++slot) {
-        const uint32_t manifolds = slotManifolds_[slot];
-        const uint32_t points = slotPoints_[slot];
-        const uint32_t color = slot / kRegions;
-        if (colorManifolds[color] > 0) batches_.regionBegin.push_back(manifoldTotal);
-        slotManifolds_[slot] = manifoldTotal;  // now where the slot's manifolds start
-        slotPoints_[slot] = pointTotal;
-        manifoldTotal += manifolds;
-        pointTotal += points;
-        if (slot % kRegions == kRegions - 1 && colorManifolds[color] > 0) {
-            batches_.colorBegin.push_back(manifoldTotal);
+    for (uint32_t color = 0; color < kSlots; ++color) {
+        if (colorManifolds[color] == 0) continue;  // no hit reads its slots
+        for (uint32_t slot = color * kRegions; slot < (color + 1) * kRegions; ++slot) {
+            batches_.regionBegin.push_back(manifoldTotal);
+            const uint32_t manifolds = slotManifolds_[slot];
+            const uint32_t points = slotPoints_[slot];
+            slotManifolds_[slot] = manifoldTotal;  // now where the slot's manifolds start
+            slotPoints_[slot] = pointTotal;
+            manifoldTotal += manifolds;
+            pointTotal += points;
         }
+        batches_.colorBegin.push_back(manifoldTotal);
     }
     batches_.manifoldBegin.resize(manifoldTotal + 1);
     batches_.manifoldBegin[manifoldTotal] = pointTotal;
