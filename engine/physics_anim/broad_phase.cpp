@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -68,17 +69,56 @@ std::array<int, 3> AxesBySpread(const Spread& spread, size_t boxes) {
     return axes;
 }
 
-// Sorts by insertion, giving up (false, entries still a permutation) after maxShifts moves.
+// Sorts [begin, end) by insertion, giving up (false, entries still a permutation) after maxShifts
+// moves.
+template <typename Entry, typename Before>
+bool SortRangeByInsertion(Entry* begin, Entry* end, size_t maxShifts, const Before& before) {
+    size_t shifts = 0;
+    for (Entry* i = begin + 1; i < end; ++i) {
+        const Entry entry = *i;
+        Entry* j = i;
+        for (; j > begin && before(entry, *(j - 1)); --j) *j = *(j - 1);
+        *j = entry;
+        shifts += static_cast<size_t>(i - j);
+        if (shifts > maxShifts) return false;
+    }
+    return true;
+}
+
+// Sorts by insertion, in chunks at once, giving up (false, entries still a permutation) after
+// about maxShifts moves. Each chunk is sorted on its own; then, chunk by chunk, the entries that
+// belong before the end of the sorted entries ahead of the chunk (few, when the entries were
+// nearly sorted) are inserted among them. before is a strict total order, so the result is the
+// one sorted order, whatever the chunks and threads.
 template <typename Entry, typename Before>
 bool SortByInsertion(std::vector<Entry>& entries, size_t maxShifts, const Before& before) {
+    constexpr size_t kChunk = 1024;
+    const size_t n = entries.size();
+    const size_t chunks = (n + kChunk - 1) / kChunk;
+    Entry* const data = entries.data();
+    if (chunks <= 1) return SortRangeByInsertion(data, data + n, maxShifts, before);
+    const size_t chunkShifts = maxShifts / chunks;
+    std::atomic<bool> sorted = true;
+    tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+        Entry* const begin = data + c * kChunk;
+        if (!SortRangeByInsertion(begin, data + std::min(n, (c + 1) * kChunk), chunkShifts,
+                                  before)) {
+            sorted.store(false, std::memory_order_relaxed);
+        }
+    });
+    if (!sorted.load()) return false;
     size_t shifts = 0;
-    for (size_t i = 1; i < entries.size(); ++i) {
-        const Entry entry = entries[i];
-        size_t j = i;
-        for (; j > 0 && before(entry, entries[j - 1]); --j) entries[j] = entries[j - 1];
-        entries[j] = entry;
-        shifts += i - j;
-        if (shifts > maxShifts) return false;
+    for (size_t c = 1; c < chunks; ++c) {
+        const size_t start = c * kChunk;
+        const Entry last = data[start - 1];  // the largest of the sorted entries ahead
+        for (size_t i = start; i < std::min(n, start + kChunk) && before(data[i], last); ++i) {
+            const Entry entry = data[i];
+            size_t j = i;
+            for (; j > 0 && before(entry, data[j - 1]); --j) data[j] = data[j - 1];
+            data[j] = entry;
+            shifts += i - j;
+            if (shifts > maxShifts) return false;
+        }
     }
     return true;
 }
