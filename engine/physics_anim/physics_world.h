@@ -1,6 +1,7 @@
 #pragma once
 // The rigid-body simulation: fixed steps from an accumulator, interpolated rendering poses.
 #include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
 #include <cstdint>
 #include <memory>
@@ -216,6 +217,11 @@ class PhysicsWorld {
     std::vector<PseudoVelocity> pseudoVelocities_;
     ContactSolverScratch solverScratch_;
     std::unique_ptr<GpuContactSolver> gpuSolver_;
+    // A world of few bodies steps on one thread (OnThreadsFor): there the threads' start and
+    // joins cost more than they share.
+    template <typename Work>
+    void OnThreadsFor(size_t bodies, const Work& work);
+    std::unique_ptr<tbb::task_arena> oneThread_;
 
     ContactCache cache_;  // last step's touching contacts, for warm starting
     ContactCache nextCache_;
