@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/core/scratch_vector.h"
 #include "engine/ecs/registry.h"
 #include "engine/ecs/scheduler.h"
 #include "engine/physics_anim/broad_phase.h"
@@ -205,7 +206,7 @@ class PhysicsWorld {
         bool firstMoves;
         bool secondMoves;
     };
-    std::vector<Hit> hits_;
+    ScratchVector<Hit> hits_;  // sized to the candidates, then compacted: no zeros written
     std::vector<uint32_t> slotManifolds_;
     std::vector<uint32_t> slotPoints_;
     std::vector<uint32_t> solverSlots_;  // each body's place among the solver bodies
@@ -225,8 +226,8 @@ class PhysicsWorld {
 
     ContactCache cache_;  // last step's touching contacts, for warm starting
     ContactCache nextCache_;
-    std::vector<uint32_t> chunkStarts_;   // ParallelCompact's scratch
-    std::vector<uint32_t> sleeperPairs_;  // pairs_ holding a sleeper (WakeTouched)
+    std::vector<uint32_t> chunkStarts_;     // ParallelCompact's scratch
+    ScratchVector<uint32_t> sleeperPairs_;  // pairs_ holding a sleeper (WakeTouched)
     SweepAndPrune sweep_;
     // The loops over bodies_ (and over the broad-phase boxes) run each chunk of bodies on the
     // same thread from loop to loop, so that a body's cache lines stay with one core.
