@@ -85,24 +85,30 @@ bool SortRangeByInsertion(Entry* begin, Entry* end, size_t maxShifts, const Befo
     return true;
 }
 
-// Sorts by insertion, in chunks at once, giving up (false, entries still a permutation) after
-// about maxShifts moves. Each chunk is sorted on its own; then, chunk by chunk, the entries that
-// belong before the end of the sorted entries ahead of the chunk (few, when the entries were
-// nearly sorted) are inserted among them. before is a strict total order, so the result is the
-// one sorted order, whatever the chunks and threads.
-template <typename Entry, typename Before>
-bool SortByInsertion(std::vector<Entry>& entries, size_t maxShifts, const Before& before) {
+// Refreshes each entry (refresh(entry): its new key), then sorts by insertion, in chunks at once,
+// giving up (false, entries still a permutation) after about maxShifts moves. Each chunk is
+// refreshed and sorted on its own; then, chunk by chunk, the entries that belong before the end of
+// the sorted entries ahead of the chunk (few, when the entries were nearly sorted) are inserted
+// among them. before is a strict total order, so the result is the one sorted order, whatever the
+// chunks and threads.
+template <typename Entry, typename Refresh, typename Before>
+bool RefreshAndSortByInsertion(std::vector<Entry>& entries, size_t maxShifts,
+                               const Refresh& refresh, const Before& before) {
     constexpr size_t kChunk = 1024;
     const size_t n = entries.size();
     const size_t chunks = (n + kChunk - 1) / kChunk;
     Entry* const data = entries.data();
-    if (chunks <= 1) return SortRangeByInsertion(data, data + n, maxShifts, before);
+    if (chunks <= 1) {
+        for (Entry& entry : entries) refresh(entry);
+        return SortRangeByInsertion(data, data + n, maxShifts, before);
+    }
     const size_t chunkShifts = maxShifts / chunks;
     std::atomic<bool> sorted = true;
     tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
         Entry* const begin = data + c * kChunk;
-        if (!SortRangeByInsertion(begin, data + std::min(n, (c + 1) * kChunk), chunkShifts,
-                                  before)) {
+        Entry* const end = data + std::min(n, (c + 1) * kChunk);
+        for (Entry* entry = begin; entry < end; ++entry) refresh(*entry);
+        if (!SortRangeByInsertion(begin, end, chunkShifts, before)) {
             sorted.store(false, std::memory_order_relaxed);
         }
     });
@@ -163,19 +169,14 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
         return a.min != b.min ? a.min < b.min : a.box < b.box;
     };
     const bool coherent = order_.size() == boxes.size() && axis == lastAxis_;
-    if (coherent) {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, order_.size(), 4096),
-                          [&](const tbb::blocked_range<size_t>& r) {
-                              for (size_t i = r.begin(); i < r.end(); ++i) {
-                                  order_[i].min = boxes[order_[i].box].min[axis];
-                              }
-                          });
-    } else {
-        order_.resize(boxes.size());
-        for (uint32_t i = 0; i < boxes.size(); ++i) order_[i] = {boxes[i].min[axis], i};
-    }
     lastAxis_ = axis;
-    if (!coherent || !SortByInsertion(order_, kMaxInsertionShiftsPerBox * order_.size(), before)) {
+    const auto refresh = [&](Entry& entry) { entry.min = boxes[entry.box].min[axis]; };
+    if (!coherent || !RefreshAndSortByInsertion(order_, kMaxInsertionShiftsPerBox * order_.size(),
+                                                refresh, before)) {
+        if (!coherent) {
+            order_.resize(boxes.size());
+            for (uint32_t i = 0; i < boxes.size(); ++i) order_[i] = {boxes[i].min[axis], i};
+        }
         tbb::parallel_sort(order_.begin(), order_.end(), before);
     }
     const Strips strips =
