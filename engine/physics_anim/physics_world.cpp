@@ -35,10 +35,8 @@ OrientedBox BoxOf(const SimBody& body) {
 // Work per TBB task: each element is a few dozen to a few hundred flops.
 constexpr size_t kBodyGrain = 1024;
 constexpr size_t kPairGrain = 128;
-// Below this many bodies a frame's steps run on one thread, whatever TBB lends: demo_physics's
-// 460 bodies step faster on one thread than on sixteen (the GPU machine's host) or two (the 2-core
-// machine), and so does a 1,000-body rain on two
-// (bench/results/physics-step-work-vm-2026-12-05.txt).
+// Below this many bodies a frame's steps run on one thread, whatever TBB lends: there the threads'
+// start and joins cost more than they share (bench/results/physics-step-serial-vm-2026-12-05.txt).
 constexpr size_t kParallelBodies = 1024;
 
 uint8_t MotionOf(const SimBody& s) {
