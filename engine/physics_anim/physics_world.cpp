@@ -12,6 +12,7 @@
 #include "engine/core/parallel_for.h"
 #include "engine/core/timer.h"
 #include "engine/physics_anim/narrow_phase.h"
+#include "engine/physics_anim/stage_runner.h"
 
 namespace rtrt::physics {
 
@@ -35,9 +36,6 @@ OrientedBox BoxOf(const SimBody& body) {
 // Work per TBB task: each element is a few dozen to a few hundred flops.
 constexpr size_t kBodyGrain = 1024;
 constexpr size_t kPairGrain = 128;
-// Below this many bodies a frame's steps run on one thread, whatever TBB lends: there the threads'
-// start and joins cost more than they share (bench/results/physics-step-serial-vm-2026-12-05.txt).
-constexpr size_t kParallelBodies = 1024;
 
 uint8_t MotionOf(const SimBody& s) {
     return static_cast<uint8_t>((s.dynamic ? PhysicsWorld::kDynamic : 0) |
@@ -106,13 +104,16 @@ void PhysicsWorld::Step(Registry& registry, int steps) {
 
 template <typename Work>
 void PhysicsWorld::OnThreadsFor(size_t bodies, const Work& work) {
-    if (bodies >= kParallelBodies) {
+    const auto counted = [&] {
+        stats_.lastThreads = static_cast<uint32_t>(StageRunner::AvailableThreads());
         work();
+    };
+    if (bodies >= settings_.minParallelBodies) {
+        counted();
         return;
     }
-    // The same bits on any number of threads, so one thread changes only the time.
     if (!oneThread_) oneThread_ = std::make_unique<tbb::task_arena>(1);
-    oneThread_->execute(work);
+    oneThread_->execute(counted);
 }
 
 void PhysicsWorld::StartStep(size_t i) {

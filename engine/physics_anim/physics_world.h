@@ -53,6 +53,11 @@ struct PhysicsSettings {
     float sleepLinearSpeed = 0.05f;   // m/s
     float sleepAngularSpeed = 0.05f;  // rad/s
     float timeToSleep = 0.5f;         // s
+
+    // A world of fewer bodies steps on one thread, whatever TBB lends: the threads' start and
+    // joins would cost more than they share (bench/results/physics-step-serial-vm-2026-12-05.txt).
+    // The bits are the same on any number of threads, so this changes only the time.
+    uint32_t minParallelBodies = 1024;
 };
 
 // Where the last Advance or Step call spent its time, summed over its steps.
@@ -74,7 +79,8 @@ struct PhysicsStats {
     uint32_t lastAwake = 0;
     uint32_t lastPairs = 0;  // broad-phase pairs
     uint32_t lastContacts = 0;
-    uint32_t lastColors = 0;  // contact colours (ContactColoring), the overflow included
+    uint32_t lastColors = 0;   // contact colours (ContactColoring), the overflow included
+    uint32_t lastThreads = 0;  // that the last frame's steps could use (1 for a small world)
     PhysicsTimes lastTimes;
 };
 
@@ -87,7 +93,8 @@ struct PhysicsStats {
 // positions; sleeping. Gyroscopic torque is ignored (a tumbling box keeps its angular velocity).
 // Parallel on TBB: per-body passes, the sweep and the narrow phase split their arrays; the solver
 // runs the manifolds of one colour (contact_coloring.h) at once, each thread on the same region
-// (a run of solver bodies laid out in sweep order) in every colour.
+// (a run of solver bodies laid out in sweep order) in every colour. A world of few bodies steps on
+// one thread.
 // Deterministic whatever the number of threads: bodies are visited in pool order, pairs in strip
 // and sweep order with index tie-breaks, the colours are assigned serially in that order, and
 // parallel passes write disjoint data, so the same registry contents and calls give bit-identical
@@ -218,8 +225,7 @@ class PhysicsWorld {
     std::vector<PseudoVelocity> pseudoVelocities_;
     ContactSolverScratch solverScratch_;
     std::unique_ptr<GpuContactSolver> gpuSolver_;
-    // A world of few bodies steps on one thread (OnThreadsFor): there the threads' start and
-    // joins cost more than they share.
+    // Runs work on one thread when the world has fewer than minParallelBodies bodies.
     template <typename Work>
     void OnThreadsFor(size_t bodies, const Work& work);
     std::unique_ptr<tbb::task_arena> oneThread_;

@@ -13,6 +13,7 @@
 #include "engine/core/timer.h"
 #include "engine/physics_anim/physics_anim_systems.h"
 #include "engine/physics_anim/random_spawn.h"
+#include "engine/physics_anim/stage_runner.h"
 #include "tests/physics_anim/pile.h"
 
 namespace rtrt::physics {
@@ -277,6 +278,31 @@ TEST(PhysicsWorldTest, SameBitsOnAnyNumberOfThreads) {
         EXPECT_EQ(many.colors, one.colors);
         EXPECT_EQ(many.contacts, one.contacts);
     }
+}
+
+// A world of fewer than minParallelBodies bodies steps on one thread whatever TBB lends, with the
+// bits of any other number; a larger one uses every thread it is lent.
+TEST(PhysicsWorldTest, SmallWorldStepsOnOneThread) {
+    SpawnDesc desc;
+    desc.count = 300;
+    desc.regionMin = vec3(-3.0f, 0.0f, -3.0f);
+    desc.regionMax = vec3(3.0f, 8.0f, 3.0f);
+    desc.minSize = 0.1f;
+    desc.maxSize = 0.2f;
+    desc.boxFraction = 0.3f;
+    const uint32_t cut = PhysicsSettings{}.minParallelBodies;
+    const PileResult one = RunPile(desc, 5, {.steps = 60, .threads = 1, .minParallelBodies = cut});
+    const PileResult four = RunPile(desc, 5, {.steps = 60, .threads = 4, .minParallelBodies = cut});
+    ASSERT_LT(one.state.size() / 13 + 5, cut);  // the bodies and the pit's five planes
+    EXPECT_EQ(one.threads, 1u);
+    EXPECT_EQ(four.threads, 1u);
+    EXPECT_EQ(four.state, one.state);
+    // The same world with a lower cut: every thread the arena lends.
+    const uint32_t lent = static_cast<uint32_t>(
+        tbb::task_arena(4).execute([] { return StageRunner::AvailableThreads(); }));
+    const PileResult low = RunPile(desc, 5, {.steps = 60, .threads = 4, .minParallelBodies = 100});
+    EXPECT_EQ(low.threads, lent);
+    EXPECT_EQ(low.state, one.state);
 }
 
 TEST(PhysicsWorldTest, ZeroBodiesDoNoWork) {

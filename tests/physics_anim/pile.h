@@ -36,12 +36,16 @@ struct PileResult {
     std::vector<float> state;  // per body: position, orientation, velocity, angular velocity
     uint32_t colors = 0, contacts = 0;
     uint64_t steps = 0;
+    uint32_t threads = 0;  // the steps could use (PhysicsStats::lastThreads)
 };
 
 struct PileRun {
     float halfWidth = 3.0f;  // of the pit
     int steps = 240;
     int threads = 1;
+    // On every thread lent whatever the bodies (PhysicsSettings::minParallelBodies): the piles
+    // here test the threaded step.
+    uint32_t minParallelBodies = 0;
     bool gpuSolver = false;
     // Changes the spawned bodies (and may add some) before the first step.
     std::function<void(ecs::Registry&, std::vector<ecs::Entity>&)> extras;
@@ -56,12 +60,15 @@ inline PileResult RunPile(const SpawnDesc& desc, uint64_t seed, const PileRun& r
         AddPit(registry, run.halfWidth);
         std::vector<ecs::Entity> bodies = SpawnRandomBodies(registry, desc, seed);
         if (run.extras) run.extras(registry, bodies);
-        PhysicsWorld world;
+        PhysicsSettings settings;
+        settings.minParallelBodies = run.minParallelBodies;
+        PhysicsWorld world(settings);
         if (run.gpuSolver) world.SolveContactsOnGpu();
         world.Step(registry, run.steps);
         result.colors = world.Stats().lastColors;
         result.contacts = world.Stats().lastContacts;
         result.steps = world.Stats().steps;
+        result.threads = world.Stats().lastThreads;
         for (const ecs::Entity e : bodies) {
             const RigidBody& b = *registry.Get<RigidBody>(e);
             const RigidBody::State& s = b.state;
