@@ -89,8 +89,9 @@ bool SortRangeByInsertion(Entry* begin, Entry* end, size_t maxShifts, const Befo
 // giving up (false, entries still a permutation) after about maxShifts moves. Each chunk is
 // refreshed and sorted on its own; then, chunk by chunk, the entries that belong before the end of
 // the sorted entries ahead of the chunk (few, when the entries were nearly sorted) are inserted
-// among them. before is a strict total order, so the result is the one sorted order, whatever the
-// chunks and threads.
+// among them. An entry that moved far forward is carried through every chunk after it, and the
+// joining then costs what one serial insertion sort would. before is a strict total order, so the
+// result is the one sorted order, whatever the chunks and threads.
 template <typename Entry, typename Refresh, typename Before>
 bool RefreshAndSortByInsertion(std::vector<Entry>& entries, size_t maxShifts,
                                const Refresh& refresh, const Before& before) {

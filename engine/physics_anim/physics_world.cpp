@@ -373,7 +373,7 @@ void PhysicsWorld::LayOutContacts() {
     // threads that found them.
     constexpr uint32_t kSlots = ContactColoring::kColors + 1;  // the colours and the overflow
     constexpr uint32_t kRegions = 256;
-    // What the serial passes need of each hit is gathered in parallel first: they then read 24
+    // What the serial passes need of each hit is gathered in parallel first: they then read 28
     // bytes per hit in order instead of a candidate and two bodies' flags.
     const uint64_t ranks = std::max<uint64_t>(1, boxes_.size());
     hits_.resize(candidates_.size());

@@ -201,7 +201,11 @@ class PhysicsWorld {
     std::vector<uint8_t> candidatePoints_;              // each candidate's manifold.count
     // Each candidate's bodies, the manifold's first and second, where it has points: apart from
     // the manifolds, so that LayOutContacts reads 8 bytes per hit instead of a cache line.
-    std::vector<std::pair<uint32_t, uint32_t>> candidateBodies_;
+    struct CandidateBodies {
+        uint32_t first;
+        uint32_t second;
+    };
+    ScratchVector<CandidateBodies> candidateBodies_;
     struct Hit {
         uint32_t candidate;   // that has contacts
         uint32_t slot;        // colour * regions + region (LayOutContacts)

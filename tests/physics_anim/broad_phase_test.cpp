@@ -56,9 +56,9 @@ TEST(BroadPhaseTest, SweepFindsTheSamePairsAsBruteForce) {
 
 // One SweepAndPrune over many steps, as the physics uses it: boxes that drift a little (the sort
 // starts from the last order, in chunks of 1024), a box that leaps from one end to the other (from
-// the last chunk to the first place), a step where they all jump (too far for that: a full sort),
-// a box count that changes, and the spread turning to another axis. Every step gives brute
-// force's pairs, in the order a fresh SweepAndPrune gives.
+// the last chunk to the first place) and one that leaps back, a step where they all jump (too far
+// for that: a full sort), a box count that changes, and the spread turning to another axis. Every
+// step gives brute force's pairs, in the order a fresh SweepAndPrune gives.
 TEST(BroadPhaseTest, StepsFromTheLastOrderFindTheSamePairsAsAFreshSweep) {
     std::mt19937 rng(17);
     auto unit = [&] { return static_cast<float>(rng() >> 8) * 0x1p-24f; };
@@ -71,13 +71,18 @@ TEST(BroadPhaseTest, StepsFromTheLastOrderFindTheSamePairsAsAFreshSweep) {
             box.min += d;
             box.max += d;
         }
+        const auto diagonal = [](const BroadPhaseBox& a, const BroadPhaseBox& b) {
+            return a.min.x + a.min.z < b.min.x + b.min.z;
+        };
         if (step == 3) {  // the box furthest along x and z leaps to before all the others
-            const auto far = std::max_element(
-                boxes.begin(), boxes.end(), [](const BroadPhaseBox& a, const BroadPhaseBox& b) {
-                    return a.min.x + a.min.z < b.min.x + b.min.z;
-                });
+            const auto far = std::max_element(boxes.begin(), boxes.end(), diagonal);
             far->max -= vec3(25.0f, 0.0f, 25.0f);
             far->min -= vec3(25.0f, 0.0f, 25.0f);
+        }
+        if (step == 4) {  // and the first box leaps to beyond all the others
+            const auto near = std::min_element(boxes.begin(), boxes.end(), diagonal);
+            near->max += vec3(50.0f, 0.0f, 50.0f);
+            near->min += vec3(50.0f, 0.0f, 50.0f);
         }
         if (step == 7) boxes.resize(2300);
         if (step == 9) {  // the boxes now spread most along y
