@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Physics round on the device machine: builds rtrt from this tree and from .device/baseline side
 # by side, then plays the rigid-body scenes through `rtrt bench runtime` on 1 to 16 threads (the
-# baseline on every core), and bench frame on demo_physics at 1080p, this tree and the baseline
-# one after the other.
+# baseline on every core; since 2026-12-05 a world of fewer than 1,024 rigid bodies, such as
+# demo_physics, steps on one thread whatever the count), and bench frame on demo_physics at 1080p,
+# this tree and the baseline one after the other.
 # Expects .device/ from tools/device/pack.sh (RTRT_BASELINE=...). RTRT_SKIP_BASELINE=1 runs this
 # tree alone; RTRT_THREADS and RTRT_PHYSICS_FRAMES change the thread counts and frames;
 # RTRT_SOLVERS (default cpu; e.g. cpu,gpu) the contact solvers; RTRT_ROUNDS (default 1) repeats
