@@ -269,7 +269,8 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
 
 // Runtime cost per stage on a played scene: what a scene does not use must cost ~nothing. Each
 // scene is played once per contact solver (cpu, gpu) and thread count (0: TBB's default, every
-// core); the last four columns split the physics step (PhysicsTimes).
+// core); broad to gpu-pass split the physics step (PhysicsTimes), and "p.thr" is the threads it
+// could use (one in a small world: PhysicsSettings::minParallelBodies).
 void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
                      const std::vector<int>& threadCounts,
                      const std::vector<std::string>& solvers) {
@@ -278,10 +279,11 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
         "are solved)\n",
         frames);
     std::printf(
-        "%-28s %6s %7s %9s %9s %9s %11s %9s %9s %9s %9s %9s %9s %7s %8s %8s %8s %8s %8s %8s\n",
+        "%-28s %6s %7s %9s %9s %9s %11s %9s %9s %9s %9s %9s %9s %7s %8s %8s %8s %8s %8s %8s "
+        "%5s\n",
         "scene", "on", "threads", "instances", "moving", "physics", "animators", "transform",
         "extract", "deform", "BLAS", "TLAS", "contacts", "colours", "broad", "narrow", "solver",
-        "integr.", "gpu-copy", "gpu-pass");
+        "integr.", "gpu-copy", "gpu-pass", "p.thr");
     for (const std::string& path : scenes) {
         const LoadedScene loaded = LoadSceneFile(path);
         for (const std::string& solverName : solvers) {
@@ -296,7 +298,8 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
                 const std::unique_ptr<FrameRenderer> renderer =
                     MakeFrameRenderer(Backend::kCpu, world.Scene());
                 std::vector<double> physics, animators, transforms, extract, deform, blas, tlas,
-                    moving, contacts, colours, broad, narrow, solver, integrate, gpuCopy, gpuPass;
+                    moving, contacts, colours, broad, narrow, solver, integrate, gpuCopy, gpuPass,
+                    physicsThreads;
                 for (int i = 0; i < frames; ++i) {
                     const FrameStats stats = world.Advance(1.0f / 60.0f);
                     renderer->Update(world.Scene(), world.Changes());
@@ -317,6 +320,7 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
                     moving.push_back(stats.extracted);
                     contacts.push_back(world.PhysicsStats().lastContacts);
                     colours.push_back(world.PhysicsStats().lastColors);
+                    physicsThreads.push_back(world.PhysicsStats().lastThreads);
                     const physics::PhysicsTimes& times = world.PhysicsStats().lastTimes;
                     broad.push_back(times.broadPhaseMs);
                     narrow.push_back(times.narrowPhaseMs);
@@ -328,13 +332,13 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
                 std::printf(
                     "%-28s %6s %7d %9zu %9.0f %9.4f %11.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.0f "
                     "%7.0f "
-                    "%8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n",
+                    "%8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %5.0f\n",
                     std::filesystem::path(path).filename().string().c_str(), solverName.c_str(),
                     threads, world.Scene().instances.size(), Median(moving), Median(physics),
                     Median(animators), Median(transforms), Median(extract), Median(deform),
                     Median(blas), Median(tlas), Median(contacts), Median(colours), Median(broad),
                     Median(narrow), Median(solver), Median(integrate), Median(gpuCopy),
-                    Median(gpuPass));
+                    Median(gpuPass), Median(physicsThreads));
             }
         }
     }
