@@ -23,6 +23,11 @@
 namespace rtrt {
 namespace {
 
+// Every entity a scene asks for (instances, spawned bodies, the nodes of each glTF placement)
+// counts against one budget, so that no combination of spawners and glTF node trees asks for
+// more memory than a machine has.
+constexpr uint64_t kMaxSceneEntities = 2000000;
+
 class SceneParser {
   public:
     SceneParser(std::string name, std::string baseDir)
@@ -210,6 +215,7 @@ class SceneParser {
                              std::string("expected an array, got ") + j.type_name());
         for (size_t i = 0; i < j.size(); ++i) {
             JsonFields f(j[i], JsonIndexed("instances", i), file_);
+            Reserve(f, "", 1);
             out.entities.push_back(ParseEntity(f, out.scene));
             out.entities.back().sourceIndex = uint32_t(i);
             // A glTF instance may start its file's animation this many seconds in.
@@ -220,6 +226,7 @@ class SceneParser {
             const std::optional<Camera> camera =
                 InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
                                 physics::ToMatrix(out.entities.back().local), phase);
+            Reserve(f, "model", 0);
             if (camera && !hasCamera_) {
                 out.scene.camera = *camera;
                 hasCamera_ = true;
@@ -339,6 +346,7 @@ class SceneParser {
             if (grid == rain) f.Fail("", "give exactly one of grid or rain");
             const std::vector<vec3> places =
                 grid ? GridPlaces(f, proto) : RainPlaces(f, out, proto);
+            Reserve(f, grid ? "grid.count" : "rain.count", places.size());
             proto.sourceArray = "spawners";
             proto.sourceIndex = uint32_t(i);
             for (const vec3& p : places) {
@@ -367,7 +375,10 @@ class SceneParser {
         const float spread = f.InRange("phase_spread", 0.0f, 1e6f, 0.0f);
         const std::vector<vec3> places = GridPlaces(f, proto);
         if (places.size() > 100000) f.Fail("grid.count", "at most 100,000 places of a glTF scene");
+        size_t perPlace = 0;  // the root and its nodes' entities, found by the first place
         for (size_t k = 0; k < places.size(); ++k) {
+            Reserve(f, "grid.count", perPlace * (places.size() - k));
+            const size_t before = out.entities.size();
             EntityDesc root = proto;
             root.sourceArray = "spawners";
             root.sourceIndex = index;
@@ -378,7 +389,17 @@ class SceneParser {
             const double fraction = std::fmod(double(k) * golden, 1.0);
             InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
                             physics::ToMatrix(root.local), phase + spread * fraction);
+            perPlace = out.entities.size() - before;
         }
+    }
+
+    // Fails on field of f when `more` entities on top of those made so far would exceed the
+    // scene's budget.
+    void Reserve(const JsonFields& f, const std::string& field, uint64_t more) const {
+        const uint64_t total = out_->entities.size() + more;
+        if (total <= kMaxSceneEntities) return;
+        f.Fail(field, "the scene would have " + std::to_string(total) +
+                          " entities or more; a scene may have at most 2,000,000");
     }
 
     std::vector<vec3> GridPlaces(JsonFields& f, const EntityDesc& proto) {

@@ -196,6 +196,8 @@ TEST(SceneFile, HostileSceneFiles) {
          "brings its own materials"},
         {"gltf_spawner.json", "gltf_spawner.json", "spawners[0].rain", "glTF scene"},
         {"huge_grid.json", "huge_grid.json", "spawners[0].grid.count", "at most 2,000,000"},
+        {"gltf_grid_too_many_entities.json", "gltf_grid_too_many_entities.json",
+         "spawners[0].grid.count", "a scene may have at most 2,000,000"},
         {"keys_out_of_order.json", "keys_out_of_order.json", "instances[0].animate.keyframes",
          "increase"},
         {"degenerate_camera.json", "degenerate_camera.json", "camera.forward", "zero length"},
