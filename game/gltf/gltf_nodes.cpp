@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <glm/gtc/quaternion.hpp>
 #include <string>
 #include <utility>
@@ -31,6 +32,30 @@ std::vector<int> Roots(GltfDocument& doc, const std::vector<int>& parentOf) {
         // The specification wants roots here, but files list children too and common engines
         // load them: a child whose tree is shown anyway is shown there, once; one whose tree is
         // not is shown as a root of its own (its ancestors' transforms are not applied).
+        std::vector<char> listed(model.nodes.size(), 0);
+        for (const int node : roots) listed[size_t(node)] = 1;
+        // Per node, whether some ancestor is listed (-1: not known yet); each node is settled
+        // once, so that long chains under many listed children cost linear time.
+        std::vector<int8_t> listedAbove(model.nodes.size(), -1);
+        std::vector<int> path;
+        const auto hasListedAncestor = [&](int node) {
+            path.clear();
+            int up = parentOf[size_t(node)];
+            int8_t found = 0;
+            for (; up >= 0; up = parentOf[size_t(up)]) {
+                if (listed[size_t(up)] != 0) {
+                    found = 1;
+                    break;
+                }
+                if (listedAbove[size_t(up)] >= 0) {
+                    found = listedAbove[size_t(up)];
+                    break;
+                }
+                path.push_back(up);
+            }
+            for (const int p : path) listedAbove[size_t(p)] = found;
+            return found == 1;
+        };
         std::vector<int> kept;
         for (size_t i = 0; i < roots.size(); ++i) {
             const int node = roots[i];
@@ -38,9 +63,8 @@ std::vector<int> Roots(GltfDocument& doc, const std::vector<int>& parentOf) {
                 kept.push_back(node);
                 continue;
             }
-            bool shownAbove = false;  // some ancestor is listed: the node is reached from it
-            for (int up = parentOf[node]; up >= 0 && !shownAbove; up = parentOf[up])
-                shownAbove = std::find(roots.begin(), roots.end(), up) != roots.end();
+            // Some ancestor is listed: the node is reached from it.
+            const bool shownAbove = hasListedAncestor(node);
             const std::string field =
                 JsonIndexed(JsonIndexed("scenes", size_t(sceneIndex)) + ".nodes", i);
             doc.Warn("scene-child", field + ": node " + std::to_string(node) +
@@ -162,14 +186,20 @@ std::vector<int> CheckGltfNodeGraph(const GltfDocument& doc) {
             parentOf[child] = int(i);
         }
     }
+    // Each node has at most one parent, so walking up from every node finds any cycle; a node
+    // whose walk already ended at a root is not walked again (linear time for long chains).
+    std::vector<uint8_t> state(n, 0);  // 0: not visited, 1: on the current walk, 2: reaches a root
     for (size_t i = 0; i < n; ++i) {
         int at = int(i);
-        for (size_t steps = 0; at >= 0; ++steps) {
-            if (steps > n)
-                doc.Fail(JsonIndexed("nodes", i) + ".children",
-                         "node " + std::to_string(i) + " is its own ancestor (a cycle)");
-            at = parentOf[at];
+        while (at >= 0 && state[size_t(at)] == 0) {
+            state[size_t(at)] = 1;
+            at = parentOf[size_t(at)];
         }
+        if (at >= 0 && state[size_t(at)] == 1)
+            doc.Fail(JsonIndexed("nodes", size_t(at)) + ".children",
+                     "node " + std::to_string(at) + " is its own ancestor (a cycle)");
+        for (at = int(i); at >= 0 && state[size_t(at)] == 1; at = parentOf[size_t(at)])
+            state[size_t(at)] = 2;
     }
     return parentOf;
 }

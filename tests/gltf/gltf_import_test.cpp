@@ -128,6 +128,31 @@ TEST_F(GltfTest, SceneNodesListingAChildShowItOnce) {
     EXPECT_NEAR(glm::length(q - vec3(2, 0, 2)), 0.0f, 1e-5f);  // its own transform only
 }
 
+// Thousands of listed children at the end of a long chain of unlisted nodes: each is shown as a
+// root (no ancestor of it is listed), and the loader settles each ancestor once instead of
+// walking the chain and searching the list per child (hours for files a few MB long).
+TEST_F(GltfTest, ManyListedChildrenOfALongChainAreEachShownOnce) {
+    constexpr int kChain = 6000;
+    constexpr int kChildren = 6000;
+    GltfBuilder b = test::TwoLevels();
+    const int mesh = 0;
+    b.doc["nodes"] = Json::array();
+    for (int i = 0; i < kChain; ++i) b.Node({{"children", {i + 1 < kChain ? i + 1 : kChain}}});
+    Json listed = Json::array();
+    for (int c = 0; c < kChildren; ++c) {
+        listed.push_back(b.Node({{"mesh", mesh}, {"translation", {c, 0, 0}}}));
+    }
+    b.doc["nodes"][kChain - 1]["children"] = listed;
+    b.doc["scenes"] = Json::array({{{"nodes", listed}}});
+    ::testing::internal::CaptureStderr();
+    const LoadedScene loaded = LoadSceneFile(Save("chain.gltf", b.GltfText()));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("shown as a root"), std::string::npos) << warnings;
+    ASSERT_EQ(loaded.scene.instances.size(), size_t(kChildren));
+    const vec3 p = loaded.scene.instances.back().ObjectToWorld().Point(vec3(0.0f));
+    EXPECT_NEAR(glm::length(p - vec3(kChildren - 1, 0, 0)), 0.0f, 1e-3f);
+}
+
 // Strips and fans become the triangles the specification numbers (3.7.2.1), in one winding;
 // the degenerate triangles strips use to restart are left out.
 TEST(GltfPrimitiveModes, StripsAndFansGiveTheSpecificationsTriangles) {
