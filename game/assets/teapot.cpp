@@ -100,8 +100,9 @@ bool ParseControlPoint(std::string_view text, vec3& point) {
 
 // Reads the block that starts at code[at] with "{": the control points are the vectors directly
 // inside it, except the four after uv_vectors; vectors in nested blocks (texture) do not count.
+// at is left on the block's closing brace.
 Patch ParsePatchBlock(const std::string& path, const std::string& field, std::string_view code,
-                      size_t at) {
+                      size_t& at) {
     while (at < code.size() && std::isspace(static_cast<unsigned char>(code[at]))) ++at;
     if (at == code.size() || code[at] != '{') {
         throw InputError(path, field, "expected '{' after bicubic_patch");
@@ -158,7 +159,9 @@ std::vector<Patch> ParsePatches(const std::string& path, const std::string& text
             continue;
         }
         std::string field = "patch " + std::to_string(patches.size() + 1);
-        patches.push_back(ParsePatchBlock(path, field, code, end));
+        // The search goes on after the block: a keyword inside it is not parsed again.
+        at = end;
+        patches.push_back(ParsePatchBlock(path, field, code, at));
     }
     if (patches.size() != kPatchCount) {
         throw InputError(

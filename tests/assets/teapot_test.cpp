@@ -183,6 +183,15 @@ TEST_F(TeapotFileTest, Errors) {
     brace.replace(brace.find("bicubic_patch {", brace.find("union")), 15, "bicubic_patch <");
     ExpectTeapotError(Write(brace), 6, "patch 1", "expected '{'");
 
+    // A block inside a block is not a patch of its own: the search goes on after the outer
+    // block (searching inside each block again made deep nesting take quadratic time).
+    std::string points;
+    for (int i = 0; i < 16; ++i)
+        points += " <" + std::to_string(i % 4) + ", " + std::to_string(i / 4) + ", 0>";
+    std::string nested;
+    for (int k = 0; k < 32; ++k) nested = "bicubic_patch { " + nested + points + " }\n";
+    ExpectTeapotError(Write(nested), 6, "", "expected 32 bicubic_patch blocks, found 1");
+
     ExpectTeapotError(Write(text), 0, "resolution", "must be in [1, 256]");
     ExpectTeapotError(Write(text), 100000, "resolution", "got 100000");
 }
