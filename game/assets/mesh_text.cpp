@@ -36,4 +36,10 @@ bool NormalizeFileNormals(std::vector<vec3>& normals) {
     return true;
 }
 
+void CheckTriangleCount(uint64_t triangles) {
+    if (triangles < kMaxTriangles) return;
+    throw RecordError{"over " + std::to_string(kMaxTriangles) +
+                      " triangles: more than rtrt takes in one mesh"};
+}
+
 }  // namespace rtrt::mesh_text

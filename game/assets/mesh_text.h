@@ -20,6 +20,14 @@ struct RecordError {
     std::string reason;
 };
 
+// More than any model rtrt is used with (134M; the largest scanned statues have tens of
+// millions), and a bound on what a small file of long polygon fans can make: a 2 GB file of them
+// would otherwise ask for tens of gigabytes of triangles.
+constexpr uint64_t kMaxTriangles = uint64_t{1} << 27;
+
+// Throws a RecordError when a mesh of `triangles` triangles may not take another.
+void CheckTriangleCount(uint64_t triangles);
+
 inline bool IsSpace(char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
 }

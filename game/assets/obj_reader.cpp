@@ -105,6 +105,7 @@ void ParseObjFace(std::string_view rest, ObjData& obj) {
         bool distinct = first.vertex != previous.vertex && previous.vertex != corner.vertex &&
                         first.vertex != corner.vertex;
         if (corners >= 2 && distinct) {
+            mesh_text::CheckTriangleCount(obj.triangles.size());
             obj.triangles.emplace_back(first.vertex, previous.vertex, corner.vertex);
             obj.normalTriangles.emplace_back(first.normal, previous.normal, corner.normal);
         }

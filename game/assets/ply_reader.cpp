@@ -449,6 +449,7 @@ void ReadPlyFaces(Reader& reader, const PlyLayout& layout, uint64_t& record, Tri
                 uint32_t current = static_cast<uint32_t>(index);
                 if (corner == 0) first = current;
                 if (corner >= 2 && first != previous && previous != current && first != current) {
+                    mesh_text::CheckTriangleCount(mesh.indices.size());
                     mesh.indices.emplace_back(first, previous, current);
                 }
                 previous = current;
