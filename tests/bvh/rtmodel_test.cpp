@@ -4,6 +4,7 @@
 #include "engine/bvh/blas/rtmodel.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -114,6 +115,19 @@ TEST_F(RtModelTest, WritingIntoAMissingFolderIsAnInputError) {
     EXPECT_THROW(WriteRtModel(Path("no/such/folder/m.rtmodel"), CorpusBlas(), CorpusInfo()),
                  InputError);
     EXPECT_FALSE(fs::exists(Path("no")));
+}
+
+// A FIFO named like a model (in a scene, or in the model cache) is refused at once instead of
+// waiting in open() for a writer.
+TEST_F(RtModelTest, AFifoIsRefusedWithoutWaiting) {
+    const std::string fifo = Path("pipe.rtmodel");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    try {
+        ReadRtModelInfo(fifo);
+        ADD_FAILURE() << "read a FIFO";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.Reason(), "not a regular file") << e.what();
+    }
 }
 
 TEST(RtModelPath, RecognisesTheExtension) {

@@ -2,8 +2,12 @@
 #include "engine/core/content_hash.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <filesystem>
 #include <string>
+
+#include "engine/core/error.h"
 
 namespace rtrt {
 namespace {
@@ -27,6 +31,27 @@ TEST(ContentHash, StreamInPiecesEqualsOneShot) {
 TEST(ContentHash, HexDigestIsSixteenLowercaseDigits) {
     EXPECT_EQ(HexDigest(0), "0000000000000000");
     EXPECT_EQ(HexDigest(0xABCDEF0123456789ull), "abcdef0123456789");
+}
+
+// A device would be hashed for ever and a FIFO would block the open: both are refused at once.
+TEST(ContentHash, HashFileRefusesWhatIsNotARegularFile) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / "rtrt_content_hash_test";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string fifo = (dir / "pipe").string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string& path : {std::string("/dev/zero"), fifo, dir.string()}) {
+        try {
+            HashFile(path);
+            ADD_FAILURE() << path << ": hashed";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.File(), path);
+            EXPECT_EQ(e.Reason(), "not a regular file") << e.what();
+        }
+    }
+    EXPECT_THROW(HashFile((dir / "missing").string()), InputError);
+    fs::remove_all(dir);
 }
 
 }  // namespace

@@ -76,7 +76,9 @@ bool ReadAt(int fd, void* data, uint64_t size, uint64_t offset) {
 
 class Reader {
   public:
-    explicit Reader(const std::string& path) : path_(path), file_(path, O_RDONLY) {}
+    // O_NONBLOCK: opening a FIFO would otherwise wait for a writer before fstat can refuse it;
+    // it changes nothing for a regular file.
+    explicit Reader(const std::string& path) : path_(path), file_(path, O_RDONLY | O_NONBLOCK) {}
 
     RtModelInfo ReadHeader() {
         if (file_.Fd() < 0) Fail("", errno == ENOENT ? "no such file" : std::strerror(errno));
