@@ -95,6 +95,7 @@ FarmJob JobFromOptions(const FarmOptions& o) {
     FarmJob job;
     job.folder = fs::absolute(o.output).lexically_normal().string();
     while (job.folder.size() > 1 && job.folder.back() == '/') job.folder.pop_back();
+    CheckFarmPath("--output", job.folder);
     // sbatch reads #SBATCH lines by its own rules (whitespace splits, quotes, # and % mean
     // something), so the folder that appears in them is kept to plain characters.
     for (char c : job.folder)
@@ -117,6 +118,7 @@ FarmJob JobFromOptions(const FarmOptions& o) {
     std::string scene = ScenePathFor(o.scene);
     std::error_code ec;
     if (fs::exists(scene, ec)) scene = fs::absolute(scene).lexically_normal().string();
+    CheckFarmPath("scene", scene);
     const LoadedScene loaded = LoadSceneFile(scene);  // bad scenes fail here, not on the nodes
     f.scene = scene;
     if (fs::is_regular_file(scene, ec)) f.sceneChecksum = HexDigest(HashFile(scene));

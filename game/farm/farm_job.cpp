@@ -128,6 +128,15 @@ void WriteFarmJob(const FarmJob& job) {
     WriteWholeFile(FarmFile(job.folder), j.dump(2) + "\n", /*durable=*/true);
 }
 
+void CheckFarmPath(const std::string& option, const std::string& path) {
+    try {
+        (void)Json(path).dump();
+    } catch (const Json::type_error&) {
+        throw InputError(option, path,
+                         "is not valid UTF-8, which farm.json cannot keep; rename it");
+    }
+}
+
 std::string FramesDifference(const FarmFrames& there, const FarmFrames& here) {
     std::vector<std::string> differences;
     auto differ = [&](const std::string& what, const std::string& a, const std::string& b) {

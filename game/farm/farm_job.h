@@ -70,6 +70,8 @@ FarmJob ReadFarmJob(const std::string& folder);
 bool HasFarmJob(const std::string& folder);
 // Writes FOLDER/farm.json whole (OutputError on a failed write).
 void WriteFarmJob(const FarmJob& job);
+// InputError(option, path, reason) unless farm.json can keep path: JSON text is UTF-8.
+void CheckFarmPath(const std::string& option, const std::string& path);
 
 // "" when A and B make the same frames, else what differs, e.g. "size 640x360 there, 320x180 here".
 std::string FramesDifference(const FarmFrames& there, const FarmFrames& here);

@@ -95,6 +95,21 @@ TEST_F(FarmJobTest, MalformedFilesNameTheFieldAndReason) {
     EXPECT_NE(ReadError().find("malformed JSON"), std::string::npos) << ReadError();
 }
 
+// farm.json is JSON text, which is UTF-8: a path that is not is refused before anything is
+// written, naming the option.
+TEST(FarmPath, PathsThatAreNotUtf8AreRefused) {
+    EXPECT_NO_THROW(CheckFarmPath("--output", "/tmp/farm/\xc3\xa9t\xc3\xa9"));  // UTF-8
+    for (const std::string bad : {"/tmp/out\xff", "/tmp/\xc3", "/tmp/\xc3(x"}) {
+        try {
+            CheckFarmPath("--output", bad);
+            ADD_FAILURE() << "accepted a path that is not UTF-8";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.File(), "--output");
+            EXPECT_NE(e.Reason().find("not valid UTF-8"), std::string::npos) << e.what();
+        }
+    }
+}
+
 TEST_F(FarmJobTest, FrameFilesHaveSixDigits) {
     FarmJob job;
     job.folder = "/out";
