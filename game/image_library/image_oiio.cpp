@@ -28,6 +28,12 @@ int Fail(ImageSink* sink, const std::string& reason) {
 
 // Storage from the sink for the samples of SPEC read as TYPE; null (the sink told why) if refused.
 void* SampleStorage(const OIIO::ImageSpec& spec, OIIO::TypeDesc type, ImageSink* sink) {
+    // read_image writes every slice of a volume (a DDS volume texture): width x height x depth.
+    if (spec.depth != 1) {
+        Fail(sink,
+             "a volume image of " + std::to_string(spec.depth) + " slices; rtrt reads flat images");
+        return nullptr;
+    }
     const ImageShape shape{spec.width, spec.height, spec.nchannels, int32_t(type.size())};
     // rtrt checks the shape before it allocates; a refused shape is never multiplied out here.
     const size_t bytes =
