@@ -34,7 +34,10 @@ InputScript InputScript::Load(const std::string& path) {
             if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
             throw InputError(path, field, "expected FRAME COMMAND ARGS");
         }
-        if (e.frame < 0) throw InputError(path, field, "the frame must be >= 0");
+        // Bounded so that an event's follow-up frames (LastFrame) stay within an int.
+        constexpr int kMaxFrame = 100000000;
+        if (e.frame < 0 || e.frame > kMaxFrame)
+            throw InputError(path, field, "the frame must be >= 0 and at most 100000000");
         if (!(words >> e.command)) throw InputError(path, field, "missing command");
         const int arity = Arity(e.command);
         if (arity == -2)

@@ -42,6 +42,7 @@ TEST(InputScript, MalformedLinesNameTheLineAndReason) {
     ExpectError("# comment\n2 click 10\n", "line 2", "click needs 2 numbers");
     ExpectError("2 quit now\n", "line 1", "unexpected \"now\"");
     ExpectError("-1 quit\n", "line 1", "frame must be >= 0");
+    ExpectError("2147483647 quit\n", "line 1", "at most 100000000");
     ExpectError("key 1\n", "line 1", "expected FRAME COMMAND ARGS");
 }
 
