@@ -3,10 +3,11 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
+#include <limits>
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 
 // Inlined so that only the header is needed (the GPU machine brings headers, not libraries).
 #define XXH_INLINE_ALL
@@ -30,14 +31,7 @@ void StreamHash::Update(const void* data, size_t size) {
 uint64_t StreamHash::Digest() const { return XXH3_64bits_digest(&state_->xxh); }
 
 uint64_t HashFile(const std::string& path) {
-    // A device or a FIFO would be read for ever, or block the open.
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (status.type() == std::filesystem::file_type::not_found) {
-        throw InputError(path, "", std::strerror(ENOENT));
-    }
-    if (ec) throw InputError(path, "", ec.message());
-    if (!std::filesystem::is_regular_file(status)) throw InputError(path, "", "not a regular file");
+    CheckInputFile(path, std::numeric_limits<size_t>::max());
     std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file) throw InputError(path, "", std::strerror(errno));
     StreamHash hash;

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <string>
 #include <string_view>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/geometry/smooth_normals.h"
 
 namespace rtrt {
@@ -28,19 +28,7 @@ constexpr uintmax_t kMaxFileBytes = uintmax_t{16} << 20;
 // Control point (row, column) is points[4 * row + column]; u runs along a row, v along a column.
 using Patch = std::array<vec3, kPointsPerPatch>;
 
-std::string ReadTextFile(const std::string& path) {
-    std::error_code ec;
-    std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (ec) throw InputError(path, "", "cannot open file: " + ec.message());
-    if (!std::filesystem::is_regular_file(status)) throw InputError(path, "", "not a regular file");
-    if (std::filesystem::file_size(path, ec) > kMaxFileBytes || ec) {
-        throw InputError(path, "", "file is too large for teapot patch data");
-    }
-    std::ifstream file(path, std::ios::binary);
-    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-    if (file.bad() || !file.is_open()) throw InputError(path, "", "cannot read file");
-    return text;
-}
+std::string ReadTextFile(const std::string& path) { return ReadInputFile(path, kMaxFileBytes); }
 
 // Blanks out // and /* */ comments and string literals, so that nothing inside them counts.
 std::string BlankCommentsAndStrings(std::string text) {

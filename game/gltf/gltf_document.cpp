@@ -3,8 +3,11 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "game/gltf/gltf_draco.h"
 #include "game/gltf/gltf_image_loader.h"
 #include "game/gltf/gltf_precheck.h"
@@ -22,6 +25,20 @@ std::string OneLine(std::string text) {
     return text.empty() ? "tinygltf could not load the file" : text;
 }
 
+// tinygltf's reader of external buffers and images: rtrt's, so that a uri naming a device or a
+// FIFO is refused instead of read for ever or waited on, and one over 2 GiB before it is read.
+bool ReadExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                      void*) {
+    try {
+        const std::string bytes = ReadInputFile(path);
+        out->assign(bytes.begin(), bytes.end());
+        return true;
+    } catch (const InputError& e) {
+        if (err) *err += "\"" + path + "\": " + e.Reason();
+        return false;
+    }
+}
+
 }  // namespace
 
 GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
@@ -32,6 +49,8 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     const std::string& bytes = draco ? draco->glb : checked.bytes;
     const bool binary = draco ? true : checked.binary;
     tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &ReadExternalFile,
+                           &tinygltf::WriteWholeFile, nullptr});
     GltfImageFailure imageFailure;
     imageFailure.used = &checked.imageUsed;
     imageFailure.file = file_;

@@ -3,14 +3,13 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <string_view>
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "game/gltf/gltf_precheck.h"
 #include "game/scene/json_fields.h"
 
@@ -116,11 +115,11 @@ std::string BufferBytes(const std::string& file, const Json& root, size_t index,
         return *data;
     }
     const fs::path path = fs::path(dir.empty() ? "." : dir) / DecodeGltfUri(uri);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(file, field + ".uri", "cannot open \"" + path.string() + "\"");
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
+    try {
+        return ReadInputFile(path.string());
+    } catch (const InputError& e) {
+        throw InputError(file, field + ".uri", "\"" + path.string() + "\": " + e.Reason());
+    }
 }
 
 bool UsesDraco(const Json& primitive) {

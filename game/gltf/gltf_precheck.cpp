@@ -3,10 +3,9 @@
 #include <cctype>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "game/scene/json_fields.h"
 
 namespace rtrt {
@@ -156,12 +155,7 @@ std::string ReadWholeFile(const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(path, "", "no such file");
     if (fs::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a glTF file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot be opened for reading");
-    std::stringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw InputError(path, "", "read failed");
-    return text.str();
+    return ReadInputFile(path);
 }
 
 }  // namespace

@@ -3,15 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <glm/glm.hpp>
 #include <map>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "game/assets/model_dir.h"
 #include "game/gltf/gltf_import.h"
 #include "game/scene/default_scene.h"
@@ -568,13 +567,9 @@ LoadedScene LoadSceneFile(const std::string& path) {
     }
     if (std::filesystem::is_directory(path, ec))
         throw InputError(path, "", "is a directory, not a scene file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot be opened for reading");
-    std::stringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw InputError(path, "", "read failed");
+    const std::string text = ReadInputFile(path);
     const std::string dir = std::filesystem::path(path).parent_path().string();
-    return ParseScene(text.str(), path, dir);
+    return ParseScene(text, path, dir);
 }
 
 }  // namespace rtrt

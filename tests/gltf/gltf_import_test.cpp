@@ -6,6 +6,7 @@
 #include "game/gltf/gltf_import.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -151,6 +152,22 @@ TEST_F(GltfTest, ManyListedChildrenOfALongChainAreEachShownOnce) {
     ASSERT_EQ(loaded.scene.instances.size(), size_t(kChildren));
     const vec3 p = loaded.scene.instances.back().ObjectToWorld().Point(vec3(0.0f));
     EXPECT_NEAR(glm::length(p - vec3(kChildren - 1, 0, 0)), 0.0f, 1e-3f);
+}
+
+// A buffer whose uri names a FIFO is refused instead of waited on.
+TEST_F(GltfTest, ABufferThatIsAFifoIsRefused) {
+    GltfBuilder b = test::TwoLevels();
+    Json d = b.doc;
+    d["buffers"] = Json::array({{{"byteLength", b.bin.size()}, {"uri", "fifo.bin"}}});
+    ASSERT_EQ(::mkfifo((dir_ / "fifo.bin").c_str(), 0600), 0);
+    const std::string path = Save("fifo.gltf", d.dump());
+    try {
+        LoadSceneFile(path);
+        ADD_FAILURE() << "loaded";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.File(), path);
+        EXPECT_NE(std::string(e.what()).find("fifo.bin"), std::string::npos) << e.what();
+    }
 }
 
 // Strips and fans become the triangles the specification numbers (3.7.2.1), in one winding;

@@ -2,6 +2,8 @@
 #include "game/scene/scene_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -137,6 +139,25 @@ TEST(SceneFile, MissingFilesAreReported) {
     } catch (const InputError& e) {
         EXPECT_EQ(e.File(), "/nonexistent/missing.obj") << e.what();
     }
+}
+
+// A device would be read for ever and a FIFO would block the open: both are refused at once.
+TEST(SceneFile, WhatIsNotARegularFileIsRefused) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("rtrt_scene_fifo_" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string fifo = (dir / "scene.json").string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::string& path : {fifo, std::string("/dev/zero")}) {
+        try {
+            LoadSceneFile(path);
+            ADD_FAILURE() << path << ": loaded";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.File(), path);
+            EXPECT_EQ(e.Reason(), "not a regular file") << e.what();
+        }
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(SceneFile, MeshesWithBadDataAreRejected) {
