@@ -18,6 +18,7 @@
 #include "game/scene/scene_animation.h"
 #include "game/scene/scene_deform.h"
 #include "game/scene/scene_models.h"
+#include "game/scene/scene_rigid_body.h"
 
 namespace rtrt {
 namespace {
@@ -270,7 +271,8 @@ class SceneParser {
         if (f.Has("rigid_body")) {
             if (e.animator)
                 f.Fail("rigid_body", "an entity is either animated or simulated, not both");
-            ParseRigidBody(f.Get("rigid_body"), f.Path("rigid_body"), e);
+            ParseRigidBody(f.Get("rigid_body"), f.Path("rigid_body"), file_, modelShapes_[e.blasId],
+                           modelNames_[e.blasId], e);
         }
         if (f.Has("deform")) {
             const Blas& blas = *scene.blases[e.blasId];
@@ -293,39 +295,6 @@ class SceneParser {
         return id;
     }
 
-    // The collider follows the model: a sphere (radius x largest scale), a box (half size x
-    // scale) or a plane (its normal turned by the rotation).
-    void ParseRigidBody(const Json& j, const std::string& path, EntityDesc& e) {
-        JsonFields f(j, path, file_);
-        physics::RigidBody body;
-        body.mass = f.InRange("mass", 0.0f, 1e9f, body.mass);
-        if (f.Has("static") && f.Get("static").is_boolean() && f.Get("static").get<bool>())
-            body.mass = 0.0f;
-        body.restitution = f.InRange("restitution", 0.0f, 1.0f, body.restitution);
-        body.friction = f.InRange("friction", 0.0f, 10.0f, body.friction);
-        body.velocity = f.Vec3("velocity", vec3(0.0f));
-        f.Finish();
-        const ModelShape& shape = modelShapes_[e.blasId];
-        const vec3 scale = e.local.scale;
-        switch (shape.kind) {
-            case ModelShape::kSphere:
-                e.collider = physics::Collider::Sphere(shape.radius * MaxComponent(scale));
-                break;
-            case ModelShape::kBox:
-                e.collider = physics::Collider::Box(shape.halfExtents * scale);
-                break;
-            case ModelShape::kPlane:
-                e.collider = physics::Collider::Plane(e.local.rotation * vec3(0, 1, 0));
-                body.mass = 0.0f;  // planes do not move
-                break;
-            default:
-                throw InputError(file_, path,
-                                 "a rigid body needs a sphere, box or plane model; \"" +
-                                     modelNames_[e.blasId] + "\" is a mesh");
-        }
-        e.body = body;
-    }
-
     // Spawners place many copies of one entity: on a grid, or as a rain at random (seeded)
     // places in a region, at a given time.
     void ParseSpawners(const Json& j, LoadedScene& out) {
@@ -346,6 +315,7 @@ class SceneParser {
             const std::vector<vec3> places =
                 grid ? GridPlaces(f, proto) : RainPlaces(f, out, proto);
             Reserve(f, grid ? "grid.count" : "rain.count", places.size());
+            if (proto.body) CheckRigidBodyPlaces(f, grid ? "grid" : "rain", places);
             proto.sourceArray = "spawners";
             proto.sourceIndex = uint32_t(i);
             for (const vec3& p : places) {

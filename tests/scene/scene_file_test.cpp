@@ -74,6 +74,37 @@ TEST(SceneFile, ImpossibleValuesAreRejected) {
                 "models.b.radius", "greater than 0");
 }
 
+// Rigid bodies the simulation's floats cannot handle: a weight whose inverse overflows, a size
+// whose inertia underflows or whose bound overflows, a start too far out, a speed whose square
+// overflows.
+TEST(SceneFile, RigidBodiesBeyondWhatTheSimulationHandlesAreRejected) {
+    const auto scene = [](const std::string& model, const std::string& instance) {
+        return R"({"models": {"b": )" + model + R"(}, "instances": [)" + instance + "]}";
+    };
+    const std::string ball = R"({"type": "sphere", "radius": 0.5})";
+    ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"mass": 1e-39}})"),
+                "instances[0].rigid_body.mass", "at least 1e-6 kg");
+    ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"velocity": [2e19, 0, 0]}})"),
+                "instances[0].rigid_body.velocity", "within 1e6 m/s");
+    ExpectError(scene(ball, R"({"model": "b", "position": [0, 0, 3e38], "rigid_body": {}})"),
+                "instances[0].rigid_body", "within 100 km");
+    ExpectError(
+        scene(R"({"type": "sphere", "radius": 1e-20})", R"({"model": "b", "rigid_body": {}})"),
+        "instances[0].rigid_body", "sphere radius");
+    ExpectError(
+        scene(R"({"type": "box", "size": [4e19, 1, 1]})", R"({"model": "b", "rigid_body": {}})"),
+        "instances[0].rigid_body", "box half sides");
+    ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
+                    "spawners": [{"model": "b", "position": [90000, 0, 0], "rigid_body": {},
+                                  "grid": {"count": [3, 1, 1], "spacing": 1e5}}]})",
+                "spawners[0].grid", "beyond 100 km");
+    // The same bodies without a rigid body are only drawn, and a static one may weigh nothing.
+    EXPECT_NO_THROW(
+        ParseScene(scene(ball, R"({"model": "b", "position": [0, 0, 3e38]})"), "s.json", ""));
+    EXPECT_NO_THROW(
+        ParseScene(scene(ball, R"({"model": "b", "rigid_body": {"mass": 0}})"), "s.json", ""));
+}
+
 TEST(SceneFile, DanglingReferencesAreRejected) {
     ExpectError(R"({"instances": [{"model": "nothing"}]})", "instances[0].model", "no model named");
     ExpectError(
