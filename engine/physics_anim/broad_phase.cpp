@@ -193,8 +193,7 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
     });
     pairStart_.assign(strips.count + 1, 0);
     for (uint32_t strip = 0; strip < strips.count; ++strip) {
-        pairStart_[strip + 1] =
-            pairStart_[strip] + static_cast<uint32_t>(stripPairs_[strip].size());
+        pairStart_[strip + 1] = pairStart_[strip] + stripPairs_[strip].size();
     }
     pairs.resize(pairStart_[strips.count]);
     tbb::parallel_for(uint32_t{0}, strips.count, [&](uint32_t strip) {

@@ -76,7 +76,7 @@ class SweepAndPrune {
     std::vector<float> extents_;             // PlanStrips' scratch
     std::vector<uint32_t> stripBegin_;       // each strip's boxes in sorted_
     std::vector<uint32_t> chunkStripCount_;  // DealIntoStrips' scratch
-    std::vector<uint32_t> pairStart_;        // each strip's pairs in the output
+    std::vector<size_t> pairStart_;          // each strip's pairs in the output
     SweptBoxes sorted_;
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> stripPairs_;
 };
