@@ -370,7 +370,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     cpu->add_option("--builders", options->builders, "binned, sweep, centroid, sbvh")
         ->check(CLI::IsMember({"binned", "sweep", "centroid", "sbvh"}))
         ->delimiter(',');
-    cpu->add_option("-o,--output", options->output, "Write the results as JSON here");
+    cpu->add_option("-o,--output", options->output, "Write the results as JSON here")
+        ->check(WritableFile());
     cpu->callback([options, exitCode] {
         RunBench(*options);
         *exitCode = kExitOk;
@@ -399,7 +400,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     gridBench->add_option("--frames", grid->frames, "Timed frames per count")
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();
-    gridBench->add_option("-o,--output", grid->output, "Write the results as JSON here");
+    gridBench->add_option("-o,--output", grid->output, "Write the results as JSON here")
+        ->check(WritableFile());
     gridBench->callback([grid, exitCode] {
         std::string why;
         if (!CudaBackendAvailable(&why)) throw InputError("bench grid", "", why);
@@ -461,7 +463,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         ->check(CLI::IsMember({"binned", "sweep", "centroid", "sbvh"}))
         ->delimiter(',')
         ->capture_default_str();
-    gpu->add_option("-o,--output", options->output, "Write the results as JSON here");
+    gpu->add_option("-o,--output", options->output, "Write the results as JSON here")
+        ->check(WritableFile());
     gpu->callback([options, exitCode] {
         std::string why;
         if (!CudaBackendAvailable(&why)) throw InputError("bench gpu", "", why);

@@ -147,7 +147,8 @@ void AddConvertBench(CLI::App& bench, int* exitCode, nlohmann::json (*machineInf
     cmd->add_option("--runs", options->runs, "Runs per model (medians reported)")
         ->check(CLI::Range(1, 100))
         ->capture_default_str();
-    cmd->add_option("-o,--output", options->output, "Write the results as JSON here");
+    cmd->add_option("-o,--output", options->output, "Write the results as JSON here")
+        ->check(WritableFile());
     cmd->callback([options, exitCode, machineInfo] {
         RunConvertBench(*options, machineInfo());
         *exitCode = kExitOk;

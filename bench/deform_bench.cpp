@@ -229,8 +229,10 @@ void AddDeformBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("--samples", o->samples, "Poses at which the drift is measured")
         ->check(CLI::Range(2, 1000))
         ->capture_default_str();
-    cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
-    cmd->add_option("--csv", o->csv, "Write every frame's stage times as CSV here");
+    cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
+        ->check(WritableFile());
+    cmd->add_option("--csv", o->csv, "Write every frame's stage times as CSV here")
+        ->check(WritableFile());
     cmd->callback([o, exitCode] {
         Backend backend;
         std::string why;

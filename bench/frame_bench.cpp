@@ -183,7 +183,8 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
         ->capture_default_str();
     AddGpusOption(cmd, &o->gpus);
     AddPhysicsSolverOption(cmd, &o->physicsSolver);
-    cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
+    cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
+        ->check(WritableFile());
     cmd->callback([o, exitCode] {
         Backend backend;
         std::string why;

@@ -96,7 +96,8 @@ void AddMaterialsBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("--warmup", o->warmup, "Untimed frames first")
         ->check(CLI::Range(0, 100000))
         ->capture_default_str();
-    cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
+    cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
+        ->check(WritableFile());
     cmd->callback([o, exitCode] {
         Backend backend;
         std::string why;

@@ -164,7 +164,8 @@ void AddSoakBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("--warmup", o->warmup, "Frames before the samples that must stay flat")
         ->check(CLI::Range(0, 10000000))
         ->capture_default_str();
-    cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
+    cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
+        ->check(WritableFile());
     cmd->callback([o, exitCode] {
         Backend backend;
         std::string why;

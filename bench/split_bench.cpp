@@ -275,7 +275,8 @@ void AddSplitBench(CLI::App& bench, int* exitCode) {
         ->capture_default_str();
     cmd->add_flag("--one-gpu", o->oneGpu,
                   "Split over N renderers of GPU 0: the split's own cost on a machine of one GPU");
-    cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
+    cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
+        ->check(WritableFile());
     cmd->callback([o, exitCode] {
         std::string why;
         if (!CudaBackendAvailable(&why)) throw InputError("bench split", "", why);

@@ -18,6 +18,7 @@
 #include "bench/bench_commands.h"
 #include "bench/bench_report.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "game/assets/image_io.h"
 #include "game/assets/mesh_io.h"
@@ -191,7 +192,7 @@ void RunAccuracyBench(const AccuracyOptions& o) {
     size.width = gpu && !cpu ? 1280 : 480;
     size.height = gpu && !cpu ? 720 : 270;
     if (!o.size.empty()) ParseSize(o.size, &size.width, &size.height);
-    if (!o.images.empty()) std::filesystem::create_directories(o.images);
+    if (!o.images.empty()) CreateOutputFolder(o.images);
     nlohmann::json report;
     report["machine"] = BenchMachine(gpu);
     report["backend"] = o.backend;
@@ -306,7 +307,8 @@ void AddAccuracyBench(CLI::App& bench, int* exitCode) {
         ->capture_default_str();
     cmd->add_option("--images", o->images,
                     "Write the references and the difference images (x4) into this folder");
-    cmd->add_option("-o,--output", o->output, "Write the results as JSON here");
+    cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
+        ->check(WritableFile());
     cmd->callback([o, exitCode] {
         std::string why;
         if (o->backend != "cpu" && !CudaBackendAvailable(&why))

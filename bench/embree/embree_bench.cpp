@@ -147,7 +147,8 @@ void AddEmbreeBench(CLI::App& bench, int* exitCode) {
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
     AddModelsOption(cmd, &options->models)->capture_default_str();
-    cmd->add_option("-o,--output", options->output, "Write the results as JSON here");
+    cmd->add_option("-o,--output", options->output, "Write the results as JSON here")
+        ->check(WritableFile());
     cmd->callback([options, exitCode] {
         RunEmbreeBench(*options);
         *exitCode = kExitOk;

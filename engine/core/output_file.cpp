@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
 #include "engine/core/error.h"
 #include "engine/core/interrupt.h"
@@ -40,8 +41,35 @@ ssize_t WriteSome(int fd, const void* data, size_t size, uint64_t done) {
 
 }  // namespace
 
+void CheckOutputPath(const std::string& path) {
+    if (path.empty()) throw InputError(path, "", "the output needs a file name");
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (std::filesystem::is_directory(status))
+        throw InputError(path, "", "is a folder; name a file in it");
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw InputError(path, "", "is not a regular file (a device, FIFO or socket)");
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+        throw InputError(path, "", "the folder " + folder.string() + " does not exist");
+}
+
+void CreateOutputFolder(const std::string& path) {
+    std::error_code ec;
+    std::filesystem::create_directories(path, ec);
+    if (ec) throw InputError(path, "", "cannot create the folder: " + ec.message());
+    if (!std::filesystem::is_directory(path, ec)) throw InputError(path, "", "is not a folder");
+}
+
 OutputFile::OutputFile(std::string target, std::string temp)
     : target_(std::move(target)), temp_(std::move(temp)) {
+    // The rename would put a regular file in place of a device or a FIFO, or fail on a folder
+    // only once the output is written.
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(target_, ec);
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+        throw InputError(target_, "", "is not a regular file (a folder, device, FIFO or socket)");
+    }
     TemporariesLock lock;
     fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd_ < 0) throw OutputError(target_, std::strerror(errno));

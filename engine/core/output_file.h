@@ -34,6 +34,14 @@ class OutputFile {
 // so that an interrupt removes only this process's temporaries and two machines never share one.
 std::string TemporaryPathFor(const std::string& target);
 
+// InputError(path, "", reason) unless a whole file can be written at path: its folder exists, and
+// path is not a folder, a device, a FIFO or a socket (which the rename would replace).
+void CheckOutputPath(const std::string& path);
+
+// Creates the folder path and its parents where missing; InputError(path, "", reason) when it
+// cannot (a file is in the way, no permission).
+void CreateOutputFolder(const std::string& path);
+
 // TEXT written whole to PATH through its temporary, every write checked (OutputError otherwise);
 // DURABLE flushes it to the disk before the rename.
 void WriteWholeFile(const std::string& path, const std::string& text, bool durable);

@@ -8,6 +8,7 @@
 
 #include "engine/bvh/tlas/tlas.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
@@ -47,8 +48,7 @@ class App {
         model_.useCuda = backend == Backend::kCuda;
         model_.glRenderer = window_.Renderer();
         if (!o.script.empty()) script_ = InputScript::Load(o.script);
-        if (!o.record.empty() && !IsVideoPath(o.record))
-            std::filesystem::create_directories(o.record);
+        if (!o.record.empty() && !IsVideoPath(o.record)) CreateOutputFolder(o.record);
         LoadScene(0);
     }
 

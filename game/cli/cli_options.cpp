@@ -1,10 +1,13 @@
 #include "game/cli/cli_options.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
 #include <regex>
 #include <stdexcept>
 
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "game/runtime/world.h"
 
 namespace rtrt {
@@ -38,11 +41,39 @@ bool ParseFrames(const std::string& text, int* first, int* end) {
     return *first < *end && *end <= 10000000;
 }
 
+CLI::Validator FiniteRange(double min, double max) {
+    char range[64];
+    std::snprintf(range, sizeof(range), "[%g, %g]", min, max);
+    const std::string text = range;
+    return CLI::Validator(
+        [min, max, text](std::string& value) -> std::string {
+            double number = 0.0;
+            if (!CLI::detail::lexical_cast(value, number)) return "expected a number, got " + value;
+            if (!std::isfinite(number) || number < min || number > max)
+                return value + " is not a finite number in " + text;
+            return "";
+        },
+        "NUMBER in " + text);
+}
+
+CLI::Validator WritableFile() {
+    return CLI::Validator(
+        [](std::string& path) -> std::string {
+            try {
+                CheckOutputPath(path);
+            } catch (const InputError& e) {
+                return path + ": " + e.Reason();
+            }
+            return "";
+        },
+        "FILE");
+}
+
 void AddOutputOptions(CLI::App* command, OutputOptions* options) {
     command
         ->add_option("--exposure", options->exposureEv,
                      "Exposure in EV (stops) over the scene's own, before the tone map")
-        ->check(CLI::Range(-20.0f, 20.0f));
+        ->check(FiniteRange(-20.0, 20.0));
     command
         ->add_option("--tone-map", options->toneMap,
                      "pbr_neutral (Khronos PBR Neutral), aces or clamp (default: the scene's; "

@@ -9,7 +9,8 @@
 
 namespace CLI {
 class App;
-}
+class Validator;
+}  // namespace CLI
 
 namespace rtrt {
 
@@ -19,6 +20,14 @@ class World;
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   // the work itself failed (GPU error, I/O error)
 inline constexpr int kExitBadInput = 2;  // bad command line, scene, model or output path
+
+// A number option's check: finite and within [min, max]. CLI::Range lets NaN through, as both of
+// its comparisons are false for it.
+CLI::Validator FiniteRange(double min, double max);
+
+// A file option's check, when the command line is read and so before any work: the file can be
+// written whole (CheckOutputPath: its folder exists, it is not a folder or a device).
+CLI::Validator WritableFile();
 
 // Parses WIDTHxHEIGHT (1..16384 each); InputError naming --size otherwise.
 void ParseSize(const std::string& text, uint32_t* width, uint32_t* height);

@@ -8,6 +8,7 @@
 
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "game/assets/model_cache.h"
 #include "game/cli/commands.h"
@@ -50,6 +51,7 @@ void CheckPaths(const ConvertOptions& o) {
     const fs::path folder = fs::path(o.output).parent_path();
     if (!folder.empty() && !fs::is_directory(folder, ec))
         throw InputError("--output", "", "folder " + folder.string() + " does not exist");
+    CheckOutputPath(o.output);
 }
 
 void Convert(const ConvertOptions& o) {

@@ -427,7 +427,7 @@ void AddFarmCommand(CLI::App& app, int* exitCode) {
         ->check(CLI::IsMember({1u, 4u, 9u, 16u, 25u, 36u, 49u, 64u}))
         ->capture_default_str();
     cmd->add_option("--fps", o->fps, "Frames per second of scene time and of the video")
-        ->check(CLI::Range(1.0, 1000.0))
+        ->check(FiniteRange(1.0, 1000.0))
         ->capture_default_str();
     cmd->add_option("--backend", o->backend,
                     "cpu or cuda for every task (default: cuda with --gpu, else cpu)")

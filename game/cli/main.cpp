@@ -68,8 +68,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int status = app.exit(e);
-        return status == 0 ? rtrt::kExitOk : rtrt::kExitBadInput;
+        // --help and --version print what was asked for; a bad command line is one line, as
+        // every other error is.
+        if (e.get_exit_code() == 0) return app.exit(e);
+        std::fprintf(stderr, "rtrt: error: %s (--help lists the options)\n", e.what());
+        return rtrt::kExitBadInput;
     } catch (const rtrt::InputError& e) {
         std::fprintf(stderr, "rtrt: error: %s\n", e.what());
         return rtrt::kExitBadInput;

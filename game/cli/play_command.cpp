@@ -225,7 +225,7 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
                   "printed at the end are each stage's own cost (slower; for profiling)");
     cmd->add_option("--fps", options->fps,
                     "Frames per second of scene time (the fixed step is 1/fps)")
-        ->check(CLI::Range(1.0, 1000.0))
+        ->check(FiniteRange(1.0, 1000.0))
         ->capture_default_str();
     cmd->add_option("-o,--output", options->output, "Frame file pattern, e.g. out/frame_%04d.png");
     cmd->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the scene's)");

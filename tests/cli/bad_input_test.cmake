@@ -45,6 +45,9 @@ expect_failure(bad_spp 2 "--spp" render default --spp 3)
 expect_failure(accuracy_bad_backend 2 "--backend" bench accuracy --backend gpu)
 expect_failure(accuracy_bad_size 2 "--size: width and height must be between 1 and 16384" bench accuracy --size 0x100)
 expect_failure(unknown_physics_solver 2 "--physics-solver" play default --headless --frames 1 --physics-solver quantum)
+# CLI11's ranges let NaN through (both comparisons are false); rtrt's number options do not.
+expect_failure(nan_exposure 2 "--exposure: nan is not a finite number" render default --exposure nan)
+expect_failure(nan_fps 2 "--fps: nan is not a finite number" play default --headless --frames 1 --fps nan)
 
 # --physics-solver gpu on a machine without a CUDA device: refused before any frame, saying what to
 # use instead (a machine with one plays the frame).
@@ -378,3 +381,20 @@ file(WRITE ${WORK_DIR}/nan.json "{ \"instances\": [], \"camera\": { \"position\"
 expect_failure(nan_literal 2 "nan.json: line 1, column 48: malformed JSON: NaN is not a JSON number" render ${WORK_DIR}/nan.json)
 file(WRITE ${WORK_DIR}/overflow.json "{ \"instances\": [],\n\"camera\": { \"position\": [0, 1e999, 1] } }")
 expect_failure(overflow 2 "overflow.json: line 2, column 29: malformed JSON: the number 1e999 is beyond the range of a double" render ${WORK_DIR}/overflow.json)
+
+# A benchmark's report is checked when the command line is read, before the run: a missing
+# folder, a folder, or a device (which the rename would replace) is refused with status 2, one line.
+file(MAKE_DIRECTORY ${WORK_DIR}/reports)
+foreach(report "${WORK_DIR}/reports/no/such/r.json" "${WORK_DIR}/reports" "/dev/null")
+    execute_process(COMMAND ${RTRT} bench frame ${SOURCE_DIR}/assets/scenes/demo_glass.json
+        --backend cpu --frames 1 --warmup 0 --size 8x8 -o ${report}
+        RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+    if(NOT status EQUAL 2 OR NOT stderr MATCHES "^rtrt: error: --output: " OR stdout MATCHES "medians")
+        message(FATAL_ERROR "bench -o ${report}: status ${status}, expected 2 before the run\n${stdout}${stderr}")
+    endif()
+endforeach()
+if(NOT EXISTS /dev/null OR IS_DIRECTORY /dev/null)
+    message(FATAL_ERROR "/dev/null was replaced")
+endif()
+message(STATUS "bench reports: ok")
+
