@@ -19,7 +19,7 @@ std::string SizeText(size_t bytes) {
 
 }  // namespace
 
-void CheckInputFile(const std::string& path, size_t maxBytes) {
+uintmax_t CheckInputFile(const std::string& path, size_t maxBytes) {
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);
     if (ec) throw InputError(path, "", "cannot open file: " + ec.message());
@@ -29,14 +29,14 @@ void CheckInputFile(const std::string& path, size_t maxBytes) {
     if (size > maxBytes) {
         throw InputError(path, "", "file is larger than " + SizeText(maxBytes));
     }
+    return size;
 }
 
 std::string ReadInputFile(const std::string& path, size_t maxBytes) {
-    CheckInputFile(path, maxBytes);
+    const uintmax_t size = CheckInputFile(path, maxBytes);
     std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file) throw InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
-    std::error_code ec;
-    std::string data(std::filesystem::file_size(path, ec), '\0');
+    std::string data(size, '\0');
     const size_t read = std::fread(data.data(), 1, data.size(), file.get());
     if (std::ferror(file.get())) {
         throw InputError(path, "", std::string("read error: ") + std::strerror(errno));

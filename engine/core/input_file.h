@@ -4,14 +4,15 @@
 // block the open), and a file larger than the bound is refused before it is read, so that
 // hostile input cannot exhaust memory.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace rtrt {
 
 inline constexpr size_t kMaxInputFileBytes = size_t{2} << 30;  // 2 GiB
 
-// Throws InputError(path, "", reason) unless path names a regular file of at most maxBytes.
-void CheckInputFile(const std::string& path, size_t maxBytes = kMaxInputFileBytes);
+// The size of the regular file path, of at most maxBytes; InputError(path, "", reason) otherwise.
+uintmax_t CheckInputFile(const std::string& path, size_t maxBytes = kMaxInputFileBytes);
 // The file's bytes; InputError(path, "", reason) for a missing, irregular, unreadable or
 // oversized file.
 std::string ReadInputFile(const std::string& path, size_t maxBytes = kMaxInputFileBytes);
