@@ -274,6 +274,11 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
 void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
                      const std::vector<int>& threadCounts,
                      const std::vector<std::string>& solvers) {
+    // Every scene is read before any is played, so that a bad file ends the run before the
+    // first measurement rather than after it.
+    std::vector<LoadedScene> loadedScenes;
+    loadedScenes.reserve(scenes.size());
+    for (const std::string& path : scenes) loadedScenes.push_back(LoadSceneFile(path));
     std::printf(
         "rtrt bench runtime: medians over %d frames at 60 fps (ms; \"on\": where the contacts "
         "are solved)\n",
@@ -284,8 +289,9 @@ void RunRuntimeBench(const std::vector<std::string>& scenes, int frames,
         "scene", "on", "threads", "instances", "moving", "physics", "animators", "transform",
         "extract", "deform", "BLAS", "TLAS", "contacts", "colours", "broad", "narrow", "solver",
         "integr.", "gpu-copy", "gpu-pass", "p.thr");
-    for (const std::string& path : scenes) {
-        const LoadedScene loaded = LoadSceneFile(path);
+    for (size_t sceneIndex = 0; sceneIndex < scenes.size(); ++sceneIndex) {
+        const std::string& path = scenes[sceneIndex];
+        const LoadedScene& loaded = loadedScenes[sceneIndex];
         for (const std::string& solverName : solvers) {
             for (const int threadCount : threadCounts) {
                 const int threads =

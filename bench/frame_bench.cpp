@@ -67,8 +67,8 @@ std::vector<double> PipelinedIntervals(const LoadedScene& loaded, const RenderSe
     return intervals;
 }
 
-nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
-    const LoadedScene loaded = LoadSceneFile(path);
+nlohmann::json RunScene(const std::string& path, const LoadedScene& loaded,
+                        const FrameBenchOptions& o) {
     RenderSettings settings;
     settings.width = loaded.width.value_or(1280);
     settings.height = loaded.height.value_or(720);
@@ -133,6 +133,11 @@ nlohmann::json RunScene(const std::string& path, const FrameBenchOptions& o) {
 }
 
 void RunFrameBench(const FrameBenchOptions& o) {
+    // Every scene is read before any is played, so that a bad file ends the run before the
+    // first measurement rather than after it.
+    std::vector<LoadedScene> loadedScenes;
+    loadedScenes.reserve(o.scenes.size());
+    for (const std::string& path : o.scenes) loadedScenes.push_back(LoadSceneFile(path));
     const bool gpu = o.backend == "cuda";
     nlohmann::json report;
     report["machine"] = BenchMachine(gpu);
@@ -151,7 +156,9 @@ void RunFrameBench(const FrameBenchOptions& o) {
     std::printf("%-26s %9s %9s %8s %9s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene", "size",
                 "instances", "changed", "simulate", "extract", "deform", "BLAS", "upload", "TLAS",
                 "trace", "frame", "pipelined");
-    for (const std::string& path : o.scenes) report["rows"].push_back(RunScene(path, o));
+    for (size_t i = 0; i < o.scenes.size(); ++i) {
+        report["rows"].push_back(RunScene(o.scenes[i], loadedScenes[i], o));
+    }
     if (!o.output.empty()) {
         WriteReport(o.output, report);
         std::printf("rtrt: wrote %s\n", o.output.c_str());

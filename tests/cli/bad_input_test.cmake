@@ -398,3 +398,20 @@ if(NOT EXISTS /dev/null OR IS_DIRECTORY /dev/null)
 endif()
 message(STATUS "bench reports: ok")
 
+# Every scene of a benchmark is read before the first is played: a bad second scene ends the run
+# with status 2 before anything is measured.
+foreach(bench frame runtime)
+    if(bench STREQUAL frame)
+        set(extra --backend cpu --warmup 0 --size 8x8)
+    else()
+        set(extra)
+    endif()
+    execute_process(COMMAND ${RTRT} bench ${bench} ${SOURCE_DIR}/assets/scenes/demo_glass.json
+        ${WORK_DIR}/malformed.json --frames 1 ${extra}
+        RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+    if(NOT status EQUAL 2 OR NOT stderr MATCHES "malformed.json: line 1" OR stdout MATCHES "medians")
+        message(FATAL_ERROR "bench ${bench} with a bad second scene: status ${status}, expected 2 before the run\n${stdout}${stderr}")
+    endif()
+endforeach()
+message(STATUS "bench scenes read first: ok")
+
