@@ -199,6 +199,10 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
             throw InputError("--backend", o->backend, why + "; use --backend cpu");
         o->backend = backend == Backend::kCuda ? "cuda" : "cpu";
         o->split = ResolveGpus(o->gpus, backend);
+        if (backend != Backend::kCuda && o->traceBands > 1)
+            throw InputError("--trace-bands", std::to_string(o->traceBands),
+                             "row bands are CUDA streams and need the CUDA back end; use "
+                             "--backend cuda or leave --trace-bands out");
         RunFrameBench(*o);
         *exitCode = kExitOk;
     });

@@ -414,4 +414,10 @@ foreach(bench frame runtime)
     endif()
 endforeach()
 message(STATUS "bench scenes read first: ok")
+execute_process(COMMAND ${RTRT} bench frame ${SOURCE_DIR}/assets/scenes/demo_glass.json
+    --backend cpu --trace-bands 2 --frames 1
+    RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR NOT stderr MATCHES "--trace-bands: 2: .*CUDA back end" OR stdout MATCHES "medians")
+    message(FATAL_ERROR "bench frame --trace-bands with the CPU back end: status ${status}\n${stdout}${stderr}")
+endif()
 
