@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstdint>
@@ -10,12 +11,17 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <string>
 
 #include "engine/core/error.h"
 #include "engine/core/interrupt.h"
 
 namespace rtrt {
 namespace {
+
+// NAME_MAX of the file systems rtrt writes to (ext4, XFS, tmpfs, NFS): bytes in one path component.
+constexpr size_t kMaxFileNameBytes = 255;
 
 // RTRT_TEST_FAIL_WRITE_AFTER=BYTES: writes past the first BYTES of each output fail with ENOSPC,
 // for the disk-full test where no small filesystem can be mounted.
@@ -128,13 +134,27 @@ std::string TemporaryPathFor(const std::string& target) {
             if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '-';
         return text;
     }();
+    std::string suffix = ".partial";
+    suffix += std::to_string(::getpid());
+    if (!host.empty()) suffix += "-" + host;
+    suffix += ext;
+    // A name the file system takes may be too long with the suffix: the stem is then cut (at a
+    // UTF-8 character's start) and a hash of the whole name keeps temporaries of different
+    // targets apart.
+    std::string shortStem = stem;
+    if (1 + stem.size() + suffix.size() > kMaxFileNameBytes) {
+        const size_t room = kMaxFileNameBytes - std::min(kMaxFileNameBytes, suffix.size() + 18);
+        size_t cut = std::min(room, stem.size());
+        while (cut > 0 && (static_cast<unsigned char>(stem[cut]) & 0xc0) == 0x80) --cut;
+        char hash[18];
+        std::snprintf(hash, sizeof(hash), "~%016llx",
+                      static_cast<unsigned long long>(std::hash<std::string>{}(name)));
+        shortStem = stem.substr(0, cut) + hash;
+    }
     std::string path = folder;  // appended piecewise, as GCC 12 warns falsely on a + chain
     path += '.';
-    path += stem;
-    path += ".partial";
-    path += std::to_string(::getpid());
-    if (!host.empty()) path += "-" + host;
-    path += ext;
+    path += shortStem;
+    path += suffix;
     return path;
 }
 

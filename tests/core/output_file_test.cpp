@@ -69,5 +69,38 @@ TEST_F(OutputPathTest, CreateOutputFolderRefusesAFileInTheWay) {
     EXPECT_THROW(CreateOutputFolder((dir_ / "pipe.json" / "x").string()), InputError);
 }
 
+// A target whose name is near the file system's limit (255 bytes) is still written: the
+// temporary beside it gets a shortened name that keeps to the limit, cut between characters.
+TEST_F(OutputPathTest, NamesNearTheLengthLimitAreWritten) {
+    for (const std::string& name :
+         {std::string(250, 'a') + ".png", std::string(125, 'a') + std::string(60, 'e') + ".json",
+          std::string(255, 'b')}) {
+        std::string stem = name;
+        // Two-byte characters (U+00E9) in place of the 'e's.
+        for (size_t at; (at = stem.find('e')) != std::string::npos;)
+            stem.replace(at, 1, "\xc3\xa9");
+        const fs::path target = dir_ / stem.substr(0, 255);
+        const std::string temporary = TemporaryPathFor(target.string());
+        const std::string temporaryName = fs::path(temporary).filename().string();
+        EXPECT_LE(temporaryName.size(), 255u) << temporaryName;
+        EXPECT_EQ(fs::path(temporary).parent_path(), dir_);
+        EXPECT_NE(temporaryName, target.filename().string());
+        // The cut never splits a character: no continuation byte follows an ASCII byte.
+        for (size_t k = 1; k < temporaryName.size(); ++k) {
+            const auto byte = static_cast<unsigned char>(temporaryName[k]);
+            const auto before = static_cast<unsigned char>(temporaryName[k - 1]);
+            EXPECT_FALSE((byte & 0xc0) == 0x80 && before < 0x80) << k;
+        }
+        WriteWholeFile(target.string(), "{}\n", false);
+        EXPECT_TRUE(fs::is_regular_file(target)) << target;
+        EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator{}), 2)
+            << "the target and the FIFO, no temporary left";
+        fs::remove(target);
+    }
+    // Two long names that differ only past the cut get different temporaries.
+    EXPECT_NE(TemporaryPathFor((dir_ / (std::string(250, 'c') + "1")).string()),
+              TemporaryPathFor((dir_ / (std::string(250, 'c') + "2")).string()));
+}
+
 }  // namespace
 }  // namespace rtrt
