@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,11 +19,13 @@
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
 #include "engine/core/output_file.h"
+#include "engine/render_rt/render_settings.h"
 #include "game/assets/image_io.h"
 #include "game/cli/commands.h"
 #include "game/cli/progress_bar.h"
 #include "game/farm/farm_commands.h"
 #include "game/farm/farm_job.h"
+#include "game/farm/farm_lock.h"
 #include "game/farm/frame_manifest.h"
 #include "game/farm/shard_plan.h"
 #include "game/farm/video_assembly.h"
@@ -63,11 +66,14 @@ std::string FarmCommandLine(const FarmJob& job, const std::string& extra = "") {
     line += " --format " + f.format;
     const FarmScheduling& s = job.scheduling;
     if (s.gpu) line += " --gpu";
-    if (!s.partition.empty()) line += " --partition " + s.partition;
-    if (!s.timeLimit.empty()) line += " --time " + s.timeLimit;
+    if (!s.partition.empty()) line += " --partition " + ShellQuote(s.partition);
+    if (!s.timeLimit.empty()) line += " --time " + ShellQuote(s.timeLimit);
     if (s.cpusPerTask != 1) line += " --cpus-per-task " + std::to_string(s.cpusPerTask);
     return line + " -o " + ShellQuote(job.folder) + extra;
 }
+
+// " --local" for a job that was never submitted to Slurm: its command goes on rendering here.
+std::string LocalFlag(const FarmJob& job) { return job.submissions.empty() ? " --local" : ""; }
 
 void DrawCheckProgress(int done, int total) {
     DrawProgressBar("farm", done, total, "frames checked");
@@ -104,13 +110,8 @@ FarmJob JobFromOptions(const FarmOptions& o) {
             throw InputError("--output", job.folder,
                              "Slurm's batch scripts cannot name a folder with spaces or any of "
                              "% \" ' \\ #; give another");
-    for (const auto& [option, value] :
-         {std::pair{"--partition", o.partition}, {"--time", o.timeLimit}})
-        for (char c : value)
-            if (!std::isalnum(static_cast<unsigned char>(c)) &&
-                std::string("_-:,.").find(c) == std::string::npos)
-                throw InputError(option, value,
-                                 "expected a Slurm name or time, e.g. gpu or 2:00:00");
+    CheckSlurmField("--partition", o.partition);
+    CheckSlurmField("--time", o.timeLimit);
     FarmFrames& f = job.frames;
     if (!ParseFrames(o.frames, &f.frames.first, &f.frames.end))
         throw InputError("--frames", o.frames,
@@ -161,7 +162,8 @@ FarmJob ResumeOrStart(FarmJob job) {
     // are taken up by the first `rtrt farm` into their folder: anything else is refused.
     for (const auto& entry : fs::directory_iterator(job.folder, ec)) {
         const std::string name = entry.path().filename().string();
-        if (name != "frames" && name != "manifest" && name != "logs" && name != "slurm")
+        if (name != "frames" && name != "manifest" && name != "logs" && name != "slurm" &&
+            name != kFarmLockName)
             throw InputError(
                 "--output", job.folder,
                 "holds " + name + " but no farm job (farm.json); give an empty or new folder");
@@ -172,9 +174,7 @@ FarmJob ResumeOrStart(FarmJob job) {
 void MakeFolders(const FarmJob& job) {
     for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder),
                                    job.folder + "/slurm", job.folder + "/logs"}) {
-        std::error_code ec;
-        fs::create_directories(dir, ec);
-        if (ec) throw OutputError(dir, ec.message());
+        CreateOutputFolder(dir);
     }
 }
 
@@ -192,7 +192,15 @@ bool Assembled(const FarmJob& job) {
 }
 
 // The tasks run one after another on this machine, then the assembly.
-int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks) {
+int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
+               FarmFolderLock& lock) {
+    // A back end this machine lacks fails before the folder holds a job of its settings.
+    if (Backend backend; job.frames.backend == "cuda") {
+        std::string why;
+        if (!ChooseBackend("cuda", &backend, &why))
+            throw InputError("--backend", "cuda", why + "; use --backend cpu with --local");
+    }
+    lock.Keep();
     MakeFolders(job);
     WriteFarmJob(job);
     const std::string manifest =
@@ -203,12 +211,15 @@ int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks) {
                         RangeText(range).c_str());
             std::fflush(stdout);
             const int status = RunProgram(PlayCommand(job, RtrtPath(), range, manifest));
+            // Bad input: the task's one line has said what is wrong, and a rerun would fail
+            // the same way.
+            if (status == kExitBadInput) return kExitBadInput;
             if (status != 0) {
                 std::fprintf(stderr,
                              "rtrt: error: the task for frames %s failed (exit %d); the frames "
                              "finished are kept, and rerunning the command renders the rest\n",
                              RangeText(range).c_str(), status);
-                return status == kExitBadInput ? kExitBadInput : kExitFailure;
+                return kExitFailure;
             }
         }
     AssembleVideo(job);
@@ -223,19 +234,23 @@ std::string NextScript(const FarmJob& job, const char* kind) {
            ".sbatch";
 }
 
-// Submits a script with sbatch --parsable: the job id.
-std::string Submit(const std::vector<std::string>& command) {
+// Submits a script with sbatch --parsable: the job id. OutputError when sbatch fails, with the
+// command that renders the same frames on this machine instead.
+std::string Submit(const std::vector<std::string>& command, const FarmJob& job) {
     std::string output, error;
     const int status = RunProgram(command, &output, {}, &error);
     const std::string id = output.substr(0, output.find_first_of(";\n"));
     if (status != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
         throw OutputError(command.back(), "sbatch failed (exit " + std::to_string(status) + "; " +
                                               (error.empty() ? "its message is above" : error) +
-                                              ")");
+                                              "); to render on this machine instead: " +
+                                              FarmCommandLine(job, " --local"));
     return id;
 }
 
-int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks) {
+int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
+                  FarmFolderLock& lock) {
+    lock.Keep();
     MakeFolders(job);
     WriteFarmJob(job);
     const std::string renderScript = NextScript(job, "render");
@@ -243,12 +258,12 @@ int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks
     FarmSubmission& submission = job.submissions.emplace_back();
     if (!tasks.empty()) {
         WriteWholeFile(renderScript, RenderScript(job, tasks, RtrtPath()), /*durable=*/true);
-        submission.renderJob = Submit(SubmitRender(renderScript));
+        submission.renderJob = Submit(SubmitRender(renderScript), job);
         // Recorded at once: --status and the queue check see it even if the assembly fails.
         WriteFarmJob(job);
     }
     WriteWholeFile(assembleScript, AssembleScript(job, RtrtPath()), /*durable=*/true);
-    submission.assembleJob = Submit(SubmitAssembly(assembleScript, submission.renderJob));
+    submission.assembleJob = Submit(SubmitAssembly(assembleScript, submission.renderJob), job);
     WriteFarmJob(job);
     if (!submission.renderJob.empty())
         std::printf("rtrt farm: submitted render job %s (%zu tasks) and assemble job %s after it\n",
@@ -290,7 +305,11 @@ int SlurmMaxArraySize() {
 }
 
 int RunFarm(const FarmOptions& o) {
-    const FarmJob job = ResumeOrStart(JobFromOptions(o));
+    FarmJob described = JobFromOptions(o);
+    // Held until the tasks have run (--local) or been submitted; a dry run writes nothing.
+    std::optional<FarmFolderLock> lock;
+    if (!o.dryRun) lock.emplace(described.folder);
+    const FarmJob job = ResumeOrStart(std::move(described));
     // Frames of queued tasks are not missing, only unfinished: a second job would render them
     // again and race the first one's assembly.
     if (const std::string queue = QueueState(job); !queue.empty() && !o.dryRun) {
@@ -323,7 +342,7 @@ int RunFarm(const FarmOptions& o) {
         PrintDryRun(job, tasks);
         return kExitOk;
     }
-    if (o.local) return RunLocally(job, tasks);
+    if (o.local) return RunLocally(job, tasks, *lock);
     if (!ProgramOnPath("sbatch")) {
         std::fprintf(stderr,
                      "rtrt: error: Slurm is not installed here (no sbatch on PATH), so nothing was "
@@ -332,7 +351,7 @@ int RunFarm(const FarmOptions& o) {
                      FarmCommandLine(job, " --local").c_str());
         return kExitFailure;
     }
-    return SubmitToSlurm(job, tasks);
+    return SubmitToSlurm(job, tasks, *lock);
 }
 
 // Counts of the job's Slurm jobs by state ("2 RUNNING, 1 PENDING"), or "" when none is queued.
@@ -384,18 +403,21 @@ int RunStatus(const std::string& folder) {
                 assembled ? (VideoFile(job.folder) + " and " + ContactSheetFile(job.folder)).c_str()
                           : "not made yet");
     if (check.done.size() == size_t(f.frames.Count()) && assembled) return kExitOk;
-    if (queue.empty()) std::printf("rtrt farm: to finish it: %s\n", FarmCommandLine(job).c_str());
+    if (queue.empty())
+        std::printf("rtrt farm: to finish it: %s\n", FarmCommandLine(job, LocalFlag(job)).c_str());
     return kExitIncomplete;
 }
 
 int RunAssemble(const std::string& folder) {
     const FarmJob job = ReadFarmJob(fs::absolute(folder).lexically_normal().string());
+    FarmFolderLock lock(job.folder);  // not while a resumed run renders into the folder
+    lock.Keep();
     const FrameCheck check = CheckAndReport(job);
     if (check.done.size() != size_t(job.frames.frames.Count())) {
         std::fprintf(stderr,
                      "rtrt: error: %s: frames are missing or corrupt, so no video was made; "
                      "render them with: %s\n",
-                     job.folder.c_str(), FarmCommandLine(job).c_str());
+                     job.folder.c_str(), FarmCommandLine(job, LocalFlag(job)).c_str());
         return kExitFailure;
     }
     AssembleVideo(job);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/content_hash.h"
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
@@ -35,7 +36,8 @@ struct PlayOptions {
     std::string gpus = "1";
     std::string physicsSolver = "cpu";
     std::string record, script;
-    std::string manifest;  // headless: a line per finished frame, with its checksum
+    std::string manifest;       // headless: a line per finished frame, with its checksum
+    std::string sceneChecksum;  // headless: the scene file's XXH3-64 must be this
     bool headless = false;
     bool noVsync = false;
     bool finishStages = false;
@@ -122,6 +124,18 @@ void RunWindowed(const PlayOptions& o) {
 #endif
 }
 
+// A farm task plays the scene its job was made from, or nothing: frames of an edited scene
+// would be mixed into the job's video.
+void CheckSceneChecksum(const std::string& scene, const std::string& expected) {
+    if (expected.empty()) return;
+    const std::string actual = HexDigest(HashFile(scene));
+    if (actual != expected)
+        throw InputError(scene, "",
+                         "changed since its farm job was made (checksum " + actual +
+                             ", the job's " + expected +
+                             "); restore it, or render the new scene as a new job (another -o)");
+}
+
 void RunPlay(PlayOptions o) {
     if (o.scenes.empty()) o.scenes = {"default"};
     if (!o.headless) return RunWindowed(o);
@@ -136,7 +150,9 @@ void RunPlay(PlayOptions o) {
     CheckPattern(o.output);
     CheckImagePath(FramePath(o.output, first));
     if (!o.manifest.empty()) CheckManifestPath(o.manifest);
+    CheckSceneChecksum(o.scenes[0], o.sceneChecksum);
     const LoadedScene loaded = LoadSceneFile(o.scenes[0]);
+    CheckSceneChecksum(o.scenes[0], o.sceneChecksum);  // and it did not change while loading
     RenderSettings settings;
     settings.width = loaded.width.value_or(1280);
     settings.height = loaded.height.value_or(720);
@@ -213,6 +229,9 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--manifest", options->manifest,
                     "Headless: append a line per finished frame to this file (frame, file, "
                     "bytes, XXH3-64 checksum), as rtrt farm's tasks do");
+    cmd->add_option("--scene-checksum", options->sceneChecksum,
+                    "Headless: play only if the scene file's XXH3-64 checksum (hex) is this, as "
+                    "rtrt farm's tasks do");
     cmd->add_option("--record", options->record,
                     "Window: record every frame shown (fixed time step) to a video (.mp4, .mkv, "
                     ".mov: H.264 through ffmpeg) or to DIR/frame_NNNNN.png");

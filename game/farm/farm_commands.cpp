@@ -50,15 +50,22 @@ std::string ShellLine(const std::vector<std::string>& words) {
 std::vector<std::string> PlayCommand(const FarmJob& job, const std::string& rtrt,
                                      const FrameRange& range, const std::string& manifest) {
     const FarmFrames& f = job.frames;
-    return {rtrt,         "play",
-            f.scene,      "--headless",
-            "--frames",   RangeText(range),
-            "--size",     std::to_string(f.width) + "x" + std::to_string(f.height),
-            "--spp",      std::to_string(f.spp),
-            "--fps",      FpsText(f.fps),
-            "--backend",  f.backend,
-            "-o",         FramePattern(job),
-            "--manifest", manifest};
+    std::vector<std::string> command = {
+        rtrt,         "play",
+        f.scene,      "--headless",
+        "--frames",   RangeText(range),
+        "--size",     std::to_string(f.width) + "x" + std::to_string(f.height),
+        "--spp",      std::to_string(f.spp),
+        "--fps",      FpsText(f.fps),
+        "--backend",  f.backend,
+        "-o",         FramePattern(job),
+        "--manifest", manifest};
+    // A scene edited after the job was made fails the task instead of mixing its frames in.
+    if (!f.sceneChecksum.empty()) {
+        command.push_back("--scene-checksum");
+        command.push_back(f.sceneChecksum);
+    }
+    return command;
 }
 
 namespace {

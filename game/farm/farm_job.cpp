@@ -1,15 +1,21 @@
 #include "game/farm/farm_job.h"
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/core/output_file.h"
 #include "game/scene/json_fields.h"
 
 namespace rtrt {
+
+namespace {
+constexpr size_t kMaxFarmFileBytes = size_t{1} << 20;
+}  // namespace
 
 std::string FarmFile(const std::string& folder) { return folder + "/farm.json"; }
 std::string FramesFolder(const std::string& folder) { return folder + "/frames"; }
@@ -47,13 +53,12 @@ bool HasFarmJob(const std::string& folder) {
 
 FarmJob ReadFarmJob(const std::string& folder) {
     const std::string file = FarmFile(folder);
-    std::ifstream in(file, std::ios::binary);
-    if (!in)
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec))
         throw InputError(file, "",
                          "cannot be read; is " + folder + " a folder made by `rtrt farm`?");
-    std::stringstream text;
-    text << in.rdbuf();
-    const Json j = ParseJson(text.str(), file);
+    // A job's description is a few hundred bytes: a FIFO, a device or a huge file is refused.
+    const Json j = ParseJson(ReadInputFile(file, kMaxFarmFileBytes), file);
     if (!j.is_object()) throw InputError(file, "", "expected a JSON object");
     JsonFields f(j, "", file);
     FarmJob job;
@@ -90,6 +95,12 @@ FarmJob ReadFarmJob(const std::string& folder) {
     s.gpu = f.Has("gpu") && f.Get("gpu").get<bool>();
     s.partition = f.String("partition", "");
     s.timeLimit = f.String("time_limit", "");
+    try {
+        CheckSlurmField("partition", s.partition);
+        CheckSlurmField("time_limit", s.timeLimit);
+    } catch (const InputError& e) {
+        f.Fail(e.File(), e.Reason());
+    }
     s.cpusPerTask = int(f.Count("cpus_per_task", 1, 4096, 1));
     if (f.Has("submissions")) {
         f.ExpectKind("submissions", JsonKind::kObjects);
@@ -135,6 +146,13 @@ void CheckFarmPath(const std::string& option, const std::string& path) {
         throw InputError(option, path,
                          "is not valid UTF-8, which farm.json cannot keep; rename it");
     }
+}
+
+void CheckSlurmField(const std::string& what, const std::string& value) {
+    for (char c : value)
+        if (!std::isalnum(static_cast<unsigned char>(c)) &&
+            std::string("_-:,.").find(c) == std::string::npos)
+            throw InputError(what, value, "expected a Slurm name or time, e.g. gpu or 2:00:00");
 }
 
 std::string FramesDifference(const FarmFrames& there, const FarmFrames& here) {

@@ -72,6 +72,9 @@ bool HasFarmJob(const std::string& folder);
 void WriteFarmJob(const FarmJob& job);
 // InputError(option, path, reason) unless farm.json can keep path: JSON text is UTF-8.
 void CheckFarmPath(const std::string& option, const std::string& path);
+// InputError(what, value, reason) unless value is a Slurm partition name or time limit (letters,
+// digits and _-:,.), which the batch scripts and the printed commands may carry unquoted.
+void CheckSlurmField(const std::string& what, const std::string& value);
 
 // "" when A and B make the same frames, else what differs, e.g. "size 640x360 there, 320x180 here".
 std::string FramesDifference(const FarmFrames& there, const FarmFrames& here);

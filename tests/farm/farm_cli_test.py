@@ -5,7 +5,9 @@ missing and corrupt frames, --status's exit statuses, and a folder of other sett
 
 usage: farm_cli_test.py RTRT WORK_DIR FORMAT   (FORMAT: png, or ppm where rtrt has no PNG)
 """
+import fcntl
 import filecmp
+import json
 import os
 import re
 import shutil
@@ -127,6 +129,63 @@ def main():
               os.path.join(WORK, "nowhere", "m.tsv"), expect=2)
     check("--manifest" in out and not os.path.exists(os.path.join(WORK, f"m_0.{FORMAT}")),
           "an unwritable --manifest fails before any frame")
+
+    # One rtrt farm at a time in a folder: while another process holds the folder's lock, a run
+    # is refused with exit 2 and names the holder; the lock goes with its holder.
+    with open(os.path.join(job, ".rtrt-farm.lock"), "r+") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        held.truncate(0)
+        held.write("process 4242 on elsewhere\n")
+        held.flush()
+        out = run(*farm, "--local", expect=2)
+        check("another rtrt farm (process 4242 on elsewhere) is working in this folder" in out,
+              "a second run in a folder that is being worked in is refused, naming the holder")
+        out = run("farm", "--assemble", job, expect=2)
+        check("another rtrt farm" in out, "--assemble waits its turn too (exit 2)")
+    out = run(*farm, "--local")
+    check("nothing to do" in out, "once the holder is gone the folder is free")
+    fresh = os.path.join(WORK, "fresh")
+    out = run(*farm[:-1], fresh, env=no_slurm, expect=1)
+    check(not os.path.exists(fresh), "a new folder made for the lock goes when nothing is written")
+
+    # A farm task plays the scene its job was made from: an edited scene fails the task (exit 2)
+    # instead of mixing its frames into the job.
+    digest = json.load(open(os.path.join(job, "farm.json")))["scene_checksum"]
+    scene = os.path.join(WORK, "scene.json")
+    with open(scene, "w") as f:
+        f.write('{ "background": [0.1, 0.2, 0.3] }\n')
+    out = run("play", scene, "--headless", "--frames", "1", "--size", SIZE, "-o",
+              os.path.join(WORK, f"c_%d.{FORMAT}"), "--scene-checksum", "0123456789abcdef",
+              expect=2)
+    check("changed since its farm job was made" in out and
+          not os.path.exists(os.path.join(WORK, f"c_0.{FORMAT}")),
+          "play --scene-checksum refuses a scene of another checksum before any frame")
+    check(digest == "" or re.fullmatch(r"[0-9a-f]{16}", digest), "farm.json keeps the checksum")
+
+    # A hostile farm.json: a FIFO is refused at once instead of waited on; Slurm fields that are
+    # not names are refused instead of printed into a command line.
+    fifo_job = os.path.join(WORK, "fifo")
+    os.makedirs(fifo_job)
+    os.mkfifo(os.path.join(fifo_job, "farm.json"))
+    p = subprocess.run([RTRT, "farm", "--status", fifo_job], capture_output=True, text=True,
+                       timeout=60)
+    check(p.returncode == 2 and "not a regular file" in p.stderr,
+          "a farm.json that is a FIFO: exit 2 at once")
+    bad = os.path.join(WORK, "bad_partition")
+    shutil.copytree(job, bad, ignore=shutil.ignore_patterns("frames", "video.mp4"))
+    with open(os.path.join(bad, "farm.json")) as f:
+        description = json.load(f)
+    description["partition"] = "gpu; touch pwned #"
+    with open(os.path.join(bad, "farm.json"), "w") as f:
+        json.dump(description, f)
+    out = run("farm", "--status", bad, expect=2)
+    check("partition: expected a Slurm name" in out, "a partition that is no Slurm name: exit 2")
+
+    # A folder that cannot be made (a file in the way) is bad input, exit 2.
+    blocker = os.path.join(WORK, "a_file")
+    open(blocker, "w").close()
+    out = run(*farm[:-1], os.path.join(blocker, "sub"), "--local", expect=2)
+    check("a_file/sub" in out, "an output folder under a file: exit 2")
     print("farm_cli: all checks passed")
 
 

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -99,6 +100,17 @@ TEST_F(FarmScriptTest, ElementRendersItsRangesWithItsOwnManifest) {
         job_.folder + "/frames/frame_%06d.png\n--manifest\n" + manifest + "\n";
     EXPECT_EQ(log, expected + expected.substr(0, expected.find("24:30")) + "40:48" +
                        expected.substr(expected.find("24:30") + 5));
+}
+
+// A job made from a scene file passes its checksum, so that a task refuses an edited scene.
+TEST_F(FarmScriptTest, TasksCarryTheScenesChecksum) {
+    std::vector<std::string> command = PlayCommand(job_, "rtrt", {0, 4}, "m.tsv");
+    EXPECT_EQ(std::count(command.begin(), command.end(), "--scene-checksum"), 0);
+    job_.frames.sceneChecksum = "00000000000000aa";
+    command = PlayCommand(job_, "rtrt", {0, 4}, "m.tsv");
+    ASSERT_GE(command.size(), 2u);
+    EXPECT_EQ(command[command.size() - 2], "--scene-checksum");
+    EXPECT_EQ(command.back(), "00000000000000aa");
 }
 
 TEST_F(FarmScriptTest, FailedElementRequeuesItselfUpToTheLimit) {
