@@ -7,6 +7,7 @@
 #include <set>
 
 #include "engine/core/error.h"
+#include "game/gltf/gltf_accessors.h"
 #include "game/gltf/gltf_animation.h"
 #include "game/gltf/gltf_document.h"
 #include "game/gltf/gltf_materials.h"
@@ -98,15 +99,7 @@ void ExposeForKeyLight(LoadedScene& out) {
     out.scene.background *= key;
 }
 
-}  // namespace
-
-bool IsGltfPath(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".gltf" || ext == ".glb";
-}
-
-GltfAsset LoadGltfAsset(const std::string& path, LoadedScene& out) {
+GltfAsset ReadGltfAsset(const std::string& path, LoadedScene& out) {
     GltfDocument doc(path);
     CheckExtensions(doc);
     const tinygltf::Model& model = doc.Model();
@@ -125,6 +118,23 @@ GltfAsset LoadGltfAsset(const std::string& path, LoadedScene& out) {
     ReadGltfAnimation(doc, nodeSlot, asset);
     asset.summary.skins = uint32_t(model.skins.size());
     return asset;
+}
+
+}  // namespace
+
+bool IsGltfPath(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".gltf" || ext == ".glb";
+}
+
+GltfAsset LoadGltfAsset(const std::string& path, LoadedScene& out) {
+    // Content rtrt skips is caught where it can be skipped; anywhere else it is bad input.
+    try {
+        return ReadGltfAsset(path, out);
+    } catch (const GltfUnsupported& u) {
+        throw InputError(path, "", u.what);
+    }
 }
 
 LoadedScene LoadGltfScene(const std::string& path) {

@@ -1,11 +1,21 @@
 // Placing a glTF asset in a scene (InstantiateGltf, gltf_import.h): its nodes as entities, its
 // lights and first camera at their world poses.
+#include <cmath>
 #include <glm/glm.hpp>
+#include <string>
 
+#include "engine/core/error.h"
 #include "game/gltf/gltf_import.h"
 
 namespace rtrt {
 namespace {
+
+bool AllFinite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
 
 // What makes primitive PRIM of node NODE deform in this instance: its skin, whose joints are
 // this instance's entities of the joint nodes (ENTITY: each node's entity index), and its
@@ -83,6 +93,15 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
             out.entities.push_back(p);
         }
         const vec3 origin = vec3(world[i] * glm::vec4(0, 0, 0, 1));
+        // Nodes that shade or view the scene from their world transform: values each within
+        // range can still multiply past a float's.
+        const bool placed = AllFinite(world[i]);
+        if ((node.light >= 0 || node.camera >= 0) && !placed)
+            throw InputError(asset.summary.file, "nodes[" + std::to_string(node.source) + "]",
+                             std::string("its world transform overflows a float (the product of "
+                                         "its ancestors' transforms); the ") +
+                                 (node.light >= 0 ? "light" : "camera") +
+                                 " on it would have no place");
         if (node.light >= 0) {
             const GltfLight& l = asset.lights[size_t(node.light)];
             Light light;

@@ -72,8 +72,15 @@ void GltfMeshes::AddTangents(const tinygltf::Primitive& prim, const std::string&
         return;
     }
     const std::string field = at + ".attributes.TANGENT";
-    std::vector<vec4> tangents =
-        ReadGltfFloats<4>(doc_, tangent->second, field, TINYGLTF_TYPE_VEC4);
+    std::vector<vec4> tangents;
+    try {
+        tangents = ReadGltfFloats<4>(doc_, tangent->second, field, TINYGLTF_TYPE_VEC4);
+    } catch (const GltfUnsupported& u) {
+        doc_.Warn("unsupported:" + u.what,
+                  field + ": " + u.what + "; the primitive's tangents are generated instead");
+        GenerateTangents(mesh);
+        return;
+    }
     if (tangents.size() != mesh.positions.size()) doc_.Fail(field, "count differs from POSITION's");
     for (vec4& t : tangents) {
         const float length = glm::length(vec3(t));

@@ -29,6 +29,22 @@ std::vector<int> Roots(GltfDocument& doc, const std::vector<int>& parentOf) {
                 doc.Fail(field, "node " + std::to_string(nodes[i]) + " out of range");
             roots.push_back(nodes[i]);
         }
+        // Each listed node is shown once: the specification wants them unique, and a list that
+        // repeats a root would show its whole tree again for every repeat.
+        std::vector<char> seen(model.nodes.size(), 0);
+        size_t unique = 0;
+        for (size_t i = 0; i < roots.size(); ++i) {
+            if (seen[size_t(roots[i])] != 0) {
+                doc.Warn("scene-repeat",
+                         JsonIndexed(JsonIndexed("scenes", size_t(sceneIndex)) + ".nodes", i) +
+                             ": node " + std::to_string(roots[i]) +
+                             " is listed again; it is shown once");
+                continue;
+            }
+            seen[size_t(roots[i])] = 1;
+            roots[unique++] = roots[i];
+        }
+        roots.resize(unique);
         // The specification wants roots here, but files list children too and common engines
         // load them: a child whose tree is shown anyway is shown there, once; one whose tree is
         // not is shown as a root of its own (its ancestors' transforms are not applied).

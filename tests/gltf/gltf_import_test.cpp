@@ -129,6 +129,21 @@ TEST_F(GltfTest, SceneNodesListingAChildShowItOnce) {
     EXPECT_NEAR(glm::length(q - vec3(2, 0, 2)), 0.0f, 1e-5f);  // its own transform only
 }
 
+// A root listed again is shown once, with a warning: a 21 KB file listing one tree a thousand
+// times made a million entities.
+TEST_F(GltfTest, ARootListedAgainIsShownOnce) {
+    GltfBuilder b = test::TwoLevels();
+    b.doc["scenes"] = Json::array({{{"nodes", Json::array({0, 0, 0, 0})}}});
+    ::testing::internal::CaptureStderr();
+    const LoadedScene loaded = LoadSceneFile(Save("repeated.gltf", b.GltfText()));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("scenes[0].nodes[1]: node 0 is listed again; it is shown once"),
+              std::string::npos)
+        << warnings;
+    EXPECT_EQ(loaded.scene.instances.size(), 1u);
+    EXPECT_EQ(loaded.entities.size(), 3u);  // the two nodes and the primitive
+}
+
 // Thousands of listed children at the end of a long chain of unlisted nodes: each is shown as a
 // root (no ancestor of it is listed), and the loader settles each ancestor once instead of
 // walking the chain and searching the list per child (hours for files a few MB long).
@@ -444,6 +459,16 @@ std::vector<HostileGltf> MakeHostileGltfCorpus() {
                                {"spot", {{"innerConeAngle", 0.8}, {"outerConeAngle", 0.5}}}}});
          }),
          "extensions.KHR_lights_punctual.lights[0].spot.innerConeAngle", "below outerConeAngle"},
+        // Each translation is within a float's range, their sum is not: the light has no place.
+        {"light_overflow.gltf", edit([](GltfBuilder& b) {
+             b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+                 Json::array({{{"type", "point"}}});
+             b.Node({{"translation", {3e38, 0, 0}}, {"children", {3}}});
+             b.Node({{"translation", {3e38, 0, 0}},
+                     {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+             b.doc["scenes"][0]["nodes"].push_back(2);
+         }),
+         "nodes[3]", "world transform overflows a float"},
         {"negative_light_range.gltf", edit([](GltfBuilder& b) {
              b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
                  Json::array({{{"type", "point"}, {"range", -2}}});

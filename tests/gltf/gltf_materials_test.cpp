@@ -191,6 +191,28 @@ TEST_F(GltfTest, NormalMappedPrimitivesGetVertexTangents) {
             EXPECT_NEAR(v.z, 0.0f, 1e-6f);
             EXPECT_EQ(v.w, 1.0f);  // n x t = +y, up the image: decreasing v
         }
+    // A sparse TANGENT accessor (not read by rtrt) is warned about and the tangents generated;
+    // it used to escape every handler and abort the process.
+    GltfBuilder b = test::TexturedQuadScene(9729, 10497);
+    b.doc["images"] =
+        Json::array({{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>(
+                                                             bmp.begin(), bmp.end()))}}});
+    b.doc["materials"][0]["normalTexture"] = {{"index", 0}};
+    const int tangent = b.Floats({0, 2, 0, 1, 0, 2, 0, 1, 0, 2, 0, 1, 0, 2, 0, 1}, "VEC4", 4);
+    b.doc["accessors"][tangent]["sparse"] = {
+        {"count", 1},
+        {"indices", {{"bufferView", b.doc["accessors"][0]["bufferView"]}, {"componentType", 5125}}},
+        {"values", {{"bufferView", b.doc["accessors"][0]["bufferView"]}}}};
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = tangent;
+    ::testing::internal::CaptureStderr();
+    const LoadedScene sparse = LoadSceneFile(Save("sparse_tangent.gltf", b.GltfText()));
+    const std::string warning = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warning.find("TANGENT: sparse accessors are not supported; the primitive's tangents "
+                           "are generated instead"),
+              std::string::npos)
+        << warning;
+    ASSERT_EQ(sparse.scene.blases[0]->tangents.size(), 2u);
+    EXPECT_NEAR(sparse.scene.blases[0]->tangents[0].t0.x, 1.0f, 1e-6f);
 }
 
 TEST_F(GltfTest, ExposureFollowsTheKeyLight) {
