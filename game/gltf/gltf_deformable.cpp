@@ -121,15 +121,18 @@ bool ReadGltfSkinInfluences(GltfDocument& doc, const tinygltf::Primitive& prim,
 
 bool ReadGltfMorphTargets(GltfDocument& doc, const tinygltf::Primitive& prim, const std::string& at,
                           const tinygltf::Mesh& mesh, const std::string& meshAt,
-                          DeformableMesh& out) {
+                          DeformableMesh& out, uint64_t& fileDeltas) {
     if (prim.targets.empty()) return false;
     const size_t vertices = out.rest.positions.size(), targets = prim.targets.size();
     const bool hasNormals = !out.rest.normals.empty();
-    if (uint64_t(targets) * vertices > kMaxMorphDeltas)
+    // Targets of many primitives can share one accessor too: the budget is the file's.
+    if (uint64_t(targets) * vertices > kMaxMorphDeltas - std::min(fileDeltas, kMaxMorphDeltas))
         doc.Fail(at + ".targets", std::to_string(targets) + " targets of " +
                                       std::to_string(vertices) +
-                                      " vertices are more deltas than rtrt holds (" +
-                                      std::to_string(kMaxMorphDeltas) + ")");
+                                      " vertices take the file's morph deltas past what rtrt "
+                                      "holds (" +
+                                      std::to_string(kMaxMorphDeltas) + " in all)");
+    fileDeltas += uint64_t(targets) * vertices;
     std::vector<vec3> positions(targets * vertices, vec3(0.0f)), normals;
     try {
         for (size_t t = 0; t < targets; ++t) {

@@ -27,8 +27,9 @@ bool ReadGltfSkinInfluences(GltfDocument& doc, const tinygltf::Primitive& prim,
 // primitive's vertices and normals (normal deltas are dropped for a mesh without normals).
 // False when the primitive has none, or uses what rtrt skips (with a warning); throws
 // InputError for malformed targets.
+// fileDeltas: the deltas the file's primitives have read so far; the file may hold 2^26 in all.
 bool ReadGltfMorphTargets(GltfDocument& doc, const tinygltf::Primitive& prim, const std::string& at,
                           const tinygltf::Mesh& mesh, const std::string& meshAt,
-                          DeformableMesh& out);
+                          DeformableMesh& out, uint64_t& fileDeltas);
 
 }  // namespace rtrt

@@ -1,5 +1,6 @@
 #include "game/gltf/gltf_document.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -74,6 +75,16 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
         Warn("image-unused", JsonIndexed("images", size_t(index)) +
                                  ": no texture's source names it (an extension's image, as "
                                  "KHR_texture_basisu's KTX2, or none); it is not decoded");
+}
+
+std::string CountGltfTexels(GltfImageFailure* failure, int width, int height) {
+    const uint64_t texels = uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0));
+    if (texels > kMaxGltfFileTexels - failure->texels)
+        return std::to_string(width) + " x " + std::to_string(height) +
+               " texels would take the file's images past what rtrt reads (2^30 texels "
+               "together)";
+    failure->texels += texels;
+    return "";
 }
 
 bool DecodeGltfImage(GltfImageFailure* failure, int index) {

@@ -80,7 +80,8 @@ std::string CheckShape(const ImageShape& shape, int reqWidth, int reqHeight) {
 
 // Fills `image` from the encoded bytes; returns why not, or "" on success. FILE: the glTF file.
 std::string Decode(tinygltf::Image& image, int reqWidth, int reqHeight, const unsigned char* bytes,
-                   int size, const std::string& file) {
+                   int size, GltfImageFailure* failure) {
+    const std::string& file = failure->file;
     if (bytes == nullptr || size <= 0) return "the image has no bytes";
     const char* format = SniffFormat(bytes, size_t(size));
     if (!format)
@@ -89,7 +90,11 @@ std::string Decode(tinygltf::Image& image, int reqWidth, int reqHeight, const un
     DecodedImage decoded;
     const std::string reason = DecodeImage(
         bytes, size_t(size), format, file,
-        [&](const ImageShape& shape) { return CheckShape(shape, reqWidth, reqHeight); }, &decoded);
+        [&](const ImageShape& shape) {
+            const std::string why = CheckShape(shape, reqWidth, reqHeight);
+            return why.empty() ? CountGltfTexels(failure, shape.width, shape.height) : why;
+        },
+        &decoded);
     if (!reason.empty()) return reason;
     image.width = decoded.shape.width;
     image.height = decoded.shape.height;
@@ -104,7 +109,7 @@ bool LoadWithOiio(tinygltf::Image* image, const int index, std::string* err, std
     if (!DecodeGltfImage(failure, index)) return true;
     std::string reason;
     try {
-        reason = Decode(*image, reqWidth, reqHeight, bytes, size, failure->file);
+        reason = Decode(*image, reqWidth, reqHeight, bytes, size, failure);
     } catch (const ImageLibraryError&) {  // rtrt's installation, not the file: rethrown whole
         failure->fatal = std::current_exception();
         return false;

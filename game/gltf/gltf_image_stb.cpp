@@ -12,10 +12,15 @@ bool LoadWithStb(tinygltf::Image* image, const int index, std::string* err, std:
     if (!DecodeGltfImage(static_cast<GltfImageFailure*>(user), index)) return true;
     // A null option is tinygltf's default: channels expanded to RGBA.
     std::string reason;
-    if (tinygltf::LoadImageData(image, index, &reason, warn, reqWidth, reqHeight, bytes, size,
-                                nullptr))
-        return true;
     auto* failure = static_cast<GltfImageFailure*>(user);
+    if (tinygltf::LoadImageData(image, index, &reason, warn, reqWidth, reqHeight, bytes, size,
+                                nullptr)) {
+        // stb has decoded it by now: the budget bounds what the file's images keep together.
+        reason = CountGltfTexels(failure, image->width, image->height);
+        if (reason.empty()) return true;
+        image->image.clear();
+        image->image.shrink_to_fit();
+    }
     failure->index = index;
     failure->reason = reason.empty() ? "stb could not decode the image" : reason;
     if (err) *err += reason;

@@ -105,8 +105,9 @@ void GltfMeshes::ReadDeformation(const tinygltf::Primitive& prim, const std::str
         skin >= 0 &&
         ReadGltfSkinInfluences(doc_, prim, at, uint32_t(model_.skins[size_t(skin)].joints.size()),
                                *deformable, out.nodeJoint);
-    const bool morphed = ReadGltfMorphTargets(doc_, prim, at, model_.meshes[mesh],
-                                              JsonIndexed("meshes", mesh), *deformable);
+    const bool morphed =
+        ReadGltfMorphTargets(doc_, prim, at, model_.meshes[mesh], JsonIndexed("meshes", mesh),
+                             *deformable, morphDeltas_);
     if (!skinned && !morphed) return;
     out.deformableMesh = int32_t(out_.scene.AddDeformableMesh(std::move(deformable)));
     summary_.deformingPrimitives++;

@@ -49,6 +49,7 @@ class GltfMeshes {
     GltfMaterials& materials_;
     GltfSummary& summary_;
     std::map<std::pair<size_t, int>, std::vector<GltfPrimitive>> meshPrimitives_;
+    uint64_t morphDeltas_ = 0;  // read by all primitives so far (ReadGltfMorphTargets)
 };
 
 }  // namespace rtrt

@@ -17,6 +17,7 @@
 
 #include "engine/core/error.h"
 #include "engine/render_rt/renderer.h"
+#include "game/gltf/gltf_image_loader.h"
 #include "game/gltf/gltf_meshes.h"
 #include "game/runtime/world.h"
 #include "game/scene/scene_file.h"
@@ -127,6 +128,20 @@ TEST_F(GltfTest, SceneNodesListingAChildShowItOnce) {
     ASSERT_EQ(alone.scene.instances.size(), 1u);
     const vec3 q = alone.scene.instances[0].ObjectToWorld().Point(vec3(1, 0, 0));
     EXPECT_NEAR(glm::length(q - vec3(2, 0, 2)), 0.0f, 1e-5f);  // its own transform only
+}
+
+// The file's images share one budget of texels: images can share one buffer view, so a small
+// file could ask for any number of large decodes.
+TEST(GltfTexelBudget, TheFilesImagesShareOneBudget) {
+    GltfImageFailure failure;
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(CountGltfTexels(&failure, 16384, 16384), "") << i;
+    EXPECT_EQ(failure.texels, kMaxGltfFileTexels);
+    EXPECT_NE(CountGltfTexels(&failure, 1, 1).find("past what rtrt reads (2^30 texels together)"),
+              std::string::npos);
+    EXPECT_EQ(failure.texels, kMaxGltfFileTexels);  // a refused image counts nothing
+    GltfImageFailure other;
+    EXPECT_EQ(CountGltfTexels(&other, 0, 7), "");
+    EXPECT_EQ(other.texels, 0u);
 }
 
 // A root listed again is shown once, with a warning: a 21 KB file listing one tree a thousand
