@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "engine/core/interrupt.h"
+
 extern char** environ;
 
 namespace rtrt {
@@ -73,8 +75,12 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const ChildOpti
     std::vector<std::string> args = argv;
     std::vector<std::string> env = Environment(options.environment);
     std::vector<char*> argp = Pointers(args), envp = Pointers(env);
+    // Registered under the lock it is started in: an interrupt either comes first (and nothing
+    // starts) or knows the child.
+    TemporariesLock lock;
     const int failed =
         ::posix_spawnp(&pid_, args[0].c_str(), &actions, &attributes, argp.data(), envp.data());
+    if (failed == 0) lock.RegisterChild(pid_);
     posix_spawn_file_actions_destroy(&actions);
     posix_spawnattr_destroy(&attributes);
     CloseIfOpen(&in[0]);
@@ -137,6 +143,15 @@ int ChildProcess::Wait(std::string* output) {
             if (output) output->append(buffer, size_t(got));
         }
         CloseIfOpen(&stdout_);
+    }
+    // The child is unregistered after it has ended but before it is reaped, so that an
+    // interrupt never signals a stranger that was given its process id.
+    siginfo_t ended{};
+    while (::waitid(P_PID, id_t(pid_), &ended, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+    }
+    {
+        TemporariesLock lock;
+        lock.UnregisterChild(pid_);
     }
     int status = 0;
     pid_t waited;

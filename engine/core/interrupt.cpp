@@ -2,6 +2,7 @@
 
 #include <pthread.h>
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,7 +20,27 @@ namespace {
 struct Temporaries {
     std::mutex mutex;
     std::vector<std::string> paths;  // a path twice when two writers share it, once per writer
+    std::vector<pid_t> children;     // running, not yet waited for
 };
+
+// How long the children of an interrupted rtrt have to stop before they are killed.
+constexpr int kChildStopMilliseconds = 5000;
+
+// Hands signo on to every registered child and waits until each has ended (reaped here, or by
+// the thread that waits for it), killing those still running after kChildStopMilliseconds.
+void StopChildren(const std::vector<pid_t>& children, int signo) {
+    for (const pid_t child : children) ::kill(child, signo);
+    std::vector<pid_t> running = children;
+    for (int waited = 0; !running.empty(); waited += 10) {
+        if (waited == kChildStopMilliseconds)
+            for (const pid_t child : running) ::kill(child, SIGKILL);
+        std::erase_if(running, [](pid_t child) {
+            int status;
+            return ::waitpid(child, &status, WNOHANG) != 0;  // ended, or reaped elsewhere
+        });
+        if (!running.empty()) ::usleep(10000);
+    }
+}
 
 // Never destroyed: the interrupt thread may clean up while main returns and statics die.
 Temporaries& Registry() {
@@ -38,6 +59,8 @@ sigset_t InterruptSignals() {
 [[noreturn]] void CleanUpAndExit(int signo) {
     Temporaries& registry = Registry();
     registry.mutex.lock();  // kept: no thread makes or renames a temporary from here on
+    // Before the temporaries: a child still running could write one again after its removal.
+    StopChildren(registry.children, signo);
     // Newest first, so that a file inside a registered folder goes before the folder.
     for (auto path = registry.paths.rbegin(); path != registry.paths.rend(); ++path) {
         std::error_code ignored;  // nothing more can be done about a failure on the way out
@@ -91,6 +114,10 @@ void InstallInterruptHandler() {
 TemporariesLock::TemporariesLock() : lock_(Registry().mutex) {}
 
 void TemporariesLock::Register(const std::string& path) { Registry().paths.push_back(path); }
+
+void TemporariesLock::RegisterChild(int pid) { Registry().children.push_back(pid); }
+
+void TemporariesLock::UnregisterChild(int pid) { std::erase(Registry().children, pid_t(pid)); }
 
 void TemporariesLock::Unregister(const std::string& path) {
     std::vector<std::string>& paths = Registry().paths;

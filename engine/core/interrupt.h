@@ -1,7 +1,8 @@
 #pragma once
-// SIGINT and SIGTERM stop rtrt at once, at any point of its work: the registered temporaries are
-// removed, a line says so, and the process exits 128 + the signal's number (130, 143). Outputs
-// take their name only when complete (OutputFile), so what was finished stays whole.
+// SIGINT and SIGTERM stop rtrt at once, at any point of its work: the signal goes on to the
+// child processes running, the registered temporaries are removed, a line says so, and the process
+// exits 128 + the signal's number (130, 143). Outputs take their name only when complete
+// (OutputFile), so what was finished stays whole.
 #include <mutex>
 #include <string>
 
@@ -23,6 +24,11 @@ class TemporariesLock {
 
     void Register(const std::string& path);
     void Unregister(const std::string& path);
+    // Child processes running: an interrupt hands its signal on to each and waits for them
+    // (SIGKILL after a few seconds) before it removes the temporaries, so that a child neither
+    // goes on working nor writes a file after the cleanup.
+    void RegisterChild(int pid);
+    void UnregisterChild(int pid);
 
   private:
     std::unique_lock<std::mutex> lock_;

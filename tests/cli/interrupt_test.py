@@ -175,7 +175,51 @@ def main():
                               str(frames), "--size", "320x180", "-o",
                               os.path.join(d, "f_%04d" + EXT)],
                    [f"f_{i:04d}{EXT}" for i in range(frames)])
+    interrupt_farm_task()
     shutil.rmtree(WORK)
+
+
+def processes_naming(text):
+    """Process ids whose command line contains TEXT."""
+    found = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                if text.encode() in f.read():
+                    found.append(int(pid))
+        except OSError:
+            pass
+    return found
+
+
+def interrupt_farm_task():
+    """SIGTERM to `rtrt farm --local` alone, not its process group, while a task renders: the task
+    is stopped with it, and nothing is left half-written or still being written."""
+    job = os.path.join(WORK, "farm")
+    proc = subprocess.Popen([RTRT, "farm", "default", "--frames", "2000", "--size", "160x90",
+                             "--format", EXT.lstrip("."), "-o", job, "--local"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    frames = os.path.join(job, "frames")
+    deadline = time.monotonic() + 60
+    while not (os.path.isdir(frames) and os.listdir(frames)):
+        if proc.poll() is not None or time.monotonic() > deadline:
+            sys.exit(f"FAIL: farm --local wrote no frame ({proc.poll()})")
+        time.sleep(0.01)
+    tasks = [pid for pid in processes_naming(job) if pid != proc.pid]
+    if not tasks:
+        sys.exit("FAIL: no task process of farm --local found")
+    proc.send_signal(signal.SIGTERM)
+    _, stderr = proc.communicate(timeout=30)
+    if proc.returncode != 143:
+        sys.exit(f"FAIL: farm --local after SIGTERM: exit {proc.returncode}\n{stderr}")
+    left = processes_naming(job)
+    if left:
+        sys.exit(f"FAIL: farm's task still runs after farm was stopped: {left}")
+    done = sorted(os.listdir(frames))
+    time.sleep(0.5)
+    if sorted(os.listdir(frames)) != done or any(name.startswith(".") for name in done):
+        sys.exit(f"FAIL: frames still change, or a temporary is left: {done[-3:]}")
+    print(f"ok: farm --local stopped by SIGTERM stops its task too ({len(done)} frames kept)")
 
 
 main()
