@@ -1,0 +1,255 @@
+// glTF files made to break the loader: each defect of the hostile corpus (tests/data/hostile_gltf)
+// gives one InputError naming its field, a FIFO is refused instead of waited on, and a file's
+// images share one budget of texels. Well-formed files: gltf_import_test.cpp.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "engine/core/error.h"
+#include "game/gltf/gltf_image_loader.h"
+#include "game/gltf/gltf_import.h"
+#include "game/scene/scene_file.h"
+#include "tests/gltf/gltf_builder.h"
+#include "tests/gltf/gltf_test_dir.h"
+#include "tests/test_util.h"
+
+namespace rtrt {
+namespace {
+
+namespace fs = std::filesystem;
+using test::GltfBuilder;
+using Json = nlohmann::json;
+
+constexpr int kUShort = 5123;
+
+// The file's images share one budget of texels: images can share one buffer view, so a small
+// file could ask for any number of large decodes.
+TEST(GltfTexelBudget, TheFilesImagesShareOneBudget) {
+    GltfImageFailure failure;
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(CountGltfTexels(&failure, 16384, 16384), "") << i;
+    EXPECT_EQ(failure.texels, kMaxGltfFileTexels);
+    EXPECT_NE(CountGltfTexels(&failure, 1, 1).find("past what rtrt reads (2^30 texels together)"),
+              std::string::npos);
+    EXPECT_EQ(failure.texels, kMaxGltfFileTexels);  // a refused image counts nothing
+    GltfImageFailure other;
+    EXPECT_EQ(CountGltfTexels(&other, 0, 7), "");
+    EXPECT_EQ(other.texels, 0u);
+}
+
+// A buffer whose uri names a FIFO is refused instead of waited on.
+TEST_F(GltfTest, ABufferThatIsAFifoIsRefused) {
+    GltfBuilder b = test::TwoLevels();
+    Json d = b.doc;
+    d["buffers"] = Json::array({{{"byteLength", b.bin.size()}, {"uri", "fifo.bin"}}});
+    ASSERT_EQ(::mkfifo((dir_ / "fifo.bin").c_str(), 0600), 0);
+    const std::string path = Save("fifo.gltf", d.dump());
+    try {
+        LoadSceneFile(path);
+        ADD_FAILURE() << "loaded";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.File(), path);
+        EXPECT_NE(std::string(e.what()).find("fifo.bin"), std::string::npos) << e.what();
+    }
+}
+
+// Each defect gives one InputError naming the field, and no warning before it.
+struct HostileGltf {
+    std::string name;
+    std::string bytes;
+    std::string field;
+    std::string reason;
+};
+
+std::vector<HostileGltf> MakeHostileGltfCorpus() {
+    const GltfBuilder base = test::TwoLevels();
+    const std::string glb = base.Glb();
+    auto edit = [&](auto change) {
+        GltfBuilder b = base;
+        change(b);
+        return b.GltfText();
+    };
+    auto binary = [&](auto change) {
+        GltfBuilder b = base;
+        change(b);
+        return b.Glb();
+    };
+    const float nan = std::nanf(""), inf = INFINITY;
+    std::string badVersion = glb;
+    badVersion[4] = 1;
+    std::string shortChunk = glb;
+    shortChunk[12] = char(0xff);  // JSON chunk length beyond the file
+    shortChunk[13] = char(0xff);
+    return {
+        {"truncated.glb", glb.substr(0, glb.size() - 10), "header.length", "(truncated)"},
+        {"truncated_header.glb", glb.substr(0, 7), "header", "truncated"},
+        {"no_chunks.glb", std::string("glTF\x02\0\0\0\x0c\0\0\0", 12), "chunks",
+         "needs a JSON chunk"},
+        {"wrong_magic.glb", "gLTF" + glb.substr(4), "header.magic", "not a GLB file"},
+        {"wrong_version.glb", badVersion, "header.version", "GLB version 1"},
+        {"chunk_too_long.glb", shortChunk, "chunks[0].length", "do not fit"},
+        {"huge_count.gltf",
+         edit([](GltfBuilder& b) { b.doc["accessors"][0]["count"] = 1000000000; }),
+         "accessors[0].count", "do not fit in buffer view"},
+        {"view_outside_buffer.gltf",
+         edit([](GltfBuilder& b) { b.doc["bufferViews"][0]["byteLength"] = 4000; }),
+         "bufferViews[0].byteLength", "outside buffer"},
+        {"nan_position.glb",
+         binary([&](GltfBuilder& b) { std::memcpy(b.bin.data() + 16, &nan, 4); }),
+         "meshes[0].primitives[0].attributes.POSITION", "NaN or infinite"},
+        {"inf_position.gltf", edit([&](GltfBuilder& b) { std::memcpy(b.bin.data(), &inf, 4); }),
+         "meshes[0].primitives[0].attributes.POSITION", "NaN or infinite"},
+        {"inf_translation.gltf", edit([](GltfBuilder& b) {
+             b.doc["nodes"][1]["translation"] = {0, 1e39, 0};
+         }),
+         "nodes[1].translation", "NaN or infinite"},
+        {"nan_matrix.gltf", edit([](GltfBuilder& b) {
+             b.doc["nodes"][0].erase("rotation");
+             b.doc["nodes"][0].erase("translation");
+             b.doc["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1e300, 0, 1};
+         }),
+         "nodes[0].matrix", "NaN or infinite"},
+        {"index_out_of_range.gltf", edit([](GltfBuilder& b) {
+             const int idx = b.Accessor(std::vector<uint16_t>{0, 1, 7}, kUShort, "SCALAR", 1);
+             b.doc["meshes"][0]["primitives"][0]["indices"] = idx;
+         }),
+         "meshes[0].primitives[0].indices", "out of range (3 vertices)"},
+        {"cyclic_nodes.gltf", edit([](GltfBuilder& b) {
+             b.doc["nodes"][1]["children"] = {2};
+             b.Node({{"children", {1}}});
+         }),
+         "nodes[2].children[0]", "has two parents"},
+        {"cycle_without_root.gltf", edit([](GltfBuilder& b) {
+             b.Node({{"children", {3}}});
+             b.Node({{"children", {2}}});
+         }),
+         "nodes[2].children", "its own ancestor"},
+        {"own_child.gltf", edit([](GltfBuilder& b) { b.doc["nodes"][1]["children"] = {1}; }),
+         "nodes[1].children[0]", "its own child"},
+        {"missing_buffer.gltf",
+         [&] {
+             Json d = Json::parse(base.GltfText());
+             d["buffers"][0]["uri"] = "no_such.bin";
+             return d.dump();
+         }(),
+         "buffers[0].uri", "no such file"},
+        {"missing_image.gltf", edit([](GltfBuilder& b) {
+             b.doc["images"] = Json::array({{{"uri", "no_such.png"}}});
+             b.doc["textures"] = Json::array({{{"source", 0}}});  // used: it must be there
+         }),
+         "images[0].uri", "no such file"},
+        {"wrong_type.gltf", edit([](GltfBuilder& b) { b.doc["nodes"][1]["mesh"] = 7; }),
+         "nodes[1].mesh", "out of range"},
+        {"not_json.gltf", "{ \"asset\": ", "", "malformed JSON"},
+        {"wrong_json_type.gltf",
+         edit([](GltfBuilder& b) { b.doc["nodes"][1]["translation"] = "up"; }),
+         "nodes[1].translation", "expected an array of 3 numbers, got string"},
+        {"nodes_not_array.gltf", edit([](GltfBuilder& b) { b.doc["nodes"] = 5; }), "nodes",
+         "expected an array of objects"},
+        {"bad_accessor_type.gltf",
+         edit([](GltfBuilder& b) { b.doc["accessors"][0]["type"] = "VEC2"; }), "accessors[0].type",
+         "wrong element type"},
+        {"texture_transform_not_number.gltf", edit([](GltfBuilder& b) {
+             b.doc["textures"] = Json::array({Json::object()});
+             b.doc["materials"] =
+                 Json::array({{{"pbrMetallicRoughness",
+                                {{"baseColorTexture",
+                                  {{"index", 0},
+                                   {"extensions",
+                                    {{"KHR_texture_transform", {{"offset", {"left", 0}}}}}}}}}}}});
+             b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+         }),
+         "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform."
+         "offset",
+         "expected a number"},
+        {"normal_texture_out_of_range.gltf", edit([](GltfBuilder& b) {
+             b.doc["materials"] = Json::array({{{"normalTexture", {{"index", 5}}}}});
+             b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+         }),
+         "materials[0].normalTexture.index", "out of range"},
+        {"spot_cone_inverted.gltf", edit([](GltfBuilder& b) {
+             b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+                 Json::array({{{"type", "spot"},
+                               {"spot", {{"innerConeAngle", 0.8}, {"outerConeAngle", 0.5}}}}});
+         }),
+         "extensions.KHR_lights_punctual.lights[0].spot.innerConeAngle", "below outerConeAngle"},
+        // Each translation is within a float's range, their sum is not: the light has no place.
+        {"light_overflow.gltf", edit([](GltfBuilder& b) {
+             b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+                 Json::array({{{"type", "point"}}});
+             b.Node({{"translation", {3e38, 0, 0}}, {"children", {3}}});
+             b.Node({{"translation", {3e38, 0, 0}},
+                     {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+             b.doc["scenes"][0]["nodes"].push_back(2);
+         }),
+         "nodes[3]", "world transform overflows a float"},
+        {"negative_light_range.gltf", edit([](GltfBuilder& b) {
+             b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+                 Json::array({{{"type", "point"}, {"range", -2}}});
+         }),
+         "extensions.KHR_lights_punctual.lights[0].range", "must be positive (or 0"},
+        // A Draco primitive whose stream is not one (the positions' own bytes); the reason names
+        // libdraco with or without it ("cannot decode" or "built without").
+        {"draco_not_a_stream.glb", binary([](GltfBuilder& b) {
+             b.doc["accessors"][0].erase("bufferView");
+             b.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"] = {
+                 {"bufferView", 0}, {"attributes", {{"POSITION", 0}}}};
+             b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+         }),
+         "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression", "libdraco"},
+        {"draco_view_out_of_range.gltf", edit([](GltfBuilder& b) {
+             b.doc["accessors"][0].erase("bufferView");
+             b.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"] = {
+                 {"bufferView", 3}, {"attributes", {{"POSITION", 0}}}};
+         }),
+         "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression.bufferView",
+         "names no buffer view"},
+    };
+}
+
+TEST_F(GltfTest, EveryHostileFileGivesOneError) {
+    for (const HostileGltf& c : MakeHostileGltfCorpus()) {
+        const std::string path = Save(c.name, c.bytes);
+        ::testing::internal::CaptureStderr();
+        try {
+            LoadSceneFile(path);
+            ADD_FAILURE() << c.name << ": loaded without an error";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.File(), path) << c.name;
+            if (!c.field.empty()) {
+                EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
+            }
+            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
+            EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << c.name;
+        }
+        EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << c.name;
+    }
+}
+
+// The committed corpus (tests/data/hostile_gltf/, read by the CLI test and seeding the fuzzer)
+// is this generator's output. To write it again:
+// RTRT_WRITE_HOSTILE_CORPUS=1 rtrt_gltf_tests --gtest_filter='*CommittedHostileGltf*'
+TEST_F(GltfTest, CommittedHostileGltfCorpusIsCurrent) {
+    const std::string corpus = test::SourcePath("tests/data/hostile_gltf");
+    const bool write = std::getenv("RTRT_WRITE_HOSTILE_CORPUS") != nullptr;
+    if (write) {
+        fs::create_directories(corpus);
+        GltfBuilder::Save(corpus + "/valid.glb", test::TwoLevels().Glb());
+        GltfBuilder::Save(corpus + "/valid.gltf", test::TwoLevels().GltfText());
+    }
+    EXPECT_NO_THROW(LoadSceneFile(corpus + "/valid.glb"));
+    for (const HostileGltf& c : MakeHostileGltfCorpus()) {
+        const std::string path = corpus + "/" + c.name;
+        if (write) GltfBuilder::Save(path, c.bytes);
+        std::ifstream in(path, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+        EXPECT_EQ(bytes, c.bytes) << path << " is stale; see this test's comment";
+        EXPECT_THROW(LoadSceneFile(path), InputError) << path;
+    }
+}
+
+}  // namespace
+}  // namespace rtrt
