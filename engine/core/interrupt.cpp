@@ -23,15 +23,20 @@ struct Temporaries {
     std::vector<pid_t> children;     // running, not yet waited for
 };
 
-// How long the children of an interrupted rtrt have to stop before they are killed.
+// How long the children of an interrupted rtrt have to stop before they are killed, and how
+// long a killed one is waited for (one in uninterruptible sleep, on a hung mount, may never end).
 constexpr int kChildStopMilliseconds = 5000;
+constexpr int kChildKillMilliseconds = 2000;
 
 // Hands signo on to every registered child and waits until each has ended (reaped here, or by
-// the thread that waits for it), killing those still running after kChildStopMilliseconds.
+// the thread that waits for it), killing those still running after kChildStopMilliseconds and
+// going on without those that outlive the kill.
 void StopChildren(const std::vector<pid_t>& children, int signo) {
     for (const pid_t child : children) ::kill(child, signo);
     std::vector<pid_t> running = children;
-    for (int waited = 0; !running.empty(); waited += 10) {
+    for (int waited = 0;
+         !running.empty() && waited < kChildStopMilliseconds + kChildKillMilliseconds;
+         waited += 10) {
         if (waited == kChildStopMilliseconds)
             for (const pid_t child : running) ::kill(child, SIGKILL);
         std::erase_if(running, [](pid_t child) {

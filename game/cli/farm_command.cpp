@@ -37,6 +37,8 @@ namespace fs = std::filesystem;
 
 // `rtrt farm --status` while frames, the video or the contact sheet are still missing.
 constexpr int kExitIncomplete = 3;
+// How long --assemble waits for another run's lock on the folder.
+constexpr int kAssembleLockWaitSeconds = 300;
 
 struct FarmOptions {
     std::string scene, output, frames, size, backend, format, partition, timeLimit;
@@ -410,7 +412,9 @@ int RunStatus(const std::string& folder) {
 
 int RunAssemble(const std::string& folder) {
     const FarmJob job = ReadFarmJob(fs::absolute(folder).lexically_normal().string());
-    FarmFolderLock lock(job.folder);  // not while a resumed run renders into the folder
+    // Not while another run works in the folder; a submitting run holds it briefly, so the
+    // assembly job waits for it rather than fail.
+    FarmFolderLock lock(job.folder, kAssembleLockWaitSeconds);
     lock.Keep();
     const FrameCheck check = CheckAndReport(job);
     if (check.done.size() != size_t(job.frames.frames.Count())) {

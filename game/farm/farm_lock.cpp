@@ -5,39 +5,79 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <thread>
 
 #include "engine/core/error.h"
 #include "engine/core/output_file.h"
 
 namespace rtrt {
+namespace {
 
-FarmFolderLock::FarmFolderLock(const std::string& folder) : folder_(folder) {
+namespace fs = std::filesystem;
+
+// The first folder on the way to FOLDER that does not exist yet ("" when FOLDER exists): what a
+// failed start removes again.
+std::string FirstMissing(const std::string& folder) {
     std::error_code ec;
-    madeFolder_ = !std::filesystem::exists(folder, ec);
+    fs::path missing;
+    for (fs::path p = fs::absolute(folder, ec).lexically_normal(); !p.empty();
+         p = p.parent_path()) {
+        if (fs::exists(p, ec)) break;
+        missing = p;
+        if (p == p.parent_path()) break;
+    }
+    return missing.string();
+}
+
+// The process that holds the lock, as it wrote itself into the lock file.
+std::string Holder(int fd) {
+    char text[128] = "";
+    const ssize_t n = ::pread(fd, text, sizeof(text) - 1, 0);
+    text[n > 0 ? n : 0] = '\0';
+    if (char* end = std::strchr(text, '\n')) *end = '\0';
+    return text;
+}
+
+}  // namespace
+
+FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds) : folder_(folder) {
+    made_ = FirstMissing(folder);
     CreateOutputFolder(folder);
     const std::string path = folder + "/" + kFarmLockName;
     fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd_ < 0) {
         const int error = errno;
-        if (madeFolder_) std::filesystem::remove_all(folder_, ec);
-        throw InputError(folder, "",
-                         "cannot open its lock file: " + std::string(std::strerror(error)));
+        Release();
+        const std::string reason =
+            "cannot open its lock file: " + std::string(std::strerror(error));
+        if (error == EACCES || error == EROFS || error == ENOTDIR || error == ELOOP)
+            throw InputError(folder, "", reason);
+        throw OutputError(folder, reason);
     }
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-        // The holder wrote its process id and host when it took the lock.
-        char holder[128] = "";
-        const ssize_t n = ::pread(fd_, holder, sizeof(holder) - 1, 0);
-        holder[n > 0 ? n : 0] = '\0';
-        if (char* end = std::strchr(holder, '\n')) *end = '\0';
-        ::close(fd_);
-        fd_ = -1;
-        throw InputError(folder, "",
-                         std::string("another rtrt farm") +
-                             (holder[0] ? " (" + std::string(holder) + ")" : std::string()) +
-                             " is working in this folder; wait until it ends (rtrt farm --status "
-                             "shows the frames done), or give another -o");
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(waitSeconds);
+    while (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+        const int error = errno;
+        if (error == EINTR) continue;
+        if (error != EWOULDBLOCK) {  // e.g. ENOLCK: an NFS mount without its lock service
+            Release();
+            throw OutputError(
+                folder, "cannot lock the job's folder (" + path + "): " + std::strerror(error));
+        }
+        if (std::chrono::steady_clock::now() < deadline) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            continue;
+        }
+        const std::string holder = Holder(fd_);
+        Release();
+        // Busy, not bad input: the same command succeeds once the other run has ended.
+        throw OutputError(folder, "another rtrt farm" +
+                                      (holder.empty() ? "" : " (" + holder + ")") +
+                                      " is working in this folder; run this again once it has "
+                                      "ended (rtrt farm --status shows the frames done), or "
+                                      "give another -o");
     }
     char host[256] = "";
     ::gethostname(host, sizeof(host) - 1);
@@ -46,11 +86,14 @@ FarmFolderLock::FarmFolderLock(const std::string& folder) : folder_(folder) {
     if (::ftruncate(fd_, 0) == 0) (void)!::pwrite(fd_, holder.data(), holder.size(), 0);
 }
 
-FarmFolderLock::~FarmFolderLock() {
-    if (fd_ < 0) return;
+void FarmFolderLock::Release() {
     std::error_code ec;
-    if (madeFolder_) std::filesystem::remove_all(folder_, ec);  // before the lock is let go
-    ::close(fd_);
+    if (!made_.empty()) fs::remove_all(made_, ec);  // before the lock is let go
+    made_.clear();
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
 }
+
+FarmFolderLock::~FarmFolderLock() { Release(); }
 
 }  // namespace rtrt

@@ -12,21 +12,25 @@ inline constexpr const char* kFarmLockName = ".rtrt-farm.lock";
 class FarmFolderLock {
   public:
     // Creates folder if it is missing and takes its lock (an flock on FOLDER/.rtrt-farm.lock,
-    // released when this object goes or the process ends, however it ends). InputError(folder,
-    // "", reason) when another process holds it, naming that process. A folder this call made
-    // is removed again if the lock is released before Keep().
-    explicit FarmFolderLock(const std::string& folder);
+    // released when this object goes or the process ends, however it ends), waiting up to
+    // waitSeconds for another holder to let go. OutputError (exit 1: run it again later) when the
+    // lock stays held, naming its holder, or cannot be taken; InputError for a folder that
+    // cannot be made. The folders this call made are removed again if the lock is released
+    // before Keep().
+    explicit FarmFolderLock(const std::string& folder, int waitSeconds = 0);
     FarmFolderLock(const FarmFolderLock&) = delete;
     FarmFolderLock& operator=(const FarmFolderLock&) = delete;
     ~FarmFolderLock();
 
     // The work has started: the folder stays, whatever happens next.
-    void Keep() { madeFolder_ = false; }
+    void Keep() { made_.clear(); }
 
   private:
+    void Release();
+
     std::string folder_;
+    std::string made_;  // the topmost folder this lock made, while not kept
     int fd_ = -1;
-    bool madeFolder_ = false;
 };
 
 }  // namespace rtrt

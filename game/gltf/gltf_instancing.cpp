@@ -1,5 +1,6 @@
 // Placing a glTF asset in a scene (InstantiateGltf, gltf_import.h): its nodes as entities, its
 // lights and first camera at their world poses.
+#include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>
 #include <string>
@@ -9,6 +10,14 @@
 
 namespace rtrt {
 namespace {
+
+// v's direction, scaled by its largest component first so that neither a huge nor a tiny
+// (but finite) vector overflows or underflows on the way; zero for a zero vector.
+vec3 UnitDirection(vec3 v) {
+    const float largest = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+    if (!(largest > 0.0f)) return vec3(0.0f);
+    return glm::normalize(v / largest);
+}
 
 bool AllFinite(const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
@@ -108,9 +117,8 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
             light.type = l.type;
             light.color = l.color;
             // Lights shine along the node's -z: the direction toward a directional one is +z.
-            const vec3 toward = vec3(world[i] * glm::vec4(0, 0, 1, 0));
-            const vec3 unitToward =
-                glm::length(toward) > 0.0f ? glm::normalize(toward) : vec3(0, 0, 1);
+            const vec3 toward = UnitDirection(vec3(world[i] * glm::vec4(0, 0, 1, 0)));
+            const vec3 unitToward = toward != vec3(0.0f) ? toward : vec3(0, 0, 1);  // scale 0
             if (l.type == LightType::kDirectional) {
                 light.vector = unitToward;
             } else {
@@ -125,8 +133,8 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
         if (node.camera >= 0 && !camera) {
             Camera c;
             c.position = origin;
-            c.forward = vec3(world[i] * glm::vec4(0, 0, -1, 0));
-            c.up = vec3(world[i] * glm::vec4(0, 1, 0, 0));
+            c.forward = UnitDirection(vec3(world[i] * glm::vec4(0, 0, -1, 0)));
+            c.up = UnitDirection(vec3(world[i] * glm::vec4(0, 1, 0, 0)));
             c.fovYDegrees = asset.cameras[size_t(node.camera)].fovYDegrees;
             if (glm::length(glm::cross(c.forward, c.up)) > 0.0f) camera = c;
         }

@@ -56,6 +56,27 @@ TEST_F(GltfTest, ABufferThatIsAFifoIsRefused) {
     }
 }
 
+// A camera and a spot light under ancestors scaled 1e10 each: the world transform is finite, its
+// directions' lengths are not; they still come out as unit vectors along the node's axes.
+TEST_F(GltfTest, HugeScalesStillGiveUnitDirections) {
+    GltfBuilder b = test::TwoLevels();
+    b.doc["cameras"] =
+        Json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.01}}}}});
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+        Json::array({{{"type", "spot"}, {"spot", {{"outerConeAngle", 0.5}}}}});
+    b.Node({{"scale", {1e10, 1e10, 1e10}}, {"children", {3}}});
+    b.Node({{"scale", {1e10, 1e10, 1e10}},
+            {"camera", 0},
+            {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    b.doc["scenes"][0]["nodes"].push_back(2);
+    const LoadedScene loaded = LoadSceneFile(Save("huge_scale.gltf", b.GltfText()));
+    const Camera& c = loaded.scene.camera;
+    EXPECT_NEAR(glm::length(c.forward - vec3(0, 0, -1)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(c.up - vec3(0, 1, 0)), 0.0f, 1e-6f);
+    ASSERT_EQ(loaded.scene.lights.size(), 1u);
+    EXPECT_NEAR(glm::length(loaded.scene.lights[0].spotAxis - vec3(0, 0, -1)), 0.0f, 1e-6f);
+}
+
 // Each defect gives one InputError naming the field, and no warning before it.
 struct HostileGltf {
     std::string name;
