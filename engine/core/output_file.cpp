@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "engine/core/error.h"
@@ -19,6 +20,19 @@
 
 namespace rtrt {
 namespace {
+
+// This host's name as temporaries carry it: letters, digits and '-'.
+const std::string& HostTag() {
+    static const std::string host = [] {
+        char name[256] = "";
+        ::gethostname(name, sizeof(name) - 1);
+        std::string text = name;
+        for (char& c : text)
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '-';
+        return text;
+    }();
+    return host;
+}
 
 // NAME_MAX of the file systems rtrt writes to (ext4, XFS, tmpfs, NFS): bytes in one path component.
 constexpr size_t kMaxFileNameBytes = 255;
@@ -117,6 +131,29 @@ void OutputFile::Commit() {
     lock.Unregister(temp_);
 }
 
+std::optional<long> TemporaryOwnerHere(const std::string& name) {
+    // .STEM.partialPID-HOST[.EXT], as TemporaryPathFor makes it on this host.
+    const size_t at = name.rfind(".partial");
+    if (name.size() < 2 || name[0] != '.' || at == std::string::npos || at == 0)
+        return std::nullopt;
+    size_t end = at + 8;
+    long pid = 0;
+    for (; end < name.size() && std::isdigit(static_cast<unsigned char>(name[end])); ++end) {
+        pid = pid * 10 + (name[end] - '0');
+        if (pid > 1L << 31) return std::nullopt;
+    }
+    if (end == at + 8 || pid <= 0) return std::nullopt;
+    std::string rest = name.substr(end);
+    const std::string& host = HostTag();
+    if (!host.empty()) {
+        if (rest.compare(0, host.size() + 1, "-" + host) != 0) return std::nullopt;
+        rest = rest.substr(host.size() + 1);
+    }
+    if (!rest.empty() && (rest[0] != '.' || rest.find('.', 1) != std::string::npos))
+        return std::nullopt;
+    return pid;
+}
+
 std::string TemporaryPathFor(const std::string& target) {
     const size_t slash = target.rfind('/');
     const std::string folder = slash == std::string::npos ? "" : target.substr(0, slash + 1);
@@ -126,14 +163,7 @@ std::string TemporaryPathFor(const std::string& target) {
     const std::string ext = dot == std::string::npos || dot == 0 ? "" : name.substr(dot);
     // The host too: processes of several machines writing into one shared folder (a farm's
     // tasks) may have the same id. The extension stays last, for tools that go by it.
-    static const std::string host = [] {
-        char name[256] = "";
-        ::gethostname(name, sizeof(name) - 1);
-        std::string text = name;
-        for (char& c : text)
-            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '-';
-        return text;
-    }();
+    const std::string& host = HostTag();
     std::string suffix = ".partial";
     suffix += std::to_string(::getpid());
     if (!host.empty()) suffix += "-" + host;

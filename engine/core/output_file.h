@@ -4,6 +4,7 @@
 // and on an interrupt (engine/core/interrupt.h).
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace rtrt {
@@ -33,6 +34,10 @@ class OutputFile {
 // folder (so the rename stays on one filesystem) that carries the process id and the host name,
 // so that an interrupt removes only this process's temporaries and two machines never share one.
 std::string TemporaryPathFor(const std::string& target);
+// The process id in NAME (a file name, no folder) when it is a temporary that TemporaryPathFor
+// made on this host, else nothing: what is left behind by a process that was killed (SIGKILL)
+// and can be removed once that process is gone.
+std::optional<long> TemporaryOwnerHere(const std::string& name);
 
 // InputError(path, "", reason) unless a whole file can be written at path: its folder exists, and
 // path is not a folder, a device, a FIFO or a socket (which the rename would replace).

@@ -74,6 +74,12 @@ std::string FarmCommandLine(const FarmJob& job, const std::string& extra = "") {
     return line + " -o " + ShellQuote(job.folder) + extra;
 }
 
+void ReportStaleTemporaries(const FarmFolderLock& lock) {
+    if (const int removed = lock.RemoveStaleTemporaries(); removed > 0)
+        std::printf("rtrt farm: removed %d unfinished file%s left by processes that are gone\n",
+                    removed, removed == 1 ? "" : "s");
+}
+
 // " --local" for a job that was never submitted to Slurm: its command goes on rendering here.
 std::string LocalFlag(const FarmJob& job) { return job.submissions.empty() ? " --local" : ""; }
 
@@ -312,6 +318,7 @@ int RunFarm(const FarmOptions& o) {
     std::optional<FarmFolderLock> lock;
     if (!o.dryRun) lock.emplace(described.folder);
     const FarmJob job = ResumeOrStart(std::move(described));
+    if (lock) ReportStaleTemporaries(*lock);
     // Frames of queued tasks are not missing, only unfinished: a second job would render them
     // again and race the first one's assembly.
     if (const std::string queue = QueueState(job); !queue.empty() && !o.dryRun) {
@@ -415,6 +422,7 @@ int RunAssemble(const std::string& folder) {
     // Not while another run works in the folder; a submitting run holds it briefly, so the
     // assembly job waits for it rather than fail.
     FarmFolderLock lock(job.folder, kAssembleLockWaitSeconds);
+    ReportStaleTemporaries(lock);
     lock.Keep();
     const FrameCheck check = CheckAndReport(job);
     if (check.done.size() != size_t(job.frames.frames.Count())) {

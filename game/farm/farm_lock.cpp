@@ -1,6 +1,7 @@
 #include "game/farm/farm_lock.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -8,6 +9,7 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <thread>
 
 #include "engine/core/error.h"
@@ -92,6 +94,20 @@ void FarmFolderLock::Release() {
     made_.clear();
     if (fd_ >= 0) ::close(fd_);
     fd_ = -1;
+}
+
+int FarmFolderLock::RemoveStaleTemporaries() const {
+    int removed = 0;
+    for (const std::string& dir : {folder_, folder_ + "/frames", folder_ + "/slurm"}) {
+        std::error_code ec;
+        for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+            const std::optional<long> owner = TemporaryOwnerHere(entry.path().filename().string());
+            if (!owner || ::kill(pid_t(*owner), 0) == 0 || errno != ESRCH) continue;
+            std::error_code ignored;
+            if (fs::remove(entry.path(), ignored)) ++removed;
+        }
+    }
+    return removed;
 }
 
 FarmFolderLock::~FarmFolderLock() { Release(); }

@@ -24,6 +24,11 @@ class FarmFolderLock {
 
     // The work has started: the folder stays, whatever happens next.
     void Keep() { made_.clear(); }
+    // Removes the temporaries (TemporaryOwnerHere) that processes of this host left in the
+    // folder, its frames and its batch scripts and that are gone (a task or an rtrt killed with
+    // SIGKILL): only a holder of the lock may, since no rtrt farm of this host can be writing
+    // them. Returns how many were removed.
+    int RemoveStaleTemporaries() const;
 
   private:
     void Release();

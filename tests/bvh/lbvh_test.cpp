@@ -133,7 +133,9 @@ TEST(Lbvh, LeavesMayHoldPrimitiveIds) {
     RefitLbvh(ids, boxes);
     expectSameButLeaves(refit, ids);
     for (const BvhNode& node : ids.nodes)
-        if (!node.IsLeaf()) EXPECT_LT(node.leftFirst, ids.nodes.size());
+        if (!node.IsLeaf()) {
+            EXPECT_LT(node.leftFirst, ids.nodes.size());
+        }
 }
 
 }  // namespace

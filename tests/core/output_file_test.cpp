@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -117,6 +118,24 @@ TEST_F(OutputPathTest, NamesNearTheLengthLimitAreWritten) {
     // Two long names that differ only past the cut get different temporaries.
     EXPECT_NE(TemporaryPathFor((dir_ / (std::string(250, 'c') + "1")).string()),
               TemporaryPathFor((dir_ / (std::string(250, 'c') + "2")).string()));
+}
+
+// A temporary's name says which process of this host made it, so that one left by a killed
+// process can be found; other names, and other hosts' temporaries, are no one's here.
+TEST_F(OutputPathTest, TemporariesNameTheirProcess) {
+    for (const std::string& target : {(dir_ / "frame_0001.png").string(), (dir_ / "noext").string(),
+                                      (dir_ / (std::string(250, 'a') + ".json")).string()}) {
+        const std::string name = fs::path(TemporaryPathFor(target)).filename().string();
+        EXPECT_EQ(TemporaryOwnerHere(name), std::optional<long>(::getpid())) << name;
+    }
+    const std::string mine = fs::path(TemporaryPathFor("x.png")).filename().string();
+    const std::string host = mine.substr(mine.find('-') + 1, mine.rfind('.') - mine.find('-') - 1);
+    EXPECT_EQ(TemporaryOwnerHere(".x.partial17-" + host + ".png"), std::optional<long>(17));
+    for (const std::string& other :
+         {std::string("x.png"), std::string(".x.partial-" + host + ".png"),
+          std::string(".x.partial17-" + host + "x.png"), std::string(".x.partial17.png"),
+          std::string(".x.partial17-" + host + ".png.bak"), std::string(".partial17-" + host)})
+        EXPECT_EQ(TemporaryOwnerHere(other), std::nullopt) << other;
 }
 
 }  // namespace

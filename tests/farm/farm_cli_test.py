@@ -11,6 +11,7 @@ import json
 import os
 import re
 import shutil
+import socket
 import subprocess
 import sys
 import time
@@ -155,6 +156,23 @@ def main():
     out = run(*farm[:-1], os.path.join(fresh, "a", "job"), env=no_slurm, expect=1)
     check(not os.path.exists(fresh),
           "the new folders made for the lock go when nothing is written")
+
+    # Temporaries left by a process of this host that is gone (killed with SIGKILL) are removed
+    # by the next run; one whose process still runs, or another host's, is left alone.
+    host = re.sub(r"[^A-Za-z0-9-]", "-", socket.gethostname())
+    gone = subprocess.Popen(["true"])
+    gone.wait()
+    stale = os.path.join(job, "frames", f".frame_000003.partial{gone.pid}-{host}.{FORMAT}")
+    live = os.path.join(job, "frames", f".frame_000004.partial{os.getpid()}-{host}.{FORMAT}")
+    elsewhere = os.path.join(job, f".video.partial{gone.pid}-{host}x.mp4")
+    for path in (stale, live, elsewhere):
+        open(path, "w").close()
+    out = run(*farm, "--local")
+    check("removed 1 unfinished file left by processes that are gone" in out and
+          not os.path.exists(stale) and os.path.exists(live) and os.path.exists(elsewhere),
+          "a dead process's temporary is removed; a live one's and another host's are kept")
+    os.remove(live)
+    os.remove(elsewhere)
 
     # A farm task plays the scene its job was made from: an edited scene fails the task (exit 2)
     # instead of mixing its frames into the job.
