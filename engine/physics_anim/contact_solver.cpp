@@ -77,15 +77,28 @@ void PlanBlocks(const ContactBatches& batches, const ContactRows& rows, uint32_t
             (std::max(kMinBlockManifolds, manifolds / (kBlocksPerShare * shareCount)) + kGroup -
              1) /
             kGroup * kGroup;
-        for (uint32_t s = 0; s < shareCount; ++s) {
-            uint32_t begin =
-                colorBegin + static_cast<uint32_t>(uint64_t{manifolds} * s / shareCount);
-            uint32_t end =
-                colorBegin + static_cast<uint32_t>(uint64_t{manifolds} * (s + 1) / shareCount);
-            if (batches.regions > 0) {
-                begin = batches.RegionBegin(color, s * batches.regions / shareCount);
-                end = batches.RegionBegin(color, (s + 1) * batches.regions / shareCount);
+        // Shares of equal rows (the passes' work), in layout order: the manifolds are laid out
+        // region by region, so a share still covers about the same stretch of the floor in every
+        // colour, and a body's cache line mostly stays with one core.
+        const uint32_t firstRow = rows.RowBegin(color, colorBegin);
+        const uint32_t endRow = rows.RowBegin(color, rows.GroupStart(color, colorEnd));
+        const auto shareStart = [&](uint32_t s) {
+            if (s == 0) return colorBegin;
+            const uint64_t target = firstRow + uint64_t{endRow - firstRow} * s / shareCount;
+            uint32_t low = colorBegin, high = colorEnd;  // the first manifold whose group
+            while (low < high) {                         // starts at or after the target row
+                const uint32_t middle = low + (high - low) / 2;
+                if (rows.RowBegin(color, rows.GroupStart(color, middle)) >= target) {
+                    high = middle;
+                } else {
+                    low = middle + 1;
+                }
             }
+            return low;
+        };
+        for (uint32_t s = 0; s < shareCount; ++s) {
+            const uint32_t begin = shareStart(s);
+            const uint32_t end = s + 1 == shareCount ? colorEnd : shareStart(s + 1);
             addBlocks(color, rows.GroupStart(color, begin), rows.GroupStart(color, end), blockSize);
         }
     }

@@ -36,14 +36,16 @@ class StageRunner {
     // thread.
     //
     // There are as many shares as threads, and each thread works through the same share in every
-    // stage before it takes blocks of the others' (when it runs out, or a helper is late): the
-    // solver cuts each colour into shares by region, so a body's cache line stays with one core
-    // from colour to colour instead of moving at every stage. Any thread may still run any block,
-    // so work must not depend on which thread runs it.
+    // stage: the solver cuts each colour into shares by region, so a body's cache line stays with
+    // one core from colour to colour instead of moving at every stage. Until every thread has
+    // joined the run, a thread that runs out also takes blocks of the others' shares (a helper
+    // may start late, or never, leaving its task to the caller's wait); once all are in, each
+    // keeps to its own, as taking another's blocks would move their rows and bodies to its core.
+    // Any thread may still run any block, so work must not depend on which thread runs it.
     //
     // Never deadlocks, however many threads TBB actually lends: a thread waits only for blocks
-    // that other threads have already claimed and are running, and the share of a helper that
-    // starts late (or never, leaving its task to the caller's wait) is taken by the others.
+    // that other threads have already claimed and are running, or for the shares of threads that
+    // have joined and so will run them.
     template <typename Work>
     void Run(std::span<const uint32_t> blocksPerShare, int threads, const Work& work) {
         const auto shares = static_cast<uint32_t>(std::max(threads, 1));
@@ -60,15 +62,20 @@ class StageRunner {
         }
         if (completedCapacity_ < stages) {
             completed_ = std::make_unique<Counter[]>(stages);
+            released_ = std::make_unique<Counter[]>(stages);
             completedCapacity_ = stages;
         }
         for (size_t i = 0; i < stages * shares; ++i) {
             claimed_[i].value.store(0, std::memory_order_relaxed);
         }
-        for (size_t t = 0; t < stages; ++t) completed_[t].value.store(0, std::memory_order_relaxed);
+        for (size_t t = 0; t < stages; ++t) {
+            completed_[t].value.store(0, std::memory_order_relaxed);
+            released_[t].value.store(0, std::memory_order_relaxed);
+        }
         std::atomic<uint32_t> nextHome{0};
         const auto participate = [&] {
             const uint32_t home = nextHome.fetch_add(1, std::memory_order_relaxed) % shares;
+            bool everyoneIn = false;
             for (size_t t = 0; t < stages; ++t) {
                 const uint32_t* blocks = blocksPerShare.data() + t * shares;
                 uint32_t stageBlocks = 0;
@@ -81,8 +88,12 @@ class StageRunner {
                     // Another share's counter is read before it is bumped: most are done by
                     // then, and a read leaves the line shared where a bump would take it away
                     // from every other thread that checks it.
-                    if (k > 0 && claimed.load(std::memory_order_relaxed) >= blocks[share]) {
-                        continue;
+                    if (k > 0) {
+                        if (!everyoneIn) {
+                            everyoneIn = nextHome.load(std::memory_order_relaxed) >= shares;
+                        }
+                        if (everyoneIn) break;
+                        if (claimed.load(std::memory_order_relaxed) >= blocks[share]) continue;
                     }
                     for (uint32_t b = claimed.fetch_add(1, std::memory_order_relaxed);
                          b < blocks[share]; b = claimed.fetch_add(1, std::memory_order_relaxed)) {
@@ -90,12 +101,18 @@ class StageRunner {
                         ++done;
                     }
                 }
-                // One count per thread and stage, once it has nothing left to claim: the counter
-                // is the line every thread spins on. Release: the next stage's readers see this
-                // thread's writes.
-                if (done > 0) completed.fetch_add(done, std::memory_order_acq_rel);
-                for (int spins = 0; completed.load(std::memory_order_acquire) < stageBlocks;
-                     ++spins) {
+                if (stageBlocks == 0) continue;
+                // One count per thread and stage, once it has nothing left to claim; the thread
+                // whose count completes the stage raises its flag. The threads spin on the flag,
+                // which is written once, not on the count: each bump would otherwise have to
+                // take the line back from every spinning core. acq_rel on the count and release
+                // on the flag: the next stage's readers see every thread's writes.
+                std::atomic<uint32_t>& released = released_[t].value;
+                if (done > 0 &&
+                    completed.fetch_add(done, std::memory_order_acq_rel) + done == stageBlocks) {
+                    released.store(1, std::memory_order_release);
+                }
+                for (int spins = 0; released.load(std::memory_order_acquire) == 0; ++spins) {
                     Pause(spins);
                 }
             }
@@ -123,7 +140,8 @@ class StageRunner {
     }
 
     std::unique_ptr<Counter[]> claimed_;    // per stage and share
-    std::unique_ptr<Counter[]> completed_;  // per stage
+    std::unique_ptr<Counter[]> completed_;  // per stage: blocks done
+    std::unique_ptr<Counter[]> released_;   // per stage: raised when every block is done
     size_t claimedCapacity_ = 0;
     size_t completedCapacity_ = 0;
 };

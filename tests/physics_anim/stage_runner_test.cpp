@@ -1,13 +1,17 @@
 // StageRunner: every block of every share runs exactly once, a stage's blocks all finish before
-// the next stage starts, and a run completes whether or not TBB lends the threads asked for.
+// the next stage starts, a run completes whether or not TBB lends the threads asked for, and once
+// every thread has joined, each share stays with one thread.
 #include "engine/physics_anim/stage_runner.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <map>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -68,6 +72,35 @@ TEST(StageRunnerTest, EveryBlockOnceInStageOrder) {
 TEST(StageRunnerTest, FinishesWithFewerThreadsThanShares) {
     const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
     RunAndCheck(6);
+}
+
+// Shares of unequal work, so that a thread with a light share runs out early: once every thread
+// has joined (long before the last stages here), it waits instead of taking blocks of a heavier
+// share, whose rows and bodies would then move to its core.
+TEST(StageRunnerTest, EachShareStaysWithOneThreadOnceAllHaveJoined) {
+    // As many shares as TBB lends threads, so that all of them join.
+    const int threads = std::min(4, StageRunner::AvailableThreads());
+    if (threads < 2) GTEST_SKIP() << "needs two threads";
+    const auto shares = static_cast<size_t>(threads);
+    constexpr size_t kStages = 60;
+    constexpr size_t kLastStages = 20;
+    std::vector<uint32_t> blocks(kStages * shares);
+    for (size_t t = 0; t < kStages; ++t) {
+        for (size_t s = 0; s < shares; ++s) blocks[t * shares + s] = s == 0 ? 6 : 1;
+    }
+    std::mutex mutex;
+    std::map<uint32_t, std::vector<std::thread::id>> threadsOfShare;
+    StageRunner runner;
+    runner.Run(blocks, threads, [&](size_t stage, uint32_t share, uint32_t) {
+        std::this_thread::sleep_for(std::chrono::microseconds(50));
+        if (stage < kStages - kLastStages) return;
+        const std::lock_guard<std::mutex> lock(mutex);
+        threadsOfShare[share].push_back(std::this_thread::get_id());
+    });
+    ASSERT_EQ(threadsOfShare.size(), shares);
+    for (const auto& [share, ids] : threadsOfShare) {
+        for (const std::thread::id id : ids) EXPECT_EQ(id, ids.front()) << "share " << share;
+    }
 }
 
 }  // namespace
