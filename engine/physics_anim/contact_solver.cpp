@@ -19,8 +19,8 @@ constexpr uint32_t kSmallColorManifolds = 256;
 constexpr uint32_t kSmallSpanManifolds = 512;
 
 // Cuts the colours into stages' spans, and each span into one share per thread and each share
-// into blocks of rows. A colour of many manifolds is a span of its own, cut into shares by region
-// when the batches have regions (else evenly); a run of small colours is one span of one block,
+// into blocks of rows. A colour of many manifolds is a span of its own, cut into shares of equal
+// rows in layout (region) order; a run of small colours is one span of one block,
 // solved by one thread in colour order: the same arithmetic in the same order as one stage per
 // colour, without a stage's wait for every thread. The overflow colour is always in such a run.
 void PlanBlocks(const ContactBatches& batches, const ContactRows& rows, uint32_t shareCount,

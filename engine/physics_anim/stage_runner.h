@@ -36,8 +36,8 @@ class StageRunner {
     // thread.
     //
     // There are as many shares as threads, and each thread works through the same share in every
-    // stage: the solver cuts each colour into shares by region, so a body's cache line stays with
-    // one core from colour to colour instead of moving at every stage. Until every thread has
+    // stage: the solver cuts each colour into shares in region order, so a body's cache line stays
+    // with one core from colour to colour instead of moving at every stage. Until every thread has
     // joined the run, a thread that runs out also takes blocks of the others' shares (a helper
     // may start late, or never, leaving its task to the caller's wait); once all are in, each
     // keeps to its own, as taking another's blocks would move their rows and bodies to its core.
