@@ -14,23 +14,16 @@ namespace rtrt::physics {
 // [manifoldBegin[m], manifoldBegin[m + 1]); colour c's manifolds are
 // [colorBegin[c], colorBegin[c + 1]). The last colour may be the overflow (see ContactColoring).
 //
-// Each colour's manifolds may also be ordered by region (where their moving body lies), regions
-// of colour c starting at regionBegin[c * regions + r]: the solver gives a thread the same
-// regions in every colour, so that bodies stay in its core's cache. regions == 0: no regions.
+// Each colour's manifolds may also be ordered by region (where their moving body lies): the solver
+// cuts every colour into its threads' shares in that order, so that a thread meets about the same
+// bodies in every colour and they stay in its core's cache.
 struct ContactBatches {
     std::vector<uint32_t> manifoldBegin{0};
     std::vector<uint32_t> colorBegin{0};
-    std::vector<uint32_t> regionBegin;
-    uint32_t regions = 0;
     bool lastIsOverflow = false;  // its manifolds may share bodies: solve it serially, in order
 
     uint32_t Colors() const { return static_cast<uint32_t>(colorBegin.size() - 1); }
     uint32_t Manifolds() const { return static_cast<uint32_t>(manifoldBegin.size() - 1); }
-    // Where region r of colour c begins; r == regions is where the colour ends.
-    uint32_t RegionBegin(uint32_t color, uint32_t r) const {
-        if (r >= regions) return colorBegin[color + 1];
-        return regionBegin[color * regions + r];
-    }
 };
 
 // Greedy colouring in the order the manifolds are offered (Box2D v3's constraint graph does the

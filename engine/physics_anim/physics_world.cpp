@@ -409,15 +409,12 @@ void PhysicsWorld::LayOutContacts() {
         ++colorManifolds[color];
     }
     batches_.colorBegin.assign(1, 0);
-    batches_.regionBegin.clear();
-    batches_.regions = kRegions;
     batches_.lastIsOverflow = colorManifolds[ContactColoring::kOverflow] > 0;
     uint32_t manifoldTotal = 0;
     uint32_t pointTotal = 0;
     for (uint32_t color = 0; color < kSlots; ++color) {
         if (colorManifolds[color] == 0) continue;  // no hit reads its slots
         for (uint32_t slot = color * kRegions; slot < (color + 1) * kRegions; ++slot) {
-            batches_.regionBegin.push_back(manifoldTotal);
             const uint32_t manifolds = slotManifolds_[slot];
             const uint32_t points = slotPoints_[slot];
             slotManifolds_[slot] = manifoldTotal;  // now where the slot's manifolds start

@@ -30,7 +30,9 @@ TEST(ContactColoringTest, NoColourMovesABodyTwice) {
         ASSERT_LT(color, ContactColoring::kOverflow);  // 16 manifolds per body on average
         highest = std::max(highest, color);
         for (const uint32_t i : {a, b}) {
-            if (moves[i]) EXPECT_TRUE(moved[color].insert(i).second) << "body " << i;
+            if (moves[i]) {
+                EXPECT_TRUE(moved[color].insert(i).second) << "body " << i;
+            }
         }
     }
     // Greedy colouring needs at most one more colour than a body's manifolds.
