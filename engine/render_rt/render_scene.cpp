@@ -69,7 +69,7 @@ void RenderScene::BuildTlas() {
         blasBounds.push_back(blas->bounds);
         blasViews_.push_back(blas->View());
     }
-    tlas_ = rtrt::BuildTlas(instances, blasBounds);
+    tlas_ = rtrt::BuildTlas(instances, blasBounds, TlasBuilder::kSah, BlasSpheres(blases));
 }
 
 void RenderScene::SetTlas(Tlas tlas) {

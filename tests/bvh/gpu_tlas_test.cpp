@@ -71,6 +71,28 @@ TEST(GpuTlas, EqualsCpuForManySizes) {
     }
 }
 
+// With a sphere inside BLAS 0's box (BlasSphere; smaller than the box, so that the sphere's box
+// is the tighter one): its instances' boxes come from the sphere on both sides, and the trees
+// still match.
+TEST(GpuTlas, EqualsCpuWithSphereBounds) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    const std::vector<vec4> spheres = {vec4(0.25f, 0.0f, 0.0f, 0.5f), vec4(0.0f)};
+    const DeviceBuffer<Aabb> blasBounds{std::span<const Aabb>(kBlasBounds)};
+    const DeviceBuffer<vec4> blasSpheres{std::span<const vec4>(spheres)};
+    for (uint32_t n : {1u, 17u, 5000u}) {
+        SCOPED_TRACE(n);
+        const std::vector<Instance> instances = RandomInstances(n, n + 11);
+        DeviceBuffer<Instance> records{std::span<const Instance>(instances)};
+        GpuTlas gpu;
+        gpu.Build(records.Data(), {blasBounds.Data(), blasSpheres.Data()}, n);
+        const Tlas cpu = BuildTlas(instances, kBlasBounds, TlasBuilder::kLbvh, spheres);
+        ExpectSameNodes(cpu.nodes, gpu.Download().nodes);
+        gpu.Refit(records.Data(), {blasBounds.Data(), blasSpheres.Data()});
+        ExpectSameNodes(cpu.nodes, gpu.Download().nodes);
+    }
+}
+
 TEST(GpuTlas, KeepsOnlyItsNodes) {
     std::string why;
     if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;

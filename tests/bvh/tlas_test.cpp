@@ -27,12 +27,14 @@ struct TwoLevel {
     }
     TlasView Build(TlasBuilder builder = TlasBuilder::kSah) {
         std::vector<Aabb> bounds;
+        std::vector<vec4> spheres;
         views.clear();
         for (const Blas& b : blases) {
             bounds.push_back(b.bounds);
+            spheres.push_back(BlasSphere(b));
             views.push_back(b.View());
         }
-        tlas = BuildTlas(instances, bounds, builder);
+        tlas = BuildTlas(instances, bounds, builder, spheres);
         return {tlas.nodes.data(), instances.data(), views.data()};
     }
 };
@@ -121,6 +123,60 @@ TEST(Tlas, ManyTransformedInstancesMatchBruteForce) {
     }
     ExpectSameAsBruteForce(world, 25.0f, 3, TlasBuilder::kSah);
     ExpectSameAsBruteForce(world, 25.0f, 3, TlasBuilder::kLbvh);
+}
+
+// Ellipsoids: one-sphere BLASes off their origin under rotations and unequal scales, whose world
+// boxes come from the sphere (InstanceWorldBox) rather than the corners of its cube.
+TEST(Tlas, StretchedSphereInstancesMatchBruteForce) {
+    TwoLevel world;
+    const Sphere s{vec3(0.3f, -0.2f, 0.5f), 0.6f};
+    world.blases.push_back(BuildSphereBlas(std::span<const Sphere>(&s, 1)));
+    world.blases.push_back(BuildTriangleBlas(test::RandomTriangles(50, 4)));
+    ASSERT_EQ(BlasSphere(world.blases[0]), vec4(s.center, s.radius));
+    ASSERT_EQ(BlasSphere(world.blases[1]).w, 0.0f);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-15.0f, 15.0f), stretch(0.2f, 2.5f);
+    for (uint32_t i = 0; i < 400; ++i) {
+        glm::mat4 m = glm::translate(glm::mat4(1), vec3(u(rng), u(rng), u(rng)));
+        m = glm::rotate(m, u(rng), glm::normalize(vec3(u(rng), u(rng), u(rng))));
+        m = glm::scale(m, vec3(stretch(rng), stretch(rng), stretch(rng)));
+        m = glm::rotate(m, u(rng), glm::normalize(vec3(u(rng), u(rng), u(rng))));
+        world.Add(i % 5 == 4 ? 1 : 0, m);
+    }
+    ExpectSameAsBruteForce(world, 20.0f, 6, TlasBuilder::kSah);
+    ExpectSameAsBruteForce(world, 20.0f, 6, TlasBuilder::kLbvh);
+}
+
+// A BLAS of one sphere, turned and stretched: its instance's box holds every point of the
+// ellipsoid (the extreme points along each axis, computed in double), is as tight as the
+// ellipsoid's own box within a few ulps, and never wider than the box of the cube's corners.
+TEST(Tlas, OneSphereInstanceBoxIsTheEllipsoidsBox) {
+    const Sphere s{vec3(1.0f, -2.0f, 0.5f), 0.75f};
+    const Blas blas = BuildSphereBlas(std::span<const Sphere>(&s, 1));
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), stretch(0.1f, 4.0f);
+    for (int trial = 0; trial < 500; ++trial) {
+        glm::mat4 m = glm::translate(glm::mat4(1), 100.0f * vec3(u(rng), u(rng), u(rng)));
+        m = glm::rotate(m, 3.0f * u(rng), glm::normalize(vec3(u(rng), u(rng), u(rng)) + 0.01f));
+        m = glm::scale(m, vec3(stretch(rng), stretch(rng), stretch(rng)));
+        const Instance inst = MakeInstance(0, 0, m);
+        const Aabb box = InstanceWorldBox(inst, blas.bounds, BlasSphere(blas));
+        const Aabb corners = TransformBounds(inst.ObjectToWorld(), blas.bounds);
+        const glm::dmat4 md(ObjectToWorldMatrix(inst));
+        for (int axis = 0; axis < 3; ++axis) {
+            // The ellipsoid's extreme along axis: centre +- r * row / |row| through the sphere.
+            const glm::dvec3 row(md[0][axis], md[1][axis], md[2][axis]);
+            const glm::dvec3 c = glm::dvec3(md * glm::dvec4(glm::dvec3(s.center), 1.0));
+            const double half = double(s.radius) * glm::length(row);
+            EXPECT_LE(double(box.min[axis]), c[axis] - half) << trial;
+            EXPECT_GE(double(box.max[axis]), c[axis] + half) << trial;
+            const double slack = 1e-5 * (std::abs(c[axis]) + half);
+            EXPECT_GE(double(box.min[axis]), c[axis] - half - slack) << trial;
+            EXPECT_LE(double(box.max[axis]), c[axis] + half + slack) << trial;
+            EXPECT_GE(box.min[axis], corners.min[axis]);
+            EXPECT_LE(box.max[axis], corners.max[axis]);
+        }
+    }
 }
 
 // All instances at one point and a far outlier: tests/robust/tlas_checks.h.

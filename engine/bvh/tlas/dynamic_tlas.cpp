@@ -6,8 +6,9 @@
 namespace rtrt {
 
 TlasUpdateStats DynamicTlas::Update(std::span<const Instance> instances,
-                                    std::span<const Aabb> blasBounds, bool topologyChanged) {
-    const std::vector<Aabb> bounds = InstanceWorldBounds(instances, blasBounds);
+                                    std::span<const Aabb> blasBounds, bool topologyChanged,
+                                    std::span<const vec4> blasSpheres) {
+    const std::vector<Aabb> bounds = InstanceWorldBounds(instances, blasBounds, blasSpheres);
     TlasUpdateStats stats;
     const bool rebuild = policy_.alwaysRebuild || topologyChanged || !built_ ||
                          tree_.primOrder.size() != instances.size();

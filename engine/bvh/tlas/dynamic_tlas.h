@@ -30,8 +30,9 @@ class DynamicTlas {
 
     // Brings the tree up to date with the instances' current transforms. topologyChanged: an
     // instance was added or removed since the last update (refitting cannot follow that).
+    // blasSpheres: BlasSphere of each BLAS (tlas.h), or empty.
     TlasUpdateStats Update(std::span<const Instance> instances, std::span<const Aabb> blasBounds,
-                           bool topologyChanged);
+                           bool topologyChanged, std::span<const vec4> blasSpheres = {});
 
     const Lbvh& Tree() const { return tree_; }
     const TlasPolicy& Policy() const { return policy_; }

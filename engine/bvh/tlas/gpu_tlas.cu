@@ -47,11 +47,11 @@ void BoundsBottomUp(Instance* records, BvhNode* nodes, uint32_t n, cudaStream_t 
 
 }  // namespace
 
-void GpuTlas::Build(Instance* records, const Aabb* blasBounds, uint32_t n, cudaStream_t stream) {
+void GpuTlas::Build(Instance* records, GpuBlasBounds blas, uint32_t n, cudaStream_t stream) {
     count_ = n;
     nodes_.Resize(std::max<size_t>(2, 2 * size_t(n)));
     BvhNode* const nodes = nodes_.Data();
-    const InstanceWorldBoxes boxes{records, blasBounds};
+    const InstanceWorldBoxes boxes{records, blas.boxes, blas.spheres};
     if (n == 0) {
         const BvhNode empty{vec3(kInfinity), 0, vec3(-kInfinity), 0};
         const BvhNode host[2] = {empty, empty};  // as the CPU build leaves an empty tree
@@ -119,8 +119,8 @@ void GpuTlas::Build(Instance* records, const Aabb* blasBounds, uint32_t n, cudaS
     BoundsBottomUp(records, nodes, n, stream);
 }
 
-void GpuTlas::Refit(Instance* records, const Aabb* blasBounds, cudaStream_t stream) {
-    const InstanceWorldBoxes boxes{records, blasBounds};
+void GpuTlas::Refit(Instance* records, GpuBlasBounds blas, cudaStream_t stream) {
+    const InstanceWorldBoxes boxes{records, blas.boxes, blas.spheres};
     BvhNode* const nodes = nodes_.Data();
     if (count_ == 0) return;
     if (count_ == 1) {

@@ -17,12 +17,21 @@
 
 namespace rtrt {
 
+// What the tree reads of each BLAS, by BLAS id, in device memory: its box and, where given, its
+// BlasSphere (tlas.h).
+struct GpuBlasBounds {
+    GpuBlasBounds(const Aabb* boxes, const vec4* spheres = nullptr)  // NOLINT: boxes alone
+        : boxes(boxes), spheres(spheres) {}
+    const Aabb* boxes;
+    const vec4* spheres;
+};
+
 class GpuTlas {
   public:
-    // Builds over n records (their BLAS's box under their transform), writing their TLAS words.
-    void Build(Instance* records, const Aabb* blasBounds, uint32_t n, cudaStream_t stream = 0);
+    // Builds over n records (InstanceWorldBox of each), writing their TLAS words.
+    void Build(Instance* records, GpuBlasBounds blas, uint32_t n, cudaStream_t stream = 0);
     // Refit after the records moved (same n and the same records, TLAS words as Build left them).
-    void Refit(Instance* records, const Aabb* blasBounds, cudaStream_t stream = 0);
+    void Refit(Instance* records, GpuBlasBounds blas, cudaStream_t stream = 0);
 
     // Takes another GPU's tree over the same n records (its nodeCount nodes, on sourceDevice) in
     // place of a build: a copy queued on `stream` of the current device.

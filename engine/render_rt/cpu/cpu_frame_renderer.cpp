@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "engine/bvh/tlas/tlas.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/cpu/cpu_deformer.h"
 #include "engine/render_rt/cpu/cpu_trace.h"
@@ -25,6 +26,7 @@ class CpuFrameRenderer final : public FrameRenderer {
         for (size_t id = blasViews_.size(); id < scene.blases.size(); ++id) {
             blasViews_.push_back(scene.blases[id]->View());
             blasBounds_.push_back(scene.blases[id]->bounds);
+            blasSpheres_.push_back(BlasSphere(*scene.blases[id]));
         }
         const DeformStats deformed =
             deformer_.Update(scene, changes.deformations, blasViews_, blasBounds_);
@@ -37,7 +39,8 @@ class CpuFrameRenderer final : public FrameRenderer {
                               tlas_.Tree().primOrder.size() != scene.instances.size();
         if (changes.instances.empty() && !topology && deformed.deformed == 0) return;
         Stopwatch timer;
-        const TlasUpdateStats s = tlas_.Update(scene.instances, blasBounds_, topology);
+        const TlasUpdateStats s =
+            tlas_.Update(scene.instances, blasBounds_, topology, blasSpheres_);
         built_ = true;
         pending_.tlasMs = timer.Milliseconds();
         pending_.tlasRebuilt = s.rebuilt;
@@ -88,6 +91,7 @@ class CpuFrameRenderer final : public FrameRenderer {
     bool built_ = false;
     std::vector<BlasView> blasViews_;
     std::vector<Aabb> blasBounds_;
+    std::vector<vec4> blasSpheres_;  // BlasSphere of each BLAS
     // The scene's records as of the last update or trace: Pick reads them, so the scene must
     // not have changed size since (a frame loop picks before it advances).
     const Instance* instances_ = nullptr;
