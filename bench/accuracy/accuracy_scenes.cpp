@@ -4,6 +4,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/bvh/tlas/dynamic_tlas.h"
+#include "engine/bvh/tlas/tlas.h"
 #include "game/scene/paper_scene.h"
 
 namespace rtrt {
@@ -83,8 +84,9 @@ void UseRuntimeTlas(RenderScene& scene, uint32_t frames) {
     }
     // Never rebuilt by the SAH-growth rule: the interval alone decides.
     DynamicTlas tlas(TlasPolicy{false, 1e30f});
-    tlas.Update(before, blasBounds, true);
-    if (frames > 0) tlas.Update(scene.instances, blasBounds, false);
+    const std::vector<vec4> spheres = BlasSpheres(scene.blases);
+    tlas.Update(before, blasBounds, true, spheres);
+    if (frames > 0) tlas.Update(scene.instances, blasBounds, false, spheres);
     scene.SetTlas({tlas.Tree().nodes});
 }
 

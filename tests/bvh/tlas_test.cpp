@@ -5,8 +5,10 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <random>
 
+#include "engine/bvh/tlas/dynamic_tlas.h"
 #include "engine/bvh/traversal/scene_traversal.h"
 #include "tests/test_util.h"
 
@@ -147,36 +149,95 @@ TEST(Tlas, StretchedSphereInstancesMatchBruteForce) {
     ExpectSameAsBruteForce(world, 20.0f, 6, TlasBuilder::kLbvh);
 }
 
-// A BLAS of one sphere, turned and stretched: its instance's box holds every point of the
-// ellipsoid (the extreme points along each axis, computed in double), is as tight as the
-// ellipsoid's own box within a few ulps, and never wider than the box of the cube's corners.
+// A BLAS of one sphere, turned and stretched (up to 1000:1, and scales down to 1e-7): its
+// instance's box holds the ellipsoid's extreme points along each axis under the transform the
+// traversal applies (the stored L^-1, inverted here in long double), is as tight as that
+// ellipsoid's box within a few float ulps, and never wider than the box of the cube's corners.
 TEST(Tlas, OneSphereInstanceBoxIsTheEllipsoidsBox) {
     const Sphere s{vec3(1.0f, -2.0f, 0.5f), 0.75f};
     const Blas blas = BuildSphereBlas(std::span<const Sphere>(&s, 1));
     std::mt19937 rng(8);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f), stretch(0.1f, 4.0f);
-    for (int trial = 0; trial < 500; ++trial) {
-        glm::mat4 m = glm::translate(glm::mat4(1), 100.0f * vec3(u(rng), u(rng), u(rng)));
+    std::uniform_int_distribution<int> kind(0, 3);
+    for (int trial = 0; trial < 2000; ++trial) {
+        const int k = kind(rng);
+        const float reach = k == 0 ? 100.0f : k == 1 ? 1.0f : 0.0f;
+        glm::mat4 m = glm::translate(glm::mat4(1), reach * vec3(u(rng), u(rng), u(rng)));
         m = glm::rotate(m, 3.0f * u(rng), glm::normalize(vec3(u(rng), u(rng), u(rng)) + 0.01f));
-        m = glm::scale(m, vec3(stretch(rng), stretch(rng), stretch(rng)));
+        vec3 scale(stretch(rng), stretch(rng), stretch(rng));
+        if (k == 2) scale[trial % 3] *= 1000.0f;  // 1000:1 and more
+        if (k == 3) scale *= 1e-6f;
+        m = glm::scale(m, scale);
+        m = glm::rotate(m, 3.0f * u(rng), glm::normalize(vec3(u(rng), u(rng), u(rng)) + 0.01f));
         const Instance inst = MakeInstance(0, 0, m);
         const Aabb box = InstanceWorldBox(inst, blas.bounds, BlasSphere(blas));
         const Aabb corners = TransformBounds(inst.ObjectToWorld(), blas.bounds);
-        const glm::dmat4 md(ObjectToWorldMatrix(inst));
+        using LongVec = glm::vec<3, long double>;
+        const LongVec ra(inst.InverseRow(0)), rb(inst.InverseRow(1)), rd(inst.InverseRow(2));
+        const LongVec c0 = glm::cross(rb, rd), c1 = glm::cross(rd, ra), c2 = glm::cross(ra, rb);
+        const long double det = glm::dot(ra, c0);
         for (int axis = 0; axis < 3; ++axis) {
-            // The ellipsoid's extreme along axis: centre +- r * row / |row| through the sphere.
-            const glm::dvec3 row(md[0][axis], md[1][axis], md[2][axis]);
-            const glm::dvec3 c = glm::dvec3(md * glm::dvec4(glm::dvec3(s.center), 1.0));
-            const double half = double(s.radius) * glm::length(row);
-            EXPECT_LE(double(box.min[axis]), c[axis] - half) << trial;
-            EXPECT_GE(double(box.max[axis]), c[axis] + half) << trial;
-            const double slack = 1e-5 * (std::abs(c[axis]) + half);
-            EXPECT_GE(double(box.min[axis]), c[axis] - half - slack) << trial;
-            EXPECT_LE(double(box.max[axis]), c[axis] + half + slack) << trial;
+            SCOPED_TRACE(testing::Message() << "trial " << trial << " axis " << axis);
+            const LongVec row = LongVec(c0[axis], c1[axis], c2[axis]) / det;
+            const long double c = glm::dot(row, LongVec(s.center)) + inst.Position()[axis];
+            const long double half = s.radius * std::sqrt(glm::dot(row, row));
+            EXPECT_LE(box.min[axis], c - half);
+            EXPECT_GE(box.max[axis], c + half);
+            const long double ulps = 4.0L * std::numeric_limits<float>::epsilon() *
+                                     (std::abs(c) + std::abs(inst.Position()[axis]) + half);
+            EXPECT_GE(box.min[axis], c - half - ulps);
+            EXPECT_LE(box.max[axis], c + half + ulps);
             EXPECT_GE(box.min[axis], corners.min[axis]);
             EXPECT_LE(box.max[axis], corners.max[axis]);
         }
+        if (::testing::Test::HasFailure()) return;
     }
+}
+
+// The builds take the spheres: every leaf's box is InstanceWorldBox's (the SAH TLAS, the LBVH
+// and the runtime's DynamicTlas, built and refit), tighter than the corners' for rolled balls.
+TEST(Tlas, BuildsBoxBallsByTheirSpheres) {
+    const Sphere s{vec3(0.0f), 0.5f};
+    const std::vector<Aabb> bounds = {s.Bounds()};
+    const Blas blas = BuildSphereBlas(std::span<const Sphere>(&s, 1));
+    const std::vector<vec4> spheres = {BlasSphere(blas)};
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::vector<Instance> instances;
+    for (int i = 0; i < 64; ++i) {
+        glm::mat4 m = glm::translate(glm::mat4(1), 10.0f * vec3(u(rng), u(rng), u(rng)));
+        m = glm::rotate(m, 3.0f * u(rng), glm::normalize(vec3(u(rng), u(rng), u(rng)) + 0.01f));
+        instances.push_back(MakeInstance(0, 0, m));
+    }
+    const std::vector<Aabb> world = InstanceWorldBounds(instances, bounds, spheres);
+    const std::vector<Aabb> cornerBoxes = InstanceWorldBounds(instances, bounds);
+    double area = 0.0, cornerArea = 0.0;
+    for (size_t i = 0; i < instances.size(); ++i) {
+        const Aabb expected = InstanceWorldBox(instances[i], bounds[0], spheres[0]);
+        EXPECT_EQ(world[i].min, expected.min);
+        EXPECT_EQ(world[i].max, expected.max);
+        area += world[i].Area();
+        cornerArea += cornerBoxes[i].Area();
+    }
+    EXPECT_LT(area, 0.8 * cornerArea);
+    const auto expectLeaves = [&](const AlignedVector<BvhNode>& nodes, const char* what) {
+        SCOPED_TRACE(what);
+        uint32_t leaves = 0;
+        for (const BvhNode& node : nodes) {
+            if (!node.IsLeaf()) continue;
+            ++leaves;
+            EXPECT_EQ(node.boundsMin, world[node.leftFirst].min);
+            EXPECT_EQ(node.boundsMax, world[node.leftFirst].max);
+        }
+        EXPECT_EQ(leaves, instances.size());
+    };
+    expectLeaves(BuildTlas(instances, bounds, TlasBuilder::kSah, spheres).nodes, "SAH");
+    expectLeaves(BuildTlas(instances, bounds, TlasBuilder::kLbvh, spheres).nodes, "LBVH");
+    DynamicTlas runtime(TlasPolicy{false, 1e30f});
+    runtime.Update(instances, bounds, true, spheres);
+    expectLeaves(runtime.Tree().nodes, "runtime, built");
+    runtime.Update(instances, bounds, false, spheres);
+    expectLeaves(runtime.Tree().nodes, "runtime, refit");
 }
 
 // All instances at one point and a far outlier: tests/robust/tlas_checks.h.

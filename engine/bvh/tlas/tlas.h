@@ -31,28 +31,49 @@ RT_HD inline Aabb TransformBounds(const Affine& m, const Aabb& b) {
 // The sphere a BLAS of one sphere is (w: its radius), else w = 0 (BlasSpheres).
 vec4 BlasSphere(const Blas& blas);
 
-// An instance's world box: its BLAS's box under its transform, and for a BLAS of one sphere also
-// the box of that sphere's image, an ellipsoid whose box is exact (half extent r |row i of L| on
-// axis i), where the turned cube's corners reach up to sqrt(3) r from the centre: a rolling ball
-// took up to 5x the volume it needs in the TLAS. The two boxes are intersected; the ellipsoid's is
-// widened by a few ulps for the rounding of its centre and extents.
-RT_HD inline Aabb InstanceWorldBox(const Instance& inst, const Aabb& blasBox, vec4 blasSphere) {
-    const Affine m = inst.ObjectToWorld();
-    Aabb box = TransformBounds(m, blasBox);
-    if (!(blasSphere.w > 0.0f) || box.IsEmpty()) return box;
-    const vec3 centre = m.Point(vec3(blasSphere));
-    const float reach = blasSphere.w + glm::length(vec3(blasSphere));
+// d rounded to a float no greater (no less, with up = true) than d.
+RT_HD inline float FloatOutward(double d, bool up) {
+    const float f = float(d);
+    if (up) return double(f) < d ? NextFloatUp(f) : f;
+    return double(f) > d ? NextFloatDown(f) : f;
+}
+
+// The box of a sphere (xyz centre, w radius, in the instance's object space) under the
+// instance's transform: an ellipsoid, whose box is exact with half extent r |row i of L| on axis
+// i. L is inverted in double from the stored L^-1, the matrix the traversal applies, so that its
+// rounding (which grows with the ratio of the largest to the smallest scale) stays far below a
+// float's, and the box is rounded outward. A singular or non-finite transform gives NaN or
+// infinite planes, which InstanceWorldBox ignores.
+RT_HD inline Aabb SphereImageBox(const Instance& inst, vec4 sphere) {
+    const glm::dvec3 a(inst.InverseRow(0)), b(inst.InverseRow(1)), d(inst.InverseRow(2));
+    // Row i of L is (c0[i], c1[i], c2[i]) / det: the rows' pairwise cross products as columns.
+    const glm::dvec3 c0 = glm::cross(b, d), c1 = glm::cross(d, a), c2 = glm::cross(a, b);
+    const double inverseDet = 1.0 / glm::dot(a, c0);
+    const glm::dvec3 centre(sphere), position(inst.Position());
+    Aabb box;
     for (int i = 0; i < 3; ++i) {
-        const float rowLength = glm::length(vec3(m.row[i]));
-        const float half = blasSphere.w * rowLength;
-        const float error = fabsf(centre[i]) + fabsf(m.row[i].w) + rowLength * reach;
-#if defined(__CUDA_ARCH__)
-        const float slack = __fmul_rn(Gamma(5), error);  // not fused into the sums below
-#else
-        const float slack = Gamma(5) * error;
-#endif
-        box.min[i] = fmaxf(box.min[i], centre[i] - half - slack);
-        box.max[i] = fminf(box.max[i], centre[i] + half + slack);
+        const glm::dvec3 row = glm::dvec3(c0[i], c1[i], c2[i]) * inverseDet;
+        const double middle = glm::dot(row, centre) + position[i];
+        const double half = double(sphere.w) * glm::length(row);
+        // Double's own rounding here, many orders below a float ulp of the result.
+        const double slack = 1e-12 * (fabs(middle) + fabs(position[i]) + half);
+        box.min[i] = FloatOutward(middle - half - slack, false);
+        box.max[i] = FloatOutward(middle + half + slack, true);
+    }
+    return box;
+}
+
+// An instance's world box: its BLAS's box under its transform, and for a BLAS of one sphere also
+// the sphere's (SphereImageBox), where the turned cube's corners reach up to sqrt(3) r from the
+// centre: a rolling ball took up to 5x the volume it needs in the TLAS. The two boxes are
+// intersected (fmaxf and fminf keep the corner box's plane where the other is NaN).
+RT_HD inline Aabb InstanceWorldBox(const Instance& inst, const Aabb& blasBox, vec4 blasSphere) {
+    Aabb box = TransformBounds(inst.ObjectToWorld(), blasBox);
+    if (!(blasSphere.w > 0.0f) || box.IsEmpty()) return box;
+    const Aabb sphereBox = SphereImageBox(inst, blasSphere);
+    for (int i = 0; i < 3; ++i) {
+        box.min[i] = fmaxf(box.min[i], sphereBox.min[i]);
+        box.max[i] = fminf(box.max[i], sphereBox.max[i]);
     }
     return box;
 }
