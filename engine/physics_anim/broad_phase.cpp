@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 
+#include "engine/core/parallel_for.h"
 #include "engine/physics_anim/lanes.h"
 
 namespace rtrt::physics {
@@ -105,7 +106,7 @@ bool RefreshAndSortByInsertion(std::vector<Entry>& entries, size_t maxShifts,
     }
     const size_t chunkShifts = maxShifts / chunks;
     std::atomic<bool> sorted = true;
-    tbb::parallel_for(size_t{0}, chunks, [&](size_t c) {
+    ParallelFor(0, chunks, 1, [&](size_t c) {
         Entry* const begin = data + c * kChunk;
         Entry* const end = data + std::min(n, (c + 1) * kChunk);
         for (Entry* entry = begin; entry < end; ++entry) refresh(*entry);
@@ -187,7 +188,7 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
     // in the same order on any number of threads. Two boxes that share several strips are paired
     // only in the strip that holds the larger of their lower bounds on the strip axis.
     if (stripPairs_.size() < strips.count) stripPairs_.resize(strips.count);
-    tbb::parallel_for(uint32_t{0}, strips.count, [&](uint32_t strip) {
+    ParallelFor(0, strips.count, 1, [&](uint32_t strip) {
         stripPairs_[strip].clear();
         SweepStrip(strips, strip, stripPairs_[strip]);
     });
@@ -196,7 +197,7 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
         pairStart_[strip + 1] = pairStart_[strip] + stripPairs_[strip].size();
     }
     pairs.resize(pairStart_[strips.count]);
-    tbb::parallel_for(uint32_t{0}, strips.count, [&](uint32_t strip) {
+    ParallelFor(0, strips.count, 1, [&](uint32_t strip) {
         auto out = pairs.begin() + pairStart_[strip];
         if (names.empty()) {
             std::copy(stripPairs_[strip].begin(), stripPairs_[strip].end(), out);
@@ -272,7 +273,7 @@ void SweepAndPrune::DealIntoStrips(std::span<const BroadPhaseBox> boxes, const S
             for (uint32_t k = strips.Of(box.min[stripAxis]); k <= last; ++k) visit(k, i, box);
         }
     };
-    tbb::parallel_for(uint32_t{0}, chunks, [&](uint32_t chunk) {
+    ParallelFor(0, chunks, 1, [&](uint32_t chunk) {
         uint32_t* counts = chunkStripCount_.data() + size_t{chunk} * count;
         forChunk(chunk, [&](uint32_t k, size_t, const BroadPhaseBox&) { ++counts[k]; });
     });
@@ -290,7 +291,7 @@ void SweepAndPrune::DealIntoStrips(std::span<const BroadPhaseBox> boxes, const S
     }
     stripBegin_[count] = place;
     sorted_.Resize(place);
-    tbb::parallel_for(uint32_t{0}, chunks, [&](uint32_t chunk) {
+    ParallelFor(0, chunks, 1, [&](uint32_t chunk) {
         uint32_t* next = chunkStripCount_.data() + size_t{chunk} * count;
         forChunk(chunk, [&](uint32_t k, size_t i, const BroadPhaseBox& box) {
             const uint32_t at = next[k]++;
