@@ -83,7 +83,7 @@ void UseRuntimeTlas(RenderScene& scene, uint32_t frames) {
             before[i].inverseAndPosition.row[r].w -= float(frames) * step[r];
     }
     // Never rebuilt by the SAH-growth rule: the interval alone decides.
-    DynamicTlas tlas(TlasPolicy{false, 1e30f});
+    DynamicTlas tlas(TlasPolicy{false, 1e30f, 0});
     const std::vector<vec4> spheres = BlasSpheres(scene.blases);
     tlas.Update(before, blasBounds, true, spheres);
     if (frames > 0) tlas.Update(scene.instances, blasBounds, false, spheres);

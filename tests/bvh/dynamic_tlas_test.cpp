@@ -51,7 +51,7 @@ TEST(DynamicTlas, AlwaysRebuildModeRebuildsEveryFrame) {
 
 TEST(DynamicTlas, RefitsWhileQualityHoldsThenRebuilds) {
     std::vector<Instance> instances = Grid(8, 1.5f);
-    DynamicTlas tlas;
+    DynamicTlas tlas(TlasPolicy::RefitWhileGood());
     EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
     // Small motion: refit, quality within the threshold.
     Move(instances, 1, 0.01f);
@@ -75,12 +75,36 @@ TEST(DynamicTlas, RefitsWhileQualityHoldsThenRebuilds) {
 
 TEST(DynamicTlas, TopologyChangeForcesARebuild) {
     std::vector<Instance> instances = Grid(3, 1.5f);
-    DynamicTlas tlas;
+    DynamicTlas tlas(TlasPolicy::RefitWhileGood());
     tlas.Update(instances, std::span(&kUnitBox, 1), false);
     EXPECT_FALSE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
     instances.pop_back();
     EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), true).rebuilt);
     EXPECT_EQ(tlas.Tree().primOrder.size(), instances.size());
+}
+
+// The default policy rebuilds on every update up to rebuildChangedUpTo instances and refits
+// above: 64 instances against thresholds of 64 and 63.
+TEST(DynamicTlas, RebuildsUpdatesUpToTheSmallSceneSizeAndRefitsAbove) {
+    std::vector<Instance> instances = Grid(4, 1.5f);
+    ASSERT_EQ(instances.size(), 64u);
+    EXPECT_GE(TlasPolicy{}.rebuildChangedUpTo, 1024u);
+    TlasPolicy small;
+    small.rebuildChangedUpTo = 64;
+    TlasPolicy large = small;
+    large.rebuildChangedUpTo = 63;
+    DynamicTlas rebuilding(small), refitting(large);
+    EXPECT_TRUE(rebuilding.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+    EXPECT_TRUE(refitting.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+    for (uint32_t frame = 1; frame < 4; ++frame) {
+        Move(instances, frame, 0.01f);
+        EXPECT_TRUE(rebuilding.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+        EXPECT_FALSE(refitting.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+        // The same boxes either way: the root bounds every moved instance.
+        const Aabb a = rebuilding.Tree().nodes[0].Bounds(), b = refitting.Tree().nodes[0].Bounds();
+        EXPECT_TRUE(a.min == b.min && a.max == b.max);
+        ExpectBoundsNested(rebuilding.Tree());
+    }
 }
 
 }  // namespace

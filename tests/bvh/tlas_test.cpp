@@ -233,7 +233,7 @@ TEST(Tlas, BuildsBoxBallsByTheirSpheres) {
     };
     expectLeaves(BuildTlas(instances, bounds, TlasBuilder::kSah, spheres).nodes, "SAH");
     expectLeaves(BuildTlas(instances, bounds, TlasBuilder::kLbvh, spheres).nodes, "LBVH");
-    DynamicTlas runtime(TlasPolicy{false, 1e30f});
+    DynamicTlas runtime(TlasPolicy{false, 1e30f, 0});
     runtime.Update(instances, bounds, true, spheres);
     expectLeaves(runtime.Tree().nodes, "runtime, built");
     runtime.Update(instances, bounds, false, spheres);

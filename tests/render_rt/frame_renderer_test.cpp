@@ -73,7 +73,8 @@ TEST(CpuFrameRenderer, TracesWhatRenderRawTracesOverTheSameLbvh) {
 
 TEST(CpuFrameRenderer, FollowsChangedRecordsByRefitting) {
     RenderScene scene = SphereGrid();
-    const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(Backend::kCpu, scene);
+    const std::unique_ptr<FrameRenderer> renderer =
+        MakeFrameRenderer(Backend::kCpu, scene, TlasPolicy::RefitWhileGood());
     const Tlas before = renderer->CurrentTlas();
     MoveInstance(scene, 12, vec3(0.5f, 0.25f, 1.0f));  // the centre sphere, a small move
     const uint32_t changed[] = {12};
@@ -83,6 +84,20 @@ TEST(CpuFrameRenderer, FollowsChangedRecordsByRefitting) {
     EXPECT_FALSE(renderer->Times().tlasRebuilt);
     // Same topology: the same instances in the same leaves.
     EXPECT_EQ(TlasLeafInstances(renderer->CurrentTlas()), TlasLeafInstances(before));
+    EXPECT_TRUE(SamePixels(image, ReferenceImage(scene)));
+}
+
+// The runtime's policy: 25 instances are few enough that a moved one means a fresh tree, which
+// holds the moved sphere's new box in a leaf and traces what the reference traces.
+TEST(CpuFrameRenderer, RebuildsASmallSceneWhenAnInstanceMoved) {
+    RenderScene scene = SphereGrid();
+    const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(Backend::kCpu, scene);
+    MoveInstance(scene, 12, vec3(0.5f, 0.25f, 1.0f));
+    const uint32_t changed[] = {12};
+    renderer->Update(scene, {changed, false});
+    Image image;
+    renderer->Trace(scene, Small(), &image);
+    EXPECT_TRUE(renderer->Times().tlasRebuilt);
     EXPECT_TRUE(SamePixels(image, ReferenceImage(scene)));
 }
 

@@ -11,7 +11,8 @@ TlasUpdateStats DynamicTlas::Update(std::span<const Instance> instances,
     const std::vector<Aabb> bounds = InstanceWorldBounds(instances, blasBounds, blasSpheres);
     TlasUpdateStats stats;
     const bool rebuild = policy_.alwaysRebuild || topologyChanged || !built_ ||
-                         tree_.primOrder.size() != instances.size();
+                         tree_.primOrder.size() != instances.size() ||
+                         policy_.RebuildsChanged(instances.size());
     if (!rebuild) {
         RefitLbvh(tree_, bounds);
         stats.sahCost = SahCost(tree_.nodes);

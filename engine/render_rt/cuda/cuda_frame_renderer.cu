@@ -156,6 +156,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         // later (copied back asynchronously; CollectSahCost waits for the previous frame's TLAS
         // stage at most, never for its trace), so that decisions stay deterministic run to run.
         const bool rebuild = policy_.alwaysRebuild || countChanged || !built_ ||
+                             (f.times.uploaded > 0 && policy_.RebuildsChanged(n)) ||
                              lastSahCost_ > (1.0f + policy_.maxSahGrowth) * rebuiltSahCost_;
         if (rebuild) {
             tlas_.Build(instances_.Data(), {blasBounds_.Data(), blasSpheres_.Data()}, n);
@@ -163,8 +164,10 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         } else if (f.times.uploaded > 0) {
             tlas_.Refit(instances_.Data(), {blasBounds_.Data(), blasSpheres_.Data()});
         }
-        // Always-rebuild (the benchmark's mode) needs no cost.
-        if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild) QueueSahCost(rebuild);
+        // Always-rebuild (the benchmark's mode) and a small scene's rebuilds need no cost.
+        if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild &&
+            !policy_.RebuildsChanged(n))
+            QueueSahCost(rebuild);
         RT_CUDA_CHECK(cudaEventRecord(f.events[6]));
         f.times.tlasRebuilt = rebuild;
         f.times.tlasSahCost = lastSahCost_;
