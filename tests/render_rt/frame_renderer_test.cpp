@@ -148,6 +148,52 @@ TEST(CpuFrameRenderer, PicksAgainstWhatItTraced) {
     EXPECT_FALSE(renderer->Pick(miss, &hit));
 }
 
+// A scene that shrinks to the policy's small-scene size must then leave unchanged frames alone,
+// even when its last SAH cost (which the device learns one update late) was past the bound: with
+// maxSahGrowth -0.5 every update of the larger scene is past it. On both back ends.
+void ExpectShrunkSceneLeftAloneWhenUnchanged(Backend backend) {
+    RenderScene scene = SphereGrid();
+    TlasPolicy policy;
+    policy.maxSahGrowth = -0.5f;
+    policy.rebuildChangedUpTo = kSide * kSide - 1;
+    const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(backend, scene, policy);
+    for (int f = 1; f <= 2; ++f) {
+        MoveInstance(scene, 12, vec3(0.5f * float(f), 0.0f, 1.0f));
+        const uint32_t changed[] = {12};
+        renderer->Update(scene, {changed, false});
+        renderer->Trace(scene, Small(), nullptr);
+        renderer->Finish();
+        EXPECT_TRUE(renderer->Times().tlasRebuilt) << "frame " << f << " drifted past the bound";
+    }
+    scene.instances.pop_back();
+    renderer->Update(scene, {{}, true});
+    renderer->Trace(scene, Small(), nullptr);
+    renderer->Finish();
+    EXPECT_TRUE(renderer->Times().tlasRebuilt);
+    for (int f = 0; f < 3; ++f) {
+        renderer->Update(scene, SceneChanges{});
+        renderer->Trace(scene, Small(), nullptr);
+        renderer->Finish();
+        EXPECT_FALSE(renderer->Times().tlasRebuilt) << "unchanged frame " << f;
+    }
+    MoveInstance(scene, 3, vec3(0.0f, 0.0f, 2.0f));
+    const uint32_t changed[] = {3};
+    renderer->Update(scene, {changed, false});
+    renderer->Trace(scene, Small(), nullptr);
+    renderer->Finish();
+    EXPECT_TRUE(renderer->Times().tlasRebuilt);
+}
+
+TEST(CpuFrameRenderer, ShrunkSceneLeftAloneWhenUnchanged) {
+    ExpectShrunkSceneLeftAloneWhenUnchanged(Backend::kCpu);
+}
+
+TEST(CudaFrameRenderer, ShrunkSceneLeftAloneWhenUnchanged) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    ExpectShrunkSceneLeftAloneWhenUnchanged(Backend::kCuda);
+}
+
 TEST(FrameRendererFactory, CudaWithoutADeviceSaysWhy) {
     std::string why;
     if (CudaBackendAvailable(&why)) GTEST_SKIP() << "a CUDA device is present";

@@ -1,9 +1,9 @@
 #pragma once
 // The per-frame TLAS of the runtime on the CPU: an LBVH over instance world bounds (its leaves
 // hold instance indices, as every TLAS's: tlas.h), rebuilt when instances were added or removed
-// (or on request) and, in a scene of few instances, whenever any moved; a larger scene's tree is
-// otherwise refit, until refitting has let the SAH cost drift more than a threshold above the
-// cost of the last rebuild.
+// (or on request) and, in a scene of few instances, on every update (the frame renderers update
+// only when records changed); a larger scene's tree is otherwise refit, until refitting has let
+// the SAH cost drift more than a threshold above the cost of the last rebuild.
 #include <cstddef>
 #include <cstdint>
 #include <span>

@@ -2,8 +2,8 @@
 // The CUDA back end of a running scene (rtrt play, rtrt bench frame, the window). The BLASes,
 // materials and lights go up once; each frame sends only the instance records that changed,
 // brings the TLAS up to date on the GPU (an LBVH rebuilt when instances were added or removed,
-// refit otherwise, under the TlasPolicy) and traces into a device framebuffer. Made by
-// MakeFrameRenderer.
+// and in a small scene whenever records changed; refit otherwise, under the TlasPolicy) and
+// traces into a device framebuffer. Made by MakeFrameRenderer.
 #include <memory>
 
 #include "engine/render_rt/frame_renderer.h"
