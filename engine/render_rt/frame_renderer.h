@@ -31,7 +31,8 @@ struct FrameTimes {
     uint32_t deformed = 0;     // deforming BLASes brought up to date
     uint32_t blasRebuilt = 0;  // of them rebuilt rather than refit
     bool tlasRebuilt = false;
-    float tlasSahCost = 0.0f;  // the cost the rebuild policy last saw (none in a small scene)
+    float tlasSahCost = 0.0f;  // the cost the rebuild policy last saw (the GPU computes none
+                               // for a small scene)
     uint64_t rays = 0;         // rays traced, when Trace was asked to count them
     // A frame split over several GPUs (GpuSplit): traceMs runs from the display GPU's start of the
     // trace until every band is gathered there; each GPU's own band took gpuTraceMs, over
