@@ -42,7 +42,7 @@ struct FrameBenchOptions {
 
 struct StageSamples {
     std::vector<double> simulate, extract, deform, blas, upload, tlas, trace, frame, instances,
-        uploaded;
+        uploaded, tlasRebuilt;
 };
 
 // Frame intervals of the same scene played pipelined from its start: each loop pass advances
@@ -103,6 +103,7 @@ nlohmann::json RunScene(const std::string& path, const LoadedScene& loaded,
         s.frame.push_back(frameMs);
         s.instances.push_back(double(world.Scene().instances.size()));
         s.uploaded.push_back(double(fs.extracted));
+        s.tlasRebuilt.push_back(t.tlasRebuilt ? 1.0 : 0.0);
     }
     const std::vector<double> pipelined = PipelinedIntervals(loaded, settings, gpu, o);
     nlohmann::json row = {
@@ -118,7 +119,10 @@ nlohmann::json RunScene(const std::string& path, const LoadedScene& loaded,
         {"blas_ms", Median(s.blas)},
         {"upload_ms", Median(s.upload)},
         {"tlas_ms", Median(s.tlas)},
+        {"tlas_ms_mean", Mean(s.tlas)},
+        {"tlas_rebuilt_share", Mean(s.tlasRebuilt)},
         {"trace_ms", Median(s.trace)},
+        {"trace_ms_mean", Mean(s.trace)},
         {"frame_ms", Median(s.frame)},
         {"frame_ms_max", *std::max_element(s.frame.begin(), s.frame.end())},
         {"pipelined_frame_ms", Median(pipelined)},
@@ -150,7 +154,8 @@ void RunFrameBench(const FrameBenchOptions& o) {
         "simulation and extraction and the whole frame by the CPU clock (frame_ms: one frame at "
         "a time, from the start of its simulation until its image is finished in device memory; "
         "pipelined_frame_ms: the interval between frames when the host simulates frame N+1 while "
-        "the device works on frame N)";
+        "the device works on frame N); tlas_rebuilt_share: the share of timed frames whose TLAS "
+        "was built afresh rather than refit or left alone; *_ms_mean: means over the same frames";
     std::printf("rtrt bench frame (%s back end), medians over %d frames, ms\n", o.backend.c_str(),
                 o.frames);
     std::printf("%-26s %9s %9s %8s %9s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene", "size",

@@ -26,4 +26,13 @@ inline double Median(std::vector<double> samples) {
     return *mid;
 }
 
+// Mean of a sample: what a stage costs over many frames when some frames cost more than others
+// (a TLAS rebuilt on some frames and refit on the rest).
+inline double Mean(const std::vector<double>& samples) {
+    if (samples.empty()) return 0.0;
+    double sum = 0.0;
+    for (double x : samples) sum += x;
+    return sum / double(samples.size());
+}
+
 }  // namespace rtrt
