@@ -32,7 +32,7 @@ struct FrameTimes {
     uint32_t blasRebuilt = 0;  // of them rebuilt rather than refit
     bool tlasRebuilt = false;
     float tlasSahCost = 0.0f;  // the cost the rebuild policy last saw (the GPU computes none
-                               // for a small scene)
+                               // while the policy rebuilds whenever records changed)
     uint64_t rays = 0;         // rays traced, when Trace was asked to count them
     // A frame split over several GPUs (GpuSplit): traceMs runs from the display GPU's start of the
     // trace until every band is gathered there; each GPU's own band took gpuTraceMs, over

@@ -107,5 +107,19 @@ TEST(DynamicTlas, RebuildsUpdatesUpToTheSmallSceneSizeAndRefitsAbove) {
     }
 }
 
+// The runtime's policy rebuilds a moved scene at any size: a grid of 22^3 = 10,648 instances,
+// above the 4,096 of the policy before, is built afresh on each update that moved it.
+TEST(DynamicTlas, DefaultPolicyRebuildsALargeMovedScene) {
+    std::vector<Instance> instances = Grid(22, 1.5f);
+    ASSERT_EQ(instances.size(), 10648u);
+    DynamicTlas tlas;
+    EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+    for (uint32_t frame = 1; frame < 3; ++frame) {
+        Move(instances, frame, 0.01f);
+        EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+        ExpectBoundsNested(tlas.Tree());
+    }
+}
+
 }  // namespace
 }  // namespace rtrt

@@ -1,9 +1,9 @@
 #pragma once
 // The per-frame TLAS of the runtime on the CPU: an LBVH over instance world bounds (its leaves
 // hold instance indices, as every TLAS's: tlas.h), rebuilt when instances were added or removed
-// (or on request) and, in a scene of few instances, on every update (the frame renderers update
-// only when records changed); a larger scene's tree is otherwise refit, until refitting has let
-// the SAH cost drift more than a threshold above the cost of the last rebuild.
+// (or on request) and, under the runtime's policy, on every update (the frame renderers update
+// only when records changed). A policy may instead refit the tree, until refitting has let its
+// SAH cost drift more than a threshold above the cost of the last rebuild.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -13,16 +13,19 @@
 
 namespace rtrt {
 
-// The default is the runtime's: a small scene's tree is built afresh whenever instances moved; a
-// larger one is refit while the tree stays good and rebuilt when it has drifted.
+// The default is the runtime's: the tree is built afresh whenever instances moved. A policy with
+// a smaller rebuildChangedUpTo refits larger scenes while their trees stay good and rebuilds them
+// once they have drifted.
 struct TlasPolicy {
     bool alwaysRebuild = false;  // a fresh LBVH every frame (benchmarks of the build)
     float maxSahGrowth = 0.25f;  // with refits: rebuild once cost > (1 + this) x rebuilt cost
-    // Up to this many instances an update that changed any rebuilds instead of refitting: an
-    // LBVH of so few builds in about a refit's time, while a refit tree of a moving pile traces
-    // measurably slower long before its SAH cost has grown by maxSahGrowth
-    // (bench/results/tlas-policy-h100-2026-12-05.txt).
-    uint32_t rebuildChangedUpTo = 4096;
+    // Up to this many instances an update that changed any rebuilds instead of refitting; by
+    // default at any size. Every played scene measured traced faster on a fresh tree than on a
+    // refit one long before the refit tree's SAH cost had grown by maxSahGrowth, by more than the
+    // rebuild costs over a refit: demo_physics (465 instances) on both back ends
+    // (bench/results/tlas-policy-h100-2026-12-05.txt) and bench_physics_10k (10,005) on both
+    // (tlas-policy-large-h100-2026-12-05.txt, tlas-policy-large-cpu-vm-2026-12-05.txt).
+    uint32_t rebuildChangedUpTo = UINT32_MAX;
 
     static constexpr TlasPolicy AlwaysRebuild() { return {true, 0.25f}; }
     // Refits at any size (what the tests of refitting need).

@@ -155,21 +155,22 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         // The policy of DynamicTlas, with one difference: a tree's SAH cost is known one update
         // later (copied back asynchronously; CollectSahCost waits for the previous frame's TLAS
         // stage at most, never for its trace), so that decisions stay deterministic run to run.
-        // A small scene rebuilds whenever records changed; its rebuilds queue no cost, so its
-        // decision reads none (the last may be from before the scene shrank).
-        const bool small = policy_.RebuildsChanged(n);
+        // A scene within the policy's rebuildChangedUpTo (by default any) rebuilds whenever
+        // records changed; its rebuilds queue no cost, so its decision reads none (the last may
+        // be from before the scene shrank).
+        const bool rebuildsChanged = policy_.RebuildsChanged(n);
         const bool rebuild =
             policy_.alwaysRebuild || countChanged || !built_ ||
-            (small ? f.times.uploaded > 0
-                   : lastSahCost_ > (1.0f + policy_.maxSahGrowth) * rebuiltSahCost_);
+            (rebuildsChanged ? f.times.uploaded > 0
+                             : lastSahCost_ > (1.0f + policy_.maxSahGrowth) * rebuiltSahCost_);
         if (rebuild) {
             tlas_.Build(instances_.Data(), {blasBounds_.Data(), blasSpheres_.Data()}, n);
             built_ = true;
         } else if (f.times.uploaded > 0) {
             tlas_.Refit(instances_.Data(), {blasBounds_.Data(), blasSpheres_.Data()});
         }
-        // Always-rebuild (the benchmark's mode) and a small scene's rebuilds need no cost.
-        if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild && !small)
+        // Always-rebuild (the benchmark's mode) and rebuilds whenever records changed need no cost.
+        if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild && !rebuildsChanged)
             QueueSahCost(rebuild);
         RT_CUDA_CHECK(cudaEventRecord(f.events[6]));
         f.times.tlasRebuilt = rebuild;
