@@ -64,8 +64,9 @@ void ExpectGpuMatchesCpu(const RenderScene& scene, ViewMode view = ViewMode::kSh
 
 // A demo scene played for `frames` frames twice, through the CPU frame renderer (host TLAS) and
 // the CUDA one (changed records only, TLAS refit or rebuilt on the device). Every 10th frame must
-// match. The TLAS is refit by default, which the runtime does only for large scenes, so that the
-// device's refits are compared on the demos too; `tlasPolicy` {} plays them as the runtime does.
+// match. The TLAS is refit by default, which the runtime's policy does not do (it builds the TLAS
+// afresh whenever instances moved), so that the device's refits are compared on the demos too;
+// `tlasPolicy` {} plays them as the runtime does.
 // Deforming meshes are deformed and refit (or rebuilt, under `blasPolicy`) on each back end.
 void ExpectPlayedGpuMatchesCpu(const std::string& file, int frames,
                                BlasRebuildPolicy blasPolicy = {},
@@ -103,7 +104,7 @@ void ExpectPlayedGpuMatchesCpu(const std::string& file, int frames,
         ExpectImagesClose(cpuImage, gpuImage, cpuStats, gpuStats);
     }
     // The scenes move things: the device TLAS was refit, and rebuilt when spawns came; under
-    // the runtime's policy a scene this small is rebuilt whenever anything moved.
+    // the runtime's policy it is rebuilt whenever anything moved.
     if (tlasPolicy.RebuildsChanged(gpuWorld.Scene().instances.size())) {
         EXPECT_EQ(refits, 0u);
         EXPECT_GT(rebuilds, uint32_t(frames) / 2);
