@@ -25,7 +25,7 @@ struct FrameTimes {
     double deformMs = 0.0;  // deforming meshes skinned / morphed into their triangles
     double blasMs = 0.0;    // their BLASes refit or rebuilt, and the SAH costs of the policy
     double uploadMs = 0.0;  // changed instance records (and their world boxes) sent
-    double tlasMs = 0.0;    // LBVH rebuild or refit, and its SAH cost
+    double tlasMs = 0.0;    // LBVH rebuild or refit, and its SAH cost where the policy needs one
     double traceMs = 0.0;
     uint32_t uploaded = 0;     // instance records sent to the device
     uint32_t deformed = 0;     // deforming BLASes brought up to date

@@ -83,9 +83,9 @@ TEST(DynamicTlas, TopologyChangeForcesARebuild) {
     EXPECT_EQ(tlas.Tree().primOrder.size(), instances.size());
 }
 
-// The default policy rebuilds on every update up to rebuildChangedUpTo instances and refits
-// above: 64 instances against thresholds of 64 and 63.
-TEST(DynamicTlas, RebuildsUpdatesUpToTheSmallSceneSizeAndRefitsAbove) {
+// A policy rebuilds on every update up to its rebuildChangedUpTo instances and refits above: 64
+// instances against thresholds of 64 and 63.
+TEST(DynamicTlas, RebuildsUpdatesUpToThePolicysSizeAndRefitsAbove) {
     std::vector<Instance> instances = Grid(4, 1.5f);
     ASSERT_EQ(instances.size(), 64u);
     EXPECT_GE(TlasPolicy{}.rebuildChangedUpTo, 1024u);

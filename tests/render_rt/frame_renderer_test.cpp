@@ -87,8 +87,8 @@ TEST(CpuFrameRenderer, FollowsChangedRecordsByRefitting) {
     EXPECT_TRUE(SamePixels(image, ReferenceImage(scene)));
 }
 
-// The runtime's policy: 25 instances are few enough that a moved one means a fresh tree, which
-// holds the moved sphere's new box in a leaf and traces what the reference traces.
+// The runtime's policy: a moved instance means a fresh tree (at any size), which holds the moved
+// sphere's new box in a leaf and traces what the reference traces.
 TEST(CpuFrameRenderer, RebuildsASmallSceneWhenAnInstanceMoved) {
     RenderScene scene = SphereGrid();
     const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(Backend::kCpu, scene);

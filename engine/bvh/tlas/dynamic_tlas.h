@@ -20,11 +20,12 @@ struct TlasPolicy {
     bool alwaysRebuild = false;  // a fresh LBVH every frame (benchmarks of the build)
     float maxSahGrowth = 0.25f;  // with refits: rebuild once cost > (1 + this) x rebuilt cost
     // Up to this many instances an update that changed any rebuilds instead of refitting; by
-    // default at any size. Every played scene measured traced faster on a fresh tree than on a
-    // refit one long before the refit tree's SAH cost had grown by maxSahGrowth, by more than the
-    // rebuild costs over a refit: demo_physics (465 instances) on both back ends
+    // default at any size. Scenes whose refit trees degrade traced faster on a fresh tree, long
+    // before the refit tree's SAH cost had grown by maxSahGrowth and by more than the rebuild
+    // costs over a refit: demo_physics (465 instances) on both back ends
     // (bench/results/tlas-policy-h100-2026-12-05.txt) and bench_physics_10k (10,005) on both
-    // (tlas-policy-large-h100-2026-12-05.txt, tlas-policy-large-cpu-vm-2026-12-05.txt).
+    // (tlas-policy-large-h100-2026-12-05.txt, tlas-policy-large-cpu-vm-2026-12-05.txt); the
+    // other demos were level.
     uint32_t rebuildChangedUpTo = UINT32_MAX;
 
     static constexpr TlasPolicy AlwaysRebuild() { return {true, 0.25f}; }

@@ -1,8 +1,8 @@
 #pragma once
 // The CUDA back end of a running scene (rtrt play, rtrt bench frame, the window). The BLASes,
 // materials and lights go up once; each frame sends only the instance records that changed,
-// brings the TLAS up to date on the GPU (an LBVH rebuilt when instances were added or removed,
-// and in a small scene whenever records changed; refit otherwise, under the TlasPolicy) and
+// brings the TLAS up to date on the GPU (an LBVH rebuilt when instances were added or removed
+// and, under the runtime's TlasPolicy, whenever records changed; a policy may refit instead) and
 // traces into a device framebuffer. Made by MakeFrameRenderer.
 #include <memory>
 
