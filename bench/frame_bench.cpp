@@ -37,12 +37,13 @@ struct FrameBenchOptions {
     std::string gpus = "1";
     GpuSplit split;  // what gpus names
     std::string physicsSolver = "cpu";
+    std::string traversal = "auto";
     std::string output;
 };
 
 struct StageSamples {
     std::vector<double> simulate, extract, deform, blas, upload, tlas, trace, frame, instances,
-        uploaded, tlasRebuilt;
+        uploaded, tlasRebuilt, singleLoop;
 };
 
 // Frame intervals of the same scene played pipelined from its start: each loop pass advances
@@ -75,6 +76,7 @@ nlohmann::json RunScene(const std::string& path, const LoadedScene& loaded,
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
     settings.maxDepth = loaded.scene.maxDepth;
     settings.traceBands = o.traceBands;
+    ParseTraversalForm(o.traversal, &settings.traversal);  // checked by the option
     const bool gpu = o.backend == "cuda";
     World world(loaded);
     ApplyPhysicsSolver(o.physicsSolver, world);
@@ -104,6 +106,7 @@ nlohmann::json RunScene(const std::string& path, const LoadedScene& loaded,
         s.instances.push_back(double(world.Scene().instances.size()));
         s.uploaded.push_back(double(fs.extracted));
         s.tlasRebuilt.push_back(t.tlasRebuilt ? 1.0 : 0.0);
+        s.singleLoop.push_back(t.singleLoop ? 1.0 : 0.0);
     }
     const std::vector<double> pipelined = PipelinedIntervals(loaded, settings, gpu, o);
     nlohmann::json row = {
@@ -123,6 +126,7 @@ nlohmann::json RunScene(const std::string& path, const LoadedScene& loaded,
         {"tlas_rebuilt_share", Mean(s.tlasRebuilt)},
         {"trace_ms", Median(s.trace)},
         {"trace_ms_mean", Mean(s.trace)},
+        {"single_loop_share", Mean(s.singleLoop)},
         {"frame_ms", Median(s.frame)},
         {"frame_ms_max", *std::max_element(s.frame.begin(), s.frame.end())},
         {"pipelined_frame_ms", Median(pipelined)},
@@ -149,13 +153,17 @@ void RunFrameBench(const FrameBenchOptions& o) {
     report["trace_bands"] = o.traceBands;
     report["gpus"] = o.split.devices.empty() ? 1 : o.split.devices.size();
     report["physics_solver"] = o.physicsSolver;
+    report["traversal"] = o.traversal;
     report["timing"] =
         "medians over --frames frames at 60 fps after --warmup frames; GPU stages by CUDA events, "
         "simulation and extraction and the whole frame by the CPU clock (frame_ms: one frame at "
         "a time, from the start of its simulation until its image is finished in device memory; "
         "pipelined_frame_ms: the interval between frames when the host simulates frame N+1 while "
         "the device works on frame N); tlas_rebuilt_share: the share of timed frames whose TLAS "
-        "was built afresh rather than refit or left alone; *_ms_mean: means over the same frames";
+        "was built afresh rather than refit or left alone; single_loop_share: the share traced "
+        "with "
+        "the single loop over both levels rather than the nested traversal; *_ms_mean: means over "
+        "the same frames";
     std::printf("rtrt bench frame (%s back end), medians over %d frames, ms\n", o.backend.c_str(),
                 o.frames);
     std::printf("%-26s %9s %9s %8s %9s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene", "size",
@@ -195,6 +203,7 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
         ->capture_default_str();
     AddGpusOption(cmd, &o->gpus);
     AddPhysicsSolverOption(cmd, &o->physicsSolver);
+    AddTraversalOption(cmd, &o->traversal);
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
         ->check(WritableFile());
     cmd->callback([o, exitCode] {

@@ -31,6 +31,9 @@ struct FrameTimes {
     uint32_t deformed = 0;     // deforming BLASes brought up to date
     uint32_t blasRebuilt = 0;  // of them rebuilt rather than refit
     bool tlasRebuilt = false;
+    // The GPU traced a scene of many instances with the single loop over both levels rather
+    // than the nested form (traversal/traversal_form.h); false on the CPU.
+    bool singleLoop = false;
     float tlasSahCost = 0.0f;  // the cost the rebuild policy last saw (the GPU computes none
                                // while the policy rebuilds whenever records changed)
     uint64_t rays = 0;         // rays traced, when Trace was asked to count them

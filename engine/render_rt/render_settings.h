@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/render_rt/scene_features.h"
+#include "engine/render_rt/traversal/traversal_form.h"
 
 namespace rtrt {
 
@@ -22,6 +23,9 @@ struct RenderSettings {
     // shares following each band's last trace time (split/frame_split.h): the split of several
     // GPUs, on one. The image is the same for any count. The CPU back end ignores it.
     uint32_t traceBands = 1;
+    // CUDA, scenes of many instances: the scene traversal (traversal/traversal_form.h). The
+    // image is the same for any form. The CPU back end ignores it.
+    TraversalForm traversal = TraversalForm::kAuto;
 };
 
 struct RenderStats {

@@ -11,10 +11,12 @@ enum SceneFeature : uint32_t {
     kFeatureShadows = 1u << 0,
     kFeatureReflection = 1u << 1,
     kFeatureRefraction = 1u << 2,
-    // Not an effect but a shape: a scene of many instances traverses both levels in one loop on
-    // the GPU (two_level_traversal.h), with a register cap that keeps more warps in flight. On
-    // the H100 that made the instance grid 1.4-1.8x faster, while on the paper scene (one
-    // instance) the single loop is 1.2-1.5x slower than the nested form
+    // Not an effect but a shape: the GPU traverses both levels in one loop (two_level_traversal.h),
+    // with a register cap that keeps more warps in flight. A scene of many instances has it;
+    // whether a frame keeps it is the traversal form's choice (traversal/traversal_form.h: the
+    // CUDA frame renderer measures both forms, a one-shot render keeps it). On the H100 the
+    // single loop made the instance grid 1.4-1.8x faster, while on the paper scene (one instance)
+    // it is 1.2-1.5x slower than the nested form
     // (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt).
     kFeatureManyInstances = 1u << 3,
     // Materials with a base-colour texture: only these kernels interpolate uvs and sample.

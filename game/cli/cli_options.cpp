@@ -101,6 +101,16 @@ GpuSplit ResolveGpus(const std::string& gpus, Backend backend) {
     return split;
 }
 
+void AddTraversalOption(CLI::App* command, std::string* traversal) {
+    command
+        ->add_option("--traversal", *traversal,
+                     "CUDA, scenes of 64 instances or more: nested (a BLAS loop in each TLAS "
+                     "leaf), single (one loop over both levels) or auto (played frames measure "
+                     "both and keep the faster); the image is the same")
+        ->check(CLI::IsMember({"auto", "nested", "single"}))
+        ->capture_default_str();
+}
+
 void AddPhysicsSolverOption(CLI::App* command, std::string* solver) {
     command
         ->add_option("--physics-solver", *solver,

@@ -51,6 +51,10 @@ void AddGpusOption(CLI::App* command, std::string* gpus);
 // not have, or for more than one GPU on the CPU back end.
 GpuSplit ResolveGpus(const std::string& gpus, Backend backend);
 
+// --traversal auto|nested|single: the CUDA back end's scene traversal for scenes of many
+// instances (traversal/traversal_form.h; default auto).
+void AddTraversalOption(CLI::App* command, std::string* traversal);
+
 // --physics-solver cpu|gpu: where the rigid bodies' contacts are solved (default cpu; gpu gives
 // the same bits, see gpu_contact_solver.h).
 void AddPhysicsSolverOption(CLI::App* command, std::string* solver);

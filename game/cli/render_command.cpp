@@ -24,6 +24,7 @@ struct RenderOptions {
     std::string view = "shaded";
     int maxDepth = 0;  // 0: the scene's own
     uint32_t spp = 1;
+    std::string traversal = "auto";
     OutputOptions display;  // exposure and tone map
 };
 
@@ -60,6 +61,7 @@ void RunRender(const RenderOptions& o) {
     settings.maxDepth = o.maxDepth > 0 ? uint32_t(o.maxDepth) : loaded.scene.maxDepth;
     settings.view = ParseView(o.view);
     settings.samplesPerPixel = o.spp;
+    ParseTraversalForm(o.traversal, &settings.traversal);  // checked by the option
     const Backend backend = o.backend == "cuda" ? Backend::kCuda : Backend::kCpu;
     std::string why;
     if (backend == Backend::kCuda && !CudaBackendAvailable(&why))
@@ -128,6 +130,7 @@ void AddRenderCommand(CLI::App& app, int* exitCode) {
         ->check(CLI::IsMember({"shaded", "normals", "depth", "heatmap"}))
         ->capture_default_str();
     AddGpusOption(cmd, &options->gpus);
+    AddTraversalOption(cmd, &options->traversal);
     AddOutputOptions(cmd, &options->display);
     cmd->callback([options, exitCode] {
         RunRender(*options);

@@ -83,6 +83,7 @@ struct FrameEvents {
     cudaEvent_t traceReady = nullptr;
     std::vector<cudaEvent_t> bandStart, bandEnd;
     std::vector<RowBand> bands;
+    TraversalChooser::Ticket traversal;      // the form the trace took, for the chooser
     bool pending = false;                    // recorded and not read yet
     bool counted = false;                    // rays were counted into raysHost
     unsigned long long* raysHost = nullptr;  // pinned
@@ -269,8 +270,9 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         if (frame_.Size() != pixels) frame_.Resize(pixels);
         if (countRays)
             RT_CUDA_CHECK(cudaMemsetAsync(rayCount_.Data(), 0, sizeof(unsigned long long)));
-        const uint32_t features =
-            EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
+        const uint32_t features = ChooseTraversal(
+            f, EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
+            settings);
         unsigned long long* rays = countRays ? rayCount_.Data() : nullptr;
         f.bands.clear();
         if (band) {
@@ -290,6 +292,28 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         f.pending = true;
         f.counted = countRays;
         return f;
+    }
+
+    // The features the frame launches with: a scene of many instances takes the traversal form
+    // the settings force, or the one the chooser gives (recorded in f for its report).
+    uint32_t ChooseTraversal(FrameEvents& f, uint32_t features, const RenderSettings& settings) {
+        f.traversal = {};
+        if (settings.traversal != TraversalForm::kAuto) {
+            features = WithTraversalForm(features, settings.traversal);
+        } else if ((features & kFeatureManyInstances) != 0) {
+            // What the trace time depends on besides the scene's motion.
+            uint64_t configuration = features;
+            for (uint64_t v : {uint64_t(settings.view), uint64_t(settings.width),
+                               uint64_t(settings.height), uint64_t(settings.maxDepth),
+                               uint64_t(settings.samplesPerPixel), uint64_t(settings.traceBands)})
+                configuration = configuration * 0x100000001b3ull ^ v;
+            f.traversal = traversal_.Next(configuration);
+            features =
+                WithTraversalForm(features, f.traversal.singleLoop ? TraversalForm::kSingleLoop
+                                                                   : TraversalForm::kNested);
+        }
+        f.times.singleLoop = (features & kFeatureManyInstances) != 0;
+        return features;
     }
 
     // The other set's frame has most likely finished by now; if so its times are shown.
@@ -357,6 +381,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         f.times.tlasMs = Elapsed(e[5], e[6]);
         f.times.traceMs = Elapsed(e[6], e[7]);
         f.times.gpuTraceMs[0] = f.times.traceMs;
+        traversal_.Report(f.traversal, f.times.traceMs);
         f.times.rays = f.counted ? *f.raysHost : 0;
         if (!f.bands.empty() && split_ && split_->Parts() == f.bands.size()) {
             std::vector<double> ms(f.bands.size());
@@ -525,6 +550,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
     bool sahPending_ = false, sahPendingIsRebuild_ = false;
     DeviceBuffer<vec3> frame_;
     DeviceBuffer<unsigned long long> rayCount_;
+    TraversalChooser traversal_;
     FrameEvents frames_[2];
     std::optional<FrameSplit> split_;        // with traceBands > 1
     std::vector<cudaStream_t> bandStreams_;  // one per band

@@ -44,9 +44,11 @@ Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, Re
     }
     DeviceBuffer<vec3> frame;
     frame.Resize(size_t(settings.width) * settings.height);
-    LaunchTrace(view, settings.view,
-                EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
-                frame.Data(), rayCount.Data());
+    // One frame: nothing to measure the traversal forms on, so kAuto keeps the count rule.
+    const uint32_t features = WithTraversalForm(
+        EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
+        settings.traversal);
+    LaunchTrace(view, settings.view, features, frame.Data(), rayCount.Data());
     RT_CUDA_CHECK(cudaDeviceSynchronize());
     Image image(settings.width, settings.height);
     frame.Download(image.pixels);
