@@ -58,7 +58,7 @@ RT_HD inline vec3 RawPixel(const RenderSceneView& scene, ViewMode view, uint32_t
 }
 
 // Views other than shaded need only the primary hit: their specialisation has no secondary rays.
-// The traversal form stays as the scene chose it.
+// The traversal form's bit is kept (the frame renderer's choice may clear it afterwards).
 inline uint32_t EffectiveFeatures(uint32_t sceneFeatures, uint32_t enabled, ViewMode view) {
     const uint32_t shape = sceneFeatures & kFeatureManyInstances;
     if (view != ViewMode::kShaded) return shape;

@@ -14,7 +14,7 @@ enum SceneFeature : uint32_t {
     // Not an effect but a shape: the GPU traverses both levels in one loop (two_level_traversal.h),
     // with a register cap that keeps more warps in flight. A scene of many instances has it;
     // whether a frame keeps it is the traversal form's choice (traversal/traversal_form.h: the
-    // CUDA frame renderer measures both forms, a one-shot render keeps it). On the H100 the
+    // CUDA frame renderer measures both forms; unmeasured, the nested form). On the H100 the
     // single loop made the instance grid 1.4-1.8x faster, while on the paper scene (one instance)
     // it is 1.2-1.5x slower than the nested form
     // (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt).

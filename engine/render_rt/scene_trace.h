@@ -16,9 +16,9 @@ concept AnswersSceneQueries = requires(const TlasView& tlas, const Ray& ray, Sce
     { Policy::SceneOccluded(tlas, ray) } -> std::same_as<bool>;
 };
 
-// The scene traversal a specialisation uses: on the GPU, scenes of many instances take the single
-// loop over both levels; otherwise (and always on the CPU) the nested form. Both take the
-// policy's primitive tests (trace_policy.h).
+// The scene traversal a specialisation uses: on the GPU, kernels with kFeatureManyInstances take
+// the single loop over both levels; otherwise (and always on the CPU) the nested form. Both take
+// the policy's primitive tests (trace_policy.h).
 template <uint32_t kFeatures, class Policy = TracePolicy>
 RT_HD inline bool TraceIntersect(const TlasView& tlas, const Ray& ray, SceneHit* hit,
                                  TraversalStats* stats) {

@@ -105,8 +105,9 @@ void AddTraversalOption(CLI::App* command, std::string* traversal) {
     command
         ->add_option("--traversal", *traversal,
                      "CUDA, scenes of 64 instances or more: nested (a BLAS loop in each TLAS "
-                     "leaf), single (one loop over both levels) or auto (played frames measure "
-                     "both and keep the faster); the image is the same")
+                     "leaf), single (one loop over both levels) or auto (frames on one GPU "
+                     "measure both as they play and keep the faster; otherwise nested); the "
+                     "image is the same")
         ->check(CLI::IsMember({"auto", "nested", "single"}))
         ->capture_default_str();
 }

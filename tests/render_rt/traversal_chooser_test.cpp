@@ -74,7 +74,8 @@ TEST(TraversalChooser, SwitchesOnlyBeyondTheMargin) {
 }
 
 TEST(TraversalChooser, MedianIgnoresOneSlowFrame) {
-    // The first launch of a kernel can be slow (lazy module loading): one outlier per form.
+    // The first launch of a kernel can be slow (lazy module loading): here the single loop's
+    // first trial frame takes 9 ms against 1 ms for its others and 1.5 ms for the nested form.
     TraversalChooser chooser;
     uint32_t f = 0;
     std::deque<Ticket> inFlight;
@@ -128,9 +129,11 @@ TEST(TraversalChooser, StaleAndMissingTimesAreIgnored) {
     chooser.Report(Ticket{}, 0.1);
     chooser.Report(fresh, -1.0);
     EXPECT_EQ(chooser.Decisions(), 0u);
-    // The second trial's times never all arrive: a third trial starts, and decides.
+    // The second trial's times never arrive, nor do those of the trials after it that these
+    // frames start; then times arrive again, and the trial of those frames decides.
     for (int f = 0; f < 40; ++f) chooser.Next(2);
-    const uint32_t single = Play(chooser, 20, 2.0, 1.0, 2, 2);
+    EXPECT_EQ(chooser.Decisions(), 0u);
+    const uint32_t single = Play(chooser, 60, 2.0, 1.0, 2, 2);
     EXPECT_GT(single, 0u);
     EXPECT_EQ(chooser.Decisions(), 1u);
     EXPECT_TRUE(chooser.SettledOnSingleLoop());
@@ -146,12 +149,14 @@ TEST(TraversalForm, NamesAndFeatures) {
     TraversalForm unused;
     EXPECT_FALSE(ParseTraversalForm("wide", &unused));
     const uint32_t shaded = kFeatureShadows | kFeatureReflection;
-    EXPECT_EQ(WithTraversalForm(shaded, TraversalForm::kSingleLoop),
-              shaded | kFeatureManyInstances);
-    EXPECT_EQ(WithTraversalForm(shaded | kFeatureManyInstances, TraversalForm::kNested), shaded);
-    EXPECT_EQ(WithTraversalForm(shaded | kFeatureManyInstances, TraversalForm::kAuto),
-              shaded | kFeatureManyInstances);
-    EXPECT_EQ(WithTraversalForm(shaded, TraversalForm::kAuto), shaded);
+    const uint32_t many = shaded | kFeatureManyInstances;
+    EXPECT_EQ(WithTraversalForm(many, TraversalForm::kSingleLoop), many);
+    EXPECT_EQ(WithTraversalForm(many, TraversalForm::kNested), shaded);
+    EXPECT_EQ(WithTraversalForm(many, TraversalForm::kAuto), shaded) << "unmeasured: nested";
+    // Scenes of few instances take the nested form whatever is asked.
+    for (TraversalForm f :
+         {TraversalForm::kAuto, TraversalForm::kNested, TraversalForm::kSingleLoop})
+        EXPECT_EQ(WithTraversalForm(shaded, f), shaded);
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 //
 // This is the nested form: a BLAS traversal in each reached TLAS leaf. The CPU uses it with the
 // triangle BLASes' 4-wide SSE collapse; the GPU uses it for scenes of few instances, where the
-// ray spends its time in one tight BLAS loop. Scenes of many instances run the single loop of
+// ray spends its time in one tight BLAS loop. Scenes of many instances may run the single loop of
 // two_level_traversal.h on the GPU (see kFeatureManyInstances); both forms find the same hits.
 #include "engine/bvh/traversal/two_level_traversal.h"
 #include "engine/geometry/primitive_tests.h"

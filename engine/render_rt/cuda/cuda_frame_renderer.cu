@@ -272,7 +272,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
             RT_CUDA_CHECK(cudaMemsetAsync(rayCount_.Data(), 0, sizeof(unsigned long long)));
         const uint32_t features = ChooseTraversal(
             f, EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
-            settings);
+            settings, !band);
         unsigned long long* rays = countRays ? rayCount_.Data() : nullptr;
         f.bands.clear();
         if (band) {
@@ -295,10 +295,13 @@ class CudaFrameRenderer final : public GpuBandRenderer {
     }
 
     // The features the frame launches with: a scene of many instances takes the traversal form
-    // the settings force, or the one the chooser gives (recorded in f for its report).
-    uint32_t ChooseTraversal(FrameEvents& f, uint32_t features, const RenderSettings& settings) {
+    // the settings force, or the one the chooser gives (recorded in f for its report). A band of
+    // a frame split over several GPUs is not measured: its rows and its wait for the display
+    // GPU's last gather change from frame to frame, so it takes kAuto's unmeasured form.
+    uint32_t ChooseTraversal(FrameEvents& f, uint32_t features, const RenderSettings& settings,
+                             bool measured) {
         f.traversal = {};
-        if (settings.traversal != TraversalForm::kAuto) {
+        if (settings.traversal != TraversalForm::kAuto || !measured) {
             features = WithTraversalForm(features, settings.traversal);
         } else if ((features & kFeatureManyInstances) != 0) {
             // What the trace time depends on besides the scene's motion.

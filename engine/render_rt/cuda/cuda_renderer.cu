@@ -44,7 +44,7 @@ Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, Re
     }
     DeviceBuffer<vec3> frame;
     frame.Resize(size_t(settings.width) * settings.height);
-    // One frame: nothing to measure the traversal forms on, so kAuto keeps the count rule.
+    // One frame: nothing to measure the traversal forms on, so kAuto takes the nested form.
     const uint32_t features = WithTraversalForm(
         EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
         settings.traversal);

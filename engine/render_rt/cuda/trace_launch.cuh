@@ -16,11 +16,11 @@
 
 namespace rtrt {
 
-// Scenes of many instances trace with a register cap (blocks of 64 threads that must fit per
-// SM): their time goes into long, divergent traversals that more warps in flight hide better.
-// On the H100, 16 blocks (64 registers, some spilled) made the instance grid 1.6-1.8x faster than
-// no cap (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt). The nested kernels without
-// PBR are held to 128 registers (8 blocks, 16 warps per SM), which most need anyway: the
+// The single-loop kernels (kFeatureManyInstances) trace with a register cap (blocks of 64 threads
+// that must fit per SM): their time goes into long, divergent traversals that more warps in flight
+// hide better. On the H100, 16 blocks (64 registers, some spilled) made the instance grid 1.6-1.8x
+// faster than no cap (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt). The nested kernels
+// without PBR are held to 128 registers (8 blocks, 16 warps per SM), which most need anyway: the
 // refraction and texture kernels would take 132-137 and lose two warps per SM to a few
 // registers (bench/results/gpu-header-carry-h200-2026-12-03.txt). PBR kernels (160-175
 // registers) run uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N overrides the many-instance cap, for

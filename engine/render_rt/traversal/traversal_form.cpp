@@ -60,7 +60,7 @@ TraversalChooser::Ticket TraversalChooser::Next(uint64_t configuration) {
 void TraversalChooser::Report(Ticket ticket, double traceMs) {
     if (!inTrial_ || ticket.trial != trial_ || !(traceMs >= 0.0)) return;
     times_[ticket.singleLoop ? 1 : 0].push_back(traceMs);
-    if (times_[0].size() + times_[1].size() == kTrialFrames) Decide();
+    if (times_[0].size() == kTrialFrames / 2 && times_[1].size() == kTrialFrames / 2) Decide();
 }
 
 void TraversalChooser::StartTrial() {

@@ -6,7 +6,8 @@
 // instance grid (a dense lattice of 11,102-triangle dragons) 13-30% faster, the nested form the
 // played demos of 465-10,005 instances 17-28% faster
 // (bench/results/traversal-form-h100-2026-12-05.txt). So the CUDA frame renderer measures them
-// on the scene as it plays (TraversalChooser); a one-shot render takes the instance-count rule.
+// on the scene as it plays (TraversalChooser); where nothing is measured (a one-shot render, the
+// bands of a frame split over several GPUs) the nested form, which won every played scene.
 #include <cstdint>
 #include <string_view>
 #include <vector>
@@ -16,7 +17,7 @@
 namespace rtrt {
 
 enum class TraversalForm : uint8_t {
-    kAuto,        // frame renderers: measured (TraversalChooser); one-shot renders: by count
+    kAuto,        // measured as frames play (TraversalChooser), else the nested form
     kNested,      // always the nested form
     kSingleLoop,  // always the single loop
 };
@@ -25,12 +26,12 @@ enum class TraversalForm : uint8_t {
 bool ParseTraversalForm(std::string_view name, TraversalForm* form);
 std::string_view TraversalFormName(TraversalForm form);
 
-// The features a trace launches with: the single loop's bit (kFeatureManyInstances) set for
-// kSingleLoop, cleared for kNested; kAuto keeps the scene's own rule (scene_features.h).
+// The features a trace of a scene of many instances (kFeatureManyInstances set, the single loop's
+// bit) launches with: the bit kept for kSingleLoop, cleared for kNested and, where nothing is
+// measured, kAuto. Scenes of fewer instances always take the nested form.
 inline uint32_t WithTraversalForm(uint32_t features, TraversalForm form) {
-    if (form == TraversalForm::kSingleLoop) return features | kFeatureManyInstances;
-    if (form == TraversalForm::kNested) return features & ~kFeatureManyInstances;
-    return features;
+    if (form == TraversalForm::kSingleLoop) return features;
+    return features & ~kFeatureManyInstances;
 }
 
 // Which form a frame takes, measured on the frames themselves. A trial traces kTrialFrames frames
