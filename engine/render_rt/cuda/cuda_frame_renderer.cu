@@ -2,7 +2,6 @@
 #include <optional>
 #include <vector>
 
-#include "engine/bvh/build/sah_term.h"
 #include "engine/bvh/tlas/gpu_tlas.h"
 #include "engine/bvh/tlas/tlas.h"
 #include "engine/core/cuda_device_guard.h"
@@ -12,6 +11,7 @@
 #include "engine/render_rt/cuda/device_scene.h"
 #include "engine/render_rt/cuda/gpu_band_renderer.h"
 #include "engine/render_rt/cuda/multi_gpu_frame_renderer.h"
+#include "engine/render_rt/cuda/tlas_sah_cost.h"
 #include "engine/render_rt/pixel_kernel.h"
 
 namespace rtrt {
@@ -28,36 +28,6 @@ __global__ void ScatterInstancesKernel(const uint32_t* indices, const Instance* 
     const uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
     if (k >= count) return;
     SetPlacement(instances[indices[k]], records[k]);
-}
-
-// Each node's term of the SAH cost (sah_term.h, the one the deformers' policy sums too), read
-// where the sum needs it.
-struct SahTerms {
-    const BvhNode* nodes;
-    __device__ float operator[](uint32_t position) const { return SahNodeTerm(nodes, position); }
-};
-
-constexpr uint32_t kSumPerThread = 8;
-constexpr uint32_t kSumSpan = kBlock * kSumPerThread;  // the values one block sums
-uint32_t SumBlocks(uint32_t n) { return (n + kSumSpan - 1) / kSumSpan; }
-
-// Block b sums values [b kSumSpan, (b + 1) kSumSpan) in a fixed order (each thread its strided
-// share, then a tree in shared memory), so the cost is the same run to run and the rebuild
-// decisions with it, and only one partial sum per block is kept, not a term per node.
-template <class Values>
-__global__ void BlockSumsKernel(Values values, uint32_t n, float* sums) {
-    __shared__ float partial[kBlock];
-    const uint32_t first = blockIdx.x * kSumSpan + threadIdx.x;
-    float s = 0.0f;
-    for (uint32_t k = 0; k < kSumPerThread; ++k)
-        if (first + k * kBlock < n) s += values[first + k * kBlock];
-    partial[threadIdx.x] = s;
-    __syncthreads();
-    for (uint32_t half = kBlock / 2; half > 0; half /= 2) {
-        if (threadIdx.x < half) partial[threadIdx.x] += partial[threadIdx.x + half];
-        __syncthreads();
-    }
-    if (threadIdx.x == 0) sums[blockIdx.x] = partial[0];
 }
 
 __global__ void PickKernel(TlasView tlas, Ray ray, SceneHit* hit, uint32_t* found) {
@@ -105,9 +75,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
             for (cudaEvent_t& e : f.events) RT_CUDA_CHECK(cudaEventCreate(&e));
             RT_CUDA_CHECK(cudaMallocHost(&f.raysHost, sizeof(unsigned long long)));
         }
-        RT_CUDA_CHECK(cudaEventCreate(&sahCopied_));
         rayCount_.Resize(1);
-        RT_CUDA_CHECK(cudaMallocHost(&sahHost_, sizeof(float)));
         Update(scene, {{}, true});
     }
     ~CudaFrameRenderer() override {
@@ -120,8 +88,6 @@ class CudaFrameRenderer final : public GpuBandRenderer {
             cudaFreeHost(f.raysHost);
         }
         for (cudaStream_t s : bandStreams_) cudaStreamDestroy(s);
-        cudaEventDestroy(sahCopied_);
-        cudaFreeHost(sahHost_);
     }
 
     Backend Kind() const override { return Backend::kCuda; }
@@ -129,7 +95,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
 
     void Update(const RenderScene& scene, const SceneChanges& changes) override {
         CudaDeviceGuard guard(gpu_);
-        CollectSahCost();
+        sahCost_.Collect();
         FrameEvents& f = BeginFrame();
         AddBlases(scene);
         if (deformer_.Update(scene, changes.deformations, blasBounds_.Data(),
@@ -154,16 +120,16 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         }
         RT_CUDA_CHECK(cudaEventRecord(f.events[5]));
         // The policy of DynamicTlas, with one difference: a tree's SAH cost is known one update
-        // later (copied back asynchronously; CollectSahCost waits for the previous frame's TLAS
+        // later (copied back asynchronously; Collect waits for the previous frame's TLAS
         // stage at most, never for its trace), so that decisions stay deterministic run to run.
         // A scene within the policy's rebuildChangedUpTo (by default any) rebuilds whenever
         // records changed; its rebuilds queue no cost, so its decision reads none (the last may
         // be from before the scene shrank).
         const bool rebuildsChanged = policy_.RebuildsChanged(n);
-        const bool rebuild =
-            policy_.alwaysRebuild || countChanged || !built_ ||
-            (rebuildsChanged ? f.times.uploaded > 0
-                             : lastSahCost_ > (1.0f + policy_.maxSahGrowth) * rebuiltSahCost_);
+        const bool rebuild = policy_.alwaysRebuild || countChanged || !built_ ||
+                             (rebuildsChanged ? f.times.uploaded > 0
+                                              : sahCost_.Last() > (1.0f + policy_.maxSahGrowth) *
+                                                                      sahCost_.Rebuilt());
         if (rebuild) {
             tlas_.Build(instances_.Data(), {blasBounds_.Data(), blasSpheres_.Data()}, n);
             built_ = true;
@@ -172,10 +138,10 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         }
         // Always-rebuild (the benchmark's mode) and rebuilds whenever records changed need no cost.
         if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild && !rebuildsChanged)
-            QueueSahCost(rebuild);
+            sahCost_.Queue(tlas_.Nodes(), tlas_.Count(), rebuild);
         RT_CUDA_CHECK(cudaEventRecord(f.events[6]));
         f.times.tlasRebuilt = rebuild;
-        f.times.tlasSahCost = lastSahCost_;
+        f.times.tlasSahCost = sahCost_.Last();
     }
 
     void Trace(const RenderScene& scene, const RenderSettings& settings, Image* image,
@@ -364,7 +330,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
     FrameEvents& BeginEmptyFrame() {
         FrameEvents& f = BeginFrame();
         for (int e = 1; e < 7; ++e) RT_CUDA_CHECK(cudaEventRecord(f.events[e]));
-        f.times.tlasSahCost = lastSahCost_;
+        f.times.tlasSahCost = sahCost_.Last();
         return f;
     }
 
@@ -426,15 +392,6 @@ class CudaFrameRenderer final : public GpuBandRenderer {
             RT_CUDA_CHECK(cudaEventRecord(f.bandEnd[b], s));
             RT_CUDA_CHECK(cudaStreamWaitEvent(0, f.bandEnd[b]));
         }
-    }
-
-    // The cost the last update queued, once its copy has landed.
-    void CollectSahCost() {
-        if (!sahPending_) return;
-        RT_CUDA_CHECK(cudaEventSynchronize(sahCopied_));
-        lastSahCost_ = *sahHost_;
-        if (sahPendingIsRebuild_) rebuiltSahCost_ = lastSahCost_;
-        sahPending_ = false;
     }
 
     // Every record again, after the instance count changed.
@@ -503,32 +460,6 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         return count;
     }
 
-    // Queues the SAH cost of the tree; it arrives in sahHost_.
-    void QueueSahCost(bool afterRebuild) {
-        const uint32_t n = tlas_.Count();
-        uint32_t count = n == 0 ? 2u : 2u * n;
-        // Each level's partial sums follow the level before's in sahSums_, down to one.
-        size_t partials = 0;
-        for (uint32_t c = count; c > 1 || partials == 0; c = SumBlocks(c)) partials += SumBlocks(c);
-        if (sahSums_.Size() < partials) sahSums_.Resize(partials);
-        float* sums = sahSums_.Data();
-        uint32_t blocks = SumBlocks(count);
-        BlockSumsKernel<<<blocks, kBlock>>>(SahTerms{tlas_.Nodes()}, count, sums);
-        RT_CUDA_CHECK_LAUNCH();
-        while (blocks > 1) {
-            const float* previous = sums;
-            sums += blocks;
-            count = blocks;
-            blocks = SumBlocks(count);
-            BlockSumsKernel<<<blocks, kBlock>>>(previous, count, sums);
-            RT_CUDA_CHECK_LAUNCH();
-        }
-        RT_CUDA_CHECK(cudaMemcpyAsync(sahHost_, sums, sizeof(float), cudaMemcpyDeviceToHost));
-        RT_CUDA_CHECK(cudaEventRecord(sahCopied_));
-        sahPending_ = true;
-        sahPendingIsRebuild_ = afterRebuild;
-    }
-
     int gpu_;
     TlasPolicy policy_;
     DeviceScene device_;
@@ -545,12 +476,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
     std::vector<Instance> hostRecords_;
     GpuTlas tlas_;
     bool built_ = false;
-    float rebuiltSahCost_ = 0.0f;
-    float lastSahCost_ = 0.0f;
-    DeviceBuffer<float> sahSums_;  // the cost's partial sums (BlockSumsKernel)
-    float* sahHost_ = nullptr;     // pinned: the cost arrives without a synchronous copy
-    cudaEvent_t sahCopied_;
-    bool sahPending_ = false, sahPendingIsRebuild_ = false;
+    TlasSahCost sahCost_;
     DeviceBuffer<vec3> frame_;
     DeviceBuffer<unsigned long long> rayCount_;
     TraversalChooser traversal_;

@@ -1,15 +1,9 @@
 #include "engine/render_rt/traversal/traversal_form.h"
 
-#include <algorithm>
+#include "engine/core/timer.h"
 
 namespace rtrt {
 namespace {
-
-double Median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // A trial whose times have not all arrived this many frames after its last frame starts again.
 constexpr uint32_t kMaxWait = 16;
