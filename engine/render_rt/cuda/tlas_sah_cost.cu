@@ -38,13 +38,20 @@ __global__ void BlockSumsKernel(Values values, uint32_t n, float* sums) {
 }  // namespace
 
 TlasSahCost::TlasSahCost() {
+    RT_CUDA_CHECK(cudaGetDevice(&device_));
     RT_CUDA_CHECK(cudaEventCreate(&copied_));
     RT_CUDA_CHECK(cudaMallocHost(&host_, sizeof(float)));
 }
 
+// Frees on the device it was made on (an owner's device guard has ended by the time its members
+// are destroyed), without throwing.
 TlasSahCost::~TlasSahCost() {
+    int current = device_;
+    cudaGetDevice(&current);
+    if (current != device_) cudaSetDevice(device_);
     cudaEventDestroy(copied_);
     cudaFreeHost(host_);
+    if (current != device_) cudaSetDevice(current);
 }
 
 void TlasSahCost::Queue(const BvhNode* nodes, uint32_t leafCount, bool afterRebuild) {

@@ -13,7 +13,7 @@ namespace rtrt {
 
 class TlasSahCost {
   public:
-    TlasSahCost();
+    TlasSahCost();  // on the current device
     ~TlasSahCost();
     TlasSahCost(const TlasSahCost&) = delete;
     TlasSahCost& operator=(const TlasSahCost&) = delete;
@@ -28,6 +28,7 @@ class TlasSahCost {
     float Rebuilt() const { return rebuilt_; }  // the latest collected cost of a fresh build
 
   private:
+    int device_ = 0;            // the current device when made
     DeviceBuffer<float> sums_;  // each level's partial sums after the level before's
     float* host_ = nullptr;     // pinned
     cudaEvent_t copied_;
