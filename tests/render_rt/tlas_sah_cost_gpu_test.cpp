@@ -3,8 +3,10 @@
 // on it), and keeps the cost of the last fresh build apart from the last cost. Label gpu.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "engine/bvh/build/sah_term.h"
@@ -34,8 +36,9 @@ TEST(TlasSahCost, SumsTheNodeTermsOnTheGpu) {
     if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
     std::mt19937 rng(7);
     TlasSahCost cost;
-    // Sizes across the block sums' levels (2,048 values per block).
-    for (uint32_t n : {0u, 1u, 2u, 5u, 1000u, 1024u, 2049u, 100000u, 1000000u}) {
+    // Sizes across the block sums' levels (2,048 values per block: one level up to 1,024
+    // instances, two up to 2,097,152, three above).
+    for (uint32_t n : {0u, 1u, 2u, 5u, 1000u, 1024u, 2049u, 100000u, 1000000u, 2100000u}) {
         SCOPED_TRACE("instances " + std::to_string(n));
         const std::vector<BvhNode> nodes = RandomTree(n, rng);
         double expected = 0.0;

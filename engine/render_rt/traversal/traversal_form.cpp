@@ -1,9 +1,17 @@
 #include "engine/render_rt/traversal/traversal_form.h"
 
-#include "engine/core/timer.h"
+#include <algorithm>
 
 namespace rtrt {
 namespace {
+
+// The mean of the two middle times of an even count (a trial has 4 per form), not core's Median
+// (timer.h), which takes the upper one and so weighs one slow frame more.
+double Median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
 
 // A trial whose times have not all arrived this many frames after its last frame starts again.
 constexpr uint32_t kMaxWait = 16;
