@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Builds the device machine's binaries here, on the CPU machine, into .device-bin/, so that a
+# device call spends its time running them rather than compiling (a source build there takes 4-8
+# minutes of the session's device time; a round of these binaries takes about one). The build is
+# build/gpu configured as there: sm_90, no OpenImageIO, no window, no Embree (neither is on the
+# device machine). .device-bin/ holds the stripped rtrt and rtrt_gpu_tests, the runtime libraries
+# from .device/ (pack.sh first), the models and the commit. Carry [".device-bin"] and run
+# tools/device/round_binaries.sh.
+#
+# tools/device/pack_binaries.sh --baseline <commit> also builds that commit's rtrt (a worktree
+# under build/, rtrt alone) as .device-bin/rtrt-baseline, which the round benchmarks beside it.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+dest=$root/.device-bin
+baseline=""
+if [ "${1:-}" = "--baseline" ]; then baseline=${2:?--baseline needs a commit}; fi
+[ -d "$root/.device/prefix" ] || { echo "pack_binaries: run tools/device/pack.sh first (.device/prefix is missing)" >&2; exit 1; }
+# Builds rtrt (and the GPU tests unless $3 is "rtrt") in the tree $1 into build dir $2.
+build() {
+    local jobs
+    jobs=$(nproc)
+    cmake -S "$1" -B "$2" --preset gpu -DRTRT_WINDOW=OFF -DCMAKE_DISABLE_FIND_PACKAGE_embree=ON \
+        -DRTRT_MODEL_DIR="$root/.cache/models" ${3:+-DRTRT_BUILD_TESTS=OFF} >/dev/null
+    cmake --build "$2" -j "$jobs" --target rtrt ${3:-rtrt_gpu_tests}
+}
+(cd "$root" && build "$root" "$root/build/gpu")
+rm -rf "$dest"
+mkdir -p "$dest/lib"
+strip -o "$dest/rtrt" "$root/build/gpu/game/rtrt"
+strip -o "$dest/rtrt_gpu_tests" "$root/build/gpu/tests/rtrt_gpu_tests"
+cp -a "$root"/.device/prefix/usr/lib/x86_64-linux-gnu/*.so* "$dest/lib/"
+cp -a "$root/.device/models" "$dest/models"
+git -C "$root" rev-parse --short HEAD >"$dest/commit"
+# The tests find the sources and models under the paths compiled into them.
+echo "$root" >"$dest/source_dir"
+if [ -n "$baseline" ]; then
+    tree=$root/build/baseline-src
+    git -C "$root" worktree remove --force "$tree" 2>/dev/null || rm -rf "$tree"
+    git -C "$root" worktree add --detach "$tree" "$baseline" >/dev/null
+    (cd "$tree" && build "$tree" "$tree/build/gpu" rtrt)
+    strip -o "$dest/rtrt-baseline" "$tree/build/gpu/game/rtrt"
+    git -C "$root" rev-parse --short "$baseline" >"$dest/baseline_commit"
+    git -C "$root" worktree remove --force "$tree"
+fi
+du -sh "$dest"

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# A GPU round of the binaries that tools/device/pack_binaries.sh built on the CPU machine (carry
+# [".device-bin"]): the GPU tests, the traversal forms' frames compared pixel by pixel, then bench
+# grid and bench gpu, RTRT_ROUNDS times (default 2), this build and .device-bin/rtrt-baseline (if
+# packed) in turn. Leaves round.log, gpu_tests.log and results.tar (the JSON) in $OUT.
+set -uo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+cd "$root"
+out=${OUT:-$root/build/device-out}
+mkdir -p "$out"
+pack=$root/.device-bin
+export LD_LIBRARY_PATH=$pack/lib:/usr/local/cuda/lib64:/usr/local/cuda/lib:${LD_LIBRARY_PATH:-}
+export RTRT_MODEL_DIR=$pack/models RTRT_COMMIT=$(cat "$pack/commit")
+log=$out/round.log
+say() { echo "$@" | tee -a "$log"; }
+# The tests read the sources and models under the CPU machine's paths, compiled into them.
+source_dir=$(cat "$pack/source_dir")
+if [ "$source_dir" != "$root" ] && [ ! -e "$source_dir" ]; then
+    mkdir -p "$(dirname "$source_dir")" && ln -s "$root" "$source_dir"
+fi
+mkdir -p .cache && { [ -e .cache/models ] || ln -s "$pack/models" .cache/models; }
+say "$(date -u) commit $RTRT_COMMIT, $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader)"
+missing=$(ldd "$pack/rtrt" | grep "not found")
+[ -z "$missing" ] || { say "missing libraries: $missing"; exit 1; }
+"$pack/rtrt_gpu_tests" >"$out/gpu_tests.log" 2>&1
+say "$(grep -E "FAILED|PASSED|tests ran" "$out/gpu_tests.log" | tail -12)"
+# The traversal forms' frames, equal bit for bit (the tests compare them at 320 x 180).
+frames=$(mktemp -d)
+for scene in demo_physics demo_1000_instances demo_crowd; do
+    rendered=1
+    for form in nested single; do
+        "$pack/rtrt" render "assets/scenes/$scene.json" --backend cuda --traversal "$form" \
+            --size 640x360 -o "$frames/$scene-$form.pfm" >/dev/null 2>&1 ||
+            { say "$scene: the $form render failed"; rendered=0; }
+    done
+    if [ "$rendered" = 0 ]; then
+        continue
+    elif cmp -s "$frames/$scene-nested.pfm" "$frames/$scene-single.pfm"; then
+        say "$scene: nested and single frames equal"
+    else
+        say "$scene: nested and single frames DIFFER"
+    fi
+done
+results=$(mktemp -d)
+builds=("$pack/rtrt")
+[ -x "$pack/rtrt-baseline" ] && builds+=("$pack/rtrt-baseline")
+for round in $(seq "${RTRT_ROUNDS:-2}"); do
+    for rtrt in "${builds[@]}"; do
+        commit=$RTRT_COMMIT
+        [ "$rtrt" = "$pack/rtrt" ] || commit=$(cat "$pack/baseline_commit")
+        say "== round $round: $commit"
+        say "$(RTRT_COMMIT=$commit "$rtrt" bench grid --counts 1000,10000 --frames 50 \
+            -o "$results/grid-$commit-$round.json" 2>&1 | tail -4 | head -3)"
+        say "$(RTRT_COMMIT=$commit "$rtrt" bench gpu --frames 100 \
+            -o "$results/gpu-$commit-$round.json" 2>&1 | tail -7 | head -6)"
+    done
+done
+tar -C "$results" -cf "$out/results.tar" .
+say "$(date -u) done"
