@@ -15,30 +15,32 @@ dest=$root/.device-bin
 baseline=""
 if [ "${1:-}" = "--baseline" ]; then baseline=${2:?--baseline needs a commit}; fi
 [ -d "$root/.device/prefix" ] || { echo "pack_binaries: run tools/device/pack.sh first (.device/prefix is missing)" >&2; exit 1; }
-# Builds rtrt (and the GPU tests unless $3 is "rtrt") in the tree $1 into build dir $2.
+# Builds, from the tree $1 into the build folder $2, rtrt and, with $3 = tests, the GPU tests.
 build() {
-    local jobs
-    jobs=$(nproc)
+    local tests=OFF targets=rtrt
+    if [ "${3:-}" = tests ]; then tests=ON targets="rtrt rtrt_gpu_tests"; fi
     cmake -S "$1" -B "$2" --preset gpu -DRTRT_WINDOW=OFF -DCMAKE_DISABLE_FIND_PACKAGE_embree=ON \
-        -DRTRT_MODEL_DIR="$root/.cache/models" ${3:+-DRTRT_BUILD_TESTS=OFF} >/dev/null
-    cmake --build "$2" -j "$jobs" --target rtrt ${3:-rtrt_gpu_tests}
+        -DRTRT_BUILD_TESTS=$tests -DRTRT_MODEL_DIR="$root/.cache/models" >/dev/null
+    cmake --build "$2" -j "$(nproc)" --target $targets
 }
-(cd "$root" && build "$root" "$root/build/gpu")
+(cd "$root" && build "$root" "$root/build/gpu" tests)
 rm -rf "$dest"
 mkdir -p "$dest/lib"
 strip -o "$dest/rtrt" "$root/build/gpu/game/rtrt"
 strip -o "$dest/rtrt_gpu_tests" "$root/build/gpu/tests/rtrt_gpu_tests"
 cp -a "$root"/.device/prefix/usr/lib/x86_64-linux-gnu/*.so* "$dest/lib/"
 cp -a "$root/.device/models" "$dest/models"
-git -C "$root" rev-parse --short HEAD >"$dest/commit"
+# The commit, marked -dirty when the build holds uncommitted changes.
+git -C "$root" describe --always --dirty --abbrev=7 --exclude='*' >"$dest/commit"
 # The tests find the sources and models under the paths compiled into them.
 echo "$root" >"$dest/source_dir"
 if [ -n "$baseline" ]; then
+    # The worktree goes after the build; its build folder stays, for the next baseline's build.
     tree=$root/build/baseline-src
     git -C "$root" worktree remove --force "$tree" 2>/dev/null || rm -rf "$tree"
     git -C "$root" worktree add --detach "$tree" "$baseline" >/dev/null
-    (cd "$tree" && build "$tree" "$tree/build/gpu" rtrt)
-    strip -o "$dest/rtrt-baseline" "$tree/build/gpu/game/rtrt"
+    (cd "$tree" && build "$tree" "$root/build/baseline-gpu")
+    strip -o "$dest/rtrt-baseline" "$root/build/baseline-gpu/game/rtrt"
     git -C "$root" rev-parse --short "$baseline" >"$dest/baseline_commit"
     git -C "$root" worktree remove --force "$tree"
 fi

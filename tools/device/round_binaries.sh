@@ -9,6 +9,7 @@ cd "$root"
 out=${OUT:-$root/build/device-out}
 mkdir -p "$out"
 pack=$root/.device-bin
+[ -x "$pack/rtrt" ] || { echo "round_binaries: no $pack/rtrt (tools/device/pack_binaries.sh, carry [\".device-bin\"])" >&2; exit 1; }
 export LD_LIBRARY_PATH=$pack/lib:/usr/local/cuda/lib64:/usr/local/cuda/lib:${LD_LIBRARY_PATH:-}
 export RTRT_MODEL_DIR=$pack/models RTRT_COMMIT=$(cat "$pack/commit")
 log=$out/round.log
@@ -20,10 +21,12 @@ if [ "$source_dir" != "$root" ] && [ ! -e "$source_dir" ]; then
 fi
 mkdir -p .cache && { [ -e .cache/models ] || ln -s "$pack/models" .cache/models; }
 say "$(date -u) commit $RTRT_COMMIT, $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader)"
-missing=$(ldd "$pack/rtrt" | grep "not found")
-[ -z "$missing" ] || { say "missing libraries: $missing"; exit 1; }
+for binary in "$pack"/rtrt*; do
+    missing=$(ldd "$binary" | grep "not found")
+    [ -z "$missing" ] || { say "$binary: missing libraries: $missing"; exit 1; }
+done
 "$pack/rtrt_gpu_tests" >"$out/gpu_tests.log" 2>&1
-say "$(grep -E "FAILED|PASSED|tests ran" "$out/gpu_tests.log" | tail -12)"
+say "rtrt_gpu_tests exit $?: $(grep -E "^\[  (PASSED|FAILED) |^\[  SKIPPED \] [0-9]+ test|test suites ran" "$out/gpu_tests.log" | tail -40)"
 # The traversal forms' frames, equal bit for bit (the tests compare them at 320 x 180).
 frames=$(mktemp -d)
 for scene in demo_physics demo_1000_instances demo_crowd; do
@@ -43,7 +46,11 @@ for scene in demo_physics demo_1000_instances demo_crowd; do
 done
 results=$(mktemp -d)
 builds=("$pack/rtrt")
-[ -x "$pack/rtrt-baseline" ] && builds+=("$pack/rtrt-baseline")
+if [ -x "$pack/rtrt-baseline" ]; then
+    builds+=("$pack/rtrt-baseline")
+else
+    say "no rtrt-baseline packed: this build alone is timed"
+fi
 for round in $(seq "${RTRT_ROUNDS:-2}"); do
     for rtrt in "${builds[@]}"; do
         commit=$RTRT_COMMIT
