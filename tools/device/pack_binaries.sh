@@ -3,9 +3,10 @@
 # device call spends its time running them rather than compiling (a source build there takes 4-8
 # minutes of the session's device time; a round of these binaries takes about one). The build is
 # build/gpu configured as there: sm_90, no OpenImageIO, no window, no Embree (neither is on the
-# device machine). .device-bin/ holds the stripped rtrt and rtrt_gpu_tests, the runtime libraries
-# from .device/ (pack.sh first), the models and the commit. Carry [".device-bin"] and run
-# tools/device/round_binaries.sh.
+# device machine). .device-bin/ holds the stripped and gzipped rtrt and rtrt_gpu_tests, the
+# runtime libraries from .device/ (pack.sh first), the models and the commit. Carry
+# [".device-bin"] and run tools/device/round_binaries.sh. An experiment's build of this tree may
+# be added by hand as rtrt-variant-NAME(.gz); the round times it too.
 #
 # tools/device/pack_binaries.sh --baseline <commit> also builds that commit's rtrt (a worktree
 # under build/, rtrt alone) as .device-bin/rtrt-baseline, which the round benchmarks beside it.
@@ -26,8 +27,11 @@ build() {
 (cd "$root" && build "$root" "$root/build/gpu" tests)
 rm -rf "$dest"
 mkdir -p "$dest/lib"
+# Stripped and gzipped (round_binaries.sh unpacks them): the carry and the working tree together
+# must stay under 64 MiB.
 strip -o "$dest/rtrt" "$root/build/gpu/game/rtrt"
 strip -o "$dest/rtrt_gpu_tests" "$root/build/gpu/tests/rtrt_gpu_tests"
+gzip -9 "$dest/rtrt" "$dest/rtrt_gpu_tests"
 cp -a "$root"/.device/prefix/usr/lib/x86_64-linux-gnu/*.so* "$dest/lib/"
 cp -a "$root/.device/models" "$dest/models"
 # The commit, marked -dirty when the build holds uncommitted changes.
@@ -41,6 +45,7 @@ if [ -n "$baseline" ]; then
     git -C "$root" worktree add --detach "$tree" "$baseline" >/dev/null
     (cd "$tree" && build "$tree" "$root/build/baseline-gpu")
     strip -o "$dest/rtrt-baseline" "$root/build/baseline-gpu/game/rtrt"
+    gzip -9 "$dest/rtrt-baseline"
     git -C "$root" rev-parse --short "$baseline" >"$dest/baseline_commit"
     git -C "$root" worktree remove --force "$tree"
 fi

@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # A GPU round of the binaries that tools/device/pack_binaries.sh built on the CPU machine (carry
 # [".device-bin"]): the GPU tests, the traversal forms' frames compared pixel by pixel, then bench
-# grid and bench gpu, RTRT_ROUNDS times (default 2), this build and .device-bin/rtrt-baseline (if
-# packed) in turn. Leaves round.log, gpu_tests.log and results.tar (the JSON) in $OUT.
+# grid and bench gpu, RTRT_ROUNDS times (default 2), this build, .device-bin/rtrt-baseline (if
+# packed) and any rtrt-variant-NAME in turn, after comparing their frames with this build's.
+# Leaves round.log, gpu_tests.log and results.tar (the JSON) in $OUT.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root"
 out=${OUT:-$root/build/device-out}
 mkdir -p "$out"
 pack=$root/.device-bin
+# Binaries packed gzipped, to keep the carry under its limit.
+for packed in "$pack"/rtrt*.gz; do [ -e "$packed" ] && gunzip -f "$packed" && chmod +x "${packed%.gz}"; done
 [ -x "$pack/rtrt" ] || { echo "round_binaries: no $pack/rtrt (tools/device/pack_binaries.sh, carry [\".device-bin\"])" >&2; exit 1; }
 export LD_LIBRARY_PATH=$pack/lib:/usr/local/cuda/lib64:/usr/local/cuda/lib:${LD_LIBRARY_PATH:-}
 export RTRT_MODEL_DIR=$pack/models RTRT_COMMIT=$(cat "$pack/commit")
@@ -51,10 +54,33 @@ if [ -x "$pack/rtrt-baseline" ]; then
 else
     say "no rtrt-baseline packed: this build alone is timed"
 fi
+# Variants packed by hand beside it (rtrt-variant-NAME, an experiment's build of this tree).
+for variant in "$pack"/rtrt-variant-*; do [ -x "$variant" ] && builds+=("$variant"); done
+# The label of a build in the log and the result files.
+label() {
+    case "$1" in
+    "$pack/rtrt") echo "$RTRT_COMMIT" ;;
+    "$pack/rtrt-baseline") cat "$pack/baseline_commit" ;;
+    *) echo "$RTRT_COMMIT-${1##*/rtrt-variant-}" ;;
+    esac
+}
+# Every other build's frames (the default traversal form) against this build's.
+for rtrt in "${builds[@]:1}"; do
+    for scene in dragon demo_physics demo_1000_instances demo_crowd demo_glass; do
+        for build in "$pack/rtrt" "$rtrt"; do
+            "$build" render "assets/scenes/$scene.json" --backend cuda --size 640x360 \
+                -o "$frames/$scene-$(label "$build").pfm" >/dev/null 2>&1
+        done
+        if cmp -s "$frames/$scene-$RTRT_COMMIT.pfm" "$frames/$scene-$(label "$rtrt").pfm"; then
+            say "$scene: $(label "$rtrt") frame equals $RTRT_COMMIT's"
+        else
+            say "$scene: $(label "$rtrt") frame DIFFERS from $RTRT_COMMIT's (or a render failed)"
+        fi
+    done
+done
 for round in $(seq "${RTRT_ROUNDS:-2}"); do
     for rtrt in "${builds[@]}"; do
-        commit=$RTRT_COMMIT
-        [ "$rtrt" = "$pack/rtrt" ] || commit=$(cat "$pack/baseline_commit")
+        commit=$(label "$rtrt")
         say "== round $round: $commit"
         say "$(RTRT_COMMIT=$commit "$rtrt" bench grid --counts 1000,10000 --frames 50 \
             -o "$results/grid-$commit-$round.json" 2>&1 | tail -4 | head -3)"
