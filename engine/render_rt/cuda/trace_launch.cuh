@@ -59,9 +59,12 @@ __global__ void __launch_bounds__(64, TraceMinBlocks(kFeatures))
 // pixel tiles, row by row, from a frame-wide cursor (one atomic add per tile) until none are left.
 // The many-instance kernels launch this way: their rays are long and uneven, and a warp that
 // finishes takes new work at once instead of waiting for the other warp of its block; on the H100
-// the instance grid traced 3.4-4.6% faster. The nested kernels keep the block grid: their rays are
-// mostly short (background, small models), and the paper scene's cube and teapot traced 8-9%
-// slower (bench/results/persistent-warps-h100-2026-12-06.txt).
+// the instance grid traced 2-3% faster (bench/results/persistent-warps-fmad-h100-2026-12-06.txt).
+// The nested kernels keep the block grid: their rays are mostly short (background, small models),
+// and the paper scene's cube and teapot traced 8-9% slower
+// (bench/results/persistent-warps-h100-2026-12-06.txt). A warp traces the same 8 x 4 pixels as in
+// the block grid, and the device code fuses no multiply-add it was not asked to (mul_add.h), so
+// both kernels give the same pixels bit for bit.
 template <uint32_t kFeatures, class Policy>
 __global__ void __launch_bounds__(64, TraceMinBlocks(kFeatures))
     PersistentTraceKernel(RenderSceneView scene, ViewMode view, uint32_t sample, uint32_t perSide,
