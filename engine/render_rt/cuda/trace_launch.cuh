@@ -58,8 +58,10 @@ __global__ void __launch_bounds__(64, TraceMinBlocks(kFeatures))
 // Persistent warps: as many blocks of 64 threads as fit on the GPU at once, each warp taking 8 x 4
 // pixel tiles, row by row, from a frame-wide cursor (one atomic add per tile) until none are left.
 // The many-instance kernels launch this way: their rays are long and uneven, and a warp that
-// finishes takes new work at once instead of waiting for the other warp of its block; on the H100
-// the instance grid traced 2-3% faster (bench/results/persistent-warps-fmad-h100-2026-12-06.txt).
+// finishes takes new work at once instead of waiting for the other warp of its block. On the H100
+// the instance grid traced 2.0-3.2% faster with it and the explicit fusing of mul_add.h than before
+// either, and a version of it took 3.8-4.1% off while the compiler fused at will
+// (bench/results/persistent-warps-fmad-h100-2026-12-06.txt).
 // The nested kernels keep the block grid: their rays are mostly short (background, small models),
 // and the paper scene's cube and teapot traced 8-9% slower
 // (bench/results/persistent-warps-h100-2026-12-06.txt). A warp traces the same 8 x 4 pixels as in
