@@ -17,12 +17,10 @@ std::vector<double> TimeCudaTrace(const RenderScene& scene, const RenderSettings
     frame.Resize(size_t(settings.width) * settings.height);
     const uint32_t features =
         EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view);
-    DeviceBuffer<uint32_t> tileCursor;
-    tileCursor.Resize(1);
-    return TimeTraceLaunches(
-        warmup, frames, stats ? &stats->rays : nullptr, [&](unsigned long long* rayCount) {
-            LaunchTrace(view, settings.view, features, frame.Data(), rayCount, tileCursor.Data());
-        });
+    return TimeTraceLaunches(warmup, frames, stats ? &stats->rays : nullptr,
+                             [&](unsigned long long* rayCount) {
+                                 LaunchTrace(view, settings.view, features, frame.Data(), rayCount);
+                             });
 }
 
 bool DeviceMemoryInUse(size_t* bytes) {

@@ -56,8 +56,6 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
         frame.Resize(size_t(settings.width) * settings.height);
         DeviceBuffer<unsigned long long> rayCount;
         rayCount.Resize(1);
-        DeviceBuffer<uint32_t> tileCursor;
-        tileCursor.Resize(1);
         GpuTlas tlas;
         cudaEvent_t events[6];
         for (cudaEvent_t& e : events) RT_CUDA_CHECK(cudaEventCreate(&e));
@@ -78,7 +76,7 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
             RT_CUDA_CHECK(cudaEventRecord(events[2]));
             view.tlas = {tlas.Nodes(), instances.Data(), view.tlas.blases};
             LaunchTrace(view, ViewMode::kShaded, features, frame.Data(),
-                        count ? rayCount.Data() : nullptr, tileCursor.Data());
+                        count ? rayCount.Data() : nullptr);
             RT_CUDA_CHECK(cudaEventRecord(events[3]));
             // The refit path, timed alone: same tree, the boxes this frame's rebuild used.
             RT_CUDA_CHECK(cudaEventRecord(events[4]));

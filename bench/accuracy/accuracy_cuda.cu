@@ -38,16 +38,13 @@ CudaAccuracyRun RunAccuracyCuda(const RenderScene& scene, const RenderSettings& 
     const dim3 grid((settings.width + block.x - 1) / block.x,
                     (settings.height + block.y - 1) / block.y);
     const bool manyInstances = (scene.Features() & kFeatureManyInstances) != 0;
-    DeviceBuffer<uint32_t> tileCursor;
-    tileCursor.Resize(1);
     CudaAccuracyRun run;
     DispatchAccuracy(accuracy, [&](auto tag) {
         using Policy = AccuracyPolicy<decltype(tag)::value>;
         auto measure = [&](auto featureTag) {
             constexpr uint32_t kFeatures = decltype(featureTag)::value;
             run.traceMs = TimeTraceLaunches(warmup, frames, &run.rays, [&](unsigned long long* n) {
-                LaunchTraceKernel<kFeatures, Policy>(view, ViewMode::kShaded, frame.Data(), n, 0,
-                                                     {0, UINT32_MAX}, tileCursor.Data());
+                LaunchTraceKernel<kFeatures, Policy>(view, ViewMode::kShaded, frame.Data(), n);
             });
             AccuracyObjectKernel<kFeatures, Policy><<<grid, block>>>(view, objects.Data());
             RT_CUDA_CHECK_LAUNCH();

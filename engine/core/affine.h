@@ -1,7 +1,6 @@
 #pragma once
 #include "engine/core/float_bounds.h"
 #include "engine/core/math.h"
-#include "engine/core/mul_add.h"
 
 namespace rtrt {
 
@@ -40,10 +39,7 @@ struct Affine {
     }
 
   private:
-    // (r.x v.x + r.y v.y) + r.z v.z, fused on the GPU (mul_add.h).
-    RT_HD static float Dot3(const vec4& r, vec3 v) {
-        return MulAdd(r.z, v.z, MulAdd(r.x, v.x, r.y * v.y));
-    }
+    RT_HD static float Dot3(const vec4& r, vec3 v) { return r.x * v.x + r.y * v.y + r.z * v.z; }
 };
 static_assert(sizeof(Affine) == 48);
 

@@ -3,7 +3,6 @@
 // Intersection", JCGT 2(1). Edge functions that round to exactly zero are redone in double, so
 // rays through shared edges and vertices hit exactly one of the neighbours. Hits whose t is within
 // its error bound of 0 are decided again on the triangle's plane (NearHitOnPlane).
-#include "engine/core/mul_add.h"
 #include "engine/geometry/primitives.h"
 #include "engine/geometry/ray_setup.h"
 
@@ -62,14 +61,12 @@ RT_HOST_ALWAYS_INLINE RT_HD inline bool IntersectTriangle(const Triangle& tri, c
     const float* v2 = &tri.v2.x;
     const vec3 o = r.originK;
     const float aKz = v0[r.kz] - o.z, bKz = v1[r.kz] - o.z, cKz = v2[r.kz] - o.z;
-    // The shear, x - shearX z, fused on the GPU (mul_add.h); every triangle that shares a
-    // vertex shears it the same way, which is what the edge functions need.
-    const float ax = MulAdd(-r.shearX, aKz, v0[r.kx] - o.x);
-    const float ay = MulAdd(-r.shearY, aKz, v0[r.ky] - o.y);
-    const float bx = MulAdd(-r.shearX, bKz, v1[r.kx] - o.x);
-    const float by = MulAdd(-r.shearY, bKz, v1[r.ky] - o.y);
-    const float cx = MulAdd(-r.shearX, cKz, v2[r.kx] - o.x);
-    const float cy = MulAdd(-r.shearY, cKz, v2[r.ky] - o.y);
+    const float ax = (v0[r.kx] - o.x) - r.shearX * aKz;
+    const float ay = (v0[r.ky] - o.y) - r.shearY * aKz;
+    const float bx = (v1[r.kx] - o.x) - r.shearX * bKz;
+    const float by = (v1[r.ky] - o.y) - r.shearY * bKz;
+    const float cx = (v2[r.kx] - o.x) - r.shearX * cKz;
+    const float cy = (v2[r.ky] - o.y) - r.shearY * cKz;
     float u = CrossDiffNoContract(cx, by, cy, bx);
     float v = CrossDiffNoContract(ax, cy, ay, cx);
     float w = CrossDiffNoContract(bx, ay, by, ax);
@@ -84,7 +81,7 @@ RT_HOST_ALWAYS_INLINE RT_HD inline bool IntersectTriangle(const Triangle& tri, c
     const float az = r.shearZ * aKz;
     const float bz = r.shearZ * bKz;
     const float cz = r.shearZ * cKz;
-    const float t = MulAdd(w, cz, MulAdd(u, az, v * bz));  // (u az + v bz) + w cz
+    const float t = u * az + v * bz + w * cz;
     // The bound on the rounding error of t (pbrt-v4, "Ensure that computed triangle t is
     // conservatively greater than zero": bounds on the error of the sheared coordinates, edge
     // functions and t), here still multiplied by |det|. A t within it of 0 may be a ray leaving

@@ -78,43 +78,5 @@ TEST(TraversalForms, TraceTheSameFramesOfACrowd) {
     ExpectFormsTraceTheSameFrames("demo_crowd.json");
 }
 
-// The single loop traced in bands on streams of their own (each band's persistent warps with a tile
-// cursor of their own, trace_launch.cuh) gives the nested form's whole frames.
-TEST(TraversalForms, SingleLoopInBandsTracesTheSameFrames) {
-    std::string why;
-    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
-    const LoadedScene loaded =
-        LoadSceneFile(test::SourcePath("assets/scenes/demo_1000_instances.json"));
-    RenderSettings nested;
-    nested.width = 320;
-    nested.height = 180;
-    nested.maxDepth = loaded.scene.maxDepth;
-    nested.traversal = TraversalForm::kNested;
-    RenderSettings banded = nested;
-    banded.traversal = TraversalForm::kSingleLoop;
-    banded.traceBands = 3;
-    World worlds[] = {World(loaded), World(loaded)};
-    const RenderSettings* settings[] = {&nested, &banded};
-    std::unique_ptr<FrameRenderer> renderers[2];
-    for (int k = 0; k < 2; ++k) renderers[k] = MakeFrameRenderer(Backend::kCuda, worlds[k].Scene());
-    for (int f = 1; f <= 6; ++f) {
-        Image images[2];
-        RenderStats stats[2];
-        for (int k = 0; k < 2; ++k) {
-            worlds[k].Advance(1.0f / 60.0f);
-            renderers[k]->Update(worlds[k].Scene(), worlds[k].Changes());
-            renderers[k]->Trace(worlds[k].Scene(), *settings[k], &images[k], &stats[k]);
-            renderers[k]->Finish();
-        }
-        SCOPED_TRACE("frame " + std::to_string(f));
-        EXPECT_TRUE(renderers[1]->Times().singleLoop);
-        ASSERT_EQ(images[0].pixels.size(), images[1].pixels.size());
-        EXPECT_EQ(0, std::memcmp(images[0].pixels.data(), images[1].pixels.data(),
-                                 images[0].pixels.size() * sizeof(vec3)));
-        EXPECT_EQ(stats[0].rays, stats[1].rays);
-        EXPECT_GT(stats[0].rays, 0u);
-    }
-}
-
 }  // namespace
 }  // namespace rtrt

@@ -1,8 +1,8 @@
-// The GPU runner: one thread per case, the RT_HD evaluators of cases.h, compiled as the renderer's
-// device code is: no implicit fused multiply-adds (-fmad=false, engine/core), the fused ones
-// asked for where the code says so (mul_add.h).
+// The GPU runner: one thread per case, the RT_HD evaluators of cases.h. No --use_fast_math and no
+// --fmad=false: the cases must hold under nvcc's default contraction, which fuses every
+// multiply-add the code does not keep apart itself (triangle_intersect.h keeps the edge
+// functions apart with __fmul_rn/__fsub_rn).
 #include "engine/core/device_buffer.h"
-#include "engine/core/mul_add.h"
 #include "engine/render_rt/cuda/device_scene.h"
 #include "tests/robust/gpu_runner.h"
 
@@ -41,11 +41,6 @@ struct TriangleEval {
     RT_HD PrimResult operator()(const TriangleCase& c) const { return EvaluateTriangle(c); }
 };
 
-__global__ void MulAddKernel(float a, float b, float c, float* out) {
-    out[0] = MulAdd(a, b, c);
-    out[1] = a * b + c;
-}
-
 TlasView DeviceTlas(const DeviceStaticScene& device, const RenderScene& scene) {
     RenderSettings settings;
     settings.width = settings.height = 1;
@@ -73,16 +68,6 @@ std::vector<SpawnResult> GpuRunner::Spawn(const RenderScene& scene,
                                           std::span<const SpawnCase> cases) const {
     const DeviceStaticScene device(scene);
     return Map<SpawnResult>(cases, SpawnEvaluator{DeviceTlas(device, scene)});
-}
-
-std::pair<float, float> MulAddOnGpu(float a, float b, float c) {
-    DeviceBuffer<float> out;
-    out.Resize(2);
-    MulAddKernel<<<1, 1>>>(a, b, c, out.Data());
-    RT_CUDA_CHECK_LAUNCH();
-    float values[2];
-    out.Download(std::span<float>(values, 2));
-    return {values[0], values[1]};
 }
 
 }  // namespace rtrt::robust

@@ -1,10 +1,9 @@
 #pragma once
-// Runs the hard cases on the GPU: the evaluators of cases.h in kernels compiled as the renderer's
-// device code is (no implicit fused multiply-adds), defined in gpu_runner.cu. The interface is
-// CpuRunner's, so the checks of *_checks.h run unchanged on both back ends.
+// Runs the hard cases on the GPU: the evaluators of cases.h in kernels that nvcc compiles with
+// its default floating-point contraction (--fmad=true), defined in gpu_runner.cu. The interface
+// is CpuRunner's, so the checks of *_checks.h run unchanged on both back ends.
 #include <span>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "engine/render_rt/render_scene.h"
@@ -22,8 +21,5 @@ struct GpuRunner {
     std::vector<SpawnResult> Spawn(const RenderScene& scene,
                                    std::span<const SpawnCase> cases) const;
 };
-
-// MulAdd(a, b, c) (mul_add.h) and a * b + c as the GPU's device code computes them.
-std::pair<float, float> MulAddOnGpu(float a, float b, float c);
 
 }  // namespace rtrt::robust

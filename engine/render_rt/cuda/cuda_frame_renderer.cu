@@ -76,7 +76,6 @@ class CudaFrameRenderer final : public GpuBandRenderer {
             RT_CUDA_CHECK(cudaMallocHost(&f.raysHost, sizeof(unsigned long long)));
         }
         rayCount_.Resize(1);
-        tileCursors_.Resize(kMaxTraceBands);
         Update(scene, {{}, true});
     }
     ~CudaFrameRenderer() override {
@@ -244,12 +243,11 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         f.bands.clear();
         if (band) {
             if (band->Rows() > 0)
-                LaunchTrace(view, settings.view, features, frame_.Data(), rays, tileCursors_.Data(),
-                            0, *band);
+                LaunchTrace(view, settings.view, features, frame_.Data(), rays, 0, *band);
         } else if (settings.traceBands > 1) {
             TraceBands(f, view, settings, features, rays);
         } else {
-            LaunchTrace(view, settings.view, features, frame_.Data(), rays, tileCursors_.Data());
+            LaunchTrace(view, settings.view, features, frame_.Data(), rays);
         }
         if (countRays)
             RT_CUDA_CHECK(cudaMemcpyAsync(f.raysHost, rayCount_.Data(), sizeof(unsigned long long),
@@ -390,8 +388,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
             cudaStream_t s = bandStreams_[b];
             RT_CUDA_CHECK(cudaStreamWaitEvent(s, f.traceReady));
             RT_CUDA_CHECK(cudaEventRecord(f.bandStart[b], s));
-            LaunchTrace(view, settings.view, features, frame_.Data(), rays, tileCursors_.Data() + b,
-                        s, f.bands[b]);
+            LaunchTrace(view, settings.view, features, frame_.Data(), rays, s, f.bands[b]);
             RT_CUDA_CHECK(cudaEventRecord(f.bandEnd[b], s));
             RT_CUDA_CHECK(cudaStreamWaitEvent(0, f.bandEnd[b]));
         }
@@ -482,7 +479,6 @@ class CudaFrameRenderer final : public GpuBandRenderer {
     TlasSahCost sahCost_;
     DeviceBuffer<vec3> frame_;
     DeviceBuffer<unsigned long long> rayCount_;
-    DeviceBuffer<uint32_t> tileCursors_;  // one per trace band: bands trace at once
     TraversalChooser traversal_;
     FrameEvents frames_[2];
     std::optional<FrameSplit> split_;        // with traceBands > 1

@@ -9,11 +9,9 @@
 namespace rtrt {
 
 void LaunchTrace(const RenderSceneView& view, ViewMode mode, uint32_t features, vec3* frame,
-                 unsigned long long* rayCount, uint32_t* tileCursor, cudaStream_t stream,
-                 RowBand rows) {
+                 unsigned long long* rayCount, cudaStream_t stream, RowBand rows) {
     DispatchFeatures(features, [&](auto featureTag) {
-        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream, rows,
-                                                       tileCursor);
+        LaunchTraceKernel<decltype(featureTag)::value>(view, mode, frame, rayCount, stream, rows);
     });
 }
 
@@ -50,9 +48,7 @@ Image RenderRawCuda(const RenderScene& scene, const RenderSettings& settings, Re
     const uint32_t features = WithTraversalForm(
         EffectiveFeatures(scene.Features(), settings.enabledFeatures, settings.view),
         settings.traversal);
-    DeviceBuffer<uint32_t> tileCursor;
-    tileCursor.Resize(1);
-    LaunchTrace(view, settings.view, features, frame.Data(), rayCount.Data(), tileCursor.Data());
+    LaunchTrace(view, settings.view, features, frame.Data(), rayCount.Data());
     RT_CUDA_CHECK(cudaDeviceSynchronize());
     Image image(settings.width, settings.height);
     frame.Download(image.pixels);

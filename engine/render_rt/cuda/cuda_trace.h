@@ -9,11 +9,9 @@ namespace rtrt {
 
 // Traces view (all pointers in device memory) into frame (width x height, device memory) with the
 // kernel specialised for `features`, the rows of `rows` only (default: all); rayCount, if not
-// null, accumulates the rays traced. tileCursor: one word of device memory that no concurrent
-// launch shares, for the persistent many-instance kernels (trace_launch.cuh), or null for the
-// block grid.
+// null, accumulates the rays traced.
 void LaunchTrace(const RenderSceneView& view, ViewMode mode, uint32_t features, vec3* frame,
-                 unsigned long long* rayCount, uint32_t* tileCursor, cudaStream_t stream = 0,
+                 unsigned long long* rayCount, cudaStream_t stream = 0,
                  RowBand rows = {0, UINT32_MAX});
 
 }  // namespace rtrt
