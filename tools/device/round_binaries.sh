@@ -64,13 +64,18 @@ label() {
     *) echo "$RTRT_COMMIT-${1##*/rtrt-variant-}" ;;
     esac
 }
-# Every other build's frames (the default traversal form) against this build's.
+# Every other build's frames (the default traversal form) against this build's, rendered once.
+scenes="dragon demo_physics demo_1000_instances demo_crowd demo_glass"
+render() {
+    "$1" render "assets/scenes/$2.json" --backend cuda --size 640x360 \
+        -o "$frames/$2-$(label "$1").pfm" >/dev/null 2>&1
+}
+if [ "${#builds[@]}" -gt 1 ]; then
+    for scene in $scenes; do render "$pack/rtrt" "$scene"; done
+fi
 for rtrt in "${builds[@]:1}"; do
-    for scene in dragon demo_physics demo_1000_instances demo_crowd demo_glass; do
-        for build in "$pack/rtrt" "$rtrt"; do
-            "$build" render "assets/scenes/$scene.json" --backend cuda --size 640x360 \
-                -o "$frames/$scene-$(label "$build").pfm" >/dev/null 2>&1
-        done
+    for scene in $scenes; do
+        render "$rtrt" "$scene"
         if cmp -s "$frames/$scene-$RTRT_COMMIT.pfm" "$frames/$scene-$(label "$rtrt").pfm"; then
             say "$scene: $(label "$rtrt") frame equals $RTRT_COMMIT's"
         else
