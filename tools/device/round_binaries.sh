@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # A GPU round of the binaries that tools/device/pack_binaries.sh built on the CPU machine (carry
 # [".device-bin"]): the GPU tests, the traversal forms' frames compared pixel by pixel, then bench
-# grid and bench gpu, RTRT_ROUNDS times (default 2), this build, .device-bin/rtrt-baseline (if
-# packed) and any rtrt-variant-NAME in turn, after comparing their frames with this build's.
+# grid, bench gpu and bench frame (the four played demos at 1920x1080), RTRT_ROUNDS times (default
+# 2), this build, .device-bin/rtrt-baseline (if packed) and any rtrt-variant-NAME in turn, after
+# comparing their frames with this build's.
 # Leaves round.log, gpu_tests.log and results.tar (the JSON) in $OUT.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -83,6 +84,7 @@ for rtrt in "${builds[@]:1}"; do
         fi
     done
 done
+demos=$(for d in demo_glass demo_1000_instances demo_physics demo_crowd; do echo "assets/scenes/$d.json"; done)
 for round in $(seq "${RTRT_ROUNDS:-2}"); do
     for rtrt in "${builds[@]}"; do
         commit=$(label "$rtrt")
@@ -91,6 +93,9 @@ for round in $(seq "${RTRT_ROUNDS:-2}"); do
             -o "$results/grid-$commit-$round.json" 2>&1 | tail -4 | head -3)"
         say "$(RTRT_COMMIT=$commit "$rtrt" bench gpu --frames 100 \
             -o "$results/gpu-$commit-$round.json" 2>&1 | tail -7 | head -6)"
+        # The played demos: they take the nested kernels, which the grid does not.
+        say "$(RTRT_COMMIT=$commit "$rtrt" bench frame $demos --size 1920x1080 --frames 200 \
+            -o "$results/frame-$commit-$round.json" 2>&1 | tail -6 | head -5)"
     done
 done
 tar -C "$results" -cf "$out/results.tar" .

@@ -20,21 +20,36 @@ namespace rtrt {
 // that must fit per SM): their time goes into long, divergent traversals that more warps in flight
 // hide better. On the H100, 16 blocks (64 registers, some spilled) made the instance grid 1.6-1.8x
 // faster than no cap (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt). The nested kernels
-// without PBR are held to 128 registers (8 blocks, 16 warps per SM), which most need anyway: the
+// without PBR are held to 128 registers (16 warps per SM), which most need anyway: the
 // refraction and texture kernels would take 132-137 and lose two warps per SM to a few
 // registers (bench/results/gpu-header-carry-h200-2026-12-03.txt). PBR kernels (160-175
-// registers) run uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N overrides the many-instance cap, for
-// experiments.
+// registers) run uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N overrides the many-instance cap (in
+// blocks of 64 threads), for experiments.
 #if !defined(RTRT_TRACE_MIN_BLOCKS)
 #define RTRT_TRACE_MIN_BLOCKS 16
 #endif
+
+// Rows of pixels a block traces, 8 pixels wide: warps of 8 x 4 pixels stacked. The nested kernels
+// without PBR trace 8 x 16 (four warps): the warps an SM holds at once then come from fewer,
+// larger patches of the image and share more of the BVH in its L1, which took 1-3.5% off the
+// paper scene and three played demos but cost demo_crowd 2.4%; the single loop traced the
+// instance grid no faster in larger blocks, and blocks of one warp were slower everywhere
+// (bench/results/trace-tiles-h100-2026-12-06.txt, trace-profile-h200-2026-12-03.txt). The PBR
+// kernels were not measured and keep 8 x 8.
+constexpr uint32_t TraceBlockRows(uint32_t features) {
+    return (features & (kFeatureManyInstances | kFeaturePbr)) != 0 ? 8u : 16u;
+}
+constexpr uint32_t TraceBlockThreads(uint32_t features) { return 8u * TraceBlockRows(features); }
+
+// Blocks per SM that the register caps above ask for, in blocks of TraceBlockThreads.
 constexpr int TraceMinBlocks(uint32_t features) {
-    if ((features & kFeatureManyInstances) != 0) return RTRT_TRACE_MIN_BLOCKS;
-    return (features & kFeaturePbr) != 0 ? 1 : 8;
+    const int threads = int(TraceBlockThreads(features));
+    if ((features & kFeatureManyInstances) != 0) return RTRT_TRACE_MIN_BLOCKS * 64 / threads;
+    return (features & kFeaturePbr) != 0 ? 1 : 512 / threads;
 }
 
 template <uint32_t kFeatures, class Policy>
-__global__ void __launch_bounds__(64, TraceMinBlocks(kFeatures))
+__global__ void __launch_bounds__(TraceBlockThreads(kFeatures), TraceMinBlocks(kFeatures))
     TraceKernel(RenderSceneView scene, ViewMode view, uint32_t sample, uint32_t perSide,
                 uint32_t rowBegin, uint32_t rowEnd, vec3* out, unsigned long long* rayCount) {
     const uint32_t x = blockIdx.x * blockDim.x + threadIdx.x;
@@ -54,7 +69,7 @@ void LaunchTraceKernel(const RenderSceneView& view, ViewMode mode, vec3* frame,
                        RowBand rows = {0, UINT32_MAX}) {
     const uint32_t rowEnd = std::min(rows.end, view.height);
     if (rows.begin >= rowEnd) return;
-    const dim3 block(8, 8);
+    const dim3 block(8, TraceBlockRows(kFeatures));
     const dim3 grid((view.width + block.x - 1) / block.x,
                     (rowEnd - rows.begin + block.y - 1) / block.y);
     // One launch per sample (AccumulateSample says why).
