@@ -31,7 +31,7 @@ namespace rtrt {
 
 // Rows of pixels a block traces, 8 pixels wide: warps of 8 x 4 pixels stacked. The nested kernels
 // without PBR trace 8 x 16 (four warps): the warps an SM holds at once then come from fewer,
-// larger patches of the image and share more of the BVH in its L1, which took 1-3.3% off the
+// larger patches of the image and share more of the BVH in its L1, which took 0.3-3.3% off the
 // paper scene and three played demos. The PBR kernels (demo_crowd's walkers) were 2.4% slower in
 // such blocks, the single loop traced the instance grid no faster, and blocks of one warp were
 // slower everywhere (bench/results/trace-tiles-h100-2026-12-06.txt,
