@@ -41,11 +41,14 @@ constexpr uint32_t TraceBlockRows(uint32_t features) {
 }
 constexpr uint32_t TraceBlockThreads(uint32_t features) { return 8u * TraceBlockRows(features); }
 
-// Blocks per SM that the register caps above ask for, in blocks of TraceBlockThreads.
+// Blocks per SM that the register caps above ask for, in blocks of TraceBlockThreads: the threads
+// an SM must hold (RTRT_TRACE_MIN_BLOCKS blocks of 64, or 16 warps for the 128-register cap)
+// divided by the block's.
 constexpr int TraceMinBlocks(uint32_t features) {
     const int threads = int(TraceBlockThreads(features));
     if ((features & kFeatureManyInstances) != 0) return RTRT_TRACE_MIN_BLOCKS * 64 / threads;
-    return (features & kFeaturePbr) != 0 ? 1 : 512 / threads;
+    constexpr int kNestedThreadsPerSm = 16 * 32;
+    return (features & kFeaturePbr) != 0 ? 1 : kNestedThreadsPerSm / threads;
 }
 
 template <uint32_t kFeatures, class Policy>
