@@ -20,11 +20,13 @@ namespace rtrt {
 // that must fit per SM): their time goes into long, divergent traversals that more warps in flight
 // hide better. On the H100, 16 blocks (64 registers, some spilled) made the instance grid 1.6-1.8x
 // faster than no cap (bench/results/gpu-register-cap-sweep-h100-2026-11-25.txt). The nested kernels
-// without PBR are held to 128 registers (16 warps per SM), which most need anyway: the
-// refraction and texture kernels would take 132-137 and lose two warps per SM to a few
-// registers (bench/results/gpu-header-carry-h200-2026-12-03.txt). PBR kernels (160-175
-// registers) run uncapped. cmake -DRTRT_TRACE_MIN_BLOCKS=N overrides the many-instance cap (in
-// blocks of 64 threads), for experiments.
+// are held to 128 registers (16 warps per SM), which most need anyway: the refraction and texture
+// kernels would take 132-137 and lose two warps per SM to a few registers
+// (bench/results/gpu-header-carry-h200-2026-12-03.txt). The PBR kernels would take 160-175 and
+// hold 10-12 warps; held to 128 they traced demo_crowd faster for a little more time on the
+// lighter gltf_demo, and 102 registers cost gltf_demo far more
+// (bench/results/pbr-register-cap-h100-2026-12-06.txt). cmake -DRTRT_TRACE_MIN_BLOCKS=N overrides
+// the many-instance cap (in blocks of 64 threads), for experiments.
 #if !defined(RTRT_TRACE_MIN_BLOCKS)
 #define RTRT_TRACE_MIN_BLOCKS 16
 #endif
@@ -32,10 +34,10 @@ namespace rtrt {
 // Rows of pixels a block traces, 8 pixels wide: warps of 8 x 4 pixels stacked. The nested kernels
 // without PBR trace 8 x 16 (four warps), so that the warps an SM holds at once come from fewer,
 // larger patches of the image and can share more of the BVH in its L1; the paper scene and three
-// of the played demos traced faster so. The PBR kernels (demo_crowd's walkers) were slower in such
-// blocks, the single loop traced the instance grid no faster, and blocks of one warp were slower
-// everywhere (bench/results/trace-tiles-h100-2026-12-06.txt, trace-profile-h200-2026-12-03.txt):
-// those keep 8 x 8.
+// of the played demos traced faster so. The PBR kernels (demo_crowd's walkers), uncapped then, were
+// slower in such blocks, the single loop traced the instance grid no faster, and blocks of one warp
+// were slower everywhere (bench/results/trace-tiles-h100-2026-12-06.txt,
+// trace-profile-h200-2026-12-03.txt): those keep 8 x 8.
 constexpr uint32_t TraceBlockRows(uint32_t features) {
     return (features & (kFeatureManyInstances | kFeaturePbr)) != 0 ? 8u : 16u;
 }
@@ -48,7 +50,7 @@ constexpr int TraceMinBlocks(uint32_t features) {
     const int threads = int(TraceBlockThreads(features));
     if ((features & kFeatureManyInstances) != 0) return RTRT_TRACE_MIN_BLOCKS * 64 / threads;
     constexpr int kNestedThreadsPerSm = 16 * 32;
-    return (features & kFeaturePbr) != 0 ? 1 : kNestedThreadsPerSm / threads;
+    return kNestedThreadsPerSm / threads;
 }
 
 template <uint32_t kFeatures, class Policy>
