@@ -32,14 +32,14 @@ namespace rtrt {
 #endif
 
 // Rows of pixels a block traces, 8 pixels wide: warps of 8 x 4 pixels stacked. The nested kernels
-// without PBR trace 8 x 16 (four warps), so that the warps an SM holds at once come from fewer,
-// larger patches of the image and can share more of the BVH in its L1; the paper scene and three
-// of the played demos traced faster so. The PBR kernels (demo_crowd's walkers), uncapped then, were
-// slower in such blocks, the single loop traced the instance grid no faster, and blocks of one warp
-// were slower everywhere (bench/results/trace-tiles-h100-2026-12-06.txt,
-// trace-profile-h200-2026-12-03.txt): those keep 8 x 8.
+// trace 8 x 16 (four warps), so that the warps an SM holds at once come from fewer, larger patches
+// of the image and can share more of the BVH in its L1; the paper scene, three of the played demos
+// and, once held to 128 registers, the PBR scenes traced faster so. The single loop traced the
+// instance grid no faster, and blocks of one warp were slower everywhere
+// (bench/results/trace-tiles-h100-2026-12-06.txt, pbr-tiles-h100-2026-12-06.txt,
+// trace-profile-h200-2026-12-03.txt): the single loop keeps 8 x 8.
 constexpr uint32_t TraceBlockRows(uint32_t features) {
-    return (features & (kFeatureManyInstances | kFeaturePbr)) != 0 ? 8u : 16u;
+    return (features & kFeatureManyInstances) != 0 ? 8u : 16u;
 }
 constexpr uint32_t TraceBlockThreads(uint32_t features) { return 8u * TraceBlockRows(features); }
 
