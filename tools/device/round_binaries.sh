@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # A GPU round of the binaries that tools/device/pack_binaries.sh built on the CPU machine (carry
 # [".device-bin"]): the GPU tests, the traversal forms' frames compared pixel by pixel, then bench
-# grid, bench gpu and bench frame (the four played demos at 1920x1080), RTRT_ROUNDS times (default
-# 2), this build, .device-bin/rtrt-baseline (if packed) and any rtrt-variant-NAME in turn, after
-# comparing their frames with this build's.
+# grid, bench gpu, bench frame (the four played demos at 1920x1080) and bench materials (the glTF
+# PBR scenes), RTRT_ROUNDS times (default 2), this build, .device-bin/rtrt-baseline (if packed)
+# and any rtrt-variant-NAME in turn, after comparing their frames with this build's.
 # Leaves round.log, gpu_tests.log and results.tar (the JSON) in $OUT.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -96,6 +96,10 @@ for round in $(seq "${RTRT_ROUNDS:-2}"); do
         # The played demos: they take the nested kernels, which the grid does not.
         say "$(RTRT_COMMIT=$commit "$rtrt" bench frame $demos --size 1920x1080 --frames 200 \
             -o "$results/frame-$commit-$round.json" 2>&1 | tail -6 | head -5)"
+        # glTF's PBR materials, whose kernels the scenes above use only in demo_crowd's walkers.
+        say "$(RTRT_COMMIT=$commit "$rtrt" bench materials assets/models/pbr_showcase.gltf \
+            assets/models/textured_quads.gltf --frames 100 \
+            -o "$results/materials-$commit-$round.json" 2>&1 | tail -7)"
     done
 done
 tar -C "$results" -cf "$out/results.tar" .
