@@ -41,4 +41,18 @@ RT_HD inline int MaxDimension(vec3 v) {
 RT_HD inline vec3 Abs(vec3 v) { return vec3(fabsf(v.x), fabsf(v.y), fabsf(v.z)); }
 RT_HD inline float Luminance(vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
+// V itself where its squared length lies well inside float's normal range, else V divided by its
+// largest component's magnitude: glm::normalize and cross products of the result neither
+// overflow nor underflow (a direction given as [3e38, 3e38, 3e38] or [0, 1e-40, 0]), while
+// ordinary inputs keep their bits. V must be finite.
+inline vec3 ScaledForNormalize(vec3 v) {
+    const float squared = glm::dot(v, v);
+    if (squared >= 1e-30f && squared <= 1e30f) return v;
+    const float largest = MaxComponent(Abs(v));
+    return largest > 0.0f ? v / largest : v;
+}
+inline bool IsFinite(vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
 }  // namespace rtrt

@@ -12,6 +12,17 @@ struct Camera {
     float fovYDegrees = 45.0f;
 };
 
+// Whether FORWARD and UP span the camera's basis: both finite and non-zero, and UP not parallel
+// to FORWARD (the sine of their angle at least 1e-6), so that MakeCameraFrame's cross product
+// has a direction.
+inline bool CameraBasisDefined(vec3 forward, vec3 up) {
+    if (!IsFinite(forward) || !IsFinite(up)) return false;
+    if (forward == vec3(0.0f) || up == vec3(0.0f)) return false;
+    const vec3 f = glm::normalize(ScaledForNormalize(forward));
+    const vec3 u = glm::normalize(ScaledForNormalize(up));
+    return glm::length(glm::cross(f, u)) >= 1e-6f;
+}
+
 // Orthonormal basis and image-plane scale, computed once per frame.
 struct CameraFrame {
     vec3 origin;

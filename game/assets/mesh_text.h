@@ -50,10 +50,6 @@ bool ParseNumber(std::string_view token, T& value) {
 // TOKEN as a float; RecordError when it is not a number.
 float ParseCoordinate(std::string_view token);
 
-inline bool IsFinite(vec3 v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 // Normalises normals read from a file; false when one of them has no direction.
 bool NormalizeFileNormals(std::vector<vec3>& normals);
 

@@ -17,7 +17,6 @@
 namespace rtrt {
 namespace {
 
-using mesh_text::IsFinite;
 using mesh_text::kMaxVertices;
 using mesh_text::NextWord;
 using mesh_text::NormalizeFileNormals;

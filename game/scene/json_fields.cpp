@@ -265,8 +265,7 @@ vec3 JsonFields::Vec3(const std::string& key, std::optional<vec3> fallback) {
 }
 
 vec3 JsonFields::Colour(const std::string& key, vec3 fallback) {
-    if (Has(key) && j_.at(key).is_number()) return vec3(Number(key));
-    const vec3 c = Vec3(key, fallback);
+    const vec3 c = Has(key) && j_.at(key).is_number() ? vec3(Number(key)) : Vec3(key, fallback);
     if (c.x < 0 || c.y < 0 || c.z < 0) Fail(key, "colour components must not be negative");
     return c;
 }

@@ -61,7 +61,7 @@ Camera CameraAt(const LoadedScene& loaded, float t) {
     const float span = b.time - a.time;
     const float w = span > 0.0f ? std::clamp((t - a.time) / span, 0.0f, 1.0f) : 0.0f;
     camera.position = glm::mix(a.position, b.position, w);
-    camera.forward = glm::mix(a.lookAt, b.lookAt, w) - camera.position;
+    camera.forward = ScaledForNormalize(glm::mix(a.lookAt, b.lookAt, w) - camera.position);
     return camera;
 }
 

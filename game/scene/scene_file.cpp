@@ -11,6 +11,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
+#include "engine/render_rt/camera.h"
 #include "game/assets/model_dir.h"
 #include "game/gltf/gltf_import.h"
 #include "game/scene/default_scene.h"
@@ -97,10 +98,15 @@ class SceneParser {
             c.forward = f.Vec3("forward", c.forward);
         c.up = f.Vec3("up", c.up);
         c.fovYDegrees = f.InRange("fov_y", 1.0f, 179.0f, c.fovYDegrees);
-        if (glm::length(c.forward) == 0.0f) f.Fail("forward", "the view direction has zero length");
-        if (glm::length(glm::cross(c.forward, c.up)) <
-            1e-6f * glm::length(c.forward) * glm::length(c.up))
+        const std::string view = f.Has("look_at") ? "look_at" : "forward";
+        if (!IsFinite(c.forward))
+            f.Fail(view,
+                   "the view direction is beyond float's range (look_at too far from position)");
+        if (c.forward == vec3(0.0f)) f.Fail(view, "the view direction has zero length");
+        if (!CameraBasisDefined(c.forward, c.up))
             f.Fail("up", "up must not be parallel to the view direction (or zero)");
+        c.forward = ScaledForNormalize(c.forward);
+        c.up = ScaledForNormalize(c.up);
         f.Finish();
         return c;
     }
@@ -152,16 +158,16 @@ class SceneParser {
             if (type == "directional") {
                 light.type = LightType::kDirectional;
                 const vec3 d = f.Vec3("direction");
-                if (glm::length(d) == 0.0f) f.Fail("direction", "direction has zero length");
-                light.vector = glm::normalize(d);
+                if (d == vec3(0.0f)) f.Fail("direction", "direction has zero length");
+                light.vector = glm::normalize(ScaledForNormalize(d));
             } else if (type == "point" || type == "spot") {
                 light.type = type == "point" ? LightType::kPoint : LightType::kSpot;
                 light.vector = f.Vec3("position");
                 ParseFalloff(f, &light);
                 if (type == "spot") {
                     const vec3 d = f.Vec3("direction");
-                    if (glm::length(d) == 0.0f) f.Fail("direction", "direction has zero length");
-                    light.spotAxis = glm::normalize(d);
+                    if (d == vec3(0.0f)) f.Fail("direction", "direction has zero length");
+                    light.spotAxis = glm::normalize(ScaledForNormalize(d));
                     const float outer = f.InRange("outer_cone", 0.1f, 90.0f, 45.0f);
                     const float inner = f.InRange("inner_cone", 0.0f, outer, 0.0f);
                     if (inner >= outer)
@@ -440,8 +446,41 @@ class SceneParser {
             if (!out.cameraPath.empty() && key.time <= out.cameraPath.back().time)
                 f.Fail("time", "camera keys must come in increasing time");
             if (key.position == key.lookAt) f.Fail("look_at", "must differ from position");
+            const vec3 up = out.scene.camera.up;
+            if (!IsFinite(key.lookAt - key.position))
+                f.Fail("look_at",
+                       "the view direction is beyond float's range (look_at too far "
+                       "from position)");
+            if (!CameraBasisDefined(key.lookAt - key.position, up))
+                f.Fail("look_at",
+                       "the view direction is parallel to the camera's up (camera.up, "
+                       "default [0, 1, 0]): give the camera another up");
+            if (!out.cameraPath.empty() && PathTurnsParallelToUp(out.cameraPath.back(), key, up))
+                f.Fail("look_at",
+                       "on the way from the key before, the view direction turns "
+                       "parallel to the camera's up (camera.up, default [0, 1, 0]) or "
+                       "look_at passes through position: add a key between them or "
+                       "give the camera another up");
             out.cameraPath.push_back(key);
         }
+    }
+
+    // Whether the view direction, interpolated linearly from key A to key B as CameraAt does
+    // (look_at(w) - position(w) = F + w G), comes parallel to UP or to zero on the way. The
+    // sideways part cross(F + w G, up) is linear in w, so its smallest length is at one w, found
+    // in closed form; the keys themselves are checked on their own.
+    static bool PathTurnsParallelToUp(const CameraKey& a, const CameraKey& b, vec3 up) {
+        const glm::dvec3 u = glm::normalize(glm::dvec3(ScaledForNormalize(up)));
+        const glm::dvec3 fa = glm::dvec3(a.lookAt) - glm::dvec3(a.position);
+        const glm::dvec3 fb = glm::dvec3(b.lookAt) - glm::dvec3(b.position);
+        const glm::dvec3 g = fb - fa;
+        const glm::dvec3 side = glm::cross(fa, u), turn = glm::cross(g, u);
+        const double turnSquared = glm::dot(turn, turn);
+        const double w =
+            turnSquared > 0.0 ? std::clamp(-glm::dot(side, turn) / turnSquared, 0.0, 1.0) : 0.0;
+        const glm::dvec3 forward = fa + w * g;
+        const double length = glm::length(forward);
+        return length == 0.0 || glm::length(side + w * turn) < 1e-6 * length;
     }
 
     // position * rotation (degrees about x, then y, then z) * scale.

@@ -13,6 +13,11 @@
 namespace rtrt {
 namespace {
 
+// The largest sphere radius and centre coordinate a scene may give: the sphere test squares
+// distances of this order, which must stay far inside float's range (a radius of 1e20 made
+// NaN pixels).
+constexpr float kMaxSphereExtent = 1e6f;
+
 std::vector<Sphere> ParseSphereList(JsonFields& f) {
     const Json& list = f.Get("spheres");
     if (!list.is_array() || list.empty())
@@ -26,6 +31,9 @@ std::vector<Sphere> ParseSphereList(JsonFields& f) {
             if (!v.is_number() || !std::isfinite(v.get<double>()))
                 f.Fail(key, "expected finite numbers");
         if (!(s[3].get<float>() > 0.0f)) f.Fail(key, "radius must be greater than 0");
+        for (size_t c = 0; c < 4; ++c)
+            if (!(std::fabs(s[c].get<double>()) <= kMaxSphereExtent))
+                f.Fail(key, "centre coordinates and radius must be at most 1e6 in magnitude");
         spheres.push_back(
             {vec3(s[0].get<float>(), s[1].get<float>(), s[2].get<float>()), s[3].get<float>()});
     }
@@ -53,6 +61,7 @@ Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shap
     const std::string type = f.String("type");
     if (type == "sphere") {
         const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
+        if (!(s.radius <= kMaxSphereExtent)) f.Fail("radius", "must be at most 1e6");
         shape = {ModelShape::kSphere, s.radius, vec3(0.0f)};
         return BuildSphereBlas(std::span<const Sphere>(&s, 1), options);
     }
