@@ -26,6 +26,23 @@ std::string OneLine(std::string text) {
     return text.empty() ? "tinygltf could not load the file" : text;
 }
 
+// tinygltf 2.7 (Debian's) reports a skin without inverseBindMatrices as an error, though glTF
+// 2.0 makes the field optional (identity matrices, which gltf_skins.cpp supplies); it still loads
+// the skin. Its message is dropped so that such a file loads; every other message stays.
+std::string WithoutOptionalFieldErrors(const std::string& err) {
+    static const std::string kSkinMatrices = "'inverseBindMatrices' property is missing in Skin.";
+    std::string out;
+    size_t begin = 0;
+    while (begin < err.size()) {
+        size_t end = err.find('\n', begin);
+        if (end == std::string::npos) end = err.size();
+        const std::string line = err.substr(begin, end - begin);
+        if (line != kSkinMatrices) out += line + "\n";
+        begin = end + 1;
+    }
+    return out;
+}
+
 // tinygltf's reader of external buffers and images: rtrt's, so that a uri naming a device or a
 // FIFO is refused instead of read for ever or waited on, and one over 2 GiB before it is read.
 bool ReadExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
@@ -63,6 +80,7 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
                                              dir.empty() ? "." : dir)
                : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
                                             unsigned(bytes.size()), dir.empty() ? "." : dir);
+    err = WithoutOptionalFieldErrors(err);
     if (imageFailure.fatal) std::rethrow_exception(imageFailure.fatal);
     if (imageFailure.index >= 0)
         Fail(JsonIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cstring>
 #include <filesystem>
+#include <string_view>
 
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
@@ -97,6 +98,20 @@ constexpr FieldKind kFieldKinds[] = {
     {"cameras", "type", JsonKind::kString},
 };
 
+// Lower bounds of integer fields of kFieldKinds (glTF 2.0's schema; byte lengths of 0, below its
+// minimum of 1, are let through as tinygltf reads them).
+struct FieldMinimum {
+    const char* array;
+    const char* field;
+    int64_t minimum;
+};
+constexpr FieldMinimum kFieldMinimums[] = {
+    {"accessors", "byteOffset", 0},
+    {"bufferViews", "byteOffset", 0},
+    {"bufferViews", "byteLength", 0},
+    {"buffers", "byteLength", 0},
+};
+
 // Which images a texture's own source names (the ones rtrt can sample).
 std::vector<bool> UsedImages(const Json& root) {
     const size_t count =
@@ -109,6 +124,39 @@ std::vector<bool> UsedImages(const Json& root) {
             if (source >= 0 && size_t(source) < count) used[size_t(source)] = true;
         }
     return used;
+}
+
+// A buffer given as a base64 data URI must hold exactly its byteLength bytes (tinygltf refuses
+// it otherwise, with a message that quotes the whole URI and not the reason).
+void CheckBufferDataUri(const std::string& file, const std::string& field, const Json& buffer) {
+    const std::string& uri = buffer["uri"].get_ref<const std::string&>();
+    const size_t comma = uri.find(',');
+    if (comma == std::string::npos || comma < 7 || uri.compare(comma - 7, 7, ";base64") != 0)
+        throw InputError(file, field + ".uri",
+                         "a data URI must hold base64 data (\"data:application/octet-stream;"
+                         "base64,...\")");
+    const std::string_view payload = std::string_view(uri).substr(comma + 1);
+    size_t padding = 0;
+    while (padding < payload.size() && padding < 2 && payload[payload.size() - 1 - padding] == '=')
+        ++padding;
+    for (size_t c = 0; c + padding < payload.size(); ++c) {
+        const unsigned char ch = uint8_t(payload[c]);
+        if (!(std::isalnum(ch) || ch == '+' || ch == '/'))
+            throw InputError(file, field + ".uri",
+                             "the data URI's payload is not base64 (character " +
+                                 std::to_string(comma + 1 + c) + ")");
+    }
+    // Four characters carry three bytes; a last group of 2 or 3 characters carries 1 or 2.
+    const size_t characters = payload.size() - padding;
+    if (characters % 4 == 1)
+        throw InputError(file, field + ".uri",
+                         "the data URI's base64 payload ends in a lone character (truncated?)");
+    const uint64_t bytes = characters / 4 * 3 + (characters % 4 == 0 ? 0 : characters % 4 - 1);
+    if (buffer.contains("byteLength") && buffer["byteLength"].is_number_integer() &&
+        buffer["byteLength"].get<int64_t>() != int64_t(bytes))
+        throw InputError(file, field + ".byteLength",
+                         std::to_string(buffer["byteLength"].get<int64_t>()) +
+                             ", but the data URI holds " + std::to_string(bytes) + " bytes");
 }
 
 // Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
@@ -130,6 +178,46 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                 if (std::strcmp(f.array, array) == 0) element.ExpectKind(f.field, f.kind);
         }
     }
+    // glTF's minimums for the sizes and offsets tinygltf reads without checking them (a negative
+    // byteOffset was read as 0).
+    for (const FieldMinimum& m : kFieldMinimums) {
+        if (!root.contains(m.array)) continue;
+        const Json& list = root[m.array];
+        for (size_t i = 0; i < list.size(); ++i)
+            if (list[i].contains(m.field) && list[i][m.field].get<int64_t>() < m.minimum)
+                throw InputError(file, JsonIndexed(m.array, i) + "." + m.field,
+                                 "must be at least " + std::to_string(m.minimum) + ", got " +
+                                     std::to_string(list[i][m.field].get<int64_t>()));
+    }
+    if (root.contains("bufferViews"))
+        for (size_t i = 0; i < root["bufferViews"].size(); ++i) {
+            const Json& view = root["bufferViews"][i];
+            if (!view.contains("byteStride")) continue;
+            const int64_t stride = view["byteStride"].get<int64_t>();
+            if (stride < 4 || stride > 252 || stride % 4 != 0)
+                throw InputError(
+                    file, JsonIndexed("bufferViews", i) + ".byteStride",
+                    "must be a multiple of 4 from 4 to 252, got " + std::to_string(stride));
+        }
+    if (root.contains("asset") && root["asset"].is_object() && root["asset"].contains("version") &&
+        root["asset"]["version"].is_string()) {
+        const std::string version = root["asset"]["version"].get<std::string>();
+        if (version.rfind("2.", 0) != 0)
+            throw InputError(file, "asset.version",
+                             "rtrt reads glTF 2.x, the file says \"" + version + "\"");
+    }
+    // tinygltf reads an aspectRatio of 0 as absent; glTF requires it to be greater than 0.
+    if (root.contains("cameras"))
+        for (size_t i = 0; i < root["cameras"].size(); ++i) {
+            const Json& camera = root["cameras"][i];
+            if (!camera.contains("perspective") || !camera["perspective"].is_object()) continue;
+            const Json& perspective = camera["perspective"];
+            if (perspective.contains("aspectRatio") &&
+                !(perspective["aspectRatio"].is_number() &&
+                  perspective["aspectRatio"].get<double>() > 0.0))
+                throw InputError(file, JsonIndexed("cameras", i) + ".perspective.aspectRatio",
+                                 "must be a number greater than 0");
+        }
     const std::vector<bool> used = UsedImages(root);
     for (const char* array : {"buffers", "images"}) {
         if (!root.contains(array) || !root[array].is_array()) continue;
@@ -140,12 +228,25 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
             // An image rtrt will not decode may be missing (or a format it cannot read).
             if (std::strcmp(array, "images") == 0 && !used[i]) continue;
             const std::string uri = list[i]["uri"].get<std::string>();
-            if (uri.rfind("data:", 0) == 0) continue;
+            const std::string field = JsonIndexed(array, i);
+            if (uri.rfind("data:", 0) == 0) {
+                if (std::strcmp(array, "buffers") == 0) CheckBufferDataUri(file, field, list[i]);
+                continue;
+            }
+            const fs::path relative = DecodeGltfUri(uri);
+            if (relative.is_absolute())
+                throw InputError(file, field + ".uri",
+                                 "\"" + uri +
+                                     "\" is an absolute path; a glTF file names its files "
+                                     "relative to itself");
             std::error_code ec;
-            const fs::path path = fs::path(dir.empty() ? "." : dir) / DecodeGltfUri(uri);
+            const fs::path path = fs::path(dir.empty() ? "." : dir) / relative;
+            if (!fs::exists(path, ec))
+                throw InputError(file, field + ".uri", "no such file \"" + path.string() + "\"");
             if (!fs::is_regular_file(path, ec))
-                throw InputError(file, JsonIndexed(array, i) + ".uri",
-                                 "no such file \"" + path.string() + "\"");
+                throw InputError(
+                    file, field + ".uri",
+                    "\"" + path.string() + "\" is not a regular file (a folder, device or FIFO)");
         }
     }
     return used;

@@ -166,6 +166,30 @@ TEST_F(GltfDeformTest, SkinnedTwoBoneCylinderBendsAsTheClosedFormSays) {
         }
 }
 
+// glTF makes a skin's inverseBindMatrices optional (identity matrices); Debian's tinygltf 2.7
+// reports it missing, and such a file was refused. With identities the skin matrices are the
+// joints' world transforms: the thigh moves with the hip to z = -3, the shin with the knee one
+// further up, the knee ring half way.
+TEST_F(GltfDeformTest, ASkinWithoutInverseBindMatricesTakesIdentities) {
+    GltfBuilder b = TwoBoneCylinder(0.0f, false);
+    b.doc["skins"][0].erase("inverseBindMatrices");
+    ::testing::internal::CaptureStderr();
+    const LoadedScene loaded = LoadSceneFile(Save("no_inverse_binds.gltf", b.GltfText()));
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+    World world(loaded);
+    const RenderScene& scene = world.Scene();
+    ASSERT_EQ(scene.deformations.size(), 1u);
+    const Deformation& d = scene.deformations[0];
+    const DeformableMesh& mesh = *scene.deformableMeshes[d.mesh];
+    for (uint32_t v = 0; v < mesh.VertexCount(); ++v) {
+        const vec3 rest = mesh.rest.positions[v];
+        const float up = rest.y < 1.0f ? 0.0f : (rest.y > 1.0f ? 1.0f : 0.5f);
+        const vec3 world = scene.instances[0].ObjectToWorld().Point(Deformed(scene, d, v));
+        EXPECT_NEAR(glm::length(world - (rest + vec3(0.0f, up, -3.0f))), 0.0f, 1e-5f)
+            << "vertex " << v << " at y = " << rest.y;
+    }
+}
+
 TEST_F(GltfDeformTest, CubicSplineKneeChannelBendsByTheSpecificationsSpline) {
     GltfBuilder b = TwoBoneCylinder(0.0f, false);
     // Keys at 0 and 1 s: identity, then 90 degrees about z; every tangent zero. Each key is

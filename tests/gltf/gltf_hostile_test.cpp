@@ -56,6 +56,85 @@ TEST_F(GltfTest, ABufferThatIsAFifoIsRefused) {
     }
 }
 
+// Loads PATH expecting one InputError naming FIELD and containing REASON.
+void ExpectGltfError(const std::string& path, const std::string& field, const std::string& reason) {
+    try {
+        LoadSceneFile(path);
+        ADD_FAILURE() << path << ": loaded without an error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.File(), path);
+        EXPECT_EQ(e.Field(), field) << e.what();
+        EXPECT_NE(e.Reason().find(reason), std::string::npos) << e.what();
+    }
+}
+
+// Found by probing: a data URI whose size is not the buffer's byteLength, a uri naming a folder
+// or an absolute path, and camera aspect ratios glTF forbids or no image can have each had
+// tinygltf's raw message (or none) instead of the field and the reason.
+TEST_F(GltfTest, BufferUrisAndCameraAspectsAreCheckedByField) {
+    const GltfBuilder b = test::TwoLevels();
+    Json d = Json::parse(b.GltfText());
+    d["buffers"][0]["byteLength"] = b.bin.size() + 4;
+    ExpectGltfError(Save("long.gltf", d.dump()), "buffers[0].byteLength",
+                    std::to_string(b.bin.size() + 4) + ", but the data URI holds " +
+                        std::to_string(b.bin.size()) + " bytes");
+    d["buffers"][0]["byteLength"] = b.bin.size();
+    d["buffers"][0]["uri"] = "data:application/octet-stream;base64,AA*A";
+    ExpectGltfError(Save("not_base64.gltf", d.dump()), "buffers[0].uri", "not base64");
+
+    Json external = b.doc;
+    external["buffers"] = Json::array({{{"byteLength", b.bin.size()}, {"uri", "folder.bin"}}});
+    fs::create_directories(dir_ / "folder.bin");
+    ExpectGltfError(Save("folder.gltf", external.dump()), "buffers[0].uri",
+                    "is not a regular file");
+    external["buffers"][0]["uri"] = "/etc/hostname";
+    ExpectGltfError(Save("absolute.gltf", external.dump()), "buffers[0].uri",
+                    "is an absolute path");
+
+    // A file with one camera of this aspect ratio, on a child of the root.
+    auto withAspect = [&](double aspect) {
+        GltfBuilder c = test::TwoLevels();
+        c.doc["cameras"] = Json::array(
+            {{{"type", "perspective"},
+              {"perspective", {{"yfov", 0.5}, {"znear", 0.1}, {"aspectRatio", aspect}}}}});
+        c.doc["nodes"][0]["children"].push_back(c.Node({{"camera", 0}}));
+        return Save("aspect.gltf", c.GltfText());
+    };
+    const std::pair<double, const char*> badAspects[] = {{0.0, "greater than 0"},
+                                                         {-1.5, "greater than 0"},
+                                                         {1e6, "between 0.078125 and 1280"},
+                                                         {1e-6, "between 0.078125 and 1280"}};
+    for (const auto& [aspect, reason] : badAspects)
+        ExpectGltfError(withAspect(aspect), "cameras[0].perspective.aspectRatio", reason);
+    const LoadedScene loaded = LoadSceneFile(withAspect(2.0));
+    EXPECT_EQ(loaded.width, 1280u);
+    EXPECT_EQ(loaded.height, 640u);
+}
+
+// glTF's bounds that tinygltf does not check or reports without the field.
+TEST_F(GltfTest, SchemaBoundsAreCheckedByField) {
+    const struct {
+        const char* name;
+        void (*edit)(Json& d);
+        const char* field;
+        const char* reason;
+    } cases[] = {
+        {"negative_offset.gltf", [](Json& d) { d["accessors"][0]["byteOffset"] = -4; },
+         "accessors[0].byteOffset", "must be at least 0, got -4"},
+        {"odd_stride.gltf", [](Json& d) { d["bufferViews"][0]["byteStride"] = 13; },
+         "bufferViews[0].byteStride", "multiple of 4 from 4 to 252, got 13"},
+        {"negative_length.gltf", [](Json& d) { d["bufferViews"][0]["byteLength"] = -1; },
+         "bufferViews[0].byteLength", "must be at least 0"},
+        {"version_3.gltf", [](Json& d) { d["asset"]["version"] = "3.0"; }, "asset.version",
+         "rtrt reads glTF 2.x"},
+    };
+    for (const auto& c : cases) {
+        Json d = Json::parse(test::TwoLevels().GltfText());
+        c.edit(d);
+        ExpectGltfError(Save(c.name, d.dump()), c.field, c.reason);
+    }
+}
+
 // A camera and a spot light under ancestors scaled 1e10 each: the world transform is finite, its
 // directions' lengths are not; they still come out as unit vectors along the node's axes.
 TEST_F(GltfTest, HugeScalesStillGiveUnitDirections) {
