@@ -72,6 +72,10 @@ void CheckOutputPath(const std::string& path) {
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
         throw InputError(path, "", "the folder " + folder.string() + " does not exist");
+    const std::string dir = folder.empty() ? std::string(".") : folder.string();
+    if (access(dir.c_str(), W_OK) != 0)
+        throw InputError(path, "",
+                         "cannot write into the folder " + dir + ": " + std::strerror(errno));
 }
 
 void CreateOutputFolder(const std::string& path) {

@@ -39,8 +39,9 @@ std::string TemporaryPathFor(const std::string& target);
 // and can be removed once that process is gone.
 std::optional<long> TemporaryOwnerHere(const std::string& name);
 
-// InputError(path, "", reason) unless a whole file can be written at path: its folder exists, and
-// path is not a folder, a device, a FIFO or a socket (which the rename would replace).
+// InputError(path, "", reason) unless a whole file can be written at path: its folder exists and
+// is writable, and path is not a folder, a device, a FIFO or a socket (which the rename would
+// replace).
 void CheckOutputPath(const std::string& path);
 
 // Creates the folder path and its parents where missing; InputError(path, "", reason) when it

@@ -54,15 +54,17 @@ std::string FramePath(const std::string& pattern, int frame) {
     return buffer;
 }
 
+// The field's width has at most two digits: a frame number needs ten, and a wider field would
+// make names longer than file systems allow (or than FramePath's buffer holds).
 void CheckPattern(const std::string& pattern) {
-    static const std::regex kField("%0?[0-9]*d");
+    static const std::regex kField("%0?[0-9]{0,2}d");
     const auto fields = std::distance(std::sregex_iterator(pattern.begin(), pattern.end(), kField),
                                       std::sregex_iterator());
     const auto percents = std::count(pattern.begin(), pattern.end(), '%');
     if (fields != 1 || percents != 1 || pattern.size() > 2000)
         throw InputError("--output", "",
-                         "expected a pattern with one frame number field, such as "
-                         "out/frame_%04d.png, got \"" +
+                         "expected a pattern with one frame number field of at most two "
+                         "digits' width, such as out/frame_%04d.png, got \"" +
                              pattern + "\"");
 }
 
@@ -136,8 +138,28 @@ void CheckSceneChecksum(const std::string& scene, const std::string& expected) {
                              "); restore it, or render the new scene as a new job (another -o)");
 }
 
+// Options of one mode given to the other would do nothing; they are refused instead.
+void CheckModeOptions(const PlayOptions& o) {
+    if (o.headless) {
+        if (!o.record.empty())
+            throw InputError("--record", "",
+                             "records the window; headless frames go to -o (rtrt farm --assemble "
+                             "or ffmpeg makes a video of them)");
+        if (!o.script.empty())
+            throw InputError("--script", "", "scripts the window's input; it is not headless");
+    } else {
+        if (!o.manifest.empty()) throw InputError("--manifest", "", "is for --headless frames");
+        if (!o.sceneChecksum.empty())
+            throw InputError("--scene-checksum", "", "is for --headless frames");
+        if (!o.output.empty())
+            throw InputError("--output", "",
+                             "is for --headless frames; the window records with --record");
+    }
+}
+
 void RunPlay(PlayOptions o) {
     if (o.scenes.empty()) o.scenes = {"default"};
+    CheckModeOptions(o);
     if (!o.headless) return RunWindowed(o);
     if (o.scenes.size() != 1)
         throw InputError("play", "", "--headless plays one scene; give exactly one");

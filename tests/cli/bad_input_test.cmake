@@ -293,6 +293,15 @@ foreach(case "truncated.glb|header.length: the header says"
         render ${HOSTILE_GLTF}/${name} -o ${WORK_DIR}/render_${id}${EXT})
     expect_one_line_failure(info_${id} "${HOSTILE_GLTF}/${name}: ${text}" info ${HOSTILE_GLTF}/${name})
 endforeach()
+# A frame number field wider than two digits would name files longer than file systems allow.
+expect_one_line_failure(wide_frame_field
+    "--output: expected a pattern with one frame number field of at most two digits' width"
+    play default --headless --frames 1 -o ${WORK_DIR}/g_%300d.png)
+# Options of the window given headless, or the other way round, would do nothing: refused.
+expect_one_line_failure(headless_record "--record: records the window"
+    play default --headless --frames 1 --record ${WORK_DIR}/r.mp4 -o ${WORK_DIR}/hr_%d.png)
+expect_one_line_failure(window_manifest "--manifest: is for --headless frames"
+    play default --manifest ${WORK_DIR}/m.txt)
 expect_one_line_failure(render_hostile_gltf_model
     "${HOSTILE_SCENE}/../hostile_gltf/cyclic_nodes.gltf: nodes[2].children[0]: node 1 has two parents"
     render ${HOSTILE_SCENE}/hostile_gltf_model.json -o ${WORK_DIR}/render_hostile_gltf_model${EXT})
