@@ -72,10 +72,13 @@ void CheckOutputPath(const std::string& path) {
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
         throw InputError(path, "", "the folder " + folder.string() + " does not exist");
-    const std::string dir = folder.empty() ? std::string(".") : folder.string();
-    if (access(dir.c_str(), W_OK) != 0)
+    CheckFolderWritable(path, folder.empty() ? std::string(".") : folder.string());
+}
+
+void CheckFolderWritable(const std::string& path, const std::string& folder) {
+    if (access(folder.c_str(), W_OK) != 0)
         throw InputError(path, "",
-                         "cannot write into the folder " + dir + ": " + std::strerror(errno));
+                         "cannot write into the folder " + folder + ": " + std::strerror(errno));
 }
 
 void CreateOutputFolder(const std::string& path) {
@@ -83,6 +86,7 @@ void CreateOutputFolder(const std::string& path) {
     std::filesystem::create_directories(path, ec);
     if (ec) throw InputError(path, "", "cannot create the folder: " + ec.message());
     if (!std::filesystem::is_directory(path, ec)) throw InputError(path, "", "is not a folder");
+    CheckFolderWritable(path, path);
 }
 
 OutputFile::OutputFile(std::string target, std::string temp)

@@ -44,8 +44,12 @@ std::optional<long> TemporaryOwnerHere(const std::string& name);
 // replace).
 void CheckOutputPath(const std::string& path);
 
+// InputError(path, "", "cannot write into the folder FOLDER: reason") unless this process may
+// create files in FOLDER.
+void CheckFolderWritable(const std::string& path, const std::string& folder);
+
 // Creates the folder path and its parents where missing; InputError(path, "", reason) when it
-// cannot (a file is in the way, no permission).
+// cannot (a file is in the way, no permission) or cannot be written into.
 void CreateOutputFolder(const std::string& path);
 
 // TEXT written whole to PATH through its temporary, every write checked (OutputError otherwise);

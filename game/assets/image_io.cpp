@@ -100,10 +100,7 @@ void CheckImagePath(const std::string& path) {
     const auto dir = std::filesystem::path(path).parent_path();
     if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
         throw InputError(path, "", "the folder " + dir.string() + " does not exist");
-    const std::string folder = dir.empty() ? std::string(".") : dir.string();
-    if (access(folder.c_str(), W_OK) != 0)
-        throw InputError(path, "",
-                         "cannot write into the folder " + folder + ": " + std::strerror(errno));
+    CheckFolderWritable(path, dir.empty() ? std::string(".") : dir.string());
 }
 
 void WriteImage(const std::string& path, const Image& image, const OutputTransform& transform) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "game/assets/image_io.h"
 
 namespace rtrt {
@@ -26,6 +27,7 @@ void CheckVideoPath(const std::string& path) {
     std::error_code ec;
     if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
         throw InputError("--record", path, "the folder " + dir.string() + " does not exist");
+    CheckFolderWritable(path, dir.empty() ? std::string(".") : dir.string());
 }
 
 VideoWriter::VideoWriter(std::string path, uint32_t width, uint32_t height, double fps)

@@ -147,7 +147,12 @@ void CheckModeOptions(const PlayOptions& o) {
                              "or ffmpeg makes a video of them)");
         if (!o.script.empty())
             throw InputError("--script", "", "scripts the window's input; it is not headless");
+        if (o.noVsync) throw InputError("--no-vsync", "", "is for the window; it is not headless");
+        if (o.finishStages)
+            throw InputError("--finish-stages", "", "is for the window; it is not headless");
     } else {
+        if (o.spp != 1)
+            throw InputError("--spp", "", "is for --headless frames; the window traces one sample");
         if (!o.manifest.empty()) throw InputError("--manifest", "", "is for --headless frames");
         if (!o.sceneChecksum.empty())
             throw InputError("--scene-checksum", "", "is for --headless frames");

@@ -232,17 +232,8 @@ void ReadGltfCamerasAndLights(GltfDocument& doc, GltfAsset& asset) {
                          "must be between 1 and 179 degrees (in radians), got " +
                              std::to_string(c.perspective.yfov));
             camera.fovYDegrees = float(fov);
-            if (FiniteFloat(c.perspective.aspectRatio) && c.perspective.aspectRatio > 0.0) {
-                // It sets the image of a glTF shown on its own: 1280 columns and 1280 / aspect
-                // rows, which must be 1 to 16384.
-                const double aspect = c.perspective.aspectRatio;
-                if (!(aspect >= 1280.0 / 16384.0 && aspect <= 1280.0))
-                    doc.Fail(JsonIndexed("cameras", i) + ".perspective.aspectRatio",
-                             "must be between 0.078125 and 1280 (an image of 1280 columns and "
-                             "1 to 16384 rows), got " +
-                                 std::to_string(aspect));
-                camera.aspect = float(aspect);
-            }
+            if (FiniteFloat(c.perspective.aspectRatio) && c.perspective.aspectRatio > 0.0)
+                camera.aspect = float(c.perspective.aspectRatio);
         } else {
             doc.Warn("orthographic", JsonIndexed("cameras", i) + ": " + c.type +
                                          " cameras are not supported; skipped");

@@ -1,5 +1,6 @@
 #include "game/gltf/gltf_precheck.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstring>
 #include <filesystem>
@@ -152,6 +153,7 @@ void CheckBufferDataUri(const std::string& file, const std::string& field, const
         throw InputError(file, field + ".uri",
                          "the data URI's base64 payload ends in a lone character (truncated?)");
     const uint64_t bytes = characters / 4 * 3 + (characters % 4 == 0 ? 0 : characters % 4 - 1);
+    if (bytes == 0) throw InputError(file, field + ".uri", "the data URI holds no data");
     if (buffer.contains("byteLength") && buffer["byteLength"].is_number_integer() &&
         buffer["byteLength"].get<int64_t>() != int64_t(bytes))
         throw InputError(file, field + ".byteLength",
@@ -184,7 +186,8 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
         if (!root.contains(m.array)) continue;
         const Json& list = root[m.array];
         for (size_t i = 0; i < list.size(); ++i)
-            if (list[i].contains(m.field) && list[i][m.field].get<int64_t>() < m.minimum)
+            if (list[i].contains(m.field) && !list[i][m.field].is_number_unsigned() &&
+                list[i][m.field].get<int64_t>() < m.minimum)
                 throw InputError(file, JsonIndexed(m.array, i) + "." + m.field,
                                  "must be at least " + std::to_string(m.minimum) + ", got " +
                                      std::to_string(list[i][m.field].get<int64_t>()));
@@ -192,8 +195,13 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
     if (root.contains("bufferViews"))
         for (size_t i = 0; i < root["bufferViews"].size(); ++i) {
             const Json& view = root["bufferViews"][i];
-            if (!view.contains("byteStride")) continue;
-            const int64_t stride = view["byteStride"].get<int64_t>();
+            // 0 is below glTF's minimum but common in exported files; tinygltf and rtrt's
+            // accessors read it as tightly packed.
+            if (!view.contains("byteStride") || view["byteStride"] == 0) continue;
+            const int64_t stride =
+                view["byteStride"].is_number_unsigned()
+                    ? int64_t(std::min<uint64_t>(view["byteStride"].get<uint64_t>(), 1u << 20))
+                    : view["byteStride"].get<int64_t>();
             if (stride < 4 || stride > 252 || stride % 4 != 0)
                 throw InputError(
                     file, JsonIndexed("bufferViews", i) + ".byteStride",

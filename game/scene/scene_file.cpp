@@ -466,21 +466,26 @@ class SceneParser {
     }
 
     // Whether the view direction, interpolated linearly from key A to key B as CameraAt does
-    // (look_at(w) - position(w) = F + w G), comes parallel to UP or to zero on the way. The
-    // sideways part cross(F + w G, up) is linear in w, so its smallest length is at one w, found
-    // in closed form; the keys themselves are checked on their own.
+    // (look_at(w) - position(w) = F + w G), passes through zero or comes parallel to UP on the
+    // way. Both are found in closed form: the view's length is smallest where w = -F.G / G.G,
+    // and its part across UP, cross(F + w G, up), is linear in w too. A view at least 1e-6 of
+    // the keys' views long whose part across up is at least 1e-6 of its length has a basis
+    // (the keys themselves are checked on their own).
     static bool PathTurnsParallelToUp(const CameraKey& a, const CameraKey& b, vec3 up) {
         const glm::dvec3 u = glm::normalize(glm::dvec3(ScaledForNormalize(up)));
         const glm::dvec3 fa = glm::dvec3(a.lookAt) - glm::dvec3(a.position);
         const glm::dvec3 fb = glm::dvec3(b.lookAt) - glm::dvec3(b.position);
         const glm::dvec3 g = fb - fa;
+        auto smallestAt = [](glm::dvec3 from, glm::dvec3 step) {
+            const double stepSquared = glm::dot(step, step);
+            return stepSquared > 0.0 ? std::clamp(-glm::dot(from, step) / stepSquared, 0.0, 1.0)
+                                     : 0.0;
+        };
+        const double keys = std::max(glm::length(fa), glm::length(fb));
+        if (glm::length(fa + smallestAt(fa, g) * g) <= 1e-6 * keys) return true;
         const glm::dvec3 side = glm::cross(fa, u), turn = glm::cross(g, u);
-        const double turnSquared = glm::dot(turn, turn);
-        const double w =
-            turnSquared > 0.0 ? std::clamp(-glm::dot(side, turn) / turnSquared, 0.0, 1.0) : 0.0;
-        const glm::dvec3 forward = fa + w * g;
-        const double length = glm::length(forward);
-        return length == 0.0 || glm::length(side + w * turn) < 1e-6 * length;
+        const double w = smallestAt(side, turn);
+        return glm::length(side + w * turn) < 1e-6 * glm::length(fa + w * g);
     }
 
     // position * rotation (degrees about x, then y, then z) * scale.

@@ -81,6 +81,9 @@ TEST_F(GltfTest, BufferUrisAndCameraAspectsAreCheckedByField) {
     d["buffers"][0]["byteLength"] = b.bin.size();
     d["buffers"][0]["uri"] = "data:application/octet-stream;base64,AA*A";
     ExpectGltfError(Save("not_base64.gltf", d.dump()), "buffers[0].uri", "not base64");
+    d["buffers"][0]["uri"] = "data:application/octet-stream;base64,";
+    d["buffers"][0]["byteLength"] = 0;
+    ExpectGltfError(Save("empty.gltf", d.dump()), "buffers[0].uri", "holds no data");
 
     Json external = b.doc;
     external["buffers"] = Json::array({{{"byteLength", b.bin.size()}, {"uri", "folder.bin"}}});
@@ -100,15 +103,15 @@ TEST_F(GltfTest, BufferUrisAndCameraAspectsAreCheckedByField) {
         c.doc["nodes"][0]["children"].push_back(c.Node({{"camera", 0}}));
         return Save("aspect.gltf", c.GltfText());
     };
-    const std::pair<double, const char*> badAspects[] = {{0.0, "greater than 0"},
-                                                         {-1.5, "greater than 0"},
-                                                         {1e6, "between 0.078125 and 1280"},
-                                                         {1e-6, "between 0.078125 and 1280"}};
-    for (const auto& [aspect, reason] : badAspects)
-        ExpectGltfError(withAspect(aspect), "cameras[0].perspective.aspectRatio", reason);
-    const LoadedScene loaded = LoadSceneFile(withAspect(2.0));
-    EXPECT_EQ(loaded.width, 1280u);
-    EXPECT_EQ(loaded.height, 640u);
+    for (const double aspect : {0.0, -1.5})
+        ExpectGltfError(withAspect(aspect), "cameras[0].perspective.aspectRatio", "greater than 0");
+    // The image of a glTF shown on its own: 1280 columns, 1280 / aspect rows within 1 to 16384.
+    const std::pair<double, uint32_t> rows[] = {{2.0, 640u}, {1e6, 1u}, {1e-6, 16384u}};
+    for (const auto& [aspect, height] : rows) {
+        const LoadedScene loaded = LoadSceneFile(withAspect(aspect));
+        EXPECT_EQ(loaded.width, 1280u) << aspect;
+        EXPECT_EQ(loaded.height, height) << aspect;
+    }
 }
 
 // glTF's bounds that tinygltf does not check or reports without the field.
@@ -133,6 +136,10 @@ TEST_F(GltfTest, SchemaBoundsAreCheckedByField) {
         c.edit(d);
         ExpectGltfError(Save(c.name, d.dump()), c.field, c.reason);
     }
+    // A byteStride of 0, below glTF's minimum but common in exported files, reads as packed.
+    Json packed = Json::parse(test::TwoLevels().GltfText());
+    packed["bufferViews"][0]["byteStride"] = 0;
+    EXPECT_NO_THROW(LoadSceneFile(Save("stride_0.gltf", packed.dump())));
 }
 
 // A camera and a spot light under ancestors scaled 1e10 each: the world transform is finite, its
