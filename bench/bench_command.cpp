@@ -166,10 +166,7 @@ void RunBench(const BenchOptions& o) {
         }
         report["models"].push_back(row);
     }
-    if (!o.output.empty()) {
-        WriteReport(o.output, report);
-        std::printf("rtrt: wrote %s\n", o.output.c_str());
-    }
+    WriteReportIfNamed(o.output, report);
 }
 
 // The paper scene on the GPU: the trace kernel timed with CUDA events, median of many frames.
@@ -222,10 +219,7 @@ void RunGpuBench(const BenchOptions& o) {
                                         {"bytes_per_triangle", bytesPerTri}});
         }
     }
-    if (!o.output.empty()) {
-        WriteReport(o.output, report);
-        std::printf("rtrt: wrote %s\n", o.output.c_str());
-    }
+    WriteReportIfNamed(o.output, report);
 }
 
 }  // namespace
@@ -261,10 +255,7 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
                                   {"bytes_per_instance", r.bytesPerInstance},
                                   {"frames", frames}});
     }
-    if (!output.empty()) {
-        WriteReport(output, report);
-        std::printf("rtrt: wrote %s\n", output.c_str());
-    }
+    WriteReportIfNamed(output, report);
 }
 
 // Runtime cost per stage on a played scene: what a scene does not use must cost ~nothing. Each
@@ -481,6 +472,12 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
 
 void WriteReportFile(const std::string& path, const std::string& text) {
     WriteWholeFile(path, text, /*durable=*/false);
+}
+
+void WriteReportIfNamed(const std::string& path, const nlohmann::json& report) {
+    if (path.empty()) return;
+    WriteReport(path, report);
+    std::printf("rtrt: wrote %s\n", path.c_str());
 }
 
 nlohmann::json BenchMachine(bool gpu) {

@@ -14,5 +14,7 @@ void WriteReportFile(const std::string& path, const std::string& text);
 inline void WriteReport(const std::string& path, const nlohmann::json& report) {
     WriteReportFile(path, report.dump(2) + "\n");
 }
+// The report to the file a user named (-o), with a line that says so; an empty path asks for none.
+void WriteReportIfNamed(const std::string& path, const nlohmann::json& report);
 
 }  // namespace rtrt

@@ -124,10 +124,7 @@ void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine
              {"file_bytes", fs::file_size(out)},
              {"runs", o.runs}});
     }
-    if (!o.output.empty()) {
-        WriteReport(o.output, report);
-        std::printf("rtrt: wrote %s\n", o.output.c_str());
-    }
+    WriteReportIfNamed(o.output, report);
 }
 
 }  // namespace

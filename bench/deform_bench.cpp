@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/backend_option.h"
 #include "bench/bench_commands.h"
 #include "bench/bench_report.h"
 #include "bench/gpu_trace_timing.h"
@@ -198,10 +199,7 @@ void RunDeformBench(const DeformBenchOptions& o) {
              {"deform_mtri_per_ms", double(triangles) * 1e-6 / Median(r.deform)}});
     }
     report["drift"] = drift;
-    if (!o.output.empty()) {
-        WriteReport(o.output, report);
-        std::printf("rtrt: wrote %s\n", o.output.c_str());
-    }
+    WriteReportIfNamed(o.output, report);
     if (writeCsv) {
         WriteReportFile(o.csv, csv.str());
         std::printf("rtrt: wrote %s\n", o.csv.c_str());
@@ -219,9 +217,7 @@ void AddDeformBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("scene", o->scene, "Scene file with a deforming instance")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--backend", o->backend, "auto (CUDA when usable), cuda or cpu")
-        ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
-        ->capture_default_str();
+    AddBackendOption(cmd, &o->backend);
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT (default: the scene's image size)");
     cmd->add_option("--frames", o->frames, "Frames to play at 60 fps")
         ->check(CLI::Range(1, 100000))
@@ -234,11 +230,7 @@ void AddDeformBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("--csv", o->csv, "Write every frame's stage times as CSV here")
         ->check(WritableFile());
     cmd->callback([o, exitCode] {
-        Backend backend;
-        std::string why;
-        if (!ChooseBackend(o->backend, &backend, &why))
-            throw InputError("--backend", o->backend, why + "; use --backend cpu");
-        o->backend = backend == Backend::kCuda ? "cuda" : "cpu";
+        ResolveBackendOption(&o->backend);
         RunDeformBench(*o);
         *exitCode = kExitOk;
     });

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/backend_option.h"
 #include "bench/bench_commands.h"
 #include "bench/bench_report.h"
 #include "engine/core/error.h"
@@ -172,10 +173,7 @@ void RunFrameBench(const FrameBenchOptions& o) {
     for (size_t i = 0; i < o.scenes.size(); ++i) {
         report["rows"].push_back(RunScene(o.scenes[i], loadedScenes[i], o));
     }
-    if (!o.output.empty()) {
-        WriteReport(o.output, report);
-        std::printf("rtrt: wrote %s\n", o.output.c_str());
-    }
+    WriteReportIfNamed(o.output, report);
 }
 
 }  // namespace
@@ -187,9 +185,7 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("scenes", o->scenes, "Scene files to play")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--backend", o->backend, "auto (CUDA when usable), cuda or cpu")
-        ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
-        ->capture_default_str();
+    AddBackendOption(cmd, &o->backend);
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT (default: the scene's image size)");
     cmd->add_option("--frames", o->frames, "Timed frames per scene")
         ->check(CLI::Range(1, 100000))
@@ -207,11 +203,7 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
         ->check(WritableFile());
     cmd->callback([o, exitCode] {
-        Backend backend;
-        std::string why;
-        if (!ChooseBackend(o->backend, &backend, &why))
-            throw InputError("--backend", o->backend, why + "; use --backend cpu");
-        o->backend = backend == Backend::kCuda ? "cuda" : "cpu";
+        const Backend backend = ResolveBackendOption(&o->backend);
         o->split = ResolveGpus(o->gpus, backend);
         if (backend != Backend::kCuda && o->traceBands > 1)
             throw InputError("--trace-bands", std::to_string(o->traceBands),

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/backend_option.h"
 #include "bench/bench_commands.h"
 #include "bench/bench_report.h"
 #include "engine/core/error.h"
@@ -86,9 +87,7 @@ void AddMaterialsBench(CLI::App& bench, int* exitCode) {
                     "Scene or glTF files (e.g. assets/models/pbr_showcase.gltf)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--backend", o->backend, "cuda or cpu")
-        ->check(CLI::IsMember({"cuda", "cpu"}))
-        ->capture_default_str();
+    AddBackendOption(cmd, &o->backend, false);
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--frames", o->frames, "Timed frames per variant")
         ->check(CLI::Range(1, 100000))
@@ -99,10 +98,7 @@ void AddMaterialsBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
         ->check(WritableFile());
     cmd->callback([o, exitCode] {
-        Backend backend;
-        std::string why;
-        if (!ChooseBackend(o->backend, &backend, &why))
-            throw InputError("--backend", o->backend, why + "; use --backend cpu");
+        ResolveBackendOption(&o->backend);
         nlohmann::json report;
         report["machine"] = BenchMachine(o->backend == "cuda");
         report["backend"] = o->backend;
@@ -113,10 +109,7 @@ void AddMaterialsBench(CLI::App& bench, int* exitCode) {
                     o->backend.c_str(), o->size.c_str(), o->frames);
         std::printf("%-24s %-24s %9s %9s %12s\n", "scene", "shading", "trace ms", "x pbr", "rays");
         for (const std::string& path : o->scenes) report["rows"].push_back(RunScene(path, *o));
-        if (!o->output.empty()) {
-            WriteReport(o->output, report);
-            std::printf("rtrt: wrote %s\n", o->output.c_str());
-        }
+        WriteReportIfNamed(o->output, report);
         *exitCode = kExitOk;
     });
 }

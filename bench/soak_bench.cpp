@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/backend_option.h"
 #include "bench/bench_commands.h"
 #include "bench/bench_report.h"
 #include "bench/gpu_trace_timing.h"
@@ -146,9 +147,7 @@ void AddSoakBench(CLI::App& bench, int* exitCode) {
     auto o = std::make_shared<SoakOptions>();
     CLI::App* cmd = bench.add_subcommand(
         "soak", "Spawn and despawn entities for many frames; host and GPU memory must stay flat");
-    cmd->add_option("--backend", o->backend, "auto (CUDA when usable), cuda or cpu")
-        ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
-        ->capture_default_str();
+    AddBackendOption(cmd, &o->backend);
     cmd->add_option("--frames", o->frames, "Frames to play")
         ->check(CLI::Range(1, 10000000))
         ->capture_default_str();
@@ -167,11 +166,7 @@ void AddSoakBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
         ->check(WritableFile());
     cmd->callback([o, exitCode] {
-        Backend backend;
-        std::string why;
-        if (!ChooseBackend(o->backend, &backend, &why))
-            throw InputError("--backend", o->backend, why + "; use --backend cpu");
-        o->backend = backend == Backend::kCuda ? "cuda" : "cpu";
+        ResolveBackendOption(&o->backend);
         RunSoak(*o);
         *exitCode = kExitOk;
     });

@@ -234,10 +234,7 @@ void RunSplitBench(const SplitBenchOptions& o) {
             }
         }
     }
-    if (!o.output.empty()) {
-        WriteReport(o.output, report);
-        std::printf("rtrt: wrote %s\n", o.output.c_str());
-    }
+    WriteReportIfNamed(o.output, report);
 }
 
 }  // namespace

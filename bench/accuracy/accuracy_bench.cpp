@@ -280,10 +280,7 @@ void RunAccuracyBench(const AccuracyOptions& o) {
         }
         report["rows"].push_back(row);
     }
-    if (!o.output.empty()) {
-        WriteReport(o.output, report);
-        std::printf("rtrt: wrote %s\n", o.output.c_str());
-    }
+    WriteReportIfNamed(o.output, report);
 }
 
 }  // namespace

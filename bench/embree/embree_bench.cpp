@@ -129,10 +129,7 @@ void RunEmbreeBench(const EmbreeBenchOptions& o) {
                                     {"differing_8bit_pixels", diff.pixels},
                                     {"max_8bit_difference", diff.maxLevels}});
     }
-    if (!o.output.empty()) {
-        WriteReport(o.output, report);
-        std::printf("rtrt: wrote %s\n", o.output.c_str());
-    }
+    WriteReportIfNamed(o.output, report);
 }
 
 }  // namespace
