@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <pthread.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -19,13 +20,20 @@ extern char** environ;
 namespace rtrt {
 namespace {
 
-// rtrt's environment with OVERRIDES set on top, as NAME=VALUE strings.
-std::vector<std::string> Environment(const std::map<std::string, std::string>& overrides) {
+// posix_spawn cannot set a child's parent-death signal (PR_SET_PDEATHSIG), so the parent names
+// itself here and the child, an rtrt, sets the signal on itself (EndWithParent).
+constexpr const char* kParentPidVariable = "RTRT_PARENT_PID";
+
+// rtrt's environment with the options' variables set on top, as NAME=VALUE strings.
+std::vector<std::string> Environment(const ChildOptions& options) {
+    std::map<std::string, std::string> overrides = options.environment;
+    if (options.endWithParent) overrides[kParentPidVariable] = std::to_string(::getpid());
     std::vector<std::string> env;
     for (char** entry = environ; *entry; ++entry) {
         const std::string text = *entry;
         const std::string name = text.substr(0, text.find('='));
-        if (!overrides.count(name)) env.push_back(text);
+        // The parent rtrt's own parent is not the child's: passed on, it would end the child.
+        if (!overrides.count(name) && name != kParentPidVariable) env.push_back(text);
     }
     for (const auto& [name, value] : overrides) env.push_back(name + "=" + value);
     return env;
@@ -73,7 +81,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const ChildOpti
     posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
 
     std::vector<std::string> args = argv;
-    std::vector<std::string> env = Environment(options.environment);
+    std::vector<std::string> env = Environment(options);
     std::vector<char*> argp = Pointers(args), envp = Pointers(env);
     // Registered under the lock it is started in: an interrupt either comes first (and nothing
     // starts) or knows the child.
@@ -193,6 +201,21 @@ bool ProgramOnPath(const std::string& program) {
         start = end + 1;
     }
     return false;
+}
+
+void EndWithParent() {
+    const char* text = std::getenv(kParentPidVariable);
+    if (!text) return;
+    char* end = nullptr;
+    errno = 0;
+    const long parent = std::strtol(text, &end, 10);
+    if (errno != 0 || end == text || *end != '\0' || parent <= 1) return;
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    // A parent that ended before the request sends nothing: the child has been handed to
+    // another process already, and signals itself.
+    if (::getppid() == pid_t(parent)) return;
+    ::kill(::getpid(), SIGTERM);
+    for (;;) ::pause();  // until the interrupt thread has cleaned up and exited
 }
 
 }  // namespace rtrt

@@ -15,6 +15,10 @@ struct ChildOptions {
     bool pipeStdout = false;   // the parent reads the child's standard output (Wait returns it)
     bool quietStderr = false;  // the child's standard error goes to /dev/null
     std::map<std::string, std::string> environment;  // set on top of rtrt's own
+    // The child, an rtrt that calls EndWithParent, gets SIGTERM when this process ends, however
+    // it ends (SIGKILL too), instead of going on as an orphan. Linux sends it when the thread
+    // that started the child ends, so that thread must outlive the child.
+    bool endWithParent = false;
 };
 
 class ChildProcess {
@@ -51,5 +55,10 @@ int RunProgram(const std::vector<std::string>& argv, std::string* output = nullp
 
 // Whether PROGRAM is on PATH (an executable file), as a shell would find it.
 bool ProgramOnPath(const std::string& program);
+
+// In an rtrt started with ChildOptions::endWithParent: asks for SIGTERM when the parent ends,
+// and ends the process as SIGTERM does (interrupt.h) when the parent has ended already. Does
+// nothing in a process started otherwise.
+void EndWithParent();
 
 }  // namespace rtrt

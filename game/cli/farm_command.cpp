@@ -27,6 +27,7 @@
 #include "game/farm/farm_job.h"
 #include "game/farm/farm_lock.h"
 #include "game/farm/frame_manifest.h"
+#include "game/farm/frame_size.h"
 #include "game/farm/shard_plan.h"
 #include "game/farm/video_assembly.h"
 #include "game/scene/scene_file.h"
@@ -151,9 +152,16 @@ FarmJob JobFromOptions(const FarmOptions& o) {
     return job;
 }
 
-// The job as the folder already holds it, or as new; InputError when the folder holds other frames.
-FarmJob ResumeOrStart(FarmJob job) {
-    if (HasFarmJob(job.folder)) {
+// The job as the folder already holds it, or as new; InputError when the folder holds other frames
+// or anything that is not a job's. *takenUp: the folder holds frames/ or manifest/ without
+// farm.json, from tasks that ran elsewhere (a Kubernetes Indexed Job, README), which this run
+// takes up.
+FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
+    *takenUp = false;
+    std::error_code ec;
+    // Whatever has farm.json's name is read as the job, so that a folder or a FIFO there is
+    // refused for what it is.
+    if (fs::exists(fs::symlink_status(FarmFile(job.folder), ec))) {
         const FarmJob there = ReadFarmJob(job.folder);
         const std::string difference = FramesDifference(there.frames, job.frames);
         if (!difference.empty())
@@ -163,23 +171,52 @@ FarmJob ResumeOrStart(FarmJob job) {
         job.submissions = there.submissions;
         return job;
     }
-    std::error_code ec;
     if (fs::exists(job.folder, ec) && !fs::is_directory(job.folder, ec))
         throw InputError("--output", job.folder, "is a file, not a folder");
-    // Frames and manifests written by tasks that ran elsewhere (a Kubernetes Indexed Job, say)
-    // are taken up by the first `rtrt farm` into their folder: anything else is refused.
+    // The farm writes farm.json before its folders (StartJob), so frames/ and manifest/ without
+    // it are the tasks' of elsewhere, checked against this job (CheckTakenUpFrames). The lock and
+    // the temporary of a farm.json whose writer was killed are the farm's own; anything else is
+    // refused.
     for (const auto& entry : fs::directory_iterator(job.folder, ec)) {
         const std::string name = entry.path().filename().string();
-        if (name != "frames" && name != "manifest" && name != "logs" && name != "slurm" &&
-            name != kFarmLockName)
+        const bool farmFileTemporary =
+            name.rfind(".farm.partial", 0) == 0 && TemporaryOwnerHere(name).has_value();
+        if (name == "frames" || name == "manifest" || name == "logs" || name == "slurm") {
+            *takenUp = true;
+        } else if (name != kFarmLockName && !farmFileTemporary) {
             throw InputError(
                 "--output", job.folder,
                 "holds " + name + " but no farm job (farm.json); give an empty or new folder");
+        }
     }
     return job;
 }
 
-void MakeFolders(const FarmJob& job) {
+// Frames taken up from tasks that ran elsewhere carry no record of their settings: each must at
+// least have this job's size (one made at another would be scaled into the video), else the run
+// is refused before anything is written.
+void CheckTakenUpFrames(const FarmJob& job, const std::vector<int>& done) {
+    const FrameSize want{job.frames.width, job.frames.height};
+    for (int frame : done) {
+        const std::string file = FrameFile(job, frame);
+        FrameSize size;
+        const bool readable = ReadFrameSize(file, &size);
+        if (readable && size == want) continue;
+        const std::string what =
+            readable ? "is " + std::to_string(size.width) + "x" + std::to_string(size.height)
+                     : "is no " + job.frames.format + " image";
+        throw InputError(file, "",
+                         what + ", but the job renders " + std::to_string(want.width) + "x" +
+                             std::to_string(want.height) +
+                             ": the frames in this folder were made with other settings; give "
+                             "the options they were rendered with, or another -o");
+    }
+}
+
+// The job's description, then its folders: a farm killed in between leaves farm.json, never
+// frames/ or manifest/ without it, which a later run would take for tasks' of elsewhere.
+void StartJob(const FarmJob& job) {
+    WriteFarmJob(job);
     for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder),
                                    job.folder + "/slurm", job.folder + "/logs"}) {
         CreateOutputFolder(dir);
@@ -209,16 +246,20 @@ int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
             throw InputError("--backend", "cuda", why + "; use --backend cpu with --local");
     }
     lock.Keep();
-    MakeFolders(job);
-    WriteFarmJob(job);
+    StartJob(job);
     const std::string manifest =
         ManifestFolder(job.folder) + "/local-" + std::to_string(::getpid()) + ".tsv";
+    // A task outlives no farm: killed (even with SIGKILL), the farm takes its task with it, and
+    // a rerun does not render the same frames beside an orphan.
+    ChildOptions task;
+    task.endWithParent = true;
     for (size_t t = 0; t < tasks.size(); ++t)
         for (const FrameRange& range : tasks[t]) {
             std::printf("rtrt farm: task %zu of %zu: frames %s\n", t + 1, tasks.size(),
                         RangeText(range).c_str());
             std::fflush(stdout);
-            const int status = RunProgram(PlayCommand(job, RtrtPath(), range, manifest));
+            const int status =
+                RunProgram(PlayCommand(job, RtrtPath(), range, manifest), nullptr, task);
             // Bad input: the task's one line has said what is wrong, and a rerun would fail
             // the same way.
             if (status == kExitBadInput) return kExitBadInput;
@@ -259,8 +300,7 @@ std::string Submit(const std::vector<std::string>& command, const FarmJob& job) 
 int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
                   FarmFolderLock& lock) {
     lock.Keep();
-    MakeFolders(job);
-    WriteFarmJob(job);
+    StartJob(job);
     const std::string renderScript = NextScript(job, "render");
     const std::string assembleScript = NextScript(job, "assemble");
     FarmSubmission& submission = job.submissions.emplace_back();
@@ -317,7 +357,8 @@ int RunFarm(const FarmOptions& o) {
     // Held until the tasks have run (--local) or been submitted; a dry run writes nothing.
     std::optional<FarmFolderLock> lock;
     if (!o.dryRun) lock.emplace(described.folder);
-    const FarmJob job = ResumeOrStart(std::move(described));
+    bool takenUp = false;
+    const FarmJob job = ResumeOrStart(std::move(described), &takenUp);
     if (lock) ReportStaleTemporaries(*lock);
     // Frames of queued tasks are not missing, only unfinished: a second job would render them
     // again and race the first one's assembly.
@@ -331,8 +372,9 @@ int RunFarm(const FarmOptions& o) {
     // A new folder has no manifest: every frame is missing, and there is nothing to report.
     std::error_code ec;
     const bool resumed = fs::is_directory(ManifestFolder(job.folder), ec);
-    const std::vector<int> frames =
-        FramesToRender(resumed ? CheckAndReport(job) : CheckFrames(job));
+    const FrameCheck check = resumed ? CheckAndReport(job) : CheckFrames(job);
+    if (takenUp) CheckTakenUpFrames(job, check.done);
+    const std::vector<int> frames = FramesToRender(check);
     if (frames.empty() && Assembled(job)) {
         std::printf("rtrt farm: nothing to do: every frame, %s and %s are there\n",
                     VideoFile(job.folder).c_str(), ContactSheetFile(job.folder).c_str());
@@ -474,13 +516,24 @@ void AddFarmCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--cpus-per-task", o->cpusPerTask, "CPUs each task asks for")
         ->check(CLI::Range(1, 4096))
         ->capture_default_str();
-    cmd->add_flag("--dry-run", o->dryRun, "Print the batch scripts; write and submit nothing");
-    cmd->add_flag("--local", o->local, "Run the tasks here, one after another, without Slurm");
-    cmd->add_option("--status", o->status, "Say what the job in this folder has done")
-        ->excludes("scene");
-    cmd->add_option("--assemble", o->assemble,
-                    "Check every frame and make the video and contact sheet (the assembly job)")
-        ->excludes("scene");
+    CLI::Option* dryRun =
+        cmd->add_flag("--dry-run", o->dryRun, "Print the batch scripts; write and submit nothing");
+    CLI::Option* local =
+        cmd->add_flag("--local", o->local, "Run the tasks here, one after another, without Slurm");
+    CLI::Option* status =
+        cmd->add_option("--status", o->status, "Say what the job in this folder has done");
+    CLI::Option* assemble = cmd->add_option(
+        "--assemble", o->assemble,
+        "Check every frame and make the video and contact sheet (the assembly job)");
+    // --status and --assemble take the job from its folder, and a dry run runs nothing: an option
+    // of another mode given with them would be ignored, so the two are refused together (exit 2).
+    for (CLI::Option* option : cmd->get_options()) {
+        if (option == status || option == assemble || option == cmd->get_help_ptr()) continue;
+        status->excludes(option);
+        assemble->excludes(option);
+    }
+    status->excludes(assemble);
+    dryRun->excludes(local);
     cmd->callback([o, exitCode] {
         if (!o->status.empty())
             *exitCode = RunStatus(o->status);

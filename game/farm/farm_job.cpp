@@ -15,6 +15,21 @@ namespace rtrt {
 
 namespace {
 constexpr size_t kMaxFarmFileBytes = size_t{1} << 20;
+// The layout of farm.json this rtrt writes and reads; a newer rtrt may write a higher one.
+constexpr int64_t kFarmFileVersion = 1;
+
+void CheckVersion(JsonFields& f) {
+    if (!f.Has("version")) f.Fail("version", "missing required field");
+    f.ExpectKind("version", JsonKind::kInt);
+    const int64_t version = f.Get("version").get<int64_t>();
+    const std::string reads = "this rtrt reads version " + std::to_string(kFarmFileVersion);
+    if (version > kFarmFileVersion)
+        f.Fail("version", "the job was written by a newer rtrt (version " +
+                              std::to_string(version) + "; " + reads + ")");
+    if (version < kFarmFileVersion)
+        f.Fail("version",
+               "expected " + std::to_string(kFarmFileVersion) + ", got " + std::to_string(version));
+}
 }  // namespace
 
 std::string FarmFile(const std::string& folder) { return folder + "/farm.json"; }
@@ -46,11 +61,6 @@ std::string RangeText(const FrameRange& range) {
     return std::to_string(range.first) + ":" + std::to_string(range.end);
 }
 
-bool HasFarmJob(const std::string& folder) {
-    std::error_code ec;
-    return std::filesystem::is_regular_file(FarmFile(folder), ec);
-}
-
 FarmJob ReadFarmJob(const std::string& folder) {
     const std::string file = FarmFile(folder);
     std::error_code ec;
@@ -63,7 +73,7 @@ FarmJob ReadFarmJob(const std::string& folder) {
     JsonFields f(j, "", file);
     FarmJob job;
     job.folder = folder;
-    if (f.Count("version", 1, 1, 0) != 1) f.Fail("version", "missing required field");
+    CheckVersion(f);
     FarmFrames& fr = job.frames;
     fr.scene = f.String("scene");
     fr.sceneChecksum = f.String("scene_checksum", "");
@@ -118,7 +128,7 @@ FarmJob ReadFarmJob(const std::string& folder) {
 void WriteFarmJob(const FarmJob& job) {
     const FarmFrames& fr = job.frames;
     const FarmScheduling& s = job.scheduling;
-    Json j = {{"version", 1},
+    Json j = {{"version", kFarmFileVersion},
               {"scene", fr.scene},
               {"scene_checksum", fr.sceneChecksum},
               {"frames", {fr.frames.first, fr.frames.end}},

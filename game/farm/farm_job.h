@@ -67,7 +67,6 @@ std::string ContactSheetFile(const std::string& folder);  // FOLDER/contact_shee
 
 // Reads FOLDER/farm.json; InputError(file, field, reason) when it is missing or malformed.
 FarmJob ReadFarmJob(const std::string& folder);
-bool HasFarmJob(const std::string& folder);
 // Writes FOLDER/farm.json whole (OutputError on a failed write).
 void WriteFarmJob(const FarmJob& job);
 // InputError(option, path, reason) unless farm.json can keep path: JSON text is UTF-8.

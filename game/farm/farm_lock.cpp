@@ -3,10 +3,12 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -34,39 +36,75 @@ std::string FirstMissing(const std::string& folder) {
     return missing.string();
 }
 
+// TEXT with every byte outside printable ASCII written as \xNN: the lock file is anyone's to
+// write, and what it says goes to a terminal.
+std::string Printable(const std::string& text) {
+    std::string printable;
+    for (const unsigned char c : text) {
+        if (c >= 0x20 && c < 0x7f) {
+            printable += char(c);
+            continue;
+        }
+        char escaped[8];
+        std::snprintf(escaped, sizeof(escaped), "\\x%02x", c);
+        printable += escaped;
+    }
+    return printable;
+}
+
 // The process that holds the lock, as it wrote itself into the lock file.
 std::string Holder(int fd) {
     char text[128] = "";
     const ssize_t n = ::pread(fd, text, sizeof(text) - 1, 0);
     text[n > 0 ? n : 0] = '\0';
     if (char* end = std::strchr(text, '\n')) *end = '\0';
-    return text;
+    return Printable(text);
+}
+
+// Opens PATH, creating it where missing: its descriptor (*created: this call made the file), or
+// -1 with errno set.
+int OpenOrCreate(const std::string& path, bool* created) {
+    for (;;) {
+        int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
+        *created = fd >= 0;
+        if (fd >= 0 || errno != EEXIST) return fd;
+        // O_NONBLOCK: a FIFO or a device in the file's place must not hold the open up.
+        fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+        if (fd >= 0 || errno != ENOENT) return fd;  // ENOENT: its maker removed it meanwhile
+    }
+}
+
+// What stands where the lock file should be, when it is not a regular file.
+std::string KindOf(mode_t mode) {
+    if (S_ISDIR(mode)) return "a folder";
+    if (S_ISLNK(mode)) return "a symbolic link";
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISSOCK(mode)) return "a socket";
+    return "a device";
 }
 
 }  // namespace
 
-FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds) : folder_(folder) {
+FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds)
+    : folder_(folder), path_(folder + "/" + kFarmLockName) {
     made_ = FirstMissing(folder);
     CreateOutputFolder(folder);
-    const std::string path = folder + "/" + kFarmLockName;
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
-    if (fd_ < 0) {
-        const int error = errno;
-        Release();
-        const std::string reason =
-            "cannot open its lock file: " + std::string(std::strerror(error));
-        if (error == EACCES || error == EROFS || error == ENOTDIR || error == ELOOP)
-            throw InputError(folder, "", reason);
-        throw OutputError(folder, reason);
-    }
+    bool created = OpenLockFile();
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(waitSeconds);
-    while (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    for (;;) {
+        if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) {
+            if (LockedFileIsCurrent()) break;
+            ::close(fd_);
+            fd_ = -1;
+            created = OpenLockFile();
+            continue;
+        }
         const int error = errno;
         if (error == EINTR) continue;
         if (error != EWOULDBLOCK) {  // e.g. ENOLCK: an NFS mount without its lock service
             Release();
             throw OutputError(
-                folder, "cannot lock the job's folder (" + path + "): " + std::strerror(error));
+                folder, "cannot lock the job's folder (" + path_ + "): " + std::strerror(error));
         }
         if (std::chrono::steady_clock::now() < deadline) {
             std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -81,6 +119,8 @@ FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds) : fol
                                       "ended (rtrt farm --status shows the frames done), or "
                                       "give another -o");
     }
+    // Only once it is held: a file made here but locked by another run is that run's to keep.
+    madeLockFile_ = created;
     char host[256] = "";
     ::gethostname(host, sizeof(host) - 1);
     const std::string holder =
@@ -88,10 +128,51 @@ FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds) : fol
     if (::ftruncate(fd_, 0) == 0) (void)!::pwrite(fd_, holder.data(), holder.size(), 0);
 }
 
+bool FarmFolderLock::OpenLockFile() {
+    bool created = false;
+    fd_ = OpenOrCreate(path_, &created);
+    const int error = errno;
+    // A folder, a link or a FIFO in its place is the folder's state, not a failure: exit 2,
+    // saying what to remove.
+    struct stat info {};
+    const bool opened = fd_ >= 0;
+    const bool known =
+        opened ? ::fstat(fd_, &info) == 0
+               : (error == EISDIR || error == ELOOP) && ::lstat(path_.c_str(), &info) == 0;
+    if (known && !S_ISREG(info.st_mode)) {
+        Release();
+        throw InputError(path_, "",
+                         "is " + KindOf(info.st_mode) +
+                             " where rtrt farm keeps its lock file; remove it and run this again");
+    }
+    if (!opened) {
+        Release();
+        const std::string reason =
+            "cannot open its lock file: " + std::string(std::strerror(error));
+        if (error == EACCES || error == EROFS || error == ENOTDIR || error == ELOOP)
+            throw InputError(folder_, "", reason);
+        throw OutputError(folder_, reason);
+    }
+    return created;
+}
+
+bool FarmFolderLock::LockedFileIsCurrent() const {
+    struct stat locked;
+    struct stat named;
+    return ::fstat(fd_, &locked) == 0 && ::lstat(path_.c_str(), &named) == 0 &&
+           locked.st_dev == named.st_dev && locked.st_ino == named.st_ino;
+}
+
 void FarmFolderLock::Release() {
+    // Before the lock is let go; a run that was waiting for it then finds the file gone
+    // (LockedFileIsCurrent) and locks the one in its place.
     std::error_code ec;
-    if (!made_.empty()) fs::remove_all(made_, ec);  // before the lock is let go
+    if (!made_.empty())
+        fs::remove_all(made_, ec);
+    else if (madeLockFile_)
+        ::unlink(path_.c_str());
     made_.clear();
+    madeLockFile_ = false;
     if (fd_ >= 0) ::close(fd_);
     fd_ = -1;
 }

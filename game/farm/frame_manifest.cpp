@@ -1,6 +1,7 @@
 #include "game/farm/frame_manifest.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -54,6 +55,10 @@ void AppendToManifest(const std::string& manifest, int frame, const std::string&
 }
 
 void CheckManifestPath(const std::string& path) {
+    // A FIFO would block the open until something reads it, and a device is no record of frames.
+    struct stat st;
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+        throw InputError("--manifest", path, "is not a regular file; name a file to append to");
     const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0) throw InputError("--manifest", path, std::strerror(errno));
     ::close(fd);

@@ -1,16 +1,19 @@
 #!/usr/bin/env python3
 """`rtrt farm` without a cluster: the dry run's scripts, the message where Slurm is missing,
 --local renders that equal `rtrt play --headless` byte for byte, a resume that renders only the
-missing and corrupt frames, --status's exit statuses, and a folder of other settings refused.
+missing and corrupt frames, --status's exit statuses, a folder of other settings (or of no job)
+refused and left as it was, options of two modes refused, and a task that ends with its farm.
 
 usage: farm_cli_test.py RTRT WORK_DIR FORMAT   (FORMAT: png, or ppm where rtrt has no PNG)
 """
+import ctypes
 import fcntl
 import filecmp
 import json
 import os
 import re
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -38,6 +41,76 @@ def check(condition, what):
 
 def frame(folder, i):
     return os.path.join(folder, "frames", f"frame_{i:06d}.{FORMAT}")
+
+
+def play_children(pid):
+    """The `rtrt play` processes whose parent is PID."""
+    found = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                stat = f.read()
+            with open(f"/proc/{entry}/cmdline", "rb") as f:
+                argv = f.read().split(b"\0")
+        except OSError:
+            continue
+        ppid = int(stat[stat.rindex(")") + 2:].split()[1])
+        if ppid == pid and len(argv) > 1 and argv[1] == b"play":
+            found.append(int(entry))
+    return found
+
+
+def set_subreaper(on):
+    libc = ctypes.CDLL(None, use_errno=True)
+    PR_SET_CHILD_SUBREAPER = 36
+    if libc.prctl(PR_SET_CHILD_SUBREAPER, ctypes.c_ulong(1 if on else 0), ctypes.c_ulong(0),
+                  ctypes.c_ulong(0), ctypes.c_ulong(0)) != 0:
+        sys.exit(f"FAIL: prctl(PR_SET_CHILD_SUBREAPER): errno {ctypes.get_errno()}")
+
+
+def test_task_ends_with_farm():
+    """A farm killed with SIGKILL takes its running task with it: no orphan renders on beside the
+    rerun. This process becomes the orphans' reaper, so that it can wait for the task."""
+    folder = os.path.join(WORK, "killed")
+    log_path = os.path.join(WORK, "killed.log")
+    set_subreaper(True)
+    with open(log_path, "w") as log:
+        farm = subprocess.Popen([RTRT, "farm", SCENE, "--frames", "0:20000", "--size", "640x360",
+                                 "--spp", "16", "--format", FORMAT, "-o", folder, "--local"],
+                                stdout=log, stderr=subprocess.STDOUT)
+    deadline = time.time() + 120
+    tasks = []
+    while not tasks and farm.poll() is None and time.time() < deadline:
+        time.sleep(0.05)
+        tasks = play_children(farm.pid)
+    if not tasks:
+        farm.kill()
+        farm.wait()
+        sys.exit(f"FAIL: the farm started no task\n{open(log_path).read()}")
+    task = tasks[0]
+    time.sleep(1.0)  # the task is rendering
+    farm.send_signal(signal.SIGKILL)
+    farm.wait()
+    status = None
+    deadline = time.time() + 30
+    while time.time() < deadline:
+        waited, status = os.waitpid(task, os.WNOHANG)
+        if waited == task:
+            break
+        status = None
+        time.sleep(0.05)
+    if status is None:
+        os.kill(task, signal.SIGKILL)
+        os.waitpid(task, 0)
+    set_subreaper(False)
+    check(status is not None and os.WIFEXITED(status) and os.WEXITSTATUS(status) == 143,
+          f"a farm killed with SIGKILL takes its task with it (SIGTERM, exit 143; status {status})")
+    check(not [f for f in os.listdir(os.path.join(folder, "frames"))
+               if re.search(rf"\.partial{task}(\D|$)", f)],
+          "the task removed its unfinished frame on the way out")
+    shutil.rmtree(folder)
 
 
 def main():
@@ -118,6 +191,44 @@ def main():
           os.path.exists(os.path.join(k8s, "video.mp4")),
           "frames rendered elsewhere with --manifest are taken up: the farm only assembles")
 
+    # Frames rendered elsewhere at another size: no farm.json says how they were made, and a frame
+    # of another size was made with other settings, so the run is refused (exit 2) and the folder
+    # left as it was (they had been taken up, and scaled into the video).
+    adopt = os.path.join(WORK, "adopt")
+    os.makedirs(os.path.join(adopt, "frames"))
+    os.makedirs(os.path.join(adopt, "manifest"))
+    run("play", SCENE, "--headless", "--frames", "0:4", "--size", "32x18", "--backend", "cpu",
+        "-o", os.path.join(adopt, "frames", f"frame_%06d.{FORMAT}"), "--manifest",
+        os.path.join(adopt, "manifest", "k8s-0.tsv"))
+    out = run("farm", SCENE, "--frames", "0:4", "--size", SIZE, "--format", FORMAT, "-o", adopt,
+              "--local", expect=2)
+    check(f"frame_000000.{FORMAT}: is 32x18, but the job renders {SIZE}" in out and
+          sorted(os.listdir(adopt)) == ["frames", "manifest"] and
+          len(os.listdir(os.path.join(adopt, "frames"))) == 4,
+          "frames of another size made elsewhere are refused (exit 2) and left alone")
+
+    # A refused run leaves a user's folder as it found it: no lock file, nothing else.
+    user = os.path.join(WORK, "userdir")
+    os.makedirs(user)
+    with open(os.path.join(user, "notes.txt"), "w") as f:
+        f.write("x\n")
+    out = run("farm", SCENE, "--frames", "0:2", "--size", "8x8", "--format", FORMAT, "-o", user,
+              "--local", expect=2)
+    check("holds notes.txt but no farm job" in out and os.listdir(user) == ["notes.txt"],
+          "a folder of other files is refused and keeps only what it held")
+
+    # Options of two modes together are refused, naming both, instead of one being ignored.
+    out = run("farm", "--status", job, "--assemble", job, expect=2)
+    check("--status excludes --assemble" in out, "--status with --assemble: exit 2, both named")
+    out = run("farm", "--status", job, "--local", "--frames", "0:3", "--shards", "7", expect=2)
+    check("excludes" in out and "--status" in out and
+          ("--local" in out or "--frames" in out or "--shards" in out),
+          "--status with a job's options: exit 2, both named")
+    dry_local = os.path.join(WORK, "dry_local")
+    out = run("farm", SCENE, "--frames", "0:6", "-o", dry_local, "--dry-run", "--local", expect=2)
+    check("--dry-run excludes --local" in out and not os.path.exists(dry_local),
+          "--dry-run with --local: exit 2, nothing written")
+
     # Another size into the same folder is refused, naming the difference.
     other = list(farm)
     other[other.index(SIZE)] = "64x36"
@@ -152,6 +263,14 @@ def main():
           "--assemble goes on once the holder lets go")
     out = run(*farm, "--local")
     check("nothing to do" in out, "once the holder is gone the folder is free")
+    with open(os.path.join(job, ".rtrt-farm.lock"), "r+") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        held.truncate(0)
+        held.write("process 4242 on \x1b]0;owned\x07\x1b[2Jhost\n")
+        held.flush()
+        out = run(*farm, "--local", expect=1)
+    check("(process 4242 on \\x1b]0;owned\\x07\\x1b[2Jhost)" in out and "\x1b" not in out,
+          "the holder's text is printed with its control characters escaped")
     fresh = os.path.join(WORK, "fresh")
     out = run(*farm[:-1], os.path.join(fresh, "a", "job"), env=no_slurm, expect=1)
     check(not os.path.exists(fresh),
@@ -198,6 +317,31 @@ def main():
                        timeout=60)
     check(p.returncode == 2 and "not a regular file" in p.stderr,
           "a farm.json that is a FIFO: exit 2 at once")
+    p = subprocess.run([RTRT, *farm[:-1], fifo_job, "--local"], capture_output=True, text=True,
+                       timeout=60)
+    check(p.returncode == 2 and "farm.json: not a regular file" in p.stderr and
+          os.listdir(fifo_job) == ["farm.json"],
+          "a run into a folder whose farm.json is a FIFO: exit 2, it is not a regular file")
+    dir_job = os.path.join(WORK, "json_dir")
+    os.makedirs(os.path.join(dir_job, "farm.json"))
+    out = run(*farm[:-1], dir_job, "--local", expect=2)
+    check("farm.json: not a regular file" in out and os.listdir(dir_job) == ["farm.json"],
+          "a run into a folder whose farm.json is a folder: exit 2, it is not a regular file")
+    lock_dir = os.path.join(WORK, "lock_dir")
+    os.makedirs(os.path.join(lock_dir, ".rtrt-farm.lock"))
+    out = run(*farm[:-1], lock_dir, "--local", expect=2)
+    check(".rtrt-farm.lock: is a folder where rtrt farm keeps its lock file; remove it" in out,
+          "a lock file that is a folder: exit 2, saying to remove it")
+    newer = os.path.join(WORK, "newer")
+    os.makedirs(newer)
+    with open(os.path.join(job, "farm.json")) as f:
+        description = json.load(f)
+    description["version"] = 2
+    with open(os.path.join(newer, "farm.json"), "w") as f:
+        json.dump(description, f)
+    out = run("farm", "--status", newer, expect=2)
+    check("version: the job was written by a newer rtrt (version 2; this rtrt reads version 1)"
+          in out, "a farm.json of a later version names the newer rtrt")
     bad = os.path.join(WORK, "bad_partition")
     shutil.copytree(job, bad, ignore=shutil.ignore_patterns("frames", "video.mp4"))
     with open(os.path.join(bad, "farm.json")) as f:
@@ -213,6 +357,8 @@ def main():
     open(blocker, "w").close()
     out = run(*farm[:-1], os.path.join(blocker, "sub"), "--local", expect=2)
     check("a_file/sub" in out, "an output folder under a file: exit 2")
+
+    test_task_ends_with_farm()
     print("farm_cli: all checks passed")
 
 

@@ -95,6 +95,22 @@ TEST_F(FarmJobTest, MalformedFilesNameTheFieldAndReason) {
     EXPECT_NE(ReadError().find("malformed JSON"), std::string::npos) << ReadError();
 }
 
+// A job of a later layout is not "out of range": the message says which rtrt can read it.
+TEST_F(FarmJobTest, NewerVersionIsNamedAsSuch) {
+    WriteText(
+        "{\"version\": 2, \"scene\": \"s\", \"frames\": [0, 5], \"width\": 2, \"height\": 2}");
+    EXPECT_NE(ReadError().find("farm.json: version: the job was written by a newer rtrt (version "
+                               "2; this rtrt reads version 1)"),
+              std::string::npos)
+        << ReadError();
+    WriteText(
+        "{\"version\": 0, \"scene\": \"s\", \"frames\": [0, 5], \"width\": 2, \"height\": 2}");
+    EXPECT_NE(ReadError().find("version: expected 1, got 0"), std::string::npos) << ReadError();
+    WriteText("{\"scene\": \"s\", \"frames\": [0, 5], \"width\": 2, \"height\": 2}");
+    EXPECT_NE(ReadError().find("version: missing required field"), std::string::npos)
+        << ReadError();
+}
+
 // farm.json is JSON text, which is UTF-8: a path that is not is refused before anything is
 // written, naming the option.
 TEST(FarmPath, PathsThatAreNotUtf8AreRefused) {
