@@ -37,19 +37,34 @@
 
 namespace rtrt {
 
+std::string BenchModelFile(const std::string& name) {
+    if (name == "cube") return "";
+    if (name == "teapot") return ModelDir() + "/teapot.inc";
+    const std::string suffix = name == "dragon" ? "" : name.substr(6);  // "_res4"
+    return ModelDir() + "/dragon_vrip" + suffix + ".ply.gz";
+}
+
+void RequireSomeBenchModel(const std::vector<std::string>& models) {
+    std::string names;
+    for (const std::string& name : models) {
+        const std::string file = BenchModelFile(name);
+        if (file.empty() || std::filesystem::exists(file)) return;
+        names += (names.empty() ? "" : ", ") + name;
+    }
+    throw InputError(ModelDir(), "--models",
+                     "none of the models asked for is there (" + names +
+                         "); run tools/fetch_models.sh, or set RTRT_MODEL_DIR to where they are");
+}
+
 bool LoadBenchModel(const std::string& name, TriangleMesh* mesh) {
-    const std::string dir = ModelDir();
-    std::string path;
-    if (name == "cube") {
+    const std::string path = BenchModelFile(name);
+    if (path.empty()) {
         *mesh = MakeBoxMesh(vec3(1.0f));
+    } else if (!std::filesystem::exists(path)) {
+        return false;
     } else if (name == "teapot") {
-        path = dir + "/teapot.inc";
-        if (!std::filesystem::exists(path)) return false;
         *mesh = TessellateTeapot(path, 6);
     } else {
-        const std::string suffix = name == "dragon" ? "" : name.substr(6);  // "_res4"
-        path = dir + "/dragon_vrip" + suffix + ".ply.gz";
-        if (!std::filesystem::exists(path)) return false;
         *mesh = LoadMesh(path);
     }
     FitMesh(*mesh, 5.0f);
@@ -370,6 +385,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     cpu->add_option("-o,--output", options->output, "Write the results as JSON here")
         ->check(WritableFile());
     cpu->callback([options, exitCode] {
+        RequireSomeBenchModel(options->models);
         RunBench(*options);
         *exitCode = kExitOk;
     });
@@ -465,6 +481,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     gpu->callback([options, exitCode] {
         std::string why;
         if (!CudaBackendAvailable(&why)) throw InputError("bench gpu", "", why);
+        RequireSomeBenchModel(options->models);
         RunGpuBench(*options);
         *exitCode = kExitOk;
     });

@@ -12,6 +12,11 @@ void AddBenchCommand(CLI::App& app, int* exitCode);
 // Loads a benchmark model of the paper scene (cube, teapot, dragon_res4 .. dragon), fitted to
 // extent 5; false when its file is missing (tools/fetch_models.sh fetches it).
 bool LoadBenchModel(const std::string& name, TriangleMesh* mesh);
+// The file a benchmark model is read from ("" for the cube, which is made, not read).
+std::string BenchModelFile(const std::string& name);
+// InputError unless at least one of models is there to run: a benchmark of none measures nothing
+// (missing ones among others are skipped with a line that says so).
+void RequireSomeBenchModel(const std::vector<std::string>& models);
 // The --models option of the paper-scene benchmarks: a comma-separated subset of those models.
 CLI::Option* AddModelsOption(CLI::App* command, std::vector<std::string>* models);
 // `rtrt bench embree`, registered by AddBenchCommand.

@@ -32,11 +32,6 @@ struct ConvertBenchOptions {
     std::string output;
 };
 
-std::string ModelPath(const std::string& name) {
-    const std::string suffix = name == "dragon" ? "" : name.substr(6);  // "_res4"
-    return ModelDir() + "/dragon_vrip" + suffix + ".ply.gz";
-}
-
 // The bench's scratch folder, removed at the end, on an error and on an interrupt.
 class ScratchFolder {
   public:
@@ -81,7 +76,7 @@ void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine
     std::printf("%-12s %10s %7s %8s %8s %7s %8s | %8s %9s %8s\n", "model", "triangles", "hash",
                 "parse", "build", "write", "total", "load", "SAH cost", "MB");
     for (const std::string& name : o.models) {
-        const std::string path = ModelPath(name);
+        const std::string path = BenchModelFile(name);
         if (!fs::exists(path)) {
             std::printf("%-12s skipped: %s missing (run tools/fetch_models.sh)\n", name.c_str(),
                         path.c_str());
@@ -147,6 +142,7 @@ void AddConvertBench(CLI::App& bench, int* exitCode, nlohmann::json (*machineInf
     cmd->add_option("-o,--output", options->output, "Write the results as JSON here")
         ->check(WritableFile());
     cmd->callback([options, exitCode, machineInfo] {
+        RequireSomeBenchModel(options->models);
         RunConvertBench(*options, machineInfo());
         *exitCode = kExitOk;
     });

@@ -147,6 +147,7 @@ void AddEmbreeBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("-o,--output", options->output, "Write the results as JSON here")
         ->check(WritableFile());
     cmd->callback([options, exitCode] {
+        RequireSomeBenchModel(options->models);
         RunEmbreeBench(*options);
         *exitCode = kExitOk;
     });

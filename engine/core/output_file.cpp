@@ -72,6 +72,13 @@ void CheckOutputPath(const std::string& path) {
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
         throw InputError(path, "", "the folder " + folder.string() + " does not exist");
+    // Else the rename into place fails, after all the work.
+    const std::string name = std::filesystem::path(path).filename().string();
+    if (name.size() > kMaxFileNameBytes)
+        throw InputError(path, "",
+                         "the file name is too long (" + std::to_string(name.size()) +
+                             " bytes; file systems take at most " +
+                             std::to_string(kMaxFileNameBytes) + ")");
     CheckFolderWritable(path, folder.empty() ? std::string(".") : folder.string());
 }
 

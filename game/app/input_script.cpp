@@ -1,10 +1,13 @@
 #include "game/app/input_script.h"
 
-#include <fstream>
+#include <charconv>
+#include <climits>
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "game/app/controls.h"
+#include "game/assets/image_io.h"
 
 namespace rtrt {
 namespace {
@@ -18,26 +21,44 @@ int Arity(const std::string& command) {
     return -2;
 }
 
+// Scripts are a few lines of text: the bound keeps a huge file from filling memory.
+constexpr size_t kMaxScriptBytes = size_t{16} << 20;
+
+// The whole word as a frame number ("1.5" is not frame 1 followed by ".5").
+bool ParseFrame(const std::string& word, long long* frame) {
+    const char* end = word.data() + word.size();
+    const auto [next, error] = std::from_chars(word.data(), end, *frame);
+    // Beyond a long long: out of the frames' range below, whichever sign.
+    if (error == std::errc::result_out_of_range) *frame = word[0] == '-' ? -1 : LLONG_MAX;
+    return next == end && (error == std::errc() || error == std::errc::result_out_of_range);
+}
+
 }  // namespace
 
 InputScript InputScript::Load(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path, "", "cannot read the script");
+    // Read whole before the window opens: a FIFO or a device is refused, not waited on.
+    std::istringstream in(ReadInputFile(path, kMaxScriptBytes));
     InputScript script;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
         const std::string field = "line " + std::to_string(number);
+        // A UTF-8 byte order mark, which some editors put first, is no part of the first line.
+        if (number == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
         if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
         std::istringstream words(line);
         Event e;
-        if (!(words >> e.frame)) {
-            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-            throw InputError(path, field, "expected FRAME COMMAND ARGS");
-        }
+        std::string frameWord;
+        long long frame = 0;
+        if (!(words >> frameWord)) continue;  // blank or a comment
+        if (!ParseFrame(frameWord, &frame))
+            throw InputError(path, field,
+                             "expected FRAME COMMAND ARGS, with FRAME a whole number, got \"" +
+                                 frameWord + "\"");
         // Bounded so that an event's follow-up frames (LastFrame) stay within an int.
         constexpr int kMaxFrame = 100000000;
-        if (e.frame < 0 || e.frame > kMaxFrame)
+        if (frame < 0 || frame > kMaxFrame)
             throw InputError(path, field, "the frame must be >= 0 and at most 100000000");
+        e.frame = int(frame);
         if (!(words >> e.command)) throw InputError(path, field, "missing command");
         const int arity = Arity(e.command);
         if (arity == -2)
@@ -50,6 +71,14 @@ InputScript InputScript::Load(const std::string& path) {
             e.text.push_back(word);
             if (e.command == "key" && (e.key = KeyByName(word)) < 0)
                 throw InputError(path, field, "unknown key \"" + word + "\"");
+            // Checked now, not when the frame comes: a bad path fails before the window opens.
+            if (e.command == "screenshot") {
+                try {
+                    CheckImagePath(word);
+                } catch (const InputError& bad) {
+                    throw InputError(path, field, "screenshot " + word + ": " + bad.Reason());
+                }
+            }
         }
         for (int i = 0; i < arity; ++i) {
             float v;

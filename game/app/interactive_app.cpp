@@ -47,7 +47,7 @@ class App {
         model_.cudaAvailable = CudaBackendAvailable(nullptr);
         model_.useCuda = backend == Backend::kCuda;
         model_.glRenderer = window_.Renderer();
-        if (!o.script.empty()) script_ = InputScript::Load(o.script);
+        script_ = o.script;
         if (!o.record.empty() && !IsVideoPath(o.record)) CreateOutputFolder(o.record);
         LoadScene(0);
     }

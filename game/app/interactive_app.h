@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/render_rt/frame_renderer.h"
+#include "game/app/input_script.h"
 
 namespace rtrt {
 
@@ -21,9 +22,9 @@ struct WindowOptions {
     // the end are each stage's own, GPU work included, rather than wherever the driver blocks.
     bool finishStages = false;
     std::string record;  // a video (.mp4...), or a folder for each frame shown as frame_NNNNN.png
-    std::string script;  // scripted input (input_script.h), for tests
-    int frames = 0;      // stop after this many frames (0: when the window closes)
-    float fps = 60.0f;   // the fixed time step with --record or --script; else the wall clock
+    std::optional<InputScript> script;  // scripted input, for tests (loaded before the window)
+    int frames = 0;                     // stop after this many frames (0: when the window closes)
+    float fps = 60.0f;  // the fixed time step with --record or --script; else the wall clock
     std::optional<float> exposureEv;  // over each scene's own (, and . change it)
     std::string toneMap;              // over each scene's own
 };

@@ -46,16 +46,28 @@ bool ReadCacheEntry(const std::string& path, const RtModelKey& key, MeshModel* m
 }
 
 // A cache that cannot be written costs only time: the work goes on, with one warning per process.
-void WriteCacheEntry(const std::string& dir, const MeshModel& model) {
-    try {
-        fs::create_directories(dir);
-        WriteRtModel(model.cachePath, model.blas, model.info);
-    } catch (const std::exception& e) {
-        static std::atomic<bool> warned{false};
-        if (!warned.exchange(true))
-            std::fprintf(stderr, "rtrt: warning: BLAS cache not written (%s); going on without\n",
-                         e.what());
+// Whether the entry was written.
+bool WriteCacheEntry(const std::string& dir, const MeshModel& model) {
+    std::string why;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) {
+        why = dir + ": cannot create the folder: " + ec.message();
+    } else {
+        try {
+            WriteRtModel(model.cachePath, model.blas, model.info);
+            return true;
+        } catch (const std::exception& e) {
+            why = e.what();
+        }
     }
+    static std::atomic<bool> warned{false};
+    if (!warned.exchange(true))
+        std::fprintf(stderr,
+                     "rtrt: warning: BLAS cache not written (%s); going on without (set "
+                     "RTRT_CACHE_DIR to a writable folder, or to off)\n",
+                     why.c_str());
+    return false;
 }
 
 }  // namespace
@@ -109,12 +121,12 @@ MeshModel LoadMeshModel(const std::string& path, const BvhBuildOptions& options)
     MeshModel model;
     if (ReadCacheEntry(cachePath, key, &model)) {
         model.origin = MeshModel::Origin::kCache;
+        model.cachePath = cachePath;
     } else {
         model = BuildMeshModel(path, options, sourceHash);
         model.cachePath = cachePath;
-        WriteCacheEntry(dir, model);
+        if (!WriteCacheEntry(dir, model)) model.cachePath.clear();
     }
-    model.cachePath = cachePath;
     model.hashMs = hashMs;
     return model;
 }

@@ -1,5 +1,6 @@
 #include "game/assets/ply_reader.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -459,10 +460,15 @@ void ReadPlyFaces(Reader& reader, const PlyLayout& layout, uint64_t& record, Tri
 
 template <class Reader>
 void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayout& layout,
-                 Reader& reader, TriangleMesh& mesh) {
+                 size_t bodyBytes, Reader& reader, TriangleMesh& mesh) {
     mesh.positions.reserve(layout.vertices->count);
     if (layout.hasNormals) mesh.normals.reserve(layout.vertices->count);
-    if (layout.faces) mesh.indices.reserve(layout.faces->count);
+    // A face count is bounded by the body only at a byte a face (an empty list), so the
+    // reservation for triangles is bounded by what a mesh may hold and by the body's bytes at
+    // four a triangle (a count and three one-byte indices): a header may not ask for gigabytes.
+    if (layout.faces)
+        mesh.indices.reserve(
+            std::min({layout.faces->count, mesh_text::kMaxTriangles, uint64_t(bodyBytes / 4)}));
     for (const PlyElement& element : header.elements) {
         uint64_t record = 0;
         try {
@@ -493,11 +499,11 @@ TriangleMesh ParsePly(const std::string& path, std::string_view data) {
     TriangleMesh mesh;
     if (header.format == PlyFormat::kAscii) {
         AsciiReader reader(data);
-        ReadPlyBody(path, header, layout, reader, mesh);
+        ReadPlyBody(path, header, layout, data.size(), reader, mesh);
     } else {
         bool bigEndianData = header.format == PlyFormat::kBinaryBigEndian;
         BinaryReader reader(data, bigEndianData != (std::endian::native == std::endian::big));
-        ReadPlyBody(path, header, layout, reader, mesh);
+        ReadPlyBody(path, header, layout, data.size(), reader, mesh);
     }
     if (!layout.hasNormals || !NormalizeFileNormals(mesh.normals)) ComputeSmoothNormals(mesh);
     return mesh;

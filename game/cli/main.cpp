@@ -27,26 +27,47 @@ size_t EditDistance(const std::string& a, const std::string& b) {
     return row[b.size()];
 }
 
-// The first argument names no command: say so, with the nearest command if one is close.
+// A word where a command is expected (rtrt COMMAND, rtrt bench SUBCOMMAND) that names none: say
+// so, with the nearest command if one is close, and list them. Options there (rtrt --bogus) are
+// named too: CLI11 would only say that a subcommand is required.
 bool ReportUnknownCommand(const CLI::App& app, int argc, char** argv) {
-    if (argc < 2 || argv[1][0] == '-') return false;
-    const std::string given = argv[1];
-    std::string nearest, names;
-    size_t best = 3;  // farther than two edits is no suggestion
-    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-        const std::string& name = sub->get_name();
-        if (name == given) return false;
-        names += (names.empty() ? "" : ", ") + name;
-        if (const size_t d = EditDistance(given, name); d < best) {
-            best = d;
-            nearest = name;
+    const CLI::App* level = &app;
+    std::string path = "rtrt";
+    for (int i = 1; i < argc; ++i) {
+        const auto subcommands = level->get_subcommands([](const CLI::App*) { return true; });
+        if (subcommands.empty()) return false;  // a command's own arguments: CLI11 checks them
+        const std::string given = argv[i];
+        if (given.starts_with("-")) {
+            if (level->get_option_no_throw(given.substr(0, given.find('='))) != nullptr)
+                return false;
+            std::fprintf(stderr, "rtrt: error: '%s' is not an option of %s (%s --help)\n",
+                         given.c_str(), path.c_str(), path.c_str());
+            return true;
         }
+        std::string nearest, names;
+        const CLI::App* match = nullptr;
+        size_t best = 3;  // farther than two edits is no suggestion
+        for (const CLI::App* sub : subcommands) {
+            const std::string& name = sub->get_name();
+            if (name == given) match = sub;
+            names += (names.empty() ? "" : ", ") + name;
+            if (const size_t d = EditDistance(given, name); d < best) {
+                best = d;
+                nearest = name;
+            }
+        }
+        if (match == nullptr) {
+            std::fprintf(stderr,
+                         "rtrt: error: '%s' is not %s command%s (commands: %s; %s --help)\n",
+                         given.c_str(), path == "rtrt" ? "an rtrt" : ("a '" + path + "'").c_str(),
+                         nearest.empty() ? "" : ("; did you mean '" + nearest + "'?").c_str(),
+                         names.c_str(), path.c_str());
+            return true;
+        }
+        level = match;
+        path += " " + given;
     }
-    std::fprintf(stderr, "rtrt: error: '%s' is not an rtrt command%s (commands: %s; rtrt --help)\n",
-                 given.c_str(),
-                 nearest.empty() ? "" : ("; did you mean '" + nearest + "'?").c_str(),
-                 names.c_str());
-    return true;
+    return false;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/child_process.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
 #include "engine/core/timer.h"
@@ -107,7 +108,7 @@ void RunWindowed(const PlayOptions& o) {
     w.finishStages = o.finishStages;
     w.record = o.record;
     if (IsVideoPath(o.record)) CheckVideoPath(o.record);
-    w.script = o.script;
+    if (!o.script.empty()) w.script = InputScript::Load(o.script);
     int first = 0, end = 0;
     if (!o.frames.empty() && (!ParseFrames(o.frames, &first, &end) || first != 0))
         throw InputError("--frames", o.frames,
@@ -282,6 +283,7 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
     AddPhysicsSolverOption(cmd, &options->physicsSolver);
     AddOutputOptions(cmd, &options->display);
     cmd->callback([options, exitCode] {
+        EndWithParent();  // a farm's task ends with its farm (rtrt farm --local)
         RunPlay(*options);
         *exitCode = kExitOk;
     });

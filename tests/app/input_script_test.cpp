@@ -3,6 +3,7 @@
 #include "game/app/input_script.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -44,6 +45,33 @@ TEST(InputScript, MalformedLinesNameTheLineAndReason) {
     ExpectError("-1 quit\n", "line 1", "frame must be >= 0");
     ExpectError("2147483647 quit\n", "line 1", "at most 100000000");
     ExpectError("key 1\n", "line 1", "expected FRAME COMMAND ARGS");
+    // The frame is the whole first word: "1.5" was read as frame 1 and command ".5".
+    ExpectError("1.5 quit\n", "line 1", "FRAME a whole number, got \"1.5\"");
+    ExpectError("99999999999999999999 quit\n", "line 1", "at most 100000000");
+    ExpectError("-99999999999999999999 quit\n", "line 1", "frame must be >= 0");
+    // Screenshot paths are checked when the script is read, not when their frame comes.
+    ExpectError("1 quit\n2 screenshot /nonexistent-rtrt-folder/shot.png\n", "line 2",
+                "screenshot /nonexistent-rtrt-folder/shot.png: ");
+    ExpectError("3 screenshot shot.unknown-format\n", "line 1", "screenshot shot.unknown-format");
+}
+
+TEST(InputScript, AByteOrderMarkBeforeTheFirstLineIsIgnored) {
+    InputScript script =
+        InputScript::Load(Write("\xEF\xBB\xBF"
+                                "4 quit\n"));
+    EXPECT_EQ(script.LastFrame(), 6);
+}
+
+// A FIFO is refused at once (reading it would wait for a writer), as a device or a folder is.
+TEST(InputScript, OnlyRegularFilesAreRead) {
+    const std::string fifo =
+        (std::filesystem::temp_directory_path() / ("rtrt_script_fifo_" + std::to_string(getpid())))
+            .string();
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_THROW(InputScript::Load(fifo), InputError);
+    std::filesystem::remove(fifo);
+    EXPECT_THROW(InputScript::Load("/dev/zero"), InputError);
+    EXPECT_THROW(InputScript::Load(std::filesystem::temp_directory_path().string()), InputError);
 }
 
 TEST(InputScript, DragSpansThreeFramesAndKeysRelease) {

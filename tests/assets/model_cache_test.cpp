@@ -156,7 +156,11 @@ TEST_F(ModelCacheTest, AnUnwritableCacheOnlyCostsTheRebuild) {
     const std::string blocker = Write("file", "not a folder");
     setenv("RTRT_CACHE_DIR", (blocker + "/cache").c_str(), 1);
     const std::string obj = Write("quad.obj", kQuadObj);
-    EXPECT_EQ(LoadMeshModel(obj, {}).blas.PrimCount(), 3u);
+    const MeshModel model = LoadMeshModel(obj, {});
+    EXPECT_EQ(model.blas.PrimCount(), 3u);
+    // Nothing was written, so the model names no cache entry (`rtrt info` said "cached as").
+    EXPECT_EQ(model.origin, MeshModel::Origin::kBuilt);
+    EXPECT_EQ(model.cachePath, "");
 }
 
 TEST_F(ModelCacheTest, BadMeshesAreStillInputErrors) {

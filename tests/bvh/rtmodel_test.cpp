@@ -104,6 +104,23 @@ TEST_F(RtModelTest, RoundTripIsBitIdentical) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
 }
 
+// A model near the float limit: every plane of its box is finite, though their sum is not (the
+// check once added them up and refused what convert had just written).
+TEST_F(RtModelTest, ModelNearTheFloatLimitRoundTrips) {
+    TriangleMesh mesh;
+    mesh.positions = {vec3(1.2e38f), vec3(1.3e38f, 1.2e38f, 1.2e38f),
+                      vec3(1.2e38f, 1.3e38f, 1.2e38f)};
+    mesh.indices = {glm::uvec3(0, 1, 2)};
+    ComputeSmoothNormals(mesh);
+    const Blas blas = BuildTriangleBlas(mesh);
+    RtModelInfo info = CorpusInfo();
+    info.sourceBounds = {vec3(1.2e38f), vec3(1.3e38f, 1.3e38f, 1.2e38f)};
+    WriteRtModel(Path("far.rtmodel"), blas, info);
+    RtModelInfo read;
+    ExpectIdentical(blas, ReadRtModel(Path("far.rtmodel"), &read));
+    EXPECT_EQ(read.sourceBounds.max, info.sourceBounds.max);
+}
+
 TEST_F(RtModelTest, SpheresRoundTrip) {
     const std::vector<Sphere> spheres{{vec3(0.0f), 1.0f}, {vec3(3.0f, 0.0f, 0.0f), 0.5f}};
     const Blas blas = BuildSphereBlas(spheres);

@@ -302,6 +302,11 @@ expect_one_line_failure(headless_record "--record: records the window"
     play default --headless --frames 1 --record ${WORK_DIR}/r.mp4 -o ${WORK_DIR}/hr_%d.png)
 expect_one_line_failure(window_manifest "--manifest: is for --headless frames"
     play default --manifest ${WORK_DIR}/m.txt)
+# Their outputs are patterns and other files, not the NAME.EXT expect_one_line_failure looks for.
+file(GLOB left ${WORK_DIR}/g_* ${WORK_DIR}/hr_* ${WORK_DIR}/r.mp4 ${WORK_DIR}/m.txt)
+if(left)
+    message(FATAL_ERROR "refused play options wrote ${left}")
+endif()
 expect_one_line_failure(render_hostile_gltf_model
     "${HOSTILE_SCENE}/../hostile_gltf/cyclic_nodes.gltf: nodes[2].children[0]: node 1 has two parents"
     render ${HOSTILE_SCENE}/hostile_gltf_model.json -o ${WORK_DIR}/render_hostile_gltf_model${EXT})
@@ -343,6 +348,16 @@ endif()
 execute_process(COMMAND ${RTRT} rendr default RESULT_VARIABLE status ERROR_VARIABLE stderr)
 if(NOT status EQUAL 2 OR NOT stderr MATCHES "'rendr' is not an rtrt command; did you mean 'render'\\?")
     message(FATAL_ERROR "rtrt rendr: status ${status}: ${stderr}")
+endif()
+# So is a mistyped subcommand, and an option where a command is expected (CLI11 said only "A
+# subcommand is required").
+execute_process(COMMAND ${RTRT} bench cpuu RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR NOT stderr MATCHES "'cpuu' is not a 'rtrt bench' command; did you mean 'cpu'\\?.*rtrt bench --help")
+    message(FATAL_ERROR "rtrt bench cpuu: status ${status}: ${stderr}")
+endif()
+execute_process(COMMAND ${RTRT} --bogus RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR NOT stderr MATCHES "'--bogus' is not an option of rtrt \\(rtrt --help\\)")
+    message(FATAL_ERROR "rtrt --bogus: status ${status}: ${stderr}")
 endif()
 # rtrt play with no scene plays the built-in one (the same first frame as render default), and
 # its progress into a log is lines, not carriage returns.
@@ -430,3 +445,15 @@ if(NOT status EQUAL 2 OR NOT stderr MATCHES "--trace-bands: 2: .*CUDA back end" 
     message(FATAL_ERROR "bench frame --trace-bands with the CPU back end: status ${status}\n${stdout}${stderr}")
 endif()
 
+
+# A paper-scene benchmark none of whose models is there measures nothing: refused before any work
+# (it exited 0 with an empty report), saying what to fetch. The model folder is restored after.
+set(saved_model_dir "$ENV{RTRT_MODEL_DIR}")
+file(MAKE_DIRECTORY ${WORK_DIR}/no_models)
+set(ENV{RTRT_MODEL_DIR} ${WORK_DIR}/no_models)
+expect_failure(bench_cpu_no_models 2
+    "--models: none of the models asked for is there (dragon, teapot); run tools/fetch_models.sh"
+    bench cpu --models dragon,teapot --frames 1)
+expect_failure(bench_convert_no_models 2 "none of the models asked for is there (dragon_res4)"
+    bench convert --models dragon_res4)
+set(ENV{RTRT_MODEL_DIR} "${saved_model_dir}")

@@ -51,6 +51,10 @@ TEST_F(OutputPathTest, CheckOutputPathNamesWhatIsWrong) {
     EXPECT_EQ(Reason(dir_.string()), "is a folder; name a file in it");
     EXPECT_EQ(Reason(fifo_), "is not a regular file (a device, FIFO or socket)");
     EXPECT_EQ(Reason("/dev/null"), "is not a regular file (a device, FIFO or socket)");
+    // A name the file system cannot hold failed only at the rename, after the work.
+    EXPECT_EQ(Reason((dir_ / (std::string(251, 'a') + ".json")).string()),
+              "the file name is too long (256 bytes; file systems take at most 255)");
+    EXPECT_EQ(Reason((dir_ / (std::string(250, 'a') + ".json")).string()), "");
 }
 
 // Even without the check up front, a write never renames a file over a FIFO or a folder.

@@ -18,6 +18,7 @@
 #include "engine/bvh/blas/rtmodel_format.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/math.h"
 #include "engine/core/output_file.h"
 
 namespace rtrt {
@@ -109,9 +110,8 @@ class Reader {
                      std::to_string(h_.counts[s]) + " elements cannot fit in a file of " +
                          std::to_string(size) + " bytes");
         const Aabb source = Info().sourceBounds;
-        if (!std::isfinite(source.min.x + source.min.y + source.min.z + source.max.x +
-                           source.max.y + source.max.z) ||
-            source.IsEmpty())
+        // Each plane alone: a sum of finite planes near the float limit overflows.
+        if (!IsFinite(source.min) || !IsFinite(source.max) || source.IsEmpty())
             Fail("header.sourceBounds", "not finite, or min > max");
         layout_ = LayoutOf(h_.counts);
         if (layout_.fileBytes != size || h_.fileBytes != size)
