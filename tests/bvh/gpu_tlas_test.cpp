@@ -82,14 +82,31 @@ TEST(GpuTlas, EqualsCpuWithSphereBounds) {
     const DeviceBuffer<vec4> blasSpheres{std::span<const vec4>(spheres)};
     for (uint32_t n : {1u, 17u, 5000u}) {
         SCOPED_TRACE(n);
-        const std::vector<Instance> instances = RandomInstances(n, n + 11);
+        std::vector<Instance> instances = RandomInstances(n, n + 11);
         DeviceBuffer<Instance> records{std::span<const Instance>(instances)};
         GpuTlas gpu;
         gpu.Build(records.Data(), {blasBounds.Data(), blasSpheres.Data()}, n);
         const Tlas cpu = BuildTlas(instances, kBlasBounds, TlasBuilder::kLbvh, spheres);
         ExpectSameNodes(cpu.nodes, gpu.Download().nodes);
+        // A refit after a third of the instances moved takes their new sphere boxes as the
+        // host's refit does (unmoved, a refit that did nothing would pass too).
+        Lbvh cpuLbvh = BuildLbvh(InstanceWorldBounds(instances, kBlasBounds, spheres),
+                                 LbvhLeaves::kPrimitiveIds);
+        std::vector<Instance> onDevice(n);
+        records.Download(onDevice);
+        std::mt19937 rng(n);
+        for (uint32_t i = 0; i < n; ++i) {
+            if (i % 3 == 0) SetTransform(instances[i], RandomPlacement(rng, 60.0f));
+            SetPlacement(onDevice[i], instances[i]);
+        }
+        records.Upload(onDevice);
         gpu.Refit(records.Data(), {blasBounds.Data(), blasSpheres.Data()});
-        ExpectSameNodes(cpu.nodes, gpu.Download().nodes);
+        RefitLbvh(cpuLbvh, InstanceWorldBounds(instances, kBlasBounds, spheres));
+        ExpectSameNodes(cpuLbvh.nodes, gpu.Download().nodes);
+        EXPECT_NE(
+            std::memcmp(cpu.nodes.data(), cpuLbvh.nodes.data(), cpu.nodes.size() * sizeof(BvhNode)),
+            0)
+            << "the moves changed no box";
     }
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "engine/render_rt/renderer.h"
@@ -17,11 +18,12 @@ namespace {
 
 constexpr uint32_t kWidth = 96, kHeight = 72;
 
-Image Render(const RenderScene& scene) {
+Image Render(const RenderScene& scene, ViewMode view = ViewMode::kShaded) {
     RenderSettings s;
     s.width = kWidth;
     s.height = kHeight;
     s.maxDepth = scene.maxDepth;
+    s.view = view;
     return RenderRaw(scene, s);
 }
 
@@ -103,6 +105,11 @@ TEST(AcneAndLeaks, FarMirrorShowsOnlyTheBackground) {
         uint32_t wrong = 0;
         for (const vec3& c : image.pixels) wrong += glm::distance(c, scene.background) > 1e-5f;
         EXPECT_EQ(wrong, 0u);
+        // The mirror is seen: a mirror lost at this distance would show the background too.
+        const Image depth = Render(scene, ViewMode::kDepth);
+        const auto mirrorPixels = std::count_if(depth.pixels.begin(), depth.pixels.end(),
+                                                [](vec3 c) { return std::isfinite(c.x); });
+        EXPECT_GT(mirrorPixels, kWidth * kHeight / 2);
     }
 }
 
