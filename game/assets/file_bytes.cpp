@@ -37,7 +37,12 @@ std::string ReadGzipFile(const std::string& path) {
     }
     int status = Z_OK;
     const char* message = gzerror(file.get(), &status);
-    if (status != Z_OK) throw InputError(path, "", std::string("corrupt gzip data: ") + message);
+    if (status != Z_OK) {
+        // zlib puts the path before its reason; the error names the file once.
+        std::string reason = message;
+        if (reason.starts_with(path + ": ")) reason.erase(0, path.size() + 2);
+        throw InputError(path, "", "corrupt gzip data: " + reason);
+    }
     data.resize(size);
     return data;
 }

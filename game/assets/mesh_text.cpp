@@ -1,5 +1,7 @@
 #include "game/assets/mesh_text.h"
 
+#include <cstdio>
+
 namespace rtrt::mesh_text {
 
 std::string_view NextWord(std::string_view& line) {
@@ -16,7 +18,17 @@ std::string_view NextWord(std::string_view& line) {
 std::string Quote(std::string_view token) {
     constexpr size_t kMaxShown = 32;
     std::string quoted = "'";
-    quoted += token.substr(0, kMaxShown);
+    // Control characters as \xNN: a NUL ended the message there, and others reach the terminal.
+    for (char c : token.substr(0, kMaxShown)) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 || byte == 0x7f) {
+            char escaped[5];
+            std::snprintf(escaped, sizeof(escaped), "\\x%02x", byte);
+            quoted += escaped;
+        } else {
+            quoted += c;
+        }
+    }
     quoted += token.size() > kMaxShown ? "...'" : "'";
     return quoted;
 }

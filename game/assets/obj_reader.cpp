@@ -157,12 +157,19 @@ TriangleMesh SplitByNormals(const ObjData& obj) {
 
 TriangleMesh ParseObj(const std::string& path, std::string_view text) {
     ObjData obj;
+    // A UTF-8 byte order mark, which some editors write first, is no part of the first line.
+    if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
     size_t lineNumber = 0;
     while (!text.empty()) {
         ++lineNumber;
-        size_t newline = text.find('\n');
-        std::string_view line = text.substr(0, newline);
-        text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
+        // LF, CRLF, and a lone CR (old Mac files, whose lines were otherwise one).
+        const size_t end = text.find_first_of("\r\n");
+        std::string_view line = text.substr(0, end);
+        size_t next = end == std::string_view::npos ? text.size() : end + 1;
+        if (end != std::string_view::npos && text[end] == '\r' && next < text.size() &&
+            text[next] == '\n')
+            ++next;
+        text.remove_prefix(next);
         try {
             ParseObjLine(line, obj);
         } catch (const RecordError& error) {

@@ -164,9 +164,18 @@ void PrintScene(const std::string& path) {
     }
 }
 
-void RunInfo(const std::string& path) {
+void RunInfo(const std::string& argument) {
+    if (argument.empty())
+        throw InputError("info", "file", "give a mesh, an .rtmodel, a scene or a glTF file");
+    // A bare name (demo_physics, default) is one of the project's scenes, as render and play
+    // take it.
+    const std::string path = ScenePathFor(argument);
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "no such file");
+    if (path == "default" && !std::filesystem::exists(path, ec)) return PrintScene(path);
+    if (!std::filesystem::exists(path, ec))
+        throw InputError(path, "", "no such file (nor a scene of that name)");
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(path, "", "is a folder; name a file in it");
     const std::string ext = std::filesystem::path(path).extension().string();
     if (ext == ".json" || ext == ".JSON" || IsGltfPath(path))
         PrintScene(path);

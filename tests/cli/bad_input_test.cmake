@@ -50,20 +50,26 @@ expect_failure(nan_exposure 2 "--exposure: nan is not a finite number" render de
 expect_failure(nan_fps 2 "--fps: nan is not a finite number" play default --headless --frames 1 --fps nan)
 
 # --physics-solver gpu on a machine without a CUDA device: refused before any frame, saying what to
-# use instead (a machine with one plays the frame).
+# use instead; a machine with one plays the frame. Which of the two this machine is comes from the
+# CUDA back end itself (a render of 8x8 pixels): without a device only the refusal passes (exit 0
+# passed anywhere before).
+execute_process(COMMAND ${RTRT} render default --backend cuda --size 8x8
+    -o ${WORK_DIR}/cuda_probe${EXT} RESULT_VARIABLE cuda_status OUTPUT_QUIET ERROR_QUIET)
 execute_process(COMMAND ${RTRT} play ${SOURCE_DIR}/assets/scenes/demo_physics.json --headless
     --frames 1 --size 32x18 --physics-solver gpu -o ${WORK_DIR}/gpu_physics_%d${EXT}
     RESULT_VARIABLE status ERROR_VARIABLE stderr)
-if(status EQUAL 2)
-    if(NOT stderr MATCHES "--physics-solver: gpu: cannot solve contacts on the GPU: .*; use --physics-solver cpu")
-        message(FATAL_ERROR "gpu_physics_without_device: unclear message:\n${stderr}")
+file(GLOB written ${WORK_DIR}/gpu_physics_*)
+if(cuda_status EQUAL 0)
+    if(NOT status EQUAL 0 OR NOT written)
+        message(FATAL_ERROR "gpu_physics with a device: exit status ${status}, wrote '${written}'\n${stderr}")
     endif()
-    file(GLOB written ${WORK_DIR}/gpu_physics_*)
+else()
+    if(NOT status EQUAL 2 OR NOT stderr MATCHES "--physics-solver: gpu: cannot solve contacts on the GPU: .*; use --physics-solver cpu")
+        message(FATAL_ERROR "gpu_physics_without_device: exit status ${status} (expected 2), message:\n${stderr}")
+    endif()
     if(written)
         message(FATAL_ERROR "gpu_physics_without_device: wrote ${written} although it failed")
     endif()
-elseif(NOT status EQUAL 0)
-    message(FATAL_ERROR "gpu_physics: exit status ${status}\n${stderr}")
 endif()
 
 # A bad output path fails before any rendering, and --help succeeds.
@@ -457,3 +463,12 @@ expect_failure(bench_cpu_no_models 2
 expect_failure(bench_convert_no_models 2 "none of the models asked for is there (dragon_res4)"
     bench convert --models dragon_res4)
 set(ENV{RTRT_MODEL_DIR} "${saved_model_dir}")
+
+# info takes what render and play take, a scene's bare name, and says what is wrong with a folder
+# (it said "unknown mesh file extension").
+expect_one_line_failure(info_folder "${WORK_DIR}: is a folder; name a file in it" info ${WORK_DIR})
+execute_process(COMMAND ${RTRT} info demo_glass RESULT_VARIABLE status OUTPUT_VARIABLE stdout
+    ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT stdout MATCHES "demo_glass.json: scene file")
+    message(FATAL_ERROR "info demo_glass: status ${status}: ${stdout}${stderr}")
+endif()
