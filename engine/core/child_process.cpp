@@ -212,8 +212,9 @@ void EndWithParent() {
     if (errno != 0 || end == text || *end != '\0' || parent <= 1) return;
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);
     // A parent that ended before the request sends nothing: the child has been handed to
-    // another process already, and signals itself.
-    if (::getppid() == pid_t(parent)) return;
+    // another process already, and signals itself. A parent alive but not this process's own
+    // (a wrapper script between them that did not exec) leaves the signal to the wrapper's end.
+    if (::getppid() == pid_t(parent) || ::kill(pid_t(parent), 0) == 0 || errno != ESRCH) return;
     ::kill(::getpid(), SIGTERM);
     for (;;) ::pause();  // until the interrupt thread has cleaned up and exited
 }

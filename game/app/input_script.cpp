@@ -27,7 +27,8 @@ constexpr size_t kMaxScriptBytes = size_t{16} << 20;
 // The whole word as a frame number ("1.5" is not frame 1 followed by ".5").
 bool ParseFrame(const std::string& word, long long* frame) {
     const char* end = word.data() + word.size();
-    const auto [next, error] = std::from_chars(word.data(), end, *frame);
+    const char* first = word.starts_with("+") ? word.data() + 1 : word.data();  // as >> took it
+    const auto [next, error] = std::from_chars(first, end, *frame);
     // Beyond a long long: out of the frames' range below, whichever sign.
     if (error == std::errc::result_out_of_range) *frame = word[0] == '-' ? -1 : LLONG_MAX;
     return next == end && (error == std::errc() || error == std::errc::result_out_of_range);

@@ -12,6 +12,7 @@
 #include "engine/core/child_process.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
@@ -108,6 +109,9 @@ void RunWindowed(const PlayOptions& o) {
     w.finishStages = o.finishStages;
     w.record = o.record;
     if (IsVideoPath(o.record)) CheckVideoPath(o.record);
+    // Before the script, whose screenshots may go into the folder of recorded frames.
+    else if (!o.record.empty())
+        CreateOutputFolder(o.record);
     if (!o.script.empty()) w.script = InputScript::Load(o.script);
     int first = 0, end = 0;
     if (!o.frames.empty() && (!ParseFrames(o.frames, &first, &end) || first != 0))

@@ -94,23 +94,28 @@ FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds)
     for (;;) {
         if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) {
             if (LockedFileIsCurrent()) break;
+            // The file was replaced under the lock: the run that held it has just left. Retried
+            // within the deadline (a file system whose fstat and lstat disagree would loop).
             ::close(fd_);
             fd_ = -1;
             created = OpenLockFile();
-            continue;
-        }
-        const int error = errno;
-        if (error == EINTR) continue;
-        if (error != EWOULDBLOCK) {  // e.g. ENOLCK: an NFS mount without its lock service
-            Release();
-            throw OutputError(
-                folder, "cannot lock the job's folder (" + path_ + "): " + std::strerror(error));
+        } else {
+            const int error = errno;
+            if (error == EINTR) continue;
+            if (error != EWOULDBLOCK) {  // e.g. ENOLCK: an NFS mount without its lock service
+                Release();
+                throw OutputError(folder, "cannot lock the job's folder (" + path_ +
+                                              "): " + std::strerror(error));
+            }
         }
         if (std::chrono::steady_clock::now() < deadline) {
             std::this_thread::sleep_for(std::chrono::milliseconds(100));
             continue;
         }
         const std::string holder = Holder(fd_);
+        // Another run holds the lock: the folder this one made is that run's now, lock file and
+        // all, and stays.
+        made_.clear();
         Release();
         // Busy, not bad input: the same command succeeds once the other run has ended.
         throw OutputError(folder, "another rtrt farm" +
@@ -136,9 +141,9 @@ bool FarmFolderLock::OpenLockFile() {
     // saying what to remove.
     struct stat info {};
     const bool opened = fd_ >= 0;
-    const bool known =
-        opened ? ::fstat(fd_, &info) == 0
-               : (error == EISDIR || error == ELOOP) && ::lstat(path_.c_str(), &info) == 0;
+    // Whatever the open's error (EISDIR, ELOOP, ENXIO for a socket...), what stands there says
+    // more.
+    const bool known = opened ? ::fstat(fd_, &info) == 0 : ::lstat(path_.c_str(), &info) == 0;
     if (known && !S_ISREG(info.st_mode)) {
         Release();
         throw InputError(path_, "",

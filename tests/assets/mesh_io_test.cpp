@@ -241,29 +241,6 @@ TEST_F(MeshIoTest, ObjErrors) {
                      "unknown statement 'ply'");
     ExpectInputError(Write("empty.obj", vertices), "", "contains no triangles");
     ExpectInputError(Write("flat.obj", vertices + "f 1 2 2\n"), "", "contains no triangles");
-    // Control characters are shown escaped: a NUL had ended the message before its quote.
-    ExpectInputError(Write("nul.obj", std::string("v 0 0\0x 0\n", 10)), "line 1",
-                     "expected a number, found '0\\x00x'");
-}
-
-// Line ends of every kind, and a byte order mark before the first line, read as the same mesh.
-TEST_F(MeshIoTest, ObjLineEndsAndByteOrderMark) {
-    const std::string lf = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-    const TriangleMesh expected = LoadMesh(Write("lf.obj", lf));
-    auto replaced = [&](const std::string& end) {
-        std::string text;
-        for (char c : lf) text += c == '\n' ? end : std::string(1, c);
-        return text;
-    };
-    for (const std::string& text :
-         {replaced("\r\n"), replaced("\r"), "\xEF\xBB\xBF" + lf, "\xEF\xBB\xBF" + replaced("\r")}) {
-        const TriangleMesh mesh = LoadMesh(Write("ends.obj", text));
-        EXPECT_EQ(mesh.positions, expected.positions);
-        EXPECT_EQ(mesh.indices, expected.indices);
-    }
-    // Line numbers count a CRLF once and a lone CR as a line.
-    ExpectInputError(Write("cr.obj", "v 0 0 0\r\nv 1 0 0\rv 0 x 0\n"), "line 3",
-                     "expected a number");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -5,9 +5,12 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/file.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -84,6 +87,24 @@ TEST_F(FarmLockTest, LockFileThatIsASymbolicLinkIsBadInput) {
         EXPECT_NE(e.Reason().find("is a symbolic link"), std::string::npos) << e.what();
     }
     EXPECT_FALSE(fs::exists(folder_ + "/elsewhere"));
+}
+
+// A socket there fails the open with ENXIO, which named no kind before: exit 1 with the raw errno.
+TEST_F(FarmLockTest, LockFileThatIsASocketIsBadInput) {
+    const int s = ::socket(AF_UNIX, SOCK_STREAM, 0);
+    ASSERT_GE(s, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    ASSERT_LT(lockFile_.size(), sizeof(address.sun_path));
+    std::strcpy(address.sun_path, lockFile_.c_str());
+    ASSERT_EQ(::bind(s, reinterpret_cast<sockaddr*>(&address), sizeof(address)), 0);
+    try {
+        FarmFolderLock lock(folder_);
+        ADD_FAILURE() << "took a lock whose file is a socket";
+    } catch (const InputError& e) {
+        EXPECT_NE(e.Reason().find("is a socket"), std::string::npos) << e.what();
+    }
+    ::close(s);
 }
 
 // The lock file is anyone's to write: its text reaches the terminal with control characters

@@ -11,33 +11,16 @@
 #include <memory>
 
 #include "engine/render_rt/renderer.h"
+#include "tests/render_rt/frame_renderer_checks.h"
 
 namespace rtrt {
 namespace {
 
-constexpr int kSide = 5;  // a 5 x 5 grid of unit spheres, 3 apart, in z = 0
-
-RenderScene SphereGrid() {
-    RenderScene scene;
-    const Sphere sphere{vec3(0.0f), 1.0f};
-    scene.AddBlas(std::make_shared<const Blas>(BuildSphereBlas(std::span(&sphere, 1))));
-    scene.AddMaterial(Material{});
-    scene.lights.push_back(Light{glm::normalize(vec3(1, 2, 3)), LightType::kDirectional, vec3(1)});
-    for (int j = 0; j < kSide; ++j)
-        for (int i = 0; i < kSide; ++i)
-            scene.AddInstance(
-                0, 0, glm::translate(glm::mat4(1.0f), vec3(3.0f * (i - 2), 3.0f * (j - 2), 0)));
-    scene.camera.position = vec3(0, 0, 30);
-    return scene;
-}
-
-RenderSettings Small() {
-    RenderSettings s;
-    s.width = 64;
-    s.height = 48;
-    s.maxDepth = 2;
-    return s;
-}
+using test::ExpectShrunkSceneLeftAloneWhenUnchanged;
+using test::kSide;
+using test::MoveInstance;
+using test::Small;
+using test::SphereGrid;
 
 // The scene traced with its own TLAS set to a fresh LBVH over its instances: the reference.
 Image ReferenceImage(RenderScene scene, RenderStats* stats = nullptr) {
@@ -49,11 +32,6 @@ Image ReferenceImage(RenderScene scene, RenderStats* stats = nullptr) {
 bool SamePixels(const Image& a, const Image& b) {
     return a.width == b.width && a.height == b.height &&
            std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(vec3)) == 0;
-}
-
-void MoveInstance(RenderScene& scene, uint32_t i, vec3 to) {
-    const glm::mat4 m = glm::translate(glm::mat4(1.0f), to);
-    SetTransform(scene.instances[i], m);
 }
 
 TEST(CpuFrameRenderer, TracesWhatRenderRawTracesOverTheSameLbvh) {
@@ -148,50 +126,8 @@ TEST(CpuFrameRenderer, PicksAgainstWhatItTraced) {
     EXPECT_FALSE(renderer->Pick(miss, &hit));
 }
 
-// A scene that shrinks to the policy's small-scene size must then leave unchanged frames alone,
-// even when its last SAH cost (which the device learns one update late) was past the bound: with
-// maxSahGrowth -0.5 every update of the larger scene is past it. On both back ends.
-void ExpectShrunkSceneLeftAloneWhenUnchanged(Backend backend) {
-    RenderScene scene = SphereGrid();
-    TlasPolicy policy;
-    policy.maxSahGrowth = -0.5f;
-    policy.rebuildChangedUpTo = kSide * kSide - 1;
-    const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(backend, scene, policy);
-    for (int f = 1; f <= 2; ++f) {
-        MoveInstance(scene, 12, vec3(0.5f * float(f), 0.0f, 1.0f));
-        const uint32_t changed[] = {12};
-        renderer->Update(scene, {changed, false});
-        renderer->Trace(scene, Small(), nullptr);
-        renderer->Finish();
-        EXPECT_TRUE(renderer->Times().tlasRebuilt) << "frame " << f << " drifted past the bound";
-    }
-    scene.instances.pop_back();
-    renderer->Update(scene, {{}, true});
-    renderer->Trace(scene, Small(), nullptr);
-    renderer->Finish();
-    EXPECT_TRUE(renderer->Times().tlasRebuilt);
-    for (int f = 0; f < 3; ++f) {
-        renderer->Update(scene, SceneChanges{});
-        renderer->Trace(scene, Small(), nullptr);
-        renderer->Finish();
-        EXPECT_FALSE(renderer->Times().tlasRebuilt) << "unchanged frame " << f;
-    }
-    MoveInstance(scene, 3, vec3(0.0f, 0.0f, 2.0f));
-    const uint32_t changed[] = {3};
-    renderer->Update(scene, {changed, false});
-    renderer->Trace(scene, Small(), nullptr);
-    renderer->Finish();
-    EXPECT_TRUE(renderer->Times().tlasRebuilt);
-}
-
 TEST(CpuFrameRenderer, ShrunkSceneLeftAloneWhenUnchanged) {
     ExpectShrunkSceneLeftAloneWhenUnchanged(Backend::kCpu);
-}
-
-TEST(CudaFrameRenderer, ShrunkSceneLeftAloneWhenUnchanged) {
-    std::string why;
-    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
-    ExpectShrunkSceneLeftAloneWhenUnchanged(Backend::kCuda);
 }
 
 TEST(FrameRendererFactory, CudaWithoutADeviceSaysWhy) {
