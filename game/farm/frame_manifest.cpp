@@ -101,6 +101,16 @@ std::map<int, std::vector<ManifestEntry>> ReadManifests(const std::string& folde
 }
 
 FrameCheck CheckFrames(const FarmJob& job, void (*progress)(int done, int total)) {
+    // A file in a folder's place read as no frames done (--status said 0 of N), and the run then
+    // failed to make the folder.
+    for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder)}) {
+        std::error_code ec;
+        if (fs::exists(fs::symlink_status(dir, ec)) && !fs::is_directory(dir, ec))
+            throw InputError(dir, "",
+                             "is not a folder, where the job keeps its " +
+                                 fs::path(dir).filename().string() +
+                                 "; move it out of the way and run this again");
+    }
     const std::map<int, std::vector<ManifestEntry>> entries =
         ReadManifests(ManifestFolder(job.folder));
     FrameCheck check;

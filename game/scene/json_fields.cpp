@@ -197,6 +197,26 @@ const char* KindName(JsonKind kind) {
     return "";
 }
 
+namespace {
+
+// What v is, for a message: its JSON type, and for an array its first element that is not what
+// the kind wants or its length ("got array" alone did not say what was wrong with it).
+std::string Described(const Json& v, JsonKind kind) {
+    std::string text = v.type_name();
+    if (!v.is_array()) return text;
+    const bool objects = kind == JsonKind::kObjects, ints = kind == JsonKind::kInts;
+    for (size_t i = 0; i < v.size(); ++i) {
+        const Json& x = v[i];
+        if (objects ? x.is_object() : ints ? x.is_number_integer() : x.is_number()) continue;
+        std::string shown = x.dump();
+        if (shown.size() > 40) shown = shown.substr(0, 37) + "...";
+        return text + " whose element " + std::to_string(i) + " is " + shown;
+    }
+    return text + " of " + std::to_string(v.size()) + " elements";
+}
+
+}  // namespace
+
 JsonFields::JsonFields(const Json& j, std::string path, const std::string& file)
     : j_(j), path_(std::move(path)), file_(file) {
     if (!j.is_object()) Fail("", std::string("expected an object, got ") + j.type_name());
@@ -216,7 +236,7 @@ void JsonFields::ExpectKind(const std::string& key, JsonKind kind) {
     if (!Has(key)) return;
     const Json& v = j_.at(key);
     if (!IsKind(v, kind))
-        Fail(key, std::string("expected ") + KindName(kind) + ", got " + v.type_name());
+        Fail(key, std::string("expected ") + KindName(kind) + ", got " + Described(v, kind));
 }
 
 float JsonFields::Number(const std::string& key, std::optional<float> fallback) {

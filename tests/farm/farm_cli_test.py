@@ -342,6 +342,15 @@ def main():
     out = run("farm", "--status", newer, expect=2)
     check("version: the job was written by a newer rtrt (version 2; this rtrt reads version 1)"
           in out, "a farm.json of a later version names the newer rtrt")
+    # A file where the job keeps its manifests read as no frames done (--status said 0 of N).
+    filed = os.path.join(WORK, "filed")
+    os.makedirs(filed)
+    shutil.copy(os.path.join(job, "farm.json"), filed)
+    with open(os.path.join(filed, "manifest"), "w") as f:
+        f.write("not a folder\n")
+    out = run("farm", "--status", filed, expect=2)
+    check("manifest: is not a folder, where the job keeps its manifest" in out,
+          "--status of a job whose manifest folder is a file: exit 2, saying what to move")
     bad = os.path.join(WORK, "bad_partition")
     shutil.copytree(job, bad, ignore=shutil.ignore_patterns("frames", "video.mp4"))
     with open(os.path.join(bad, "farm.json")) as f:

@@ -84,6 +84,12 @@ TEST_F(FarmJobTest, MalformedFilesNameTheFieldAndReason) {
     EXPECT_NE(ReadError().find("farm.json: frames: expected [first, end]"), std::string::npos)
         << ReadError();
     WriteText(
+        "{\"version\": 1, \"scene\": \"s\", \"frames\": [0.5, 3], \"width\": 2, \"height\": 2}");
+    EXPECT_NE(ReadError().find("frames: expected an array of integers, got array whose element 0 "
+                               "is 0.5"),
+              std::string::npos)
+        << ReadError();
+    WriteText(
         "{\"version\": 1, \"scene\": \"s\", \"frames\": [0, 5], \"width\": 2, \"height\": 2, "
         "\"backend\": \"auto\"}");
     EXPECT_NE(ReadError().find("backend: expected cpu or cuda"), std::string::npos) << ReadError();
