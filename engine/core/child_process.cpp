@@ -212,9 +212,10 @@ void EndWithParent() {
     if (errno != 0 || end == text || *end != '\0' || parent <= 1) return;
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);
     // A parent that ended before the request sends nothing: the child has been handed to
-    // another process already, and signals itself. A parent alive but not this process's own
-    // (a wrapper script between them that did not exec) leaves the signal to the wrapper's end.
-    if (::getppid() == pid_t(parent) || ::kill(pid_t(parent), 0) == 0 || errno != ESRCH) return;
+    // another process already, and signals itself. (The farm starts rtrt itself, /proc/self/exe,
+    // so the named parent is the direct one; kill(parent, 0) would take a dead, unreaped farm for
+    // a live one.)
+    if (::getppid() == pid_t(parent)) return;
     ::kill(::getpid(), SIGTERM);
     for (;;) ::pause();  // until the interrupt thread has cleaned up and exited
 }

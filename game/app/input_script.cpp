@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <climits>
+#include <filesystem>
 #include <sstream>
 
 #include "engine/core/error.h"
@@ -34,9 +35,19 @@ bool ParseFrame(const std::string& word, long long* frame) {
     return next == end && (error == std::errc() || error == std::errc::result_out_of_range);
 }
 
+// Whether a screenshot goes into the folder that does not exist yet but will (--record DIR).
+bool IntoPendingFolder(const std::string& shot, const std::string& pendingFolder) {
+    if (pendingFolder.empty()) return false;
+    std::error_code ec;
+    std::filesystem::path folder = std::filesystem::path(pendingFolder).lexically_normal();
+    if (!folder.has_filename()) folder = folder.parent_path();  // "DIR/"
+    return !std::filesystem::exists(folder, ec) &&
+           std::filesystem::path(shot).parent_path().lexically_normal() == folder;
+}
+
 }  // namespace
 
-InputScript InputScript::Load(const std::string& path) {
+InputScript InputScript::Load(const std::string& path, const std::string& pendingFolder) {
     // Read whole before the window opens: a FIFO or a device is refused, not waited on.
     std::istringstream in(ReadInputFile(path, kMaxScriptBytes));
     InputScript script;
@@ -75,7 +86,10 @@ InputScript InputScript::Load(const std::string& path) {
             // Checked now, not when the frame comes: a bad path fails before the window opens.
             if (e.command == "screenshot") {
                 try {
-                    CheckImagePath(word);
+                    if (IntoPendingFolder(word, pendingFolder))
+                        CheckImageFormat(word);
+                    else
+                        CheckImagePath(word);
                 } catch (const InputError& bad) {
                     throw InputError(path, field, "screenshot " + word + ": " + bad.Reason());
                 }

@@ -18,8 +18,10 @@ namespace rtrt {
 
 class InputScript {
   public:
-    // Throws InputError (file, "line N", reason) for anything malformed.
-    static InputScript Load(const std::string& path);
+    // Throws InputError (file, "line N", reason) for anything malformed. Screenshot paths are
+    // checked as outputs are; one into pendingFolder, a folder the window makes once it opens
+    // (play --record DIR), only for its format while that folder is missing.
+    static InputScript Load(const std::string& path, const std::string& pendingFolder = "");
 
     struct Effects {
         std::vector<std::string> screenshots;

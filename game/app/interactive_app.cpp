@@ -48,6 +48,7 @@ class App {
         model_.useCuda = backend == Backend::kCuda;
         model_.glRenderer = window_.Renderer();
         script_ = o.script;
+        if (!o.record.empty() && !IsVideoPath(o.record)) CreateOutputFolder(o.record);
         LoadScene(0);
     }
 

@@ -76,7 +76,7 @@ std::vector<unsigned char> EncodeWithLibrary(const std::string& path, const Imag
 
 }  // namespace
 
-void CheckImagePath(const std::string& path) {
+void CheckImageFormat(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw InputError(path, "",
@@ -94,6 +94,11 @@ void CheckImagePath(const std::string& path) {
     if (ext != ".ppm" && ext != ".pfm")
         throw InputError(path, "", "this rtrt was built without OpenImageIO; write .ppm or .pfm");
 #endif
+}
+
+void CheckImagePath(const std::string& path) {
+    CheckImageFormat(path);
+    std::error_code ec;
     const auto dir = std::filesystem::path(path).parent_path();
     if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
         throw InputError(path, "", "the folder " + dir.string() + " does not exist");

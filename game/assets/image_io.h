@@ -12,6 +12,8 @@ namespace rtrt {
 // OpenImageIO; PPM and PFM without it) in a folder that exists and can be written, and is not a
 // folder itself. Called before the scene is loaded, so that bad paths fail before any work.
 void CheckImagePath(const std::string& path);
+// Only the format part of that: an extension rtrt can write, and path no folder.
+void CheckImageFormat(const std::string& path);
 
 // Writes through a temporary file renamed into place, every write checked: a failure throws
 // OutputError naming PATH with the system's reason and leaves no partial output.

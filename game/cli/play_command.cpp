@@ -12,7 +12,6 @@
 #include "engine/core/child_process.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
-#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
@@ -109,10 +108,9 @@ void RunWindowed(const PlayOptions& o) {
     w.finishStages = o.finishStages;
     w.record = o.record;
     if (IsVideoPath(o.record)) CheckVideoPath(o.record);
-    // Before the script, whose screenshots may go into the folder of recorded frames.
-    else if (!o.record.empty())
-        CreateOutputFolder(o.record);
-    if (!o.script.empty()) w.script = InputScript::Load(o.script);
+    // Its screenshots may go into --record's folder, which the window makes once it opens.
+    if (!o.script.empty())
+        w.script = InputScript::Load(o.script, IsVideoPath(o.record) ? "" : o.record);
     int first = 0, end = 0;
     if (!o.frames.empty() && (!ParseFrames(o.frames, &first, &end) || first != 0))
         throw InputError("--frames", o.frames,

@@ -91,22 +91,31 @@ FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds)
     CreateOutputFolder(folder);
     bool created = OpenLockFile();
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(waitSeconds);
+    int replaced = 0;
     for (;;) {
         if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) {
             if (LockedFileIsCurrent()) break;
-            // The file was replaced under the lock: the run that held it has just left. Retried
-            // within the deadline (a file system whose fstat and lstat disagree would loop).
+            // The file was replaced under the lock: the run that held it has just left and removed
+            // it. The one in its place is tried at once, a bounded number of times (a file system
+            // whose fstat and lstat disagree would loop).
             ::close(fd_);
             fd_ = -1;
             created = OpenLockFile();
-        } else {
-            const int error = errno;
-            if (error == EINTR) continue;
-            if (error != EWOULDBLOCK) {  // e.g. ENOLCK: an NFS mount without its lock service
-                Release();
-                throw OutputError(folder, "cannot lock the job's folder (" + path_ +
-                                              "): " + std::strerror(error));
-            }
+            if (++replaced < 8) continue;
+            // Other runs work here: the folder stays; a file this run made just now is no one's.
+            made_.clear();
+            madeLockFile_ = created;
+            Release();
+            throw OutputError(folder,
+                              "its lock file (" + path_ + ") keeps being replaced; run this again");
+        }
+        const int error = errno;
+        if (error == EINTR) continue;
+        if (error != EWOULDBLOCK) {   // e.g. ENOLCK: an NFS mount without its lock service
+            madeLockFile_ = created;  // no run can hold a lock here: a file this run made goes
+            Release();
+            throw OutputError(
+                folder, "cannot lock the job's folder (" + path_ + "): " + std::strerror(error));
         }
         if (std::chrono::steady_clock::now() < deadline) {
             std::this_thread::sleep_for(std::chrono::milliseconds(100));

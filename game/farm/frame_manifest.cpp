@@ -102,14 +102,22 @@ std::map<int, std::vector<ManifestEntry>> ReadManifests(const std::string& folde
 
 FrameCheck CheckFrames(const FarmJob& job, void (*progress)(int done, int total)) {
     // A file in a folder's place read as no frames done (--status said 0 of N), and the run then
-    // failed to make the folder.
+    // failed to make the folder. A link to a folder (shared storage) is a folder.
     for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder)}) {
         std::error_code ec;
-        if (fs::exists(fs::symlink_status(dir, ec)) && !fs::is_directory(dir, ec))
+        const fs::file_status link = fs::symlink_status(dir, ec);
+        if (!fs::exists(link)) continue;
+        const fs::file_status target = fs::status(dir, ec);
+        if (fs::is_directory(target)) continue;
+        if (fs::is_symlink(link) && !fs::exists(target))
             throw InputError(dir, "",
-                             "is not a folder, where the job keeps its " +
-                                 fs::path(dir).filename().string() +
-                                 "; move it out of the way and run this again");
+                             "is a link to " + fs::read_symlink(dir, ec).string() +
+                                 ", which is not there (is its storage mounted here?)");
+        if (ec) throw OutputError(dir, ec.message());
+        throw InputError(dir, "",
+                         "is not a folder, where the job keeps its " +
+                             fs::path(dir).filename().string() +
+                             "; move it out of the way and run this again");
     }
     const std::map<int, std::vector<ManifestEntry>> entries =
         ReadManifests(ManifestFolder(job.folder));

@@ -202,17 +202,24 @@ namespace {
 // What v is, for a message: its JSON type, and for an array its first element that is not what
 // the kind wants or its length ("got array" alone did not say what was wrong with it).
 std::string Described(const Json& v, JsonKind kind) {
-    std::string text = v.type_name();
-    if (!v.is_array()) return text;
+    const std::string type = v.type_name();
     const bool objects = kind == JsonKind::kObjects, ints = kind == JsonKind::kInts;
+    const bool numbers =
+        kind == JsonKind::kNumbers3 || kind == JsonKind::kNumbers4 || kind == JsonKind::kNumbers16;
+    if (!v.is_array() || !(objects || ints || numbers)) return type;
+    if (v.empty()) return "an empty array";
     for (size_t i = 0; i < v.size(); ++i) {
         const Json& x = v[i];
         if (objects ? x.is_object() : ints ? x.is_number_integer() : x.is_number()) continue;
         std::string shown = x.dump();
-        if (shown.size() > 40) shown = shown.substr(0, 37) + "...";
-        return text + " whose element " + std::to_string(i) + " is " + shown;
+        if (shown.size() > 40) {
+            size_t cut = 37;  // at a UTF-8 character's start
+            while (cut > 0 && (static_cast<unsigned char>(shown[cut]) & 0xc0) == 0x80) --cut;
+            shown = shown.substr(0, cut) + "...";
+        }
+        return "an array whose element " + std::to_string(i) + " is " + shown;
     }
-    return text + " of " + std::to_string(v.size()) + " elements";
+    return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " element" : " elements");
 }
 
 }  // namespace

@@ -55,6 +55,22 @@ TEST(InputScript, MalformedLinesNameTheLineAndReason) {
     ExpectError("3 screenshot shot.unknown-format\n", "line 1", "screenshot shot.unknown-format");
 }
 
+// play --record DIR makes DIR once the window opens: screenshots into it are checked for their
+// format only while it is missing (the load-time check refused them).
+TEST(InputScript, ScreenshotsIntoTheRecordFolderWaitForIt) {
+    const std::string folder =
+        (std::filesystem::temp_directory_path() / ("rtrt_pending_" + std::to_string(getpid())))
+            .string();
+    const std::string script = Write("1 screenshot " + folder + "/shot.ppm\n");
+    EXPECT_THROW(InputScript::Load(script), InputError);
+    EXPECT_NO_THROW(InputScript::Load(script, folder));
+    EXPECT_NO_THROW(InputScript::Load(script, folder + "/"));
+    EXPECT_THROW(
+        InputScript::Load(Write("1 screenshot " + folder + "/shot.unknown-format\n"), folder),
+        InputError);
+    EXPECT_THROW(InputScript::Load(script, folder + "-other"), InputError);
+}
+
 TEST(InputScript, AByteOrderMarkBeforeTheFirstLineIsIgnored) {
     InputScript script =
         InputScript::Load(Write("\xEF\xBB\xBF"

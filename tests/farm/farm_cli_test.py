@@ -351,6 +351,21 @@ def main():
     out = run("farm", "--status", filed, expect=2)
     check("manifest: is not a folder, where the job keeps its manifest" in out,
           "--status of a job whose manifest folder is a file: exit 2, saying what to move")
+    # Folders on shared storage, linked: a link to a folder is one, a dangling link is named so.
+    os.remove(os.path.join(filed, "manifest"))
+    os.symlink(os.path.join(job, "manifest"), os.path.join(filed, "manifest"))
+    os.symlink(os.path.join(WORK, "unmounted"), os.path.join(filed, "frames"))
+    out = run("farm", "--status", filed, expect=2)
+    check("frames: is a link to " in out and "which is not there (is its storage mounted here?)"
+          in out, "--status with a dangling frames link: exit 2, naming the link's target")
+    os.remove(os.path.join(filed, "frames"))
+    os.symlink(os.path.join(job, "frames"), os.path.join(filed, "frames"))
+    linked, own = [subprocess.run([RTRT, "farm", "--status", folder], capture_output=True,
+                                  text=True) for folder in (filed, job)]
+    done = [re.search(r"\d+ of \d+ frames done", r.stdout) for r in (linked, own)]
+    # (Its exit status is 3 where the job's is 0: the video is the job folder's, not linked.)
+    check(done[0] and done[1] and done[0].group(0) == done[1].group(0),
+          "--status with frames and manifest linked to a job's folders reads them as that job's")
     bad = os.path.join(WORK, "bad_partition")
     shutil.copytree(job, bad, ignore=shutil.ignore_patterns("frames", "video.mp4"))
     with open(os.path.join(bad, "farm.json")) as f:

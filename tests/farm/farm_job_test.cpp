@@ -85,9 +85,10 @@ TEST_F(FarmJobTest, MalformedFilesNameTheFieldAndReason) {
         << ReadError();
     WriteText(
         "{\"version\": 1, \"scene\": \"s\", \"frames\": [0.5, 3], \"width\": 2, \"height\": 2}");
-    EXPECT_NE(ReadError().find("frames: expected an array of integers, got array whose element 0 "
-                               "is 0.5"),
-              std::string::npos)
+    EXPECT_NE(
+        ReadError().find("frames: expected an array of integers, got an array whose element 0 "
+                         "is 0.5"),
+        std::string::npos)
         << ReadError();
     WriteText(
         "{\"version\": 1, \"scene\": \"s\", \"frames\": [0, 5], \"width\": 2, \"height\": 2, "
