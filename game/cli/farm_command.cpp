@@ -214,13 +214,28 @@ void CheckTakenUpFrames(const FarmJob& job, const std::vector<int>& done) {
 }
 
 // The job's description, then its folders: a farm killed in between leaves farm.json, never
-// frames/ or manifest/ without it, which a later run would take for tasks' of elsewhere.
-void StartJob(const FarmJob& job) {
+// frames/ or manifest/ without it, which a later run would take for tasks' of elsewhere. Returns
+// what this call made that was not there, in the order made.
+std::vector<std::string> StartJob(const FarmJob& job) {
+    std::vector<std::string> made;
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(FarmFile(job.folder), ec)))
+        made.push_back(FarmFile(job.folder));
     WriteFarmJob(job);
     for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder),
                                    job.folder + "/slurm", job.folder + "/logs"}) {
+        if (!fs::exists(fs::symlink_status(dir, ec))) made.push_back(dir);
         CreateOutputFolder(dir);
     }
+    return made;
+}
+
+// Takes back what StartJob made and the batch scripts that were not submitted, latest first; a
+// folder something has been written into since stays.
+void UndoStart(const std::vector<std::string>& made, const std::vector<std::string>& scripts) {
+    std::error_code ignored;
+    for (const std::string& script : scripts) fs::remove(script, ignored);
+    for (auto path = made.rbegin(); path != made.rend(); ++path) fs::remove(*path, ignored);
 }
 
 std::vector<int> FramesToRender(const FrameCheck& check) {
@@ -283,35 +298,60 @@ std::string NextScript(const FarmJob& job, const char* kind) {
            ".sbatch";
 }
 
-// Submits a script with sbatch --parsable: the job id. OutputError when sbatch fails, with the
-// command that renders the same frames on this machine instead.
-std::string Submit(const std::vector<std::string>& command, const FarmJob& job) {
+// Submits a script with sbatch --parsable: the job id. OutputError naming the job's folder when
+// sbatch fails, ending with what to do instead (next).
+std::string Submit(const std::vector<std::string>& command, const FarmJob& job, const char* what,
+                   const std::string& next) {
     std::string output, error;
     const int status = RunProgram(command, &output, {}, &error);
     const std::string id = output.substr(0, output.find_first_of(";\n"));
     if (status != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
-        throw OutputError(command.back(), "sbatch failed (exit " + std::to_string(status) + "; " +
-                                              (error.empty() ? "its message is above" : error) +
-                                              "); to render on this machine instead: " +
-                                              FarmCommandLine(job, " --local"));
+        throw OutputError(job.folder, std::string("sbatch refused the ") + what + " (exit " +
+                                          std::to_string(status) + "; " +
+                                          (error.empty() ? "its message is above" : error) + "); " +
+                                          next);
     return id;
 }
 
 int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
                   FarmFolderLock& lock) {
-    lock.Keep();
-    StartJob(job);
+    const std::vector<std::string> made = StartJob(job);
     const std::string renderScript = NextScript(job, "render");
     const std::string assembleScript = NextScript(job, "assemble");
     FarmSubmission& submission = job.submissions.emplace_back();
-    if (!tasks.empty()) {
-        WriteWholeFile(renderScript, RenderScript(job, tasks, RtrtPath()), /*durable=*/true);
-        submission.renderJob = Submit(SubmitRender(renderScript), job);
-        // Recorded at once: --status and the queue check see it even if the assembly fails.
-        WriteFarmJob(job);
+    // Until sbatch has taken a job (a wrong partition or account, a controller that is down), a
+    // refusal leaves the folder as this run found it, so that the corrected command, with other
+    // settings too, starts afresh; after that, what was submitted stays recorded.
+    try {
+        if (!tasks.empty()) {
+            WriteWholeFile(renderScript, RenderScript(job, tasks, RtrtPath()), /*durable=*/true);
+            submission.renderJob =
+                Submit(SubmitRender(renderScript), job, "render array",
+                       "nothing was submitted or kept; to render on this machine instead: " +
+                           FarmCommandLine(job, " --local"));
+            lock.Keep();
+            // Recorded at once: --status and the queue check see it even if the assembly fails.
+            WriteFarmJob(job);
+        }
+        WriteWholeFile(assembleScript, AssembleScript(job, RtrtPath()), /*durable=*/true);
+        submission.assembleJob = Submit(
+            SubmitAssembly(assembleScript, submission.renderJob), job, "assembly",
+            submission.renderJob.empty()
+                ? "every frame is done; to assemble on this machine instead: rtrt farm "
+                  "--assemble " +
+                      ShellQuote(job.folder)
+                : "render job " + submission.renderJob +
+                      " is queued and recorded; once it has ended, rerun this command (or rtrt "
+                      "farm --assemble " +
+                      ShellQuote(job.folder) + ")");
+    } catch (...) {
+        if (submission.renderJob.empty())
+            UndoStart(made, {renderScript, assembleScript});
+        else
+            UndoStart({}, {assembleScript});
+        throw;
     }
-    WriteWholeFile(assembleScript, AssembleScript(job, RtrtPath()), /*durable=*/true);
-    submission.assembleJob = Submit(SubmitAssembly(assembleScript, submission.renderJob), job);
+    lock.Keep();
     WriteFarmJob(job);
     if (!submission.renderJob.empty())
         std::printf("rtrt farm: submitted render job %s (%zu tasks) and assemble job %s after it\n",

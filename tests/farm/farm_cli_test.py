@@ -113,6 +113,59 @@ def test_task_ends_with_farm():
     shutil.rmtree(folder)
 
 
+def fake_sbatch(folder, script):
+    """A bin folder whose sbatch runs script (sh), for PATH."""
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, "sbatch")
+    with open(path, "w") as f:
+        f.write("#!/bin/sh\n" + script + "\n")
+    os.chmod(path, 0o755)
+    return dict(os.environ, PATH=folder)
+
+
+def test_refused_submission(farm):
+    """sbatch refusing a job leaves the folder as the run found it; what it took stays recorded."""
+    refusing = fake_sbatch(os.path.join(WORK, "refusing_bin"),
+                           'echo "sbatch: error: invalid partition specified: gpux" >&2; exit 1')
+    new = os.path.join(WORK, "refused", "job")
+    out = run(*farm[:-1], new, env=refusing, expect=1)
+    check("sbatch: error: invalid partition specified: gpux" in out and
+          f"{new}: sbatch refused the render array (exit 1; its message is above); nothing was "
+          "submitted or kept" in out and "--local" in out and
+          not os.path.exists(os.path.join(WORK, "refused")),
+          "a first submission sbatch refuses: exit 1, its message, and no folder left")
+    empty = os.path.join(WORK, "refused_empty")
+    os.makedirs(empty)
+    run(*farm[:-1], empty, env=refusing, expect=1)
+    check(os.listdir(empty) == [], "a user's empty folder is left empty when sbatch refuses")
+    # The corrected command with other settings is then not refused for the first one's.
+    other = [("32x18" if a == SIZE else a) for a in farm[:-1]]
+    out = run(*other, empty, "--dry-run")
+    check("dry run" in out, "a run of other settings into that folder is not refused")
+
+    resumed = os.path.join(WORK, "refused_resume")
+    shutil.copytree(os.path.join(WORK, "job"), resumed,
+                    ignore=shutil.ignore_patterns("video.mp4", "contact_sheet.png"))
+    before = open(os.path.join(resumed, "farm.json")).read()
+    run(*farm[:-1], resumed, env=refusing, expect=1)
+    check(open(os.path.join(resumed, "farm.json")).read() == before and
+          os.listdir(os.path.join(resumed, "slurm")) == [],
+          "a job's folder keeps its farm.json and no unsubmitted script when sbatch refuses")
+
+    # The render array taken, its assembly refused: the render job stays recorded.
+    half = fake_sbatch(os.path.join(WORK, "half_bin"),
+                       'case "$*" in *--dependency*) echo "sbatch: error: slurmctld down" >&2; '
+                       'exit 1;; esac; echo "4242;cluster"')
+    taken = os.path.join(WORK, "refused_assembly")
+    out = run(*farm[:-1], taken, env=half, expect=1)
+    check("slurmctld down" in out and "render job 4242 is queued and recorded" in out,
+          "a refused assembly says the render job is queued and what to do once it has ended")
+    recorded = json.load(open(os.path.join(taken, "farm.json")))["submissions"]
+    check([s.get("render") for s in recorded] == ["4242"] and
+          os.listdir(os.path.join(taken, "slurm")) == ["render-1.sbatch"],
+          f"a refused assembly keeps the submitted render job recorded ({recorded})")
+
+
 def main():
     shutil.rmtree(WORK, ignore_errors=True)
     os.makedirs(WORK)
@@ -375,6 +428,8 @@ def main():
         json.dump(description, f)
     out = run("farm", "--status", bad, expect=2)
     check("partition: expected a Slurm name" in out, "a partition that is no Slurm name: exit 2")
+
+    test_refused_submission(farm)
 
     # A folder that cannot be made (a file in the way) is bad input, exit 2.
     blocker = os.path.join(WORK, "a_file")
