@@ -146,11 +146,15 @@ PlyHeader ParsePlyHeaderLines(const std::string& path, std::string_view data) {
     if (data.substr(0, 3) != "ply" || data.size() < 4 || (data[3] != '\n' && data[3] != '\r')) {
         throw InputError(path, "header", "bad magic (not a PLY file)");
     }
+    // Lines end as the first one does. Old Mac tools end them with a lone CR; a CR-LF header's CR
+    // is trimmed with the words. Deciding once keeps a binary body whose first byte is 0x0A
+    // after an "end_header\r" from being taken for the rest of a line end.
+    const char lineEnd = data[3] == '\r' && (data.size() < 5 || data[4] != '\n') ? '\r' : '\n';
     PlyHeader header;
     bool haveFormat = false;
     size_t offset = 0;
     for (size_t lineNumber = 1;; ++lineNumber) {
-        size_t newline = data.find('\n', offset);
+        size_t newline = data.find(lineEnd, offset);
         std::string field = "header line " + std::to_string(lineNumber);
         if (newline == std::string_view::npos) {
             throw InputError(path, field, "no end_header (truncated header)");
