@@ -83,9 +83,22 @@ void CheckOutputPath(const std::string& path) {
 }
 
 void CheckFolderWritable(const std::string& path, const std::string& folder) {
-    if (access(folder.c_str(), W_OK) != 0)
-        throw InputError(path, "",
-                         "cannot write into the folder " + folder + ": " + std::strerror(errno));
+    auto refuse = [&](const std::string& why) {
+        throw InputError(path, "", "cannot write into the folder " + folder + ": " + why);
+    };
+    if (access(folder.c_str(), W_OK) != 0) refuse(std::strerror(errno));
+    // access() passes folders that take no new file (/proc and /sys as root, some FUSE and
+    // network mounts), where the output would fail only after the work: a file is made and
+    // removed again, as the output's temporary would be.
+    const std::string probe = TemporaryPathFor((std::filesystem::path(folder) / "check").string());
+    TemporariesLock lock;
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (fd < 0) {
+        const int error = errno;
+        refuse(error == ENOENT ? "it takes no new files" : std::strerror(error));
+    }
+    ::close(fd);
+    ::unlink(probe.c_str());
 }
 
 void CreateOutputFolder(const std::string& path) {

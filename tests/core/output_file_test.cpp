@@ -57,6 +57,18 @@ TEST_F(OutputPathTest, CheckOutputPathNamesWhatIsWrong) {
     EXPECT_EQ(Reason((dir_ / (std::string(250, 'a') + ".json")).string()), "");
 }
 
+// A folder that lets this process write but takes no new file (/proc as root: access() passes)
+// is refused up front, and the check leaves nothing behind where it passes.
+TEST_F(OutputPathTest, AFolderThatTakesNoNewFilesIsRefusedUpFront) {
+    const std::string reason = Reason("/proc/frame.png");
+    if (::geteuid() == 0)
+        EXPECT_EQ(reason, "cannot write into the folder /proc: it takes no new files");
+    else
+        EXPECT_EQ(reason.rfind("cannot write into the folder /proc: ", 0), 0u) << reason;
+    EXPECT_EQ(Reason((dir_ / "new.png").string()), "");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+}
+
 // Even without the check up front, a write never renames a file over a FIFO or a folder.
 TEST_F(OutputPathTest, AWriteDoesNotReplaceAFifoOrAFolder) {
     for (const std::string& target : {fifo_, dir_.string()}) {
