@@ -557,7 +557,8 @@ void AddFarmCommand(CLI::App& app, int* exitCode) {
         ->check(CLI::Range(1, 4096))
         ->capture_default_str();
     CLI::Option* dryRun =
-        cmd->add_flag("--dry-run", o->dryRun, "Print the batch scripts; write and submit nothing");
+        cmd->add_flag("--dry-run", o->dryRun,
+                      "Print the batch scripts; write and submit nothing (not with --local)");
     CLI::Option* local =
         cmd->add_flag("--local", o->local, "Run the tasks here, one after another, without Slurm");
     CLI::Option* status =
@@ -567,14 +568,25 @@ void AddFarmCommand(CLI::App& app, int* exitCode) {
         "Check every frame and make the video and contact sheet (the assembly job)");
     // --status and --assemble take the job from its folder, and a dry run runs nothing: an option
     // of another mode given with them would be ignored, so the two are refused together (exit 2).
-    for (CLI::Option* option : cmd->get_options()) {
-        if (option == status || option == assemble || option == cmd->get_help_ptr()) continue;
-        status->excludes(option);
-        assemble->excludes(option);
-    }
-    status->excludes(assemble);
-    dryRun->excludes(local);
-    cmd->callback([o, exitCode] {
+    // Checked here rather than with CLI11's excludes(), which lists every pair on every option
+    // in --help; the help's groups say it once.
+    for (CLI::Option* option : cmd->get_options())
+        if (option != status && option != assemble && option != cmd->get_help_ptr())
+            option->group("Job options (rtrt farm SCENE ...)");
+    status->group("Other modes (each takes only the job's folder)");
+    assemble->group("Other modes (each takes only the job's folder)");
+    auto refuseOtherModes = [cmd, status, assemble, dryRun, local] {
+        for (CLI::Option* mode : {status, assemble, dryRun}) {
+            if (mode->count() == 0) continue;
+            for (CLI::Option* other : cmd->get_options()) {
+                const bool excluded = mode == dryRun ? other == local : other != mode;
+                if (excluded && other != cmd->get_help_ptr() && other->count() > 0)
+                    throw CLI::ExcludesError(mode->get_name(), other->get_name());
+            }
+        }
+    };
+    cmd->callback([o, exitCode, refuseOtherModes] {
+        refuseOtherModes();
         if (!o->status.empty())
             *exitCode = RunStatus(o->status);
         else if (!o->assemble.empty())
