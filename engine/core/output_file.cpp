@@ -1,6 +1,7 @@
 #include "engine/core/output_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -61,19 +62,35 @@ ssize_t WriteSome(int fd, const void* data, size_t size, uint64_t done) {
 
 }  // namespace
 
+std::string FollowOutputLinks(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::string file = path;
+    for (int hop = 0; hop < 40; ++hop) {  // the kernel's own bound (ELOOP)
+        std::error_code ec;
+        if (!fs::is_symlink(fs::symlink_status(file, ec))) return file;
+        const fs::path link = fs::read_symlink(file, ec);
+        if (ec) return file;
+        file = link.is_absolute() ? link.string() : (fs::path(file).parent_path() / link).string();
+    }
+    throw InputError(path, "", "is a loop of links");
+}
+
 void CheckOutputPath(const std::string& path) {
     if (path.empty()) throw InputError(path, "", "the output needs a file name");
+    const std::string file = FollowOutputLinks(path);
+    // Named in the reasons where a link led elsewhere.
+    const std::string where = file == path ? "" : " (where the link leads: " + file + ")";
     std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    const std::filesystem::file_status status = std::filesystem::status(file, ec);
     if (std::filesystem::is_directory(status))
-        throw InputError(path, "", "is a folder; name a file in it");
+        throw InputError(path, "", "is a folder" + where + "; name a file in it");
     if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-        throw InputError(path, "", "is not a regular file (a device, FIFO or socket)");
-    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+        throw InputError(path, "", "is not a regular file (a device, FIFO or socket)" + where);
+    const std::filesystem::path folder = std::filesystem::path(file).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
         throw InputError(path, "", "the folder " + folder.string() + " does not exist");
     // Else the rename into place fails, after all the work.
-    const std::string name = std::filesystem::path(path).filename().string();
+    const std::string name = std::filesystem::path(file).filename().string();
     if (name.size() > kMaxFileNameBytes)
         throw InputError(path, "",
                          "the file name is too long (" + std::to_string(name.size()) +
@@ -109,19 +126,28 @@ void CreateOutputFolder(const std::string& path) {
     CheckFolderWritable(path, path);
 }
 
-OutputFile::OutputFile(std::string target, std::string temp)
-    : target_(std::move(target)), temp_(std::move(temp)) {
+OutputFile::OutputFile(std::string target)
+    : target_(std::move(target)),
+      file_(FollowOutputLinks(target_)),
+      temp_(TemporaryPathFor(file_)) {
     // The rename would put a regular file in place of a device or a FIFO, or fail on a folder
     // only once the output is written.
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(target_, ec);
-    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    struct stat old {};
+    const bool replacing = ::stat(file_.c_str(), &old) == 0;
+    if (replacing && !S_ISREG(old.st_mode)) {
         throw InputError(target_, "", "is not a regular file (a folder, device, FIFO or socket)");
     }
     TemporariesLock lock;
     fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd_ < 0) throw OutputError(target_, std::strerror(errno));
     lock.Register(temp_);
+    if (replacing) {
+        // A private file stays private; an owner other than this process (root writing a user's
+        // file) is kept where the system lets it be given away.
+        const bool sameOwner = old.st_uid == ::geteuid() && old.st_gid == ::getegid();
+        const bool owned = sameOwner || ::fchown(fd_, old.st_uid, old.st_gid) == 0;
+        ::fchmod(fd_, old.st_mode & (owned ? 07777 : 0777));  // set-id bits only as the owner's
+    }
 }
 
 OutputFile::~OutputFile() {
@@ -153,7 +179,7 @@ void OutputFile::Finish(bool durable) {
 
 void OutputFile::Commit() {
     TemporariesLock lock;  // an interrupt comes before the rename or after the unregistering
-    if (std::rename(temp_.c_str(), target_.c_str()) != 0)
+    if (std::rename(temp_.c_str(), file_.c_str()) != 0)
         throw OutputError(target_, std::strerror(errno));
     committed_ = true;
     lock.Unregister(temp_);
@@ -217,7 +243,7 @@ std::string TemporaryPathFor(const std::string& target) {
 }
 
 void WriteWholeFile(const std::string& path, const std::string& text, bool durable) {
-    OutputFile file(path, TemporaryPathFor(path));
+    OutputFile file(path);
     file.Write(text.data(), text.size());
     file.Finish(durable);
     file.Commit();

@@ -11,8 +11,11 @@ namespace rtrt {
 
 class OutputFile {
   public:
-    // Creates TEMP to become TARGET; errors (OutputError) name TARGET, never TEMP.
-    OutputFile(std::string target, std::string temp);
+    // Creates the temporary (TemporaryPathFor) that becomes TARGET, or the file TARGET links to:
+    // a link is written through, as a shell's > does, not replaced. A file replaced keeps its
+    // permissions and, where this process may, its owner. Errors (OutputError) name TARGET,
+    // never the temporary.
+    explicit OutputFile(std::string target);
     ~OutputFile();  // removes the temporary unless committed
     OutputFile(const OutputFile&) = delete;
     OutputFile& operator=(const OutputFile&) = delete;
@@ -22,9 +25,11 @@ class OutputFile {
     void Finish(bool durable);
     // Renames the finished temporary over the target.
     void Commit();
+    // Where the output is written until Commit, for another program writing it (ffmpeg).
+    const std::string& TemporaryPath() const { return temp_; }
 
   private:
-    std::string target_, temp_;
+    std::string target_, file_, temp_;  // as named, the file it names, the temporary
     int fd_ = -1;
     uint64_t written_ = 0;
     bool committed_ = false;
@@ -39,9 +44,13 @@ std::string TemporaryPathFor(const std::string& target);
 // and can be removed once that process is gone.
 std::optional<long> TemporaryOwnerHere(const std::string& name);
 
-// InputError(path, "", reason) unless a whole file can be written at path: its folder exists and
-// is writable, and path is not a folder, a device, a FIFO or a socket (which the rename would
-// replace).
+// PATH with its links followed to the file they name, which need not exist yet (an output is
+// written there); InputError for a loop of links.
+std::string FollowOutputLinks(const std::string& path);
+
+// InputError(path, "", reason) unless a whole file can be written at path (or where it links):
+// its folder exists and takes new files, its name fits the file system, and it is not a folder,
+// a device, a FIFO or a socket (which the rename would replace).
 void CheckOutputPath(const std::string& path);
 
 // InputError(path, "", "cannot write into the folder FOLDER: reason") unless this process may

@@ -98,17 +98,13 @@ void CheckImageFormat(const std::string& path) {
 
 void CheckImagePath(const std::string& path) {
     CheckImageFormat(path);
-    std::error_code ec;
-    const auto dir = std::filesystem::path(path).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
-        throw InputError(path, "", "the folder " + dir.string() + " does not exist");
-    CheckFolderWritable(path, dir.empty() ? std::string(".") : dir.string());
+    CheckOutputPath(path);
 }
 
 void WriteImage(const std::string& path, const Image& image, const OutputTransform& transform) {
     CheckImagePath(path);
     const std::string ext = Extension(path);
-    OutputFile file(path, TemporaryPathFor(path));
+    OutputFile file(path);
     if (ext == ".ppm" || ext == ".pfm") {
         const std::string bytes = EncodePortable(image, ext, transform);
         file.Write(bytes.data(), bytes.size());

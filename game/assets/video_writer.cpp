@@ -8,6 +8,7 @@
 #include "engine/core/error.h"
 #include "engine/core/output_file.h"
 #include "game/assets/image_io.h"
+#include "engine/core/media_file_check.h"
 
 namespace rtrt {
 
@@ -23,17 +24,17 @@ void CheckVideoPath(const std::string& path) {
         throw InputError("--record", path,
                          "recording a video needs ffmpeg (Debian: apt-get install ffmpeg); "
                          "or give a folder for PNG frames");
-    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-    std::error_code ec;
-    if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
-        throw InputError("--record", path, "the folder " + dir.string() + " does not exist");
-    CheckFolderWritable(path, dir.empty() ? std::string(".") : dir.string());
+    try {
+        CheckOutputPath(path);
+    } catch (const InputError& e) {
+        throw InputError("--record", path, e.Reason());
+    }
 }
 
 VideoWriter::VideoWriter(std::string path, uint32_t width, uint32_t height, double fps)
     : path_(std::move(path)), width_(width), height_(height) {
-    const std::string temp = TemporaryPathFor(path_);
-    output_ = std::make_unique<OutputFile>(path_, temp);  // made and registered for an interrupt
+    output_ = std::make_unique<OutputFile>(path_);  // made and registered for an interrupt
+    const std::string& temp = output_->TemporaryPath();
     char rate[32];
     std::snprintf(rate, sizeof(rate), "%.17g", fps);
     ChildOptions o;
@@ -87,6 +88,9 @@ void VideoWriter::Finish() {
     if (status != 0)
         throw OutputError(
             path_, "ffmpeg failed (exit " + std::to_string(status) + "; its messages are above)");
+    if (const std::string problem = MediaFileProblem(output_->TemporaryPath()); !problem.empty())
+        throw OutputError(path_, "ffmpeg exited 0, but the video it wrote " + problem +
+                                     " (its messages are above; is the disk full?)");
     output_->Finish(/*durable=*/true);
     output_->Commit();
 }

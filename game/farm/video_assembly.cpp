@@ -9,6 +9,7 @@
 #include "engine/core/child_process.h"
 #include "engine/core/error.h"
 #include "engine/core/output_file.h"
+#include "engine/core/media_file_check.h"
 
 namespace rtrt {
 namespace {
@@ -18,8 +19,8 @@ constexpr int kSheetFrames = 24, kSheetColumns = 6, kThumbWidth = 320;
 // Runs ffmpeg to write TARGET: the output's temporary is made (and registered for an interrupt)
 // first, ffmpeg writes into it, and it takes TARGET's name only when ffmpeg succeeded.
 void RunFfmpeg(std::vector<std::string> arguments, const std::string& target) {
-    const std::string temp = TemporaryPathFor(target);
-    OutputFile output(target, temp);
+    OutputFile output(target);
+    const std::string& temp = output.TemporaryPath();
     std::vector<std::string> argv = {"ffmpeg",    "-nostdin", "-hide_banner",
                                      "-loglevel", "error",    "-y"};
     argv.insert(argv.end(), arguments.begin(), arguments.end());
@@ -30,6 +31,10 @@ void RunFfmpeg(std::vector<std::string> arguments, const std::string& target) {
         throw OutputError(target, "ffmpeg failed (exit " + std::to_string(status) + "; " +
                                       (error.empty() ? "its messages are above" : error) +
                                       "); the frames are kept");
+    if (const std::string problem = MediaFileProblem(temp); !problem.empty())
+        throw OutputError(target, "ffmpeg exited 0, but the file it wrote " + problem + " (" +
+                                      (error.empty() ? "its messages are above" : error) +
+                                      "; is the disk full?); the frames are kept");
     output.Finish(/*durable=*/true);
     output.Commit();
 }
@@ -87,7 +92,7 @@ void AssembleVideo(const FarmJob& job) {
 
     const ContactSheetLayout sheet = PlanContactSheet(job);
     const std::string listFile = job.folder + "/contact_sheet.ffconcat";
-    OutputFile list(listFile, TemporaryPathFor(listFile));  // never committed: removed after
+    OutputFile list(listFile);  // never committed: removed after
     std::string text = "ffconcat version 1.0\n";
     for (int frame : sheet.frames)
         text += "file 'frames/" + std::filesystem::path(FrameFile(job, frame)).filename().string() +
@@ -95,7 +100,7 @@ void AssembleVideo(const FarmJob& job) {
     list.Write(text.data(), text.size());
     list.Finish(/*durable=*/false);
     // The list lies in the job's folder: ffmpeg takes its entries as relative to it.
-    RunFfmpeg({"-f", "concat", "-safe", "0", "-i", "file:" + TemporaryPathFor(listFile), "-vf",
+    RunFfmpeg({"-f", "concat", "-safe", "0", "-i", "file:" + list.TemporaryPath(), "-vf",
                "scale=" + std::to_string(sheet.thumbWidth) + ":" +
                    std::to_string(sheet.thumbHeight) + ",tile=" + std::to_string(sheet.columns) +
                    "x" + std::to_string(sheet.rows) + ":padding=4:margin=4:color=0x202020",

@@ -1,36 +1,18 @@
 // How OBJ and PLY text is read around its statements: every kind of line end, a byte order mark
 // before the first line, and control characters in the messages.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "engine/core/error.h"
 #include "game/assets/mesh_io.h"
+#include "tests/scratch_folder.h"
 
 namespace rtrt {
 namespace {
 
-namespace fs = std::filesystem;
-
-class ModelTextTest : public ::testing::Test {
+class ModelTextTest : public test::ScratchFolderTest {
   protected:
-    void SetUp() override {
-        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("rtrt_model_text_" + std::to_string(getpid()) + "_" + info->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string Write(const std::string& name, const std::string& contents) {
-        const std::string path = (dir_ / name).string();
-        std::ofstream(path, std::ios::binary) << contents;
-        return path;
-    }
-
     // The reason of the InputError the file gives, with its field.
     static std::string Error(const std::string& path, std::string* field) {
         try {
@@ -41,8 +23,6 @@ class ModelTextTest : public ::testing::Test {
         }
         return "";
     }
-
-    fs::path dir_;
 };
 
 // LF, CRLF, a lone CR (old Mac files, which read as one line) and a UTF-8 byte order mark (which
@@ -93,7 +73,7 @@ TEST_F(ModelTextTest, PlyHeadersOfEveryLineEndReadTheSame) {
         return out;
     };
     const TriangleMesh expected = LoadMesh(Write("lf.ply", header + body));
-    for (const std::string& end : {"\r\n", "\r"}) {
+    for (const char* end : {"\r\n", "\r"}) {
         const TriangleMesh mesh = LoadMesh(Write("ends.ply", ended(header + body, end)));
         EXPECT_EQ(mesh.positions, expected.positions);
         EXPECT_EQ(mesh.indices, expected.indices);

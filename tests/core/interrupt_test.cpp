@@ -34,7 +34,7 @@ std::string Contents(const fs::path& path) {
 }
 
 void WriteWhole(const fs::path& target, const std::string& bytes) {
-    OutputFile file(target.string(), target.string() + ".tmp");
+    OutputFile file(target.string());
     file.Write(bytes.data(), bytes.size());
     file.Finish(/*durable=*/false);
     file.Commit();
@@ -44,7 +44,7 @@ void WriteWhole(const fs::path& target, const std::string& bytes) {
 [[noreturn]] void InterruptWhileWriting(const fs::path& folder, int signo) {
     InstallInterruptHandler();
     WriteWhole(folder / "finished", "whole");
-    OutputFile unfinished((folder / "unfinished").string(), (folder / "unfinished.tmp").string());
+    OutputFile unfinished((folder / "unfinished").string());
     unfinished.Write("half", 4);
     kill(getpid(), signo);
     for (;;) pause();  // the interrupt thread exits the process
@@ -56,7 +56,6 @@ TEST(InterruptTest, SigintExits130KeepsFinishedOutputsAndRemovesTemporaries) {
                 "rtrt: interrupted \\(SIGINT\\)");
     EXPECT_EQ(Contents(folder / "finished"), "whole");
     EXPECT_FALSE(fs::exists(folder / "unfinished"));
-    EXPECT_FALSE(fs::exists(folder / "unfinished.tmp"));
     EXPECT_EQ(std::distance(fs::directory_iterator(folder), fs::directory_iterator()), 1);
     fs::remove_all(folder);
 }
@@ -65,7 +64,7 @@ TEST(InterruptTest, SigtermExits143) {
     const fs::path folder = FreshFolder("term");
     EXPECT_EXIT(InterruptWhileWriting(folder, SIGTERM), ::testing::ExitedWithCode(143),
                 "rtrt: interrupted \\(SIGTERM\\)");
-    EXPECT_FALSE(fs::exists(folder / "unfinished.tmp"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(folder), fs::directory_iterator()), 1);
     fs::remove_all(folder);
 }
 
@@ -79,14 +78,13 @@ TEST(InterruptTest, SignalToAThreadStartedBeforeTheHandlerIsHandedOn) {
                 for (;;) pause();
             });
             InstallInterruptHandler();
-            OutputFile unfinished((folder / "unfinished").string(),
-                                  (folder / "unfinished.tmp").string());
+            OutputFile unfinished((folder / "unfinished").string());
             // NOLINTNEXTLINE(bugprone-bad-signal-to-kill-thread): the test is that it is handed on
             pthread_kill(early.native_handle(), SIGTERM);
             for (;;) pause();
         },
         ::testing::ExitedWithCode(143), "rtrt: interrupted \\(SIGTERM\\)");
-    EXPECT_FALSE(fs::exists(folder / "unfinished.tmp"));
+    EXPECT_TRUE(fs::is_empty(folder));  // the temporary is gone
     fs::remove_all(folder);
 }
 

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <vector>
@@ -152,6 +154,58 @@ TEST_F(OutputPathTest, TemporariesNameTheirProcess) {
           std::string(".x.partial17-" + host + "x.png"), std::string(".x.partial17.png"),
           std::string(".x.partial17-" + host + ".png.bak"), std::string(".partial17-" + host)})
         EXPECT_EQ(TemporaryOwnerHere(other), std::nullopt) << other;
+}
+
+std::string ReadAll(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// An output named by a link is written where the link leads, as a shell's > writes, and the link
+// stays: replacing it had turned a link to a shared file into a private copy, and as root had
+// put a regular file in place of /dev/stdout.
+TEST_F(OutputPathTest, AnOutputNamedByALinkIsWrittenThroughIt) {
+    fs::create_directories(dir_ / "real");
+    WriteWholeFile((dir_ / "real" / "report.json").string(), "old\n", false);
+    fs::create_symlink("real/report.json", dir_ / "link.json");
+    fs::create_symlink("link.json", dir_ / "link2.json");  // a link to a link
+    EXPECT_EQ(Reason((dir_ / "link2.json").string()), "");
+    WriteWholeFile((dir_ / "link2.json").string(), "new\n", false);
+    EXPECT_TRUE(fs::is_symlink(dir_ / "link.json"));
+    EXPECT_TRUE(fs::is_symlink(dir_ / "link2.json"));
+    EXPECT_EQ(ReadAll(dir_ / "real" / "report.json"), "new\n");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "real"), fs::directory_iterator()), 1);
+    // A dangling link makes the file it names; a loop and a link to a device are refused.
+    fs::create_symlink("real/made.json", dir_ / "dangling.json");
+    WriteWholeFile((dir_ / "dangling.json").string(), "made\n", false);
+    EXPECT_EQ(ReadAll(dir_ / "real" / "made.json"), "made\n");
+    fs::create_symlink("loop_b", dir_ / "loop_a");
+    fs::create_symlink("loop_a", dir_ / "loop_b");
+    EXPECT_EQ(Reason((dir_ / "loop_a").string()), "is a loop of links");
+    fs::create_symlink("/dev/null", dir_ / "null.json");
+    EXPECT_EQ(Reason((dir_ / "null.json").string()),
+              "is not a regular file (a device, FIFO or socket) (where the link leads: /dev/null)");
+    EXPECT_THROW(WriteWholeFile((dir_ / "null.json").string(), "x", false), InputError);
+    EXPECT_TRUE(fs::is_symlink(dir_ / "null.json"));
+}
+
+// A file replaced keeps its permissions (a private file stays private) and, as root, its owner.
+TEST_F(OutputPathTest, AReplacedFileKeepsItsModeAndOwner) {
+    const fs::path target = dir_ / "private.png";
+    WriteWholeFile(target.string(), "old", false);
+    ASSERT_EQ(::chmod(target.c_str(), 0600), 0);
+    const bool root = ::geteuid() == 0;
+    if (root) {
+        ASSERT_EQ(::chown(target.c_str(), 65534, 65534), 0);
+    }
+    WriteWholeFile(target.string(), "new", false);
+    struct stat st {};
+    ASSERT_EQ(::stat(target.c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 07777, 0600u);
+    if (root) {
+        EXPECT_EQ(st.st_uid, 65534u);
+    }
+    EXPECT_EQ(ReadAll(target), "new");
 }
 
 }  // namespace

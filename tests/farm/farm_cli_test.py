@@ -166,6 +166,35 @@ def test_refused_submission(farm):
           f"a refused assembly keeps the submitted render job recorded ({recorded})")
 
 
+def test_broken_video(farm):
+    """A video ffmpeg exits 0 on but did not finish is no assembly: not kept, made again."""
+    job = os.path.join(WORK, "job")
+    broken = os.path.join(WORK, "broken_video")
+    shutil.copytree(job, broken, ignore=shutil.ignore_patterns("video.mp4", "contact_sheet.png"))
+    silent = fake_sbatch(os.path.join(WORK, "silent_ffmpeg_bin"), "exit 0")
+    os.rename(os.path.join(WORK, "silent_ffmpeg_bin", "sbatch"),
+              os.path.join(WORK, "silent_ffmpeg_bin", "ffmpeg"))
+    silent["PATH"] += ":" + os.environ["PATH"]
+    out = run("farm", "--assemble", broken, env=silent, expect=1)
+    check("ffmpeg exited 0, but the file it wrote is empty" in out and
+          not os.path.exists(os.path.join(broken, "video.mp4")) and
+          not [f for f in os.listdir(broken) if "partial" in f],
+          "an ffmpeg that exits 0 writing nothing: exit 1, no video, no temporary")
+    # A video cut short before its index (as ffmpeg 5.1 leaves one on a full disk, exit 0) that
+    # an earlier rtrt kept: the job is not done, and the rerun makes it again.
+    with open(os.path.join(job, "video.mp4"), "rb") as f:
+        whole = f.read()
+    with open(os.path.join(broken, "video.mp4"), "wb") as f:
+        f.write(whole[:len(whole) // 2])
+    shutil.copy(os.path.join(job, "contact_sheet.png"), broken)
+    status = run("farm", "--status", broken, expect=3)
+    check("video: not made yet" in status, "--status does not count a cut-short video as made")
+    out = run(*farm[:-1], broken, "--local")
+    check("are ready" in out and "task" not in out and
+          open(os.path.join(broken, "video.mp4"), "rb").read() == whole,
+          "the rerun makes the video again from the frames it has")
+
+
 def main():
     shutil.rmtree(WORK, ignore_errors=True)
     os.makedirs(WORK)
@@ -430,6 +459,7 @@ def main():
     check("partition: expected a Slurm name" in out, "a partition that is no Slurm name: exit 2")
 
     test_refused_submission(farm)
+    test_broken_video(farm)
 
     # A folder that cannot be made (a file in the way) is bad input, exit 2.
     blocker = os.path.join(WORK, "a_file")

@@ -242,7 +242,7 @@ void WriteRtModel(const std::string& path, const Blas& blas, const RtModelInfo& 
     h.payloadChecksum = PayloadChecksum(hashes);
     SealHeader(h);
 
-    OutputFile out(path, path + ".tmp" + std::to_string(::getpid()));
+    OutputFile out(path);
     out.Write(&h, sizeof(h));
     for (int s = 0; s < kSectionCount; ++s) {
         out.Write(sections[s].data, sections[s].count * kElementBytes[s]);
@@ -250,10 +250,8 @@ void WriteRtModel(const std::string& path, const Blas& blas, const RtModelInfo& 
     }
     // No fsync: a file torn by a crash fails its checksums when read, and is rebuilt or reported.
     out.Finish(/*durable=*/false);
-    // The old file goes first: ext4 flushes a file renamed over another to disk before the
-    // rename returns (auto_da_alloc), which costs a 125 MB model hundreds of milliseconds. Readers
-    // in between see no file, never a partial one.
-    ::unlink(path.c_str());
+    // Renamed over the old file, never after removing it: an interrupt or a failed rename in
+    // between had left no model at all.
     out.Commit();
 }
 

@@ -1,0 +1,97 @@
+#include "game/farm/job_folder.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "engine/core/media_file_check.h"
+#include "engine/core/output_file.h"
+#include "game/farm/farm_lock.h"
+#include "game/farm/frame_size.h"
+
+namespace rtrt {
+
+namespace fs = std::filesystem;
+
+FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
+    *takenUp = false;
+    std::error_code ec;
+    // Whatever has farm.json's name is read as the job, so that a folder or a FIFO there is
+    // refused for what it is.
+    if (fs::exists(fs::symlink_status(FarmFile(job.folder), ec))) {
+        const FarmJob there = ReadFarmJob(job.folder);
+        const std::string difference = FramesDifference(there.frames, job.frames);
+        if (!difference.empty())
+            throw InputError(job.folder, "",
+                             "holds frames of other settings (" + difference +
+                                 "); give another -o, or remove the folder to start again");
+        job.submissions = there.submissions;
+        return job;
+    }
+    if (fs::exists(job.folder, ec) && !fs::is_directory(job.folder, ec))
+        throw InputError("--output", job.folder, "is a file, not a folder");
+    // The farm writes farm.json before its folders (StartJob), so frames/ and manifest/ without
+    // it are the tasks' of elsewhere, checked against this job (CheckTakenUpFrames). The lock and
+    // the temporary of a farm.json whose writer was killed are the farm's own; anything else is
+    // refused.
+    for (const auto& entry : fs::directory_iterator(job.folder, ec)) {
+        const std::string name = entry.path().filename().string();
+        const bool farmFileTemporary =
+            name.rfind(".farm.partial", 0) == 0 && TemporaryOwnerHere(name).has_value();
+        if (name == "frames" || name == "manifest" || name == "logs" || name == "slurm") {
+            *takenUp = true;
+        } else if (name != kFarmLockName && !farmFileTemporary) {
+            throw InputError(
+                "--output", job.folder,
+                "holds " + name + " but no farm job (farm.json); give an empty or new folder");
+        }
+    }
+    return job;
+}
+
+void CheckTakenUpFrames(const FarmJob& job, const std::vector<int>& done) {
+    const FrameSize want{job.frames.width, job.frames.height};
+    for (int frame : done) {
+        const std::string file = FrameFile(job, frame);
+        FrameSize size;
+        const bool readable = ReadFrameSize(file, &size);
+        if (readable && size == want) continue;
+        const std::string what =
+            readable ? "is " + std::to_string(size.width) + "x" + std::to_string(size.height)
+                     : "is no " + job.frames.format + " image";
+        throw InputError(file, "",
+                         what + ", but the job renders " + std::to_string(want.width) + "x" +
+                             std::to_string(want.height) +
+                             ": the frames in this folder were made with other settings; give "
+                             "the options they were rendered with, or another -o");
+    }
+}
+
+std::vector<std::string> StartJob(const FarmJob& job) {
+    std::vector<std::string> made;
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(FarmFile(job.folder), ec)))
+        made.push_back(FarmFile(job.folder));
+    WriteFarmJob(job);
+    for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder),
+                                   job.folder + "/slurm", job.folder + "/logs"}) {
+        if (!fs::exists(fs::symlink_status(dir, ec))) made.push_back(dir);
+        CreateOutputFolder(dir);
+    }
+    return made;
+}
+
+void UndoStart(const std::vector<std::string>& made, const std::vector<std::string>& scripts) {
+    std::error_code ignored;
+    for (const std::string& script : scripts) fs::remove(script, ignored);
+    for (auto path = made.rbegin(); path != made.rend(); ++path) fs::remove(*path, ignored);
+}
+
+bool Assembled(const FarmJob& job) {
+    return MediaFileProblem(VideoFile(job.folder)).empty() &&
+           MediaFileProblem(ContactSheetFile(job.folder)).empty();
+}
+
+}  // namespace rtrt

@@ -1,0 +1,36 @@
+#pragma once
+// What a farm job's folder holds, and how a run starts in it: a job resumed or new, frames that
+// tasks rendered elsewhere taken up, the job's description and folders made (and taken back when
+// nothing was submitted), and whether its assembly is there and whole.
+#include <string>
+#include <vector>
+
+#include "game/farm/farm_job.h"
+
+namespace rtrt {
+
+// The job as the folder already holds it, or as new; InputError when the folder holds other frames
+// or anything that is not a job's. *takenUp: the folder holds frames/ or manifest/ without
+// farm.json, from tasks that ran elsewhere (a Kubernetes Indexed Job, README), which this run
+// takes up.
+FarmJob ResumeOrStart(FarmJob job, bool* takenUp);
+
+// Frames taken up from tasks that ran elsewhere carry no record of their settings: each must at
+// least have this job's size (one made at another would be scaled into the video), else
+// InputError before anything is written.
+void CheckTakenUpFrames(const FarmJob& job, const std::vector<int>& done);
+
+// The job's description, then its folders: a farm killed in between leaves farm.json, never
+// frames/ or manifest/ without it, which a later run would take for tasks' of elsewhere. Returns
+// what this call made that was not there, in the order made.
+std::vector<std::string> StartJob(const FarmJob& job);
+
+// Takes back what StartJob made and the batch scripts that were not submitted, latest first; a
+// folder something has been written into since stays.
+void UndoStart(const std::vector<std::string>& made, const std::vector<std::string>& scripts);
+
+// The video and the contact sheet are there and whole: one that is not (an earlier rtrt kept it
+// from an ffmpeg that exited 0 on a full disk) is made again.
+bool Assembled(const FarmJob& job);
+
+}  // namespace rtrt
