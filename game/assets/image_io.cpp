@@ -87,8 +87,16 @@ void CheckImageFormat(const std::string& path) {
         throw InputError(path, "", "the output needs an extension such as .png or .exr");
 #if defined(RTRT_WITH_OIIO)
     if (ext != ".ppm" && ext != ".pfm") {
-        if (!CanWriteImageFormat(path))
-            throw InputError(path, "", "no image format is known for extension " + ext);
+        if (!CanWriteImageFormat(path)) {
+            // Said on the way out only: each format is asked by encoding a small image.
+            std::string writable = ".ppm, .pfm";
+            for (const char* other :
+                 {".png", ".exr", ".jpg", ".tif", ".hdr", ".bmp", ".tga", ".webp", ".dpx", ".jp2"})
+                if (CanWriteImageFormat(std::string("x") + other))
+                    writable += std::string(", ") + other;
+            throw InputError(path, "",
+                             "rtrt cannot write " + ext + " images (it writes " + writable + ")");
+        }
     }
 #else
     if (ext != ".ppm" && ext != ".pfm")

@@ -1,5 +1,7 @@
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
@@ -70,9 +72,23 @@ bool ReportUnknownCommand(const CLI::App& app, int argc, char** argv) {
     return false;
 }
 
-}  // namespace
+// What a command printed on stdout must arrive: a report redirected to a full disk had left an
+// empty file and exit 0. Flushed and closed here, as coreutils do, so that a late write error
+// (a full disk, NFS on close) is the command's failure.
+int WithStdoutChecked(int exitCode) {
+    errno = 0;
+    const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
+    const int error = errno;
+    if (std::fclose(stdout) != 0 || failed) {
+        const int why = error != 0 ? error : errno;
+        std::fprintf(stderr, "rtrt: error: stdout: %s\n",
+                     why != 0 ? std::strerror(why) : "a write to it failed");
+        return exitCode == rtrt::kExitOk ? rtrt::kExitFailure : exitCode;
+    }
+    return exitCode;
+}
 
-int main(int argc, char** argv) {
+int RunCommandLine(int argc, char** argv) {
     rtrt::InstallInterruptHandler();  // before any thread starts
     CLI::App app{"rtrt: a real-time ray tracer (CUDA and CPU back ends)", "rtrt"};
     app.set_version_flag("--version", "rtrt 0.1.0");
@@ -106,3 +122,7 @@ int main(int argc, char** argv) {
     }
     return exitCode;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return WithStdoutChecked(RunCommandLine(argc, argv)); }

@@ -45,9 +45,33 @@ void* SampleStorage(const OIIO::ImageSpec& spec, OIIO::TypeDesc type, ImageSink*
     return samples;
 }
 
+// Bytes of an image PATH's writer encodes into memory: empty where it cannot, and then *why.
+std::vector<unsigned char> EncodeToMemory(const char* path, int32_t width, int32_t height,
+                                          OIIO::TypeDesc type, const void* rgb, std::string* why) {
+    // The bytes and the proxy outlive the writer, which may write through them as it closes.
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput proxy(bytes);
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out || !out->supports("ioproxy") || !out->set_ioproxy(&proxy)) {
+        *why = "OpenImageIO cannot encode this format into memory";
+        return {};
+    }
+    if (!out->open(path, OIIO::ImageSpec(width, height, 3, type)) || !out->write_image(type, rgb) ||
+        !out->close()) {
+        *why = "cannot encode: " + OneLine(out->geterror(), "OpenImageIO failed");
+        return {};
+    }
+    if (bytes.empty()) *why = "cannot encode: OpenImageIO wrote no bytes";
+    return bytes;
+}
+
+// Whether a small image is encoded whole: a writer OpenImageIO has may still not write into
+// memory (SGI, FITS) or write nothing (the "null" format), which only the encoding itself shows.
 int CanWrite(const char* path) noexcept {
     try {
-        return OIIO::ImageOutput::create(path) ? 1 : 0;
+        const unsigned char rgb[2 * 2 * 3] = {};
+        std::string why;
+        return EncodeToMemory(path, 2, 2, OIIO::TypeDesc::UINT8, rgb, &why).empty() ? 0 : 1;
     } catch (const std::exception&) {
         return 0;
     }
@@ -56,18 +80,11 @@ int CanWrite(const char* path) noexcept {
 int Encode(const char* path, int32_t width, int32_t height, int32_t isFloat, const void* rgb,
            ImageSink* sink) noexcept {
     try {
-        // The bytes and the proxy outlive the writer, which may write through them as it closes.
-        std::vector<unsigned char> bytes;
-        OIIO::Filesystem::IOVecOutput proxy(bytes);
-        auto out = OIIO::ImageOutput::create(path);
-        if (!out || !out->supports("ioproxy") || !out->set_ioproxy(&proxy))
-            return Fail(sink, "OpenImageIO cannot encode this format into memory");
         const OIIO::TypeDesc type = isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
-        if (!out->open(path, OIIO::ImageSpec(width, height, 3, type)))
-            return Fail(sink, "cannot encode: " + OneLine(out->geterror(), "OpenImageIO failed"));
-        if (!out->write_image(type, rgb) || !out->close())
-            return Fail(sink, "cannot encode: " + OneLine(out->geterror(), "OpenImageIO failed"));
-        if (bytes.empty()) return Fail(sink, "cannot encode: OpenImageIO wrote no bytes");
+        std::string why;
+        const std::vector<unsigned char> bytes =
+            EncodeToMemory(path, width, height, type, rgb, &why);
+        if (bytes.empty()) return Fail(sink, why);
         void* copy = sink->allocate(sink->context, nullptr, bytes.size());
         if (!copy) return Fail(sink, "cannot hold " + std::to_string(bytes.size()) + " bytes");
         std::memcpy(copy, bytes.data(), bytes.size());

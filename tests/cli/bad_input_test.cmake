@@ -81,6 +81,15 @@ execute_process(COMMAND ${RTRT} render --help RESULT_VARIABLE status OUTPUT_VARI
 if(NOT status EQUAL 0 OR NOT stdout MATCHES "--max-depth")
     message(FATAL_ERROR "render --help: status ${status}")
 endif()
+# What a command prints must arrive: stdout on a full device is a failure (exit 1), not exit 0 with
+# the text lost.
+if(EXISTS /dev/full)
+    execute_process(COMMAND ${RTRT} info default OUTPUT_FILE /dev/full RESULT_VARIABLE status
+        ERROR_VARIABLE stderr)
+    if(NOT status EQUAL 1 OR NOT stderr MATCHES "rtrt: error: stdout: No space left on device")
+        message(FATAL_ERROR "info > /dev/full: status ${status}: ${stderr}")
+    endif()
+endif()
 
 # rtrt play: bad invocations exit 2 and write nothing; a good one writes every frame.
 foreach(args "play;${SOURCE_DIR}/assets/scenes/demo_glass.json;${SOURCE_DIR}/assets/scenes/demo_glass.json;--headless;--frames;2;-o;${WORK_DIR}/f_%02d${EXT}"

@@ -45,6 +45,11 @@ TEST_F(ImageLibraryTest, WritesTheFormatsOfOpenImageIO) {
     EXPECT_TRUE(CanWriteImageFormat("out.png"));
     EXPECT_TRUE(CanWriteImageFormat("out.exr"));
     EXPECT_FALSE(CanWriteImageFormat("out.nosuchformat"));
+    // Formats OpenImageIO has a writer for that cannot encode into memory (SGI, FITS), or that
+    // write nothing ("null"): refused by the check, not after the render.
+    EXPECT_FALSE(CanWriteImageFormat("out.sgi"));
+    EXPECT_FALSE(CanWriteImageFormat("out.fits"));
+    EXPECT_FALSE(CanWriteImageFormat("out.null"));
     EXPECT_THROW(EncodeImage((dir_ / "out.nosuchformat").string(), 3, 2, false, kTexels),
                  OutputError);
 }
