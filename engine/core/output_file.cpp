@@ -75,6 +75,18 @@ std::string FollowOutputLinks(const std::string& path) {
     throw InputError(path, "", "is a loop of links");
 }
 
+bool NameTheSameFile(const std::string& a, const std::string& b) {
+    struct stat sa {
+    }, sb{};
+    if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0)
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    std::error_code ea, eb;
+    namespace fs = std::filesystem;
+    const fs::path ca = fs::weakly_canonical(fs::absolute(FollowOutputLinks(a), ea), ea);
+    const fs::path cb = fs::weakly_canonical(fs::absolute(FollowOutputLinks(b), eb), eb);
+    return !ea && !eb && ca == cb;
+}
+
 void CheckOutputPath(const std::string& path) {
     if (path.empty()) throw InputError(path, "", "the output needs a file name");
     const std::string file = FollowOutputLinks(path);

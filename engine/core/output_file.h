@@ -48,6 +48,10 @@ std::optional<long> TemporaryOwnerHere(const std::string& name);
 // written there); InputError for a loop of links.
 std::string FollowOutputLinks(const std::string& path);
 
+// Whether A and B name one file: the same file where both exist (links, hard links and other
+// spellings included), else the same path once links and dot-dots are resolved.
+bool NameTheSameFile(const std::string& a, const std::string& b);
+
 // InputError(path, "", reason) unless a whole file can be written at path (or where it links):
 // its folder exists and takes new files, its name fits the file system, and it is not a folder,
 // a device, a FIFO or a socket (which the rename would replace).

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <regex>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "engine/core/output_file.h"
@@ -54,6 +56,37 @@ CLI::Validator FiniteRange(double min, double max) {
             return "";
         },
         "NUMBER in " + text);
+}
+
+void RefuseOutputsOverInputs(const CLI::App& app) {
+    struct Named {
+        std::string option, path;
+    };
+    std::vector<Named> outputs, inputs;
+    for (const CLI::App* level = &app; level;) {
+        for (const CLI::Option* option : level->get_options()) {
+            const std::string name = option->get_name();
+            const bool positional = option->get_lnames().empty() && option->get_snames().empty();
+            const bool output =
+                name == "--output" || name == "--csv" || name == "--manifest" || name == "--record";
+            if (!output && !positional && name != "--script") continue;
+            for (const std::string& path : option->results())
+                if (!path.empty()) (output ? outputs : inputs).push_back({name, path});
+        }
+        const std::vector<CLI::App*> chosen = level->get_subcommands();
+        level = chosen.empty() ? nullptr : chosen.front();
+    }
+    for (size_t k = 0; k < outputs.size(); ++k) {
+        std::vector<Named> others(outputs.begin(), outputs.begin() + long(k));
+        others.insert(others.end(), inputs.begin(), inputs.end());
+        for (const Named& other : others)
+            if (NameTheSameFile(outputs[k].path, other.path))
+                throw InputError(
+                    outputs[k].option, outputs[k].path,
+                    "is also " +
+                        (other.option.rfind("--", 0) == 0 ? other.option : "the input file") +
+                        " (" + other.path + "), which would be written over; name another file");
+    }
 }
 
 CLI::Validator WritableFile() {

@@ -29,6 +29,12 @@ CLI::Validator FiniteRange(double min, double max);
 // written whole (CheckOutputPath: its folder exists, it is not a folder or a device).
 CLI::Validator WritableFile();
 
+// InputError (exit 2) for a command line whose outputs (-o, --csv, --manifest, --record) name one
+// of its input files (the positional arguments, --script) or each other: the command would have
+// written over the scene it read, or one report over another. For the parsed subcommands of
+// APP, once the command line is read and before any of them runs.
+void RefuseOutputsOverInputs(const CLI::App& app);
+
 // Parses WIDTHxHEIGHT (1..16384 each); InputError naming --size otherwise.
 void ParseSize(const std::string& text, uint32_t* width, uint32_t* height);
 

@@ -67,6 +67,13 @@ void CheckPattern(const std::string& pattern) {
                          "expected a pattern with one frame number field of at most two "
                          "digits' width, such as out/frame_%04d.png, got \"" +
                              pattern + "\"");
+    // Every frame goes into one folder, checked before the first frame; and a manifest names
+    // frames by file name alone.
+    const size_t field = pattern.find('%');
+    if (pattern.find('/', field) != std::string::npos)
+        throw InputError("--output", pattern,
+                         "the frame number must be in the file name, not in a folder's, e.g. "
+                         "out/frame_%04d.png");
 }
 
 // The most pixels the window opens with on the CPU back end unless --size says otherwise.

@@ -13,6 +13,7 @@
 
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 
 namespace rtrt {
 namespace fs = std::filesystem;
@@ -57,11 +58,21 @@ void AppendToManifest(const std::string& manifest, int frame, const std::string&
 void CheckManifestPath(const std::string& path) {
     // A FIFO would block the open until something reads it, and a device is no record of frames.
     struct stat st;
-    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
-        throw InputError("--manifest", path, "is not a regular file; name a file to append to");
-    const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) throw InputError("--manifest", path, std::strerror(errno));
-    ::close(fd);
+    if (::stat(path.c_str(), &st) == 0) {
+        if (!S_ISREG(st.st_mode))
+            throw InputError("--manifest", path, "is not a regular file; name a file to append to");
+        const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+        if (fd < 0) throw InputError("--manifest", path, std::strerror(errno));
+        ::close(fd);
+        return;
+    }
+    // A new manifest is made by the first finished frame, not here: input found bad after this
+    // check leaves no empty manifest behind.
+    try {
+        CheckOutputPath(path);
+    } catch (const InputError& e) {
+        throw InputError("--manifest", path, e.Reason());
+    }
 }
 
 namespace {

@@ -24,7 +24,8 @@ struct ManifestEntry {
 // write). `rtrt play --manifest` calls it after each frame.
 void AppendToManifest(const std::string& manifest, int frame, const std::string& path);
 
-// Throws InputError("--manifest", PATH, reason) unless PATH can be appended to (made if missing),
+// Throws InputError("--manifest", PATH, reason) unless PATH can be appended to (or, missing, made
+// by the first frame: its folder takes new files),
 // so that a bad path fails before any frame is rendered.
 void CheckManifestPath(const std::string& path);
 

@@ -1,6 +1,7 @@
 # Runs rtrt on bad input: each case must exit with status 2, print one message naming the file,
 # field and reason, and leave no output image behind.
 file(REMOVE_RECURSE ${WORK_DIR})
+get_filename_component(WORK_DIR_NAME ${WORK_DIR} NAME)
 file(MAKE_DIRECTORY ${WORK_DIR})
 file(WRITE ${WORK_DIR}/malformed.json "{ \"instances\": [ ")
 file(WRITE ${WORK_DIR}/unknown_field.json "{ \"instances\": [], \"camera\": { \"fovy\": 45 } }")
@@ -81,6 +82,40 @@ execute_process(COMMAND ${RTRT} render --help RESULT_VARIABLE status OUTPUT_VARI
 if(NOT status EQUAL 0 OR NOT stdout MATCHES "--max-depth")
     message(FATAL_ERROR "render --help: status ${status}")
 endif()
+# An output that names an input (or another output) is refused before any work, the input intact.
+file(COPY_FILE ${SOURCE_DIR}/assets/scenes/demo_glass.json ${WORK_DIR}/own_scene.json)
+file(READ ${WORK_DIR}/own_scene.json scene_before)
+execute_process(COMMAND ${RTRT} render ${WORK_DIR}/own_scene.json --size 8x8
+    -o ${WORK_DIR}/../${WORK_DIR_NAME}/own_scene.json RESULT_VARIABLE status ERROR_VARIABLE stderr)
+file(READ ${WORK_DIR}/own_scene.json scene_after)
+if(NOT status EQUAL 2 OR NOT stderr MATCHES "is also the input file" OR
+   NOT scene_before STREQUAL scene_after)
+    message(FATAL_ERROR "render -o its own scene: status ${status}: ${stderr}")
+endif()
+execute_process(COMMAND ${RTRT} play ${WORK_DIR}/own_scene.json --headless --frames 1 --size 8x8
+    -o ${WORK_DIR}/own_%02d${EXT} --manifest ${WORK_DIR}/own_scene.json
+    RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR NOT stderr MATCHES "--manifest: .*is also the input file" OR
+   EXISTS ${WORK_DIR}/own_00${EXT})
+    message(FATAL_ERROR "play --manifest its own scene: status ${status}: ${stderr}")
+endif()
+
+# Bad input found after the manifest's check leaves no empty manifest behind; a frame number in a
+# folder's name is refused before any frame (frame 0 had been written, then frame 1 failed).
+execute_process(COMMAND ${RTRT} play ${WORK_DIR}/own_scene.json --headless --frames 2 --size 0x9
+    -o ${WORK_DIR}/m_%02d${EXT} --manifest ${WORK_DIR}/new_manifest.tsv
+    RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR EXISTS ${WORK_DIR}/new_manifest.tsv)
+    message(FATAL_ERROR "play with a bad --size left a manifest: status ${status}: ${stderr}")
+endif()
+file(MAKE_DIRECTORY ${WORK_DIR}/d_0000)
+execute_process(COMMAND ${RTRT} play ${WORK_DIR}/own_scene.json --headless --frames 2 --size 8x8
+    -o ${WORK_DIR}/d_%04d/frame${EXT} RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR NOT stderr MATCHES "the frame number must be in the file name" OR
+   EXISTS ${WORK_DIR}/d_0000/frame${EXT})
+    message(FATAL_ERROR "play -o DIR_%04d/frame: status ${status}: ${stderr}")
+endif()
+
 # What a command prints must arrive: stdout on a full device is a failure (exit 1), not exit 0 with
 # the text lost.
 if(EXISTS /dev/full)

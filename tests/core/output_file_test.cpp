@@ -189,6 +189,22 @@ TEST_F(OutputPathTest, AnOutputNamedByALinkIsWrittenThroughIt) {
     EXPECT_TRUE(fs::is_symlink(dir_ / "null.json"));
 }
 
+// One file under other names (a link, a hard link, another spelling) is one file; two new paths
+// are one where they resolve alike.
+TEST_F(OutputPathTest, NameTheSameFileSeesThroughSpellingsAndLinks) {
+    const fs::path scene = dir_ / "scene.json";
+    WriteWholeFile(scene.string(), "{}", false);
+    fs::create_symlink("scene.json", dir_ / "link.json");
+    fs::create_hard_link(scene, dir_ / "hard.json");
+    fs::create_directories(dir_ / "sub");
+    for (const fs::path& alias : {dir_ / "link.json", dir_ / "hard.json",
+                                  dir_ / "sub" / ".." / "scene.json", dir_ / "." / "scene.json"})
+        EXPECT_TRUE(NameTheSameFile(scene.string(), alias.string())) << alias;
+    EXPECT_TRUE(NameTheSameFile((dir_ / "new.csv").string(), (dir_ / "sub/../new.csv").string()));
+    EXPECT_FALSE(NameTheSameFile(scene.string(), (dir_ / "other.json").string()));
+    EXPECT_FALSE(NameTheSameFile((dir_ / "a.csv").string(), (dir_ / "b.csv").string()));
+}
+
 // A file replaced keeps its permissions (a private file stays private) and, as root, its owner.
 TEST_F(OutputPathTest, AReplacedFileKeepsItsModeAndOwner) {
     const fs::path target = dir_ / "private.png";
