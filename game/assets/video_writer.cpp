@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/media_file_check.h"
 #include "engine/core/output_file.h"
 #include "game/assets/image_io.h"
-#include "engine/core/media_file_check.h"
 
 namespace rtrt {
 
@@ -29,6 +29,24 @@ void CheckVideoPath(const std::string& path) {
     } catch (const InputError& e) {
         throw InputError("--record", path, e.Reason());
     }
+}
+
+void CheckRecordPath(const std::string& path) {
+    if (IsVideoPath(path)) return CheckVideoPath(path);
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    for (const char* media : {".avi", ".webm", ".gif", ".wmv", ".flv", ".m4v", ".mpg", ".mpeg",
+                              ".ts", ".ogv", ".png", ".jpg", ".jpeg", ".exr", ".ppm", ".pfm"})
+        if (ext == media)
+            throw InputError("--record", path,
+                             "rtrt records .mp4, .mkv or .mov video, or PNG frames into a folder; "
+                             "give one of those (a " +
+                                 ext + " name would have become a folder)");
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec))
+        throw InputError("--record", path,
+                         "is a file; give a video (.mp4, .mkv, .mov) or a folder for PNG frames");
 }
 
 VideoWriter::VideoWriter(std::string path, uint32_t width, uint32_t height, double fps)

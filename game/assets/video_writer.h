@@ -20,6 +20,11 @@ bool IsVideoPath(const std::string& path);
 // written: called before a window opens.
 void CheckVideoPath(const std::string& path);
 
+// --record PATH checked before a window opens: a video as CheckVideoPath, else a folder for PNG
+// frames, which must not be an existing file nor named like a video or image rtrt does not
+// record (out.avi had silently become a folder of PNGs). InputError(--record, PATH, reason).
+void CheckRecordPath(const std::string& path);
+
 class VideoWriter {
   public:
     // A video of WIDTH x HEIGHT at FPS frames per second (odd sizes are padded to even ones).

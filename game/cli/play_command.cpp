@@ -114,7 +114,7 @@ void RunWindowed(const PlayOptions& o) {
     w.vsync = !o.noVsync;
     w.finishStages = o.finishStages;
     w.record = o.record;
-    if (IsVideoPath(o.record)) CheckVideoPath(o.record);
+    if (!o.record.empty()) CheckRecordPath(o.record);
     // Its screenshots may go into --record's folder, which the window makes once it opens.
     if (!o.script.empty())
         w.script = InputScript::Load(o.script, IsVideoPath(o.record) ? "" : o.record);

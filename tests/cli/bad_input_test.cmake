@@ -116,6 +116,14 @@ if(NOT status EQUAL 2 OR NOT stderr MATCHES "the frame number must be in the fil
     message(FATAL_ERROR "play -o DIR_%04d/frame: status ${status}: ${stderr}")
 endif()
 
+# --record with a video name rtrt does not record is refused before a window opens (it had become a
+# folder of PNG frames named out.avi).
+execute_process(COMMAND ${RTRT} play ${WORK_DIR}/own_scene.json --record ${WORK_DIR}/out.avi
+    --frames 2 RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR EXISTS ${WORK_DIR}/out.avi)
+    message(FATAL_ERROR "play --record out.avi: status ${status}: ${stderr}")
+endif()
+
 # What a command prints must arrive: stdout on a full device is a failure (exit 1), not exit 0 with
 # the text lost.
 if(EXISTS /dev/full)
