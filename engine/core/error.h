@@ -2,6 +2,7 @@
 // Errors at the API boundary of loaders and the CLI. Never thrown from RT_HD code.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace rtrt {
 
@@ -29,5 +30,10 @@ class OutputError : public std::runtime_error {
   private:
     std::string file_, reason_;
 };
+
+// TEXT with its control characters (bytes below 0x20, and 0x7f) written as \xNN, for messages
+// that quote what a user or a file gave: a newline in a path split the one-line error, an escape
+// sequence reached the terminal, and a NUL ended the message. UTF-8 text passes unchanged.
+std::string WithoutControlCharacters(std::string_view text);
 
 }  // namespace rtrt

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "engine/core/error.h"
+
 namespace rtrt::mesh_text {
 
 std::string_view NextWord(std::string_view& line) {
@@ -18,17 +20,7 @@ std::string_view NextWord(std::string_view& line) {
 std::string Quote(std::string_view token) {
     constexpr size_t kMaxShown = 32;
     std::string quoted = "'";
-    // Control characters as \xNN: a NUL ended the message there, and others reach the terminal.
-    for (char c : token.substr(0, kMaxShown)) {
-        const auto byte = static_cast<unsigned char>(c);
-        if (byte < 0x20 || byte == 0x7f) {
-            char escaped[5];
-            std::snprintf(escaped, sizeof(escaped), "\\x%02x", byte);
-            quoted += escaped;
-        } else {
-            quoted += c;
-        }
-    }
+    quoted += WithoutControlCharacters(token.substr(0, kMaxShown));
     quoted += token.size() > kMaxShown ? "...'" : "'";
     return quoted;
 }

@@ -109,7 +109,8 @@ int RunCommandLine(int argc, char** argv) {
         // --help and --version print what was asked for; a bad command line is one line, as
         // every other error is.
         if (e.get_exit_code() == 0) return app.exit(e);
-        std::fprintf(stderr, "rtrt: error: %s (--help lists the options)\n", e.what());
+        std::fprintf(stderr, "rtrt: error: %s (--help lists the options)\n",
+                     rtrt::WithoutControlCharacters(e.what()).c_str());
         return rtrt::kExitBadInput;
     } catch (const rtrt::InputError& e) {
         std::fprintf(stderr, "rtrt: error: %s\n", e.what());
@@ -118,7 +119,7 @@ int RunCommandLine(int argc, char** argv) {
         std::fprintf(stderr, "rtrt: error: %s\n", e.what());
         return rtrt::kExitFailure;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "rtrt: error: %s\n", e.what());
+        std::fprintf(stderr, "rtrt: error: %s\n", rtrt::WithoutControlCharacters(e.what()).c_str());
         return rtrt::kExitFailure;
     }
     return exitCode;

@@ -36,29 +36,13 @@ std::string FirstMissing(const std::string& folder) {
     return missing.string();
 }
 
-// TEXT with every byte outside printable ASCII written as \xNN: the lock file is anyone's to
-// write, and what it says goes to a terminal.
-std::string Printable(const std::string& text) {
-    std::string printable;
-    for (const unsigned char c : text) {
-        if (c >= 0x20 && c < 0x7f) {
-            printable += char(c);
-            continue;
-        }
-        char escaped[8];
-        std::snprintf(escaped, sizeof(escaped), "\\x%02x", c);
-        printable += escaped;
-    }
-    return printable;
-}
-
 // The process that holds the lock, as it wrote itself into the lock file.
 std::string Holder(int fd) {
     char text[128] = "";
     const ssize_t n = ::pread(fd, text, sizeof(text) - 1, 0);
     text[n > 0 ? n : 0] = '\0';
     if (char* end = std::strchr(text, '\n')) *end = '\0';
-    return Printable(text);
+    return WithoutControlCharacters(text);
 }
 
 // Opens PATH, creating it where missing: its descriptor (*created: this call made the file), or
