@@ -57,6 +57,13 @@ bool ReadExternalFile(std::vector<unsigned char>* out, std::string* err, const s
     }
 }
 
+// tinygltf's check that a file exists, without opening it: its own opens the file, which waits
+// for ever on a FIFO.
+bool IsRegularFile(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(path, ec);
+}
+
 }  // namespace
 
 GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
@@ -67,7 +74,7 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     const std::string& bytes = draco ? draco->glb : checked.bytes;
     const bool binary = draco ? true : checked.binary;
     tinygltf::TinyGLTF loader;
-    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &ReadExternalFile,
+    loader.SetFsCallbacks({&IsRegularFile, &tinygltf::ExpandFilePath, &ReadExternalFile,
                            &tinygltf::WriteWholeFile, nullptr});
     GltfImageFailure imageFailure;
     imageFailure.used = &checked.imageUsed;

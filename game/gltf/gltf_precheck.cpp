@@ -164,8 +164,32 @@ void CheckBufferDataUri(const std::string& file, const std::string& field, const
 // Checked before tinygltf loads the file: the types of the fields rtrt reads (kFieldKinds), and
 // that external buffers and images exist, so that the message names the field
 // ("buffers[0].uri") where tinygltf's would not.
+// tinygltf turns JSON into its values recursively, so that extras nested 20,000 deep (a 40 KB
+// file) overflowed the stack: deeper nesting than any glTF needs is refused before it sees it.
+constexpr int kMaxJsonDepth = 256;
+
+void CheckJsonDepth(const std::string& file, const std::string& json) {
+    int depth = 0;
+    for (size_t i = 0; i < json.size(); ++i) {
+        const char c = json[i];
+        if (c == '"') {  // past the string, escapes included
+            for (++i; i < json.size() && json[i] != '"'; ++i)
+                if (json[i] == '\\') ++i;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth)
+                throw InputError(file, "",
+                                 "the JSON is nested more than " + std::to_string(kMaxJsonDepth) +
+                                     " levels deep (at byte " + std::to_string(i) +
+                                     "); no glTF needs that");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
 std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                             const std::string& dir) {
+    CheckJsonDepth(file, json);
     const Json root = ParseJson(json, file, DuplicateKeys::kLastWins);
     if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
     for (const char* array : {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers",
@@ -233,10 +257,21 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
         for (size_t i = 0; i < list.size(); ++i) {
             if (!list[i].is_object() || !list[i].contains("uri") || !list[i]["uri"].is_string())
                 continue;
-            // An image rtrt will not decode may be missing (or a format it cannot read).
-            if (std::strcmp(array, "images") == 0 && !used[i]) continue;
             const std::string uri = list[i]["uri"].get<std::string>();
             const std::string field = JsonIndexed(array, i);
+            // An image rtrt will not decode may be missing (or a format it cannot read), but
+            // one that is there must be a file: tinygltf opens it to see that it exists, which
+            // waits for ever on a FIFO.
+            if (std::strcmp(array, "images") == 0 && !used[i]) {
+                std::error_code ec;
+                const fs::path path = fs::path(dir.empty() ? "." : dir) / DecodeGltfUri(uri);
+                if (uri.rfind("data:", 0) != 0 && fs::exists(path, ec) &&
+                    !fs::is_regular_file(path, ec))
+                    throw InputError(file, field + ".uri",
+                                     "\"" + path.string() +
+                                         "\" is not a regular file (a folder, device or FIFO)");
+                continue;
+            }
             if (uri.rfind("data:", 0) == 0) {
                 if (std::strcmp(array, "buffers") == 0) CheckBufferDataUri(file, field, list[i]);
                 continue;

@@ -68,6 +68,26 @@ void ExpectGltfError(const std::string& path, const std::string& field, const st
     }
 }
 
+// Found by probing: an image no texture uses whose uri is a FIFO made tinygltf wait for ever
+// (its own check that a file exists opens it), and extras nested 20,000 deep overflowed the
+// stack in tinygltf's recursive reading of JSON values (SIGSEGV).
+TEST_F(GltfTest, AnUnusedFifoImageAndDeepNestingAreRefused) {
+    Json d = Json::parse(test::TwoLevels().GltfText());
+    d["images"] = Json::array({{{"uri", "unused.fifo"}}});
+    ASSERT_EQ(::mkfifo((dir_ / "unused.fifo").c_str(), 0600), 0);
+    ExpectGltfError(Save("unused_fifo.gltf", d.dump()), "images[0].uri",
+                    "unused.fifo\" is not a regular file");
+    d.erase("images");
+    const std::string text = d.dump();
+    const std::string deep = text.substr(0, text.size() - 1) +
+                             ", \"extras\": " + std::string(20000, '[') + std::string(20000, ']') +
+                             "}";
+    ExpectGltfError(Save("deep.gltf", deep), "", "nested more than 256 levels deep");
+    // Brackets inside strings are text, not nesting.
+    d["asset"]["extras"] = {{"note", std::string(1000, '[')}};
+    EXPECT_NO_THROW(LoadSceneFile(Save("brackets.gltf", d.dump())));
+}
+
 // Found by probing: a data URI whose size is not the buffer's byteLength, a uri naming a folder
 // or an absolute path, and camera aspect ratios glTF forbids or no image can have each had
 // tinygltf's raw message (or none) instead of the field and the reason.
