@@ -58,8 +58,9 @@ std::string GlbJson(const std::string& bytes) {
     return bytes.substr(20, length);
 }
 
-// The JSON types of the fields rtrt reads, per top-level array (glTF 2.0 schema). tinygltf
-// treats a field of the wrong type as absent; rtrt rejects it, naming it.
+// The JSON types of the fields rtrt reads, per top-level array (glTF 2.0 schema), a dotted field
+// inside the objects before it (each listed after its parent). tinygltf treats a field of the
+// wrong type as absent (a metallicFactor of "0" rendered as metal); rtrt rejects it, naming it.
 struct FieldKind {
     const char* array;
     const char* field;
@@ -93,7 +94,68 @@ constexpr FieldKind kFieldKinds[] = {
     {"textures", "source", JsonKind::kInt},
     {"textures", "sampler", JsonKind::kInt},
     {"materials", "pbrMetallicRoughness", JsonKind::kObject},
+    {"materials", "pbrMetallicRoughness.baseColorFactor", JsonKind::kNumbers4},
+    {"materials", "pbrMetallicRoughness.metallicFactor", JsonKind::kNumber},
+    {"materials", "pbrMetallicRoughness.roughnessFactor", JsonKind::kNumber},
+    {"materials", "pbrMetallicRoughness.baseColorTexture", JsonKind::kObject},
+    {"materials", "pbrMetallicRoughness.baseColorTexture.index", JsonKind::kInt},
+    {"materials", "pbrMetallicRoughness.baseColorTexture.texCoord", JsonKind::kInt},
+    {"materials", "pbrMetallicRoughness.baseColorTexture.extensions", JsonKind::kObject},
+    {"materials", "pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform",
+     JsonKind::kObject},
+    {"materials", "pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.rotation",
+     JsonKind::kNumber},
+    {"materials", "pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.texCoord",
+     JsonKind::kInt},
+    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture", JsonKind::kObject},
+    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture.index", JsonKind::kInt},
+    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture.texCoord", JsonKind::kInt},
+    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture.extensions", JsonKind::kObject},
+    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture.extensions.KHR_texture_transform",
+     JsonKind::kObject},
+    {"materials",
+     "pbrMetallicRoughness.metallicRoughnessTexture.extensions.KHR_texture_transform.rotation",
+     JsonKind::kNumber},
+    {"materials",
+     "pbrMetallicRoughness.metallicRoughnessTexture.extensions.KHR_texture_transform.texCoord",
+     JsonKind::kInt},
+    {"materials", "normalTexture", JsonKind::kObject},
+    {"materials", "normalTexture.index", JsonKind::kInt},
+    {"materials", "normalTexture.texCoord", JsonKind::kInt},
+    {"materials", "normalTexture.extensions", JsonKind::kObject},
+    {"materials", "normalTexture.extensions.KHR_texture_transform", JsonKind::kObject},
+    {"materials", "normalTexture.extensions.KHR_texture_transform.rotation", JsonKind::kNumber},
+    {"materials", "normalTexture.extensions.KHR_texture_transform.texCoord", JsonKind::kInt},
+    {"materials", "normalTexture.scale", JsonKind::kNumber},
+    {"materials", "occlusionTexture", JsonKind::kObject},
+    {"materials", "occlusionTexture.index", JsonKind::kInt},
+    {"materials", "occlusionTexture.texCoord", JsonKind::kInt},
+    {"materials", "occlusionTexture.extensions", JsonKind::kObject},
+    {"materials", "occlusionTexture.extensions.KHR_texture_transform", JsonKind::kObject},
+    {"materials", "occlusionTexture.extensions.KHR_texture_transform.rotation", JsonKind::kNumber},
+    {"materials", "occlusionTexture.extensions.KHR_texture_transform.texCoord", JsonKind::kInt},
+    {"materials", "occlusionTexture.strength", JsonKind::kNumber},
+    {"materials", "emissiveTexture", JsonKind::kObject},
+    {"materials", "emissiveTexture.index", JsonKind::kInt},
+    {"materials", "emissiveTexture.texCoord", JsonKind::kInt},
+    {"materials", "emissiveTexture.extensions", JsonKind::kObject},
+    {"materials", "emissiveTexture.extensions.KHR_texture_transform", JsonKind::kObject},
+    {"materials", "emissiveTexture.extensions.KHR_texture_transform.rotation", JsonKind::kNumber},
+    {"materials", "emissiveTexture.extensions.KHR_texture_transform.texCoord", JsonKind::kInt},
+    {"materials", "emissiveFactor", JsonKind::kNumbers3},
+    {"materials", "alphaMode", JsonKind::kString},
+    {"materials", "alphaCutoff", JsonKind::kNumber},
+    {"materials", "doubleSided", JsonKind::kBool},
     {"materials", "extensions", JsonKind::kObject},
+    {"materials", "extensions.KHR_materials_transmission", JsonKind::kObject},
+    {"materials", "extensions.KHR_materials_transmission.transmissionFactor", JsonKind::kNumber},
+    {"materials", "extensions.KHR_materials_ior", JsonKind::kObject},
+    {"materials", "extensions.KHR_materials_ior.ior", JsonKind::kNumber},
+    {"materials", "extensions.KHR_materials_specular", JsonKind::kObject},
+    {"materials", "extensions.KHR_materials_specular.specularFactor", JsonKind::kNumber},
+    {"materials", "extensions.KHR_materials_specular.specularColorFactor", JsonKind::kNumbers3},
+    {"materials", "extensions.KHR_materials_emissive_strength", JsonKind::kObject},
+    {"materials", "extensions.KHR_materials_emissive_strength.emissiveStrength", JsonKind::kNumber},
     {"animations", "channels", JsonKind::kObjects},
     {"animations", "samplers", JsonKind::kObjects},
     {"cameras", "type", JsonKind::kString},
@@ -187,6 +249,22 @@ void CheckJsonDepth(const std::string& file, const std::string& json) {
     }
 }
 
+// FIELD's kind where it is given: its dots name the objects it sits in, whose own kinds are
+// checked before it (an absent or other parent leaves nothing to check here).
+void ExpectNestedKind(const std::string& file, const Json& element, const std::string& at,
+                      const std::string& field, JsonKind kind) {
+    const Json* parent = &element;
+    std::string path = at;
+    size_t start = 0;
+    for (size_t dot; (dot = field.find('.', start)) != std::string::npos; start = dot + 1) {
+        const std::string key = field.substr(start, dot - start);
+        if (!parent->contains(key) || !(*parent)[key].is_object()) return;
+        parent = &(*parent)[key];
+        path += "." + key;
+    }
+    JsonFields(*parent, path, file).ExpectKind(field.substr(start), kind);
+}
+
 std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                             const std::string& dir) {
     CheckJsonDepth(file, json);
@@ -201,9 +279,32 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
         for (size_t i = 0; i < list.size(); ++i) {
             JsonFields element(list[i], JsonIndexed(array, i), file);
             for (const FieldKind& f : kFieldKinds)
-                if (std::strcmp(f.array, array) == 0) element.ExpectKind(f.field, f.kind);
+                if (std::strcmp(f.array, array) == 0)
+                    ExpectNestedKind(file, list[i], JsonIndexed(array, i), f.field, f.kind);
         }
     }
+    // tinygltf reads 5124 (a 32-bit signed integer, which glTF does not have) as an integer
+    // type, and float positions stored so were read as integers.
+    if (root.contains("accessors"))
+        for (size_t i = 0; i < root["accessors"].size(); ++i) {
+            const Json& accessor = root["accessors"][i];
+            if (!accessor.contains("componentType")) continue;
+            const int64_t type = accessor["componentType"].is_number_unsigned()
+                                     ? int64_t(std::min<uint64_t>(
+                                           accessor["componentType"].get<uint64_t>(), 1u << 20))
+                                     : accessor["componentType"].get<int64_t>();
+            if (type != 5120 && type != 5121 && type != 5122 && type != 5123 && type != 5125 &&
+                type != 5126)
+                throw InputError(file, JsonIndexed("accessors", i) + ".componentType",
+                                 "must be 5120, 5121, 5122, 5123, 5125 or 5126 (glTF's component "
+                                 "types), got " +
+                                     std::to_string(type));
+        }
+    for (const char* names : {"extensionsUsed", "extensionsRequired"})
+        if (root.contains(names) && !IsKind(root[names], JsonKind::kStrings))
+            throw InputError(
+                file, names,
+                std::string("expected an array of strings, got ") + root[names].type_name());
     // glTF's minimums for the sizes and offsets tinygltf reads without checking them (a negative
     // byteOffset was read as 0).
     for (const FieldMinimum& m : kFieldMinimums) {

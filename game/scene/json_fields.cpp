@@ -194,8 +194,15 @@ bool IsKind(const Json& v, JsonKind kind) {
     switch (kind) {
         case JsonKind::kInt:
             return v.is_number_integer();
+        case JsonKind::kNumber:
+            return v.is_number();
         case JsonKind::kString:
             return v.is_string();
+        case JsonKind::kStrings:
+            if (!v.is_array()) return false;
+            for (const Json& x : v)
+                if (!x.is_string()) return false;
+            return true;
         case JsonKind::kBool:
             return v.is_boolean();
         case JsonKind::kObject:
@@ -220,8 +227,12 @@ const char* KindName(JsonKind kind) {
     switch (kind) {
         case JsonKind::kInt:
             return "an integer";
+        case JsonKind::kNumber:
+            return "a number";
         case JsonKind::kString:
             return "a string";
+        case JsonKind::kStrings:
+            return "an array of strings";
         case JsonKind::kBool:
             return "true or false";
         case JsonKind::kObject:
@@ -247,13 +258,18 @@ namespace {
 std::string Described(const Json& v, JsonKind kind) {
     const std::string type = v.type_name();
     const bool objects = kind == JsonKind::kObjects, ints = kind == JsonKind::kInts;
+    const bool strings = kind == JsonKind::kStrings;
     const bool numbers =
         kind == JsonKind::kNumbers3 || kind == JsonKind::kNumbers4 || kind == JsonKind::kNumbers16;
-    if (!v.is_array() || !(objects || ints || numbers)) return type;
+    if (!v.is_array() || !(objects || ints || numbers || strings)) return type;
     if (v.empty()) return "an empty array";
     for (size_t i = 0; i < v.size(); ++i) {
         const Json& x = v[i];
-        if (objects ? x.is_object() : ints ? x.is_number_integer() : x.is_number()) continue;
+        if (objects   ? x.is_object()
+            : ints    ? x.is_number_integer()
+            : strings ? x.is_string()
+                      : x.is_number())
+            continue;
         std::string shown = x.dump();
         if (shown.size() > 40) {
             size_t cut = 37;  // at a UTF-8 character's start

@@ -28,7 +28,9 @@ std::string JsonIndexed(const std::string& array, size_t i);
 // The JSON types a field can be required to have.
 enum class JsonKind {
     kInt,
+    kNumber,
     kString,
+    kStrings,
     kBool,
     kObject,
     kInts,

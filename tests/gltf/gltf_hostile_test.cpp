@@ -68,6 +68,43 @@ void ExpectGltfError(const std::string& path, const std::string& field, const st
     }
 }
 
+// Found by probing: material factors and extensions of the wrong JSON type were read as absent
+// ("metallicFactor": "0" rendered as metal, "baseColorFactor": "red" as white), and
+// componentType 5124, no glTF type, read float positions as integers.
+TEST_F(GltfTest, MistypedMaterialFieldsAndUnknownComponentTypesAreRefused) {
+    const Json base = Json::parse(test::TwoLevels().GltfText());
+    struct Case {
+        const char* json;  // merged into materials[0]
+        const char* field;
+        const char* reason;
+    };
+    const Case cases[] = {
+        {R"({"pbrMetallicRoughness": {"metallicFactor": "0"}})",
+         "materials[0].pbrMetallicRoughness.metallicFactor", "expected a number, got string"},
+        {R"({"pbrMetallicRoughness": {"baseColorFactor": "red"}})",
+         "materials[0].pbrMetallicRoughness.baseColorFactor", "expected an array of 4 numbers"},
+        {R"({"emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform": [1, 2]}}})",
+         "materials[0].emissiveTexture.extensions.KHR_texture_transform", "expected an object"},
+        {R"({"extensions": {"KHR_materials_ior": 5}})", "materials[0].extensions.KHR_materials_ior",
+         "expected an object, got number"},
+        {R"({"occlusionTexture": {"index": 0, "strength": true}})",
+         "materials[0].occlusionTexture.strength", "expected a number, got boolean"},
+    };
+    for (const Case& c : cases) {
+        Json d = base;
+        d["materials"] = Json::array({Json::parse(c.json)});
+        ExpectGltfError(Save("material.gltf", d.dump()), c.field, c.reason);
+    }
+    Json d = base;
+    d["extensionsRequired"] = "KHR_texture_basisu";
+    ExpectGltfError(Save("required.gltf", d.dump()), "extensionsRequired",
+                    "expected an array of strings, got string");
+    d = base;
+    d["accessors"][0]["componentType"] = 5124;
+    ExpectGltfError(Save("int32.gltf", d.dump()), "accessors[0].componentType",
+                    "must be 5120, 5121, 5122, 5123, 5125 or 5126");
+}
+
 // Found by probing: an image no texture uses whose uri is a FIFO made tinygltf wait for ever
 // (its own check that a file exists opens it), and extras nested 20,000 deep overflowed the
 // stack in tinygltf's recursive reading of JSON values (SIGSEGV).
