@@ -103,17 +103,6 @@ const Texture* GltfTextures::Decoded(int index, bool srgb, const std::string& at
         image.image.size() !=
             size_t(image.width) * size_t(image.height) * size_t(channels) * size_t(bytes))
         doc_.Fail(imageAt, "the image is missing or could not be decoded");
-    std::vector<uint32_t> rgba(size_t(image.width) * size_t(image.height));
-    for (size_t p = 0; p < rgba.size(); ++p) {
-        uint32_t c[4] = {0, 0, 0, 255};
-        for (int k = 0; k < channels; ++k) {
-            // 16-bit images keep their high byte, little-endian as stb and OIIO return them.
-            c[k] =
-                image.image[(p * size_t(channels) + size_t(k)) * size_t(bytes) + size_t(bytes - 1)];
-        }
-        if (channels <= 2) c[1] = c[2] = c[0];  // grey (and alpha)
-        rgba[p] = c[0] | (c[1] << 8) | (c[2] << 16) | (c[3] << 24);
-    }
     Texture texture;
     texture.width = uint32_t(image.width);
     texture.height = uint32_t(image.height);
@@ -136,10 +125,29 @@ const Texture* GltfTextures::Decoded(int index, bool srgb, const std::string& at
                     minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
     }
     texture.levels = mipmapped ? FullMipLevels(texture.width, texture.height) : 1;
-    // The texels go in once per encoding; each slot's record (Slot) points at them.
+    // The texels go in once per image, encoding and mip chain, however many textures name the
+    // image (64 textures of one 4096^2 image had built 64 chains); each slot's record (Slot)
+    // points at them.
+    const auto texelsKey = std::make_tuple(t.source, srgb, texture.levels);
+    if (auto shared = texels_.find(texelsKey); shared != texels_.end()) {
+        texture.texelOffset = shared->second;
+        return &(decoded_[key] = texture);
+    }
+    std::vector<uint32_t> rgba(size_t(image.width) * size_t(image.height));
+    for (size_t p = 0; p < rgba.size(); ++p) {
+        uint32_t c[4] = {0, 0, 0, 255};
+        for (int k = 0; k < channels; ++k) {
+            // 16-bit images keep their high byte, little-endian as stb and OIIO return them.
+            c[k] =
+                image.image[(p * size_t(channels) + size_t(k)) * size_t(bytes) + size_t(bytes - 1)];
+        }
+        if (channels <= 2) c[1] = c[2] = c[0];  // grey (and alpha)
+        rgba[p] = c[0] | (c[1] << 8) | (c[2] << 16) | (c[3] << 24);
+    }
     const std::vector<uint32_t> chain =
         BuildMipChain(rgba.data(), texture.width, texture.height, texture.levels, srgb);
     texture.texelOffset = out_.scene.AddTexels(chain.data(), chain.size());
+    texels_[texelsKey] = texture.texelOffset;
     return &(decoded_[key] = texture);
 }
 

@@ -38,6 +38,7 @@ class GltfTextures {
     const tinygltf::Model& model_;
     LoadedScene& out_;
     std::map<std::pair<int, bool>, Texture> decoded_;  // by texture index and srgb; 0 x 0: unusable
+    std::map<std::tuple<int, bool, uint32_t>, uint64_t> texels_;  // image, srgb, levels: offset
     std::map<std::tuple<int, bool, std::vector<float>>, uint32_t> records_;
 };
 

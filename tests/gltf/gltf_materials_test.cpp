@@ -150,6 +150,37 @@ TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
     EXPECT_EQ(p.occlusionStrength, 0.25f);
 }
 
+// Textures that name one image share its texels: 64 textures of one 4096^2 image had built 64
+// mip chains (out of memory from a 57 KB file). Textures of other samplers keep their own
+// records.
+TEST_F(GltfTest, TexturesOfOneImageShareItsTexels) {
+    GltfBuilder b = test::TexturedQuadScene(9728, 33071);
+    const std::vector<uint8_t> rgb(16 * 3, 200);
+    const std::string bmp = GltfBuilder::Bmp(4, 4, rgb);
+    b.doc["images"] =
+        Json::array({{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>(
+                                                             bmp.begin(), bmp.end()))}}});
+    b.doc["samplers"].push_back({{"magFilter", 9729}, {"minFilter", 9729}, {"wrapS", 10497}});
+    b.doc["textures"] = Json::array({{{"source", 0}, {"sampler", 0}},
+                                     {{"source", 0}, {"sampler", 1}},
+                                     {{"source", 0}, {"sampler", 0}}});
+    Json& m = b.doc["materials"][0];
+    m["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+    m["emissiveTexture"] = {{"index", 1}};
+    m["occlusionTexture"] = {{"index", 2}};
+    const LoadedScene loaded = LoadSceneFile(Save("shared.gltf", b.GltfText()));
+    const PbrMaterial& p = loaded.scene.pbrMaterials[loaded.scene.materials[0].pbrMaterial];
+    const auto& textures = loaded.scene.textures;
+    // sRGB once (base colour, emissive) and linear once (occlusion): 16 texels each, the
+    // samplers ask for no mip levels.
+    EXPECT_EQ(loaded.scene.texels.size(), 32u);
+    const Texture& base = textures[loaded.scene.materials[0].baseColorTexture];
+    const Texture& emissive = textures[p.emissiveTexture];
+    EXPECT_EQ(base.texelOffset, emissive.texelOffset);
+    EXPECT_NE(base.wrapS, emissive.wrapS);  // each its own sampler
+    EXPECT_NE(textures[p.occlusionTexture].texelOffset, base.texelOffset);
+}
+
 // A glTF shown alone is exposed for its key light: a 2,000 lux sun makes a white surface show 1
 // before tone mapping; a lamp at the very centre of the scene counts from a quarter of the
 // scene's radius, not from 0.
