@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -117,6 +118,13 @@ int RunCommandLine(int argc, char** argv) {
         return rtrt::kExitBadInput;
     } catch (const rtrt::OutputError& e) {
         std::fprintf(stderr, "rtrt: error: %s\n", e.what());
+        return rtrt::kExitFailure;
+    } catch (const std::bad_alloc&) {
+        // Said in words: "std::bad_alloc" named neither the cause nor exit 1's meaning here.
+        std::fprintf(stderr,
+                     "rtrt: error: out of memory: the command needs more memory than this process "
+                     "may have (see ulimit -v and the machine's free memory); a smaller scene, "
+                     "size or model would fit\n");
         return rtrt::kExitFailure;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rtrt: error: %s\n", rtrt::WithoutControlCharacters(e.what()).c_str());

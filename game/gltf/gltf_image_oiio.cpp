@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <exception>
+#include <new>
 #include <vector>
 
 #include "game/gltf/gltf_image_loader.h"
@@ -113,7 +114,10 @@ bool LoadWithOiio(tinygltf::Image* image, const int index, std::string* err, std
     } catch (const ImageLibraryError&) {  // rtrt's installation, not the file: rethrown whole
         failure->fatal = std::current_exception();
         return false;
-    } catch (const std::exception& e) {  // std::bad_alloc
+    } catch (const std::bad_alloc&) {  // this machine's memory, not bad input: rethrown whole
+        failure->fatal = std::current_exception();
+        return false;
+    } catch (const std::exception& e) {
         reason = std::string("decoding failed: ") + e.what();
     }
     if (reason.empty()) return true;

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Mesh headers that ask for more than the body can hold, under a bound on address space.
+"""Mesh headers that ask for more than the body can hold, and work beyond the memory there is,
+under a bound on address space.
 
 A binary PLY may declare up to one face per byte of its body (an empty index list is one byte),
 so its face count passes the check against the body's size; the reader then reserved 12 bytes a
@@ -58,4 +59,13 @@ for command in (["info", path], ["convert", path, "-o", os.path.join(WORK, "out.
     print("rtrt %s: ok (%s)" % (command[0], r.stderr.strip()))
 if os.path.exists(os.path.join(WORK, "out.rtmodel")):
     sys.exit("convert wrote out.rtmodel although it failed")
+
+# Work that needs more memory than the bound is exit 1 in words ("std::bad_alloc" said neither
+# the cause nor what to do), and writes nothing.
+big = os.path.join(WORK, "big.png")
+r = run("render", "--size", "16384x16384", "--backend", "cpu", "-o", big)
+if r.returncode != 1 or "rtrt: error: out of memory: " not in r.stderr or os.path.exists(big):
+    sys.exit("rtrt render 16384x16384 in 2 GiB: status %d, expected 1 and 'out of memory':\n%s"
+             % (r.returncode, r.stderr))
+print("rtrt render beyond the memory bound: ok (%s)" % r.stderr.strip())
 shutil.rmtree(WORK)
