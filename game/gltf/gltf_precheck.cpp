@@ -391,6 +391,16 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                 throw InputError(
                     file, field + ".uri",
                     "\"" + path.string() + "\" is not a regular file (a folder, device or FIFO)");
+            // tinygltf reads a buffer's file whole, then requires its byteLength: a 2 GiB file
+            // named for 36 bytes was read (and copied) before that was found.
+            const uint64_t size = fs::file_size(path, ec);
+            if (std::strcmp(array, "buffers") == 0 && !ec && list[i].contains("byteLength") &&
+                list[i]["byteLength"].is_number_integer() &&
+                size != list[i]["byteLength"].get<uint64_t>())
+                throw InputError(file, field + ".byteLength",
+                                 "is " + list[i]["byteLength"].dump() + ", but \"" + path.string() +
+                                     "\" holds " + std::to_string(size) +
+                                     " bytes; they must be equal");
         }
     }
     return used;

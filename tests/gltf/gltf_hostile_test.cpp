@@ -105,6 +105,23 @@ TEST_F(GltfTest, MistypedMaterialFieldsAndUnknownComponentTypesAreRefused) {
                     "must be 5120, 5121, 5122, 5123, 5125 or 5126");
 }
 
+// A buffer file of another size than its byteLength is refused by its size, before it is read:
+// a 2 GiB file named for 36 bytes was read whole (and copied) first.
+TEST_F(GltfTest, ABufferFileOfAnotherSizeIsRefusedBeforeItIsRead) {
+    const GltfBuilder b = test::TwoLevels();
+    Json d = b.doc;
+    d["buffers"] = Json::array({{{"byteLength", b.bin.size()}, {"uri", "big.bin"}}});
+    {
+        std::ofstream bin(dir_ / "big.bin", std::ios::binary);
+        bin.write(reinterpret_cast<const char*>(b.bin.data()), std::streamsize(b.bin.size()));
+    }
+    fs::resize_file(dir_ / "big.bin", uint64_t(1) << 33);  // sparse: 8 GiB that a read would take
+    ExpectGltfError(Save("big.gltf", d.dump()), "buffers[0].byteLength",
+                    "is " + std::to_string(b.bin.size()) + ", but \"" +
+                        (dir_ / "big.bin").string() +
+                        "\" holds 8589934592 bytes; they must be equal");
+}
+
 // Found by probing: an image no texture uses whose uri is a FIFO made tinygltf wait for ever
 // (its own check that a file exists opens it), and extras nested 20,000 deep overflowed the
 // stack in tinygltf's recursive reading of JSON values (SIGSEGV).
