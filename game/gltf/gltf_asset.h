@@ -66,4 +66,11 @@ struct GltfAsset {
     GltfSummary summary;
 };
 
+// The entities one placement of ASSET adds: one per node and one per primitive.
+inline uint64_t GltfEntityCount(const GltfAsset& asset) {
+    uint64_t count = 0;
+    for (const GltfNode& node : asset.nodes) count += 1 + node.primitives.size();
+    return count;
+}
+
 }  // namespace rtrt

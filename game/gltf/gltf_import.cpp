@@ -142,6 +142,10 @@ LoadedScene LoadGltfScene(const std::string& path) {
     out.output = kLinearToSrgb;  // glTF's colours are linear light (its specification)
     const GltfAsset asset = LoadGltfAsset(path, out);
     out.gltfFiles.push_back(asset.summary);
+    if (const uint64_t entities = GltfEntityCount(asset); entities > kMaxSceneEntities)
+        throw InputError(path, "nodes",
+                         "the scene's nodes and primitives make " + std::to_string(entities) +
+                             " entities; a scene may have at most 2,000,000");
     const std::optional<Camera> camera = InstantiateGltf(asset, out, -1, glm::mat4(1.0f));
     bool anything = false;
     for (const EntityDesc& e : out.entities) anything |= e.renderable;

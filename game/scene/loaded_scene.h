@@ -72,6 +72,11 @@ struct GltfSummary {
     float animationSeconds = 0.0f;                // of the animation played (the first)
 };
 
+// Every entity a scene asks for (instances, spawned bodies, the nodes of each glTF placement, a
+// glTF file shown alone) counts against one budget, so that no combination of spawners and glTF
+// node trees asks for more memory than a machine has.
+inline constexpr uint64_t kMaxSceneEntities = 2000000;
+
 struct LoadedScene {
     // The scene at time 0: every entity with spawnTime 0 in its initial pose, TLAS built.
     RenderScene scene;

@@ -122,6 +122,31 @@ TEST_F(GltfTest, ABufferFileOfAnotherSizeIsRefusedBeforeItIsRead) {
                         "\" holds 8589934592 bytes; they must be equal");
 }
 
+// A glTF's nodes and primitives count against the scene's 2,000,000 entities before any is made,
+// shown alone and placed by a scene file (10 million from a 950 KB file had run out of memory).
+TEST_F(GltfTest, NodesAndPrimitivesCountAgainstTheEntityBudgetFirst) {
+    GltfBuilder b = test::TwoLevels();
+    Json d = b.doc;
+    // One mesh of 100 primitives that share an accessor, under 20,000 nodes: 2,020,000 entities.
+    const Json primitive = d["meshes"][0]["primitives"][0];
+    d["meshes"][0]["primitives"] = Json::array();
+    for (int k = 0; k < 100; ++k) d["meshes"][0]["primitives"].push_back(primitive);
+    d["nodes"] = Json::array();
+    Json roots = Json::array();
+    for (int n = 0; n < 20000; ++n) {
+        d["nodes"].push_back({{"mesh", 0}});
+        roots.push_back(n);
+    }
+    d["scenes"] = Json::array({{{"nodes", roots}}});
+    b.doc = d;
+    const std::string path = Save("many.gltf", b.GltfText());
+    ExpectGltfError(path, "nodes", "make 2020000 entities; a scene may have at most 2,000,000");
+    const std::string scene =
+        Save("placed.json", R"({"models": {"g": {"type": "gltf", "file": "many.gltf"}},
+                         "instances": [{"model": "g"}]})");
+    ExpectGltfError(scene, "instances[0].model", "the scene would have 2020001 entities");
+}
+
 // Found by probing: an image no texture uses whose uri is a FIFO made tinygltf wait for ever
 // (its own check that a file exists opens it), and extras nested 20,000 deep overflowed the
 // stack in tinygltf's recursive reading of JSON values (SIGSEGV).
