@@ -32,6 +32,27 @@ std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
             doc_.Fail(at + ".targets", std::to_string(prim.targets.size()) +
                                            " morph targets, but primitive 0 has " +
                                            std::to_string(m.primitives[0].targets.size()));
+        // A primitive that does not deform is its accessors, its mode and whether its material
+        // wants tangents: one that names what an earlier one named shares its BLAS.
+        const bool deforms =
+            !prim.targets.empty() || (skin >= 0 && prim.attributes.count("JOINTS_0") > 0);
+        std::string key;
+        if (!deforms) {
+            key = std::to_string(prim.indices) + "/" + std::to_string(prim.mode) + "/" +
+                  (NormalMapped(prim) ? "t" : "");
+            for (const auto& [name, accessor] : prim.attributes)
+                key += "/" + name + "=" + std::to_string(accessor);
+            if (auto shared = staticGeometry_.find(key); shared != staticGeometry_.end()) {
+                summary_.primitives++;
+                summary_.vertices += shared->second.vertices;
+                summary_.triangles += shared->second.triangles;
+                GltfPrimitive out;
+                out.blas = shared->second.blas;
+                out.material = materials_.Id(prim.material, at + ".material");
+                result.push_back(out);
+                continue;
+            }
+        }
         TriangleMesh triangles;
         try {
             triangles = ReadPrimitive(prim, at);
@@ -52,17 +73,23 @@ std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
                                   (m.name.empty() ? "" : " (" + m.name + ")"));
         out.material = materials_.Id(prim.material, at + ".material");
         ReadDeformation(prim, at, mesh, skin, triangles, out);
+        if (!deforms)
+            staticGeometry_[key] = {out.blas, uint32_t(triangles.positions.size()),
+                                    uint32_t(triangles.indices.size())};
         result.push_back(out);
     }
     meshPrimitives_[{mesh, skin}] = result;
     return result;
 }
 
+bool GltfMeshes::NormalMapped(const tinygltf::Primitive& prim) const {
+    return prim.material >= 0 && size_t(prim.material) < model_.materials.size() &&
+           model_.materials[size_t(prim.material)].normalTexture.index >= 0;
+}
+
 void GltfMeshes::AddTangents(const tinygltf::Primitive& prim, const std::string& at, int skin,
                              TriangleMesh& mesh) {
-    const bool normalMapped = prim.material >= 0 &&
-                              size_t(prim.material) < model_.materials.size() &&
-                              model_.materials[size_t(prim.material)].normalTexture.index >= 0;
+    const bool normalMapped = NormalMapped(prim);
     const bool deforms =
         !prim.targets.empty() || (skin >= 0 && prim.attributes.count("JOINTS_0") > 0);
     if (mesh.uvs.empty() || !normalMapped || deforms) return;

@@ -33,6 +33,8 @@ class GltfMeshes {
 
   private:
     TriangleMesh ReadPrimitive(const tinygltf::Primitive& prim, const std::string& at);
+    // Whether the primitive's material has a normal map (its triangles then carry tangents).
+    bool NormalMapped(const tinygltf::Primitive& prim) const;
     // Vertex tangents for a normal-mapped primitive that does not deform: the file's TANGENT,
     // else generated (GenerateTangents). Deforming ones keep per-face tangents, taken from their
     // deformed triangles at each hit, where stored ones would go stale.
@@ -49,6 +51,13 @@ class GltfMeshes {
     GltfMaterials& materials_;
     GltfSummary& summary_;
     std::map<std::pair<size_t, int>, std::vector<GltfPrimitive>> meshPrimitives_;
+    // A BLAS and its counts, by the accessors of a primitive that does not deform (StaticKey):
+    // primitives that name the same accessors share it, as 600 primitives of one 100,000-triangle
+    // accessor otherwise built 600 trees (out of memory from a 20 KB file).
+    struct StaticGeometry {
+        uint32_t blas = 0, vertices = 0, triangles = 0;
+    };
+    std::map<std::string, StaticGeometry> staticGeometry_;
     uint64_t morphDeltas_ = 0;  // read by all primitives so far (ReadGltfMorphTargets)
 };
 

@@ -303,6 +303,27 @@ TEST_F(GltfTest, LightsAndCameraSitOnTheirNodes) {
     EXPECT_NEAR(std::cos(0.5f) * spot.spotScale + spot.spotOffset, 0.0f, 1e-5f);
 }
 
+// Primitives that name the same accessors share one BLAS, whatever their meshes and materials
+// (600 primitives of one accessor had built 600 trees); the summary still counts each.
+TEST_F(GltfTest, PrimitivesOfTheSameAccessorsShareABlas) {
+    GltfBuilder b = test::TwoLevels();
+    Json prim = b.doc["meshes"][0]["primitives"][0];
+    b.doc["materials"] = Json::array({Json::object(), {{"doubleSided", true}}});
+    Json other = prim;
+    other["material"] = 1;
+    b.doc["meshes"][0]["primitives"] = Json::array({prim, other});
+    b.doc["meshes"].push_back({{"primitives", Json::array({prim})}});
+    b.doc["nodes"].push_back({{"mesh", 1}});
+    b.doc["scenes"][0]["nodes"].push_back(2);
+    const LoadedScene loaded = LoadSceneFile(Save("shared.gltf", b.GltfText()));
+    EXPECT_EQ(loaded.scene.blases.size(), 1u);
+    ASSERT_EQ(loaded.scene.instances.size(), 3u);
+    EXPECT_NE(loaded.scene.instances[0].materialId, loaded.scene.instances[1].materialId);
+    ASSERT_EQ(loaded.gltfFiles.size(), 1u);
+    EXPECT_EQ(loaded.gltfFiles[0].primitives, 3u);
+    EXPECT_EQ(loaded.gltfFiles[0].triangles, 3u);
+}
+
 TEST_F(GltfTest, SceneFilePlacesAGltfModelPerInstance) {
     Save("tree.glb", test::TwoLevels().Glb());
     const std::string scene = R"({
