@@ -501,7 +501,14 @@ class SceneParser {
             }
             if (!(scale.x > 0 && scale.y > 0 && scale.z > 0))
                 f.Fail("scale", "scale factors must be greater than 0");
+            // As models' own sizes are bounded (scene_models.cpp): a sphere scaled by 1e15
+            // vanished.
+            if (!(std::max({scale.x, scale.y, scale.z}) <= 1e6f))
+                f.Fail("scale", "scale factors must be at most 1e6");
         }
+        if (!(std::max({std::fabs(position.x), std::fabs(position.y), std::fabs(position.z)}) <=
+              1e7f))
+            f.Fail("position", "coordinates must be at most 1e7 in magnitude");
         physics::LocalTransform t;
         t.translation = position;
         t.rotation = EulerDegrees(rotation);

@@ -1,5 +1,6 @@
 #include "game/scene/scene_models.h"
 
+#include <algorithm>
 #include <cmath>
 #include <span>
 #include <vector>
@@ -13,10 +14,19 @@
 namespace rtrt {
 namespace {
 
-// The largest sphere radius and centre coordinate a scene may give: the sphere test squares
-// distances of this order, which must stay far inside float's range (a radius of 1e20 made
-// NaN pixels).
-constexpr float kMaxSphereExtent = 1e6f;
+// The largest sphere radius and centre coordinate, box side, plane side and fitted size a scene
+// may give: the sphere test squares distances of this order, which must stay far inside float's
+// range (a radius of 1e20 made NaN pixels), and the ray offsets that keep shadow rays off their
+// surface grow with the scene (a plane of side 1e10 rendered as if in shadow, one of 1e15 not at
+// all).
+constexpr float kMaxModelExtent = 1e6f;
+
+// "fit": the size the model is scaled to, greater than 0 and at most kMaxModelExtent.
+float FitSize(JsonFields& f) {
+    const float fit = f.Positive("fit");
+    if (!(fit <= kMaxModelExtent)) f.Fail("fit", "must be at most 1e6");
+    return fit;
+}
 
 std::vector<Sphere> ParseSphereList(JsonFields& f) {
     const Json& list = f.Get("spheres");
@@ -32,7 +42,7 @@ std::vector<Sphere> ParseSphereList(JsonFields& f) {
                 f.Fail(key, "expected finite numbers");
         if (!(s[3].get<float>() > 0.0f)) f.Fail(key, "radius must be greater than 0");
         for (size_t c = 0; c < 4; ++c)
-            if (!(std::fabs(s[c].get<double>()) <= kMaxSphereExtent))
+            if (!(std::fabs(s[c].get<double>()) <= kMaxModelExtent))
                 f.Fail(key, "centre coordinates and radius must be at most 1e6 in magnitude");
         spheres.push_back(
             {vec3(s[0].get<float>(), s[1].get<float>(), s[2].get<float>()), s[3].get<float>()});
@@ -61,22 +71,27 @@ Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shap
     const std::string type = f.String("type");
     if (type == "sphere") {
         const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
-        if (!(s.radius <= kMaxSphereExtent)) f.Fail("radius", "must be at most 1e6");
+        if (!(s.radius <= kMaxModelExtent)) f.Fail("radius", "must be at most 1e6");
         shape = {ModelShape::kSphere, s.radius, vec3(0.0f)};
         return BuildSphereBlas(std::span<const Sphere>(&s, 1), options);
     }
     if (type == "spheres") return BuildSphereBlas(ParseSphereList(f), options);
     TriangleMesh mesh;
     if (type == "box") {
-        mesh = MakeBoxMesh(f.Vec3("size", vec3(1.0f)));
-        shape = {ModelShape::kBox, 0.0f, 0.5f * mesh.Bounds().Extent()};
-        const vec3 size = mesh.Bounds().Extent();
-        if (!(size.x > 0 && size.y > 0 && size.z > 0))
+        // Checked as given: a negative side had made the box of its magnitude.
+        const vec3 given = f.Vec3("size", vec3(1.0f));
+        if (!(given.x > 0 && given.y > 0 && given.z > 0))
             f.Fail("size", "box sides must be greater than 0");
+        if (!(std::max({given.x, given.y, given.z}) <= kMaxModelExtent))
+            f.Fail("size", "box sides must be at most 1e6");
+        mesh = MakeBoxMesh(given);
+        shape = {ModelShape::kBox, 0.0f, 0.5f * mesh.Bounds().Extent()};
     } else if (type == "plane") {
         const vec3 size = f.Vec3("size", vec3(10.0f, 0.0f, 10.0f));
         if (!(size.x > 0 && size.z > 0))
             f.Fail("size", "plane size x and z must be greater than 0");
+        if (!(std::max(size.x, size.z) <= kMaxModelExtent))
+            f.Fail("size", "plane size x and z must be at most 1e6");
         mesh = MakePlaneMesh(size.x, size.z);
         shape = {ModelShape::kPlane, 0.0f, vec3(0.0f)};
     } else if (type == "teapot") {
@@ -86,13 +101,13 @@ Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shap
         // Meshes come through the BLAS cache; fitting moves the built BLAS exactly as
         // FitMesh would have moved the mesh's vertices.
         MeshModel model = LoadMeshModel(ModelFile(f, {}, baseDir), options);
-        if (f.Has("fit")) FitBlas(model.blas, model.info.sourceBounds, f.Positive("fit"));
+        if (f.Has("fit")) FitBlas(model.blas, model.info.sourceBounds, FitSize(f));
         return std::move(model.blas);
     } else {
         f.Fail("type", "unknown model type \"" + type +
                            "\" (expected sphere, spheres, box, plane, teapot, mesh or gltf)");
     }
-    if (f.Has("fit")) FitMesh(mesh, f.Positive("fit"));
+    if (f.Has("fit")) FitMesh(mesh, FitSize(f));
     return BuildTriangleBlas(mesh, options);
 }
 
