@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
@@ -329,10 +330,14 @@ float JsonFields::InRange(const std::string& key, float lo, float hi, float fall
 uint32_t JsonFields::Count(const std::string& key, uint32_t lo, uint32_t hi, uint32_t fallback) {
     if (!Has(key)) return fallback;
     ExpectKind(key, JsonKind::kInt);
-    const int64_t n = j_.at(key).get<int64_t>();
+    const Json& v = j_.at(key);
+    // Values past int64's range are unsigned in the JSON: compared, and shown, as written (2^64-1
+    // was shown as -1).
+    const bool huge = v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX);
+    const int64_t n = huge ? INT64_MAX : v.get<int64_t>();
     if (n < lo || n > hi)
         Fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-                      ", got " + std::to_string(n));
+                      ", got " + v.dump());
     return uint32_t(n);
 }
 

@@ -203,6 +203,9 @@ TEST(SceneFile, ExtentsBeyondWhatFloatsTraceAreRejected) {
                 "instances[0].scale", "at most 1e6");
     ExpectError(scene(R"({"type": "sphere"})", R"({"model": "m", "position": [0, -2e7, 0]})"),
                 "instances[0].position", "at most 1e7");
+    // Counts past int64's range are shown as written (2^64 - 1 was "got -1").
+    ExpectError(R"({"max_depth": 18446744073709551615, "instances": []})", "max_depth",
+                "must be between 1 and 16, got 18446744073709551615");
     EXPECT_NO_THROW(ParseScene(scene(R"({"type": "plane", "size": [1e6, 0, 1e6]})",
                                      R"({"model": "m", "scale": 1e6, "position": [1e7, 0, 0]})"),
                                "s.json", ""));
