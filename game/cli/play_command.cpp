@@ -231,8 +231,19 @@ void RunPlay(PlayOptions o) {
             renderer->Update(world.Scene(), world.Changes());
         }
         renderer->Trace(world.Scene(), settings, &frame);
-        WriteImage(FramePath(o.output, i), frame, transform);
-        if (!o.manifest.empty()) AppendToManifest(o.manifest, i, FramePath(o.output, i));
+        try {
+            WriteImage(FramePath(o.output, i), frame, transform);
+            if (!o.manifest.empty()) AppendToManifest(o.manifest, i, FramePath(o.output, i));
+        } catch (const OutputError& e) {
+            // What is kept, and the command that goes on from the frame that failed.
+            const std::string kept = i == first
+                                         ? "no frame was written"
+                                         : "frames " + std::to_string(first) + " to " +
+                                               std::to_string(i - 1) + " are written and kept";
+            throw OutputError(e.File(), e.Reason() + "; " + kept + ", and --frames " +
+                                            std::to_string(i) + ":" + std::to_string(end) +
+                                            " goes on from here");
+        }
         total += timer.Milliseconds();
         char what[64];
         std::snprintf(what, sizeof(what), "frames, %.1f ms/frame", total / (i - first + 1));

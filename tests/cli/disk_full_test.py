@@ -42,9 +42,9 @@ def leftovers(folder, keep):
     return sorted(set(os.listdir(folder)) - set(keep))
 
 
-def expect_write_failure(name, args, output, folder, keep, env):
+def expect_write_failure(name, args, output, folder, keep, env, then=""):
     r = run(args, env)
-    expected = f"rtrt: error: {output}: {REASON}"
+    expected = f"rtrt: error: {output}: {REASON}{then}"
     if r.returncode != 1 or expected not in r.stderr:
         sys.exit(f"{name}: status {r.returncode}, expected 1 and \"{expected}\":\n{r.stderr}")
     if leftovers(folder, keep):
@@ -64,7 +64,8 @@ def check_all(mechanism, full, env, scratch):
     expect_write_failure(f"{mechanism} play --headless",
                          ["play", os.path.join(WORK, "grid.json"), "--headless", "--frames", "3",
                           "--size", "160x120", "-o", pattern],
-                         os.path.join(full, "f_00.ppm"), full, keep, env)
+                         os.path.join(full, "f_00.ppm"), full, keep, env,
+                         "; no frame was written, and --frames 0:3 goes on from here")
     out = os.path.join(full, "grid.rtmodel")
     expect_write_failure(f"{mechanism} convert", ["convert", os.path.join(WORK, "grid.obj"),
                                                   "-o", out], out, full, keep, env)
