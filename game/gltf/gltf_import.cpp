@@ -157,7 +157,8 @@ LoadedScene LoadGltfScene(const std::string& path) {
                 const float aspect = asset.cameras[size_t(n.camera)].aspect;
                 if (aspect > 0.0f) {
                     out.width = 1280;
-                    out.height = uint32_t(std::clamp(std::lround(1280.0f / aspect), 1L, 16384L));
+                    // Clamped before rounding: 1280 / 1e-30 is beyond what lround returns.
+                    out.height = uint32_t(std::lround(std::clamp(1280.0 / aspect, 1.0, 16384.0)));
                 }
                 break;
             }

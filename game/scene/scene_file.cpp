@@ -404,13 +404,18 @@ class SceneParser {
                                  ? shape.radius * MaxComponent(proto.local.scale)
                                  : 0.5f * glm::length(bounds.Extent() * proto.local.scale);
         const float cell = 2.2f * radius;
-        const glm::ivec3 cells = glm::ivec3(glm::max(hi - lo, vec3(0.0f)) / cell);
+        // Counted in doubles: tiny bodies in a large region make more cells than an int holds
+        // (the conversion's overflow had said "holds only 0 bodies").
+        const glm::dvec3 across =
+            glm::floor(glm::dvec3(glm::max(hi - lo, vec3(0.0f))) / double(cell));
+        const double cellCount = across.x * across.y * across.z;
+        if (!(cellCount <= 50000000.0))
+            f.Fail("rain", "the region is too large for bodies of this size (over 50M cells)");
+        const glm::ivec3 cells(across);
         const int64_t total = int64_t(cells.x) * cells.y * cells.z;
         if (total < int64_t(count))
-            f.Fail("rain", "the region holds only " + std::to_string(std::max<int64_t>(total, 0)) +
+            f.Fail("rain", "the region holds only " + std::to_string(total) +
                                " bodies of this size, not " + std::to_string(count));
-        if (total > 50000000)
-            f.Fail("rain", "the region is too large for bodies of this size (over 50M cells)");
         std::vector<uint32_t> order(static_cast<size_t>(total));
         for (size_t i = 0; i < order.size(); ++i) order[i] = uint32_t(i);
         std::mt19937 rng(seed);

@@ -205,7 +205,9 @@ TEST_F(GltfTest, BufferUrisAndCameraAspectsAreCheckedByField) {
     for (const double aspect : {0.0, -1.5})
         ExpectGltfError(withAspect(aspect), "cameras[0].perspective.aspectRatio", "greater than 0");
     // The image of a glTF shown on its own: 1280 columns, 1280 / aspect rows within 1 to 16384.
-    const std::pair<double, uint32_t> rows[] = {{2.0, 640u}, {1e6, 1u}, {1e-6, 16384u}};
+    // (1e-30: 1280 / aspect is beyond lround's range, which had made 1 row.)
+    const std::pair<double, uint32_t> rows[] = {
+        {2.0, 640u}, {1e6, 1u}, {1e-6, 16384u}, {1e-30, 16384u}};
     for (const auto& [aspect, height] : rows) {
         const LoadedScene loaded = LoadSceneFile(withAspect(aspect));
         EXPECT_EQ(loaded.width, 1280u) << aspect;

@@ -203,6 +203,11 @@ TEST(SceneFile, ExtentsBeyondWhatFloatsTraceAreRejected) {
                 "instances[0].scale", "at most 1e6");
     ExpectError(scene(R"({"type": "sphere"})", R"({"model": "m", "position": [0, -2e7, 0]})"),
                 "instances[0].position", "at most 1e7");
+    // A rain of tiny bodies makes more cells than an int holds: said so, not "holds only 0".
+    ExpectError(R"({"models": {"b": {"type": "sphere"}}, "instances": [],
+                    "spawners": [{"model": "b", "scale": 1e-30,
+                                  "rain": {"count": 10, "min": [-1, -1, -1], "max": [1, 1, 1]}}]})",
+                "spawners[0].rain", "too large for bodies of this size (over 50M cells)");
     // Counts past int64's range are shown as written (2^64 - 1 was "got -1").
     ExpectError(R"({"max_depth": 18446744073709551615, "instances": []})", "max_depth",
                 "must be between 1 and 16, got 18446744073709551615");
