@@ -386,7 +386,9 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
             std::error_code ec;
             const fs::path path = fs::path(dir.empty() ? "." : dir) / relative;
             if (!fs::exists(path, ec))
-                throw InputError(file, field + ".uri", "no such file \"" + path.string() + "\"");
+                throw InputError(file, field + ".uri",
+                                 ec ? "\"" + path.string() + "\": " + ec.message()  // a link loop
+                                    : "no such file \"" + path.string() + "\"");
             if (!fs::is_regular_file(path, ec))
                 throw InputError(
                     file, field + ".uri",

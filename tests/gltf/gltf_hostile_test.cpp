@@ -189,6 +189,11 @@ TEST_F(GltfTest, BufferUrisAndCameraAspectsAreCheckedByField) {
     fs::create_directories(dir_ / "folder.bin");
     ExpectGltfError(Save("folder.gltf", external.dump()), "buffers[0].uri",
                     "is not a regular file");
+    fs::create_symlink("loop_b.bin", dir_ / "loop_a.bin");  // a loop of links is named so
+    fs::create_symlink("loop_a.bin", dir_ / "loop_b.bin");
+    external["buffers"][0]["uri"] = "loop_a.bin";
+    ExpectGltfError(Save("loop.gltf", external.dump()), "buffers[0].uri",
+                    "Too many levels of symbolic links");
     external["buffers"][0]["uri"] = "/etc/hostname";
     ExpectGltfError(Save("absolute.gltf", external.dump()), "buffers[0].uri",
                     "is an absolute path");
