@@ -35,6 +35,7 @@ std::string FetchModelsScript() {
 }
 
 std::string MissingModelReason(const std::string& spec) {
+    if (spec.empty()) return "is empty; name a model file";  // it read as the scene's folder
     constexpr std::string_view kPrefix = "@models/";
     if (!spec.starts_with(kPrefix)) return {};
     const std::string dir = ModelDir();

@@ -203,6 +203,9 @@ TEST(SceneFile, ExtentsBeyondWhatFloatsTraceAreRejected) {
                 "instances[0].scale", "at most 1e6");
     ExpectError(scene(R"({"type": "sphere"})", R"({"model": "m", "position": [0, -2e7, 0]})"),
                 "instances[0].position", "at most 1e7");
+    // An empty file name had been read as the scene's folder ("unknown mesh file extension").
+    ExpectError(R"({"models": {"m": {"type": "mesh", "file": ""}}, "instances": []})",
+                "models.m.file", "is empty; name a model file");
     // A rain of tiny bodies makes more cells than an int holds: said so, not "holds only 0".
     ExpectError(R"({"models": {"b": {"type": "sphere"}}, "instances": [],
                     "spawners": [{"model": "b", "scale": 1e-30,
