@@ -31,9 +31,10 @@ class OutputError : public std::runtime_error {
     std::string file_, reason_;
 };
 
-// TEXT with its control characters (bytes below 0x20, and 0x7f) written as \xNN, for messages
-// that quote what a user or a file gave: a newline in a path split the one-line error, an escape
-// sequence reached the terminal, and a NUL ended the message. UTF-8 text passes unchanged.
+// TEXT with what a terminal would act on written as \xNN bytes, for messages that quote what a
+// user or a file gave: control characters (C0, DEL, C1), bidirectional overrides and bytes that
+// are not UTF-8. A newline in a path split the one-line error, an escape sequence reached the
+// terminal, and a NUL ended the message. Other UTF-8 text passes unchanged.
 std::string WithoutControlCharacters(std::string_view text);
 
 }  // namespace rtrt

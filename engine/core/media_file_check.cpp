@@ -1,35 +1,46 @@
 #include "engine/core/media_file_check.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <optional>
 
 namespace rtrt {
 namespace {
 
-// Reads from a file by offset; every read past the end comes back empty.
+// Reads from a regular file by offset; every read past the end comes back empty. Opened without
+// waiting, so that a FIFO under a video's name is refused instead of waited on for ever.
 class Bytes {
   public:
-    explicit Bytes(const std::string& path) : in_(path, std::ios::binary) {
-        if (in_) {
-            in_.seekg(0, std::ios::end);
-            size_ = uint64_t(in_.tellg());
+    explicit Bytes(const std::string& path)
+        : fd_(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)) {
+        struct stat st {};
+        if (fd_ >= 0 && ::fstat(fd_, &st) == 0) {
+            regular_ = S_ISREG(st.st_mode);
+            size_ = uint64_t(st.st_size);
         }
     }
-    bool Open() const { return bool(in_); }
+    ~Bytes() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    Bytes(const Bytes&) = delete;
+    Bytes& operator=(const Bytes&) = delete;
+    bool Open() const { return fd_ >= 0; }
+    bool Regular() const { return regular_; }
     uint64_t Size() const { return size_; }
     bool Read(uint64_t offset, void* out, size_t count) {
         if (offset > size_ || count > size_ - offset) return false;
-        in_.clear();
-        in_.seekg(std::streamoff(offset));
-        return bool(in_.read(static_cast<char*>(out), std::streamsize(count)));
+        return ::pread(fd_, out, count, off_t(offset)) == ssize_t(count);
     }
 
   private:
-    std::ifstream in_;
+    int fd_ = -1;
+    bool regular_ = false;
     uint64_t size_ = 0;
 };
 
@@ -130,6 +141,7 @@ std::string PngProblem(Bytes& file) {
 std::string MediaFileProblem(const std::string& path) {
     Bytes file(path);
     if (!file.Open()) return "cannot be read";
+    if (!file.Regular()) return "is not a regular file";
     if (file.Size() == 0) return "is empty";
     std::array<uint8_t, 8> magic{};
     const size_t have = size_t(std::min<uint64_t>(file.Size(), magic.size()));

@@ -62,6 +62,17 @@ ssize_t WriteSome(int fd, const void* data, size_t size, uint64_t done) {
 
 }  // namespace
 
+namespace {
+
+// A link into /proc or /dev/fd (where /dev/stdout leads): the kernel's name for an open
+// descriptor, whose text is no path to write beside ("pipe:[N]", or a file opened for appending,
+// which a rename over it would replace, losing what it held).
+bool IsDescriptorLink(const std::string& path) {
+    return path.rfind("/proc/", 0) == 0 || path.rfind("/dev/fd/", 0) == 0;
+}
+
+}  // namespace
+
 std::string FollowOutputLinks(const std::string& path) {
     namespace fs = std::filesystem;
     std::string file = path;
@@ -70,9 +81,23 @@ std::string FollowOutputLinks(const std::string& path) {
         if (!fs::is_symlink(fs::symlink_status(file, ec))) return file;
         const fs::path link = fs::read_symlink(file, ec);
         if (ec) return file;
-        file = link.is_absolute() ? link.string() : (fs::path(file).parent_path() / link).string();
+        const std::string next =
+            link.is_absolute() ? link.string() : (fs::path(file).parent_path() / link).string();
+        if (IsDescriptorLink(next) || IsDescriptorLink(file)) return file;  // not followed
+        file = next;
     }
     throw InputError(path, "", "is a loop of links");
+}
+
+// InputError unless FILE (PATH with its links followed) is a file rtrt may write through its
+// temporary: not a link to a process's descriptor.
+void CheckNotDescriptor(const std::string& path, const std::string& file) {
+    std::error_code ec;
+    if (std::filesystem::is_symlink(std::filesystem::symlink_status(file, ec)))
+        throw InputError(path, "",
+                         "leads to " + std::filesystem::read_symlink(file, ec).string() +
+                             ", an open descriptor (as /dev/stdout does); rtrt writes whole "
+                             "files through a temporary: name a file, and read it from there");
 }
 
 bool NameTheSameFile(const std::string& a, const std::string& b) {
@@ -90,6 +115,7 @@ bool NameTheSameFile(const std::string& a, const std::string& b) {
 void CheckOutputPath(const std::string& path) {
     if (path.empty()) throw InputError(path, "", "the output needs a file name");
     const std::string file = FollowOutputLinks(path);
+    CheckNotDescriptor(path, file);
     // Named in the reasons where a link led elsewhere.
     const std::string where = file == path ? "" : " (where the link leads: " + file + ")";
     std::error_code ec;
@@ -119,11 +145,19 @@ void CheckFolderWritable(const std::string& path, const std::string& folder) {
     // access() passes folders that take no new file (/proc and /sys as root, some FUSE and
     // network mounts), where the output would fail only after the work: a file is made and
     // removed again, as the output's temporary would be.
+    // Made new (O_EXCL, never through a link or into a FIFO someone left under its name).
     const std::string probe = TemporaryPathFor((std::filesystem::path(folder) / "check").string());
     TemporariesLock lock;
-    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    const int flags = O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC;
+    int fd = ::open(probe.c_str(), flags, 0600);
+    if (fd < 0 && errno == EEXIST && ::unlink(probe.c_str()) == 0)
+        fd = ::open(probe.c_str(), flags, 0600);
     if (fd < 0) {
         const int error = errno;
+        // A full disk, a quota or an I/O error is the work failing (exit 1), not bad input.
+        if (error == ENOSPC || error == EDQUOT || error == EIO)
+            throw OutputError(
+                path, "cannot write into the folder " + folder + ": " + std::strerror(error));
         refuse(error == ENOENT ? "it takes no new files" : std::strerror(error));
     }
     ::close(fd);
@@ -142,6 +176,7 @@ OutputFile::OutputFile(std::string target)
     : target_(std::move(target)),
       file_(FollowOutputLinks(target_)),
       temp_(TemporaryPathFor(file_)) {
+    CheckNotDescriptor(target_, file_);
     // The rename would put a regular file in place of a device or a FIFO, or fail on a folder
     // only once the output is written.
     struct stat old {};

@@ -90,8 +90,8 @@ void CheckImageFormat(const std::string& path) {
         if (!CanWriteImageFormat(path)) {
             // Said on the way out only: each format is asked by encoding a small image.
             std::string writable = ".ppm, .pfm";
-            for (const char* other :
-                 {".png", ".exr", ".jpg", ".tif", ".hdr", ".bmp", ".tga", ".webp", ".dpx", ".jp2"})
+            for (const char* other : {".png", ".exr", ".jpg", ".tif", ".hdr", ".bmp", ".tga",
+                                      ".webp", ".gif", ".dpx", ".jp2"})
                 if (CanWriteImageFormat(std::string("x") + other))
                     writable += std::string(", ") + other;
             throw InputError(path, "",

@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/core/output_file.h"
 #include "game/runtime/world.h"
+#include "game/scene/scene_file.h"
 
 namespace rtrt {
 
@@ -70,8 +71,14 @@ void RefuseOutputsOverInputs(const CLI::App& app) {
             const bool output =
                 name == "--output" || name == "--csv" || name == "--manifest" || name == "--record";
             if (!output && !positional && name != "--script") continue;
-            for (const std::string& path : option->results())
-                if (!path.empty()) (output ? outputs : inputs).push_back({name, path});
+            for (const std::string& path : option->results()) {
+                if (path.empty()) continue;
+                (output ? outputs : inputs).push_back({name, path});
+                // A scene given by name is the file it names (RTRT_ASSET_DIR's or the tree's).
+                if (positional)
+                    if (const std::string file = ScenePathFor(path); file != path)
+                        inputs.push_back({name, file});
+            }
         }
         const std::vector<CLI::App*> chosen = level->get_subcommands();
         level = chosen.empty() ? nullptr : chosen.front();

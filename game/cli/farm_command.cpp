@@ -223,7 +223,7 @@ std::string Submit(const std::vector<std::string>& command, const FarmJob& job, 
 
 int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
                   FarmFolderLock& lock) {
-    const std::vector<std::string> made = StartJob(job);
+    const StartedJob started = StartJob(job);
     const std::string renderScript = NextScript(job, "render");
     const std::string assembleScript = NextScript(job, "assemble");
     FarmSubmission& submission = job.submissions.emplace_back();
@@ -254,9 +254,9 @@ int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks
                       ShellQuote(job.folder) + ")");
     } catch (...) {
         if (submission.renderJob.empty())
-            UndoStart(made, {renderScript, assembleScript});
+            UndoStart(started, {renderScript, assembleScript});
         else
-            UndoStart({}, {assembleScript});
+            UndoStart({}, {assembleScript});  // farm.json records the render job
         throw;
     }
     lock.Keep();

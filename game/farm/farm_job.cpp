@@ -14,7 +14,6 @@
 namespace rtrt {
 
 namespace {
-constexpr size_t kMaxFarmFileBytes = size_t{1} << 20;
 // The layout of farm.json this rtrt writes and reads; a newer rtrt may write a higher one.
 constexpr int64_t kFarmFileVersion = 1;
 

@@ -57,6 +57,10 @@ struct FarmJob {
     std::vector<FarmSubmission> submissions;  // oldest first
 };
 
+// The most bytes farm.json may hold: a job's description is a few hundred bytes, so a FIFO, a
+// device or a huge file under its name is refused.
+inline constexpr size_t kMaxFarmFileBytes = size_t{1} << 20;
+
 std::string FarmFile(const std::string& folder);      // FOLDER/farm.json
 std::string FramesFolder(const std::string& folder);  // FOLDER/frames
 std::string FramePattern(const FarmJob& job);         // FOLDER/frames/frame_%06d.png

@@ -1,11 +1,13 @@
 #include "game/farm/job_folder.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/core/media_file_check.h"
 #include "engine/core/output_file.h"
 #include "game/farm/farm_lock.h"
@@ -34,15 +36,19 @@ FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
         throw InputError("--output", job.folder, "is a file, not a folder");
     // The farm writes farm.json before its folders (StartJob), so frames/ and manifest/ without
     // it are the tasks' of elsewhere, checked against this job (CheckTakenUpFrames). The lock and
-    // the temporary of a farm.json whose writer was killed are the farm's own; anything else is
-    // refused.
+    // rtrt's temporaries are the farm's own; anything else is refused.
     for (const auto& entry : fs::directory_iterator(job.folder, ec)) {
         const std::string name = entry.path().filename().string();
-        const bool farmFileTemporary =
-            name.rfind(".farm.partial", 0) == 0 && TemporaryOwnerHere(name).has_value();
+        // A temporary of some rtrt (".NAME.partialPID-HOST..."): a farm.json whose writer was
+        // killed, or the file another run makes and removes at once to see that the folder
+        // takes new files (CheckFolderWritable), before it takes the lock.
+        const size_t partial = name.find(".partial");
+        const bool temporary = name[0] == '.' && partial != std::string::npos &&
+                               partial + 8 < name.size() &&
+                               std::isdigit(static_cast<unsigned char>(name[partial + 8]));
         if (name == "frames" || name == "manifest" || name == "logs" || name == "slurm") {
             *takenUp = true;
-        } else if (name != kFarmLockName && !farmFileTemporary) {
+        } else if (name != kFarmLockName && !temporary) {
             throw InputError(
                 "--output", job.folder,
                 "holds " + name + " but no farm job (farm.json); give an empty or new folder");
@@ -69,24 +75,36 @@ void CheckTakenUpFrames(const FarmJob& job, const std::vector<int>& done) {
     }
 }
 
-std::vector<std::string> StartJob(const FarmJob& job) {
-    std::vector<std::string> made;
+StartedJob StartJob(const FarmJob& job) {
+    StartedJob started;
+    started.folder = job.folder;
     std::error_code ec;
     if (!fs::exists(fs::symlink_status(FarmFile(job.folder), ec)))
-        made.push_back(FarmFile(job.folder));
+        started.made.push_back(FarmFile(job.folder));
+    else
+        started.before = ReadInputFile(FarmFile(job.folder), kMaxFarmFileBytes);
     WriteFarmJob(job);
     for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder),
                                    job.folder + "/slurm", job.folder + "/logs"}) {
-        if (!fs::exists(fs::symlink_status(dir, ec))) made.push_back(dir);
+        if (!fs::exists(fs::symlink_status(dir, ec))) started.made.push_back(dir);
         CreateOutputFolder(dir);
     }
-    return made;
+    return started;
 }
 
-void UndoStart(const std::vector<std::string>& made, const std::vector<std::string>& scripts) {
+void UndoStart(const StartedJob& started, const std::vector<std::string>& scripts) {
     std::error_code ignored;
     for (const std::string& script : scripts) fs::remove(script, ignored);
-    for (auto path = made.rbegin(); path != made.rend(); ++path) fs::remove(*path, ignored);
+    for (auto path = started.made.rbegin(); path != started.made.rend(); ++path)
+        fs::remove(*path, ignored);
+    if (started.before) {
+        try {
+            WriteWholeFile(FarmFile(started.folder), *started.before, /*durable=*/true);
+        } catch (const std::exception&) {
+            // The refusal being reported says more than this would; the job's settings are
+            // still readable.
+        }
+    }
 }
 
 bool Assembled(const FarmJob& job) {

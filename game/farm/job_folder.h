@@ -2,6 +2,7 @@
 // What a farm job's folder holds, and how a run starts in it: a job resumed or new, frames that
 // tasks rendered elsewhere taken up, the job's description and folders made (and taken back when
 // nothing was submitted), and whether its assembly is there and whole.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,14 +21,21 @@ FarmJob ResumeOrStart(FarmJob job, bool* takenUp);
 // InputError before anything is written.
 void CheckTakenUpFrames(const FarmJob& job, const std::vector<int>& done);
 
-// The job's description, then its folders: a farm killed in between leaves farm.json, never
-// frames/ or manifest/ without it, which a later run would take for tasks' of elsewhere. Returns
-// what this call made that was not there, in the order made.
-std::vector<std::string> StartJob(const FarmJob& job);
+// What StartJob changed in a job's folder, for UndoStart.
+struct StartedJob {
+    std::vector<std::string> made;      // what was not there, in the order made
+    std::string folder;                 // the job's
+    std::optional<std::string> before;  // farm.json as it was, where there was one
+};
 
-// Takes back what StartJob made and the batch scripts that were not submitted, latest first; a
-// folder something has been written into since stays.
-void UndoStart(const std::vector<std::string>& made, const std::vector<std::string>& scripts);
+// The job's description, then its folders: a farm killed in between leaves farm.json, never
+// frames/ or manifest/ without it, which a later run would take for tasks' of elsewhere.
+StartedJob StartJob(const FarmJob& job);
+
+// Takes back what StartJob did and the batch scripts that were not submitted, latest first: what
+// it made is removed (a folder something has been written into since stays), and farm.json is
+// written back as it was (a resubmission with other Slurm options had left them in it).
+void UndoStart(const StartedJob& started, const std::vector<std::string>& scripts);
 
 // The video and the contact sheet are there and whole: one that is not (an earlier rtrt kept it
 // from an ffmpeg that exited 0 on a full disk) is made again.

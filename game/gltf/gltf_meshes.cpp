@@ -33,11 +33,11 @@ std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
                                            " morph targets, but primitive 0 has " +
                                            std::to_string(m.primitives[0].targets.size()));
         // A primitive that does not deform is its accessors, its mode and whether its material
-        // wants tangents: one that names what an earlier one named shares its BLAS.
-        const bool deforms =
-            !prim.targets.empty() || (skin >= 0 && prim.attributes.count("JOINTS_0") > 0);
+        // wants tangents: one that names what an earlier one named shares its BLAS. Under a
+        // skin it is read whole, so that its skin attributes are checked wherever it is shown.
+        const bool shared = prim.targets.empty() && skin < 0;
         std::string key;
-        if (!deforms) {
+        if (shared) {
             key = std::to_string(prim.indices) + "/" + std::to_string(prim.mode) + "/" +
                   (NormalMapped(prim) ? "t" : "");
             for (const auto& [name, accessor] : prim.attributes)
@@ -73,7 +73,7 @@ std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
                                   (m.name.empty() ? "" : " (" + m.name + ")"));
         out.material = materials_.Id(prim.material, at + ".material");
         ReadDeformation(prim, at, mesh, skin, triangles, out);
-        if (!deforms)
+        if (shared)
             staticGeometry_[key] = {out.blas, uint32_t(triangles.positions.size()),
                                     uint32_t(triangles.indices.size())};
         result.push_back(out);

@@ -51,7 +51,7 @@ class GltfMeshes {
     GltfMaterials& materials_;
     GltfSummary& summary_;
     std::map<std::pair<size_t, int>, std::vector<GltfPrimitive>> meshPrimitives_;
-    // A BLAS and its counts, by the accessors of a primitive that does not deform (StaticKey):
+    // A BLAS and its counts, by the accessors of a primitive without morph targets or a skin:
     // primitives that name the same accessors share it, as 600 primitives of one 100,000-triangle
     // accessor otherwise built 600 trees (out of memory from a 20 KB file).
     struct StaticGeometry {

@@ -4,6 +4,7 @@
 #include "engine/core/media_file_check.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdint>
 #include <string>
@@ -75,6 +76,9 @@ TEST_F(MediaFileCheckTest, PngChunksMustEndWithIend) {
     EXPECT_EQ(Problem(signature + ihdr + Chunk("IEND", "") + "x"),
               "holds bytes after its end (IEND)");
     EXPECT_EQ(MediaFileProblem((dir_ / "missing.png").string()), "cannot be read");
+    // A FIFO under a video's name is refused at once (it was waited on for ever).
+    ASSERT_EQ(::mkfifo((dir_ / "video.mp4").c_str(), 0600), 0);
+    EXPECT_EQ(MediaFileProblem((dir_ / "video.mp4").string()), "is not a regular file");
 }
 
 }  // namespace

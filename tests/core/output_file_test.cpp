@@ -182,6 +182,14 @@ TEST_F(OutputPathTest, AnOutputNamedByALinkIsWrittenThroughIt) {
     fs::create_symlink("loop_b", dir_ / "loop_a");
     fs::create_symlink("loop_a", dir_ / "loop_b");
     EXPECT_EQ(Reason((dir_ / "loop_a").string()), "is a loop of links");
+    // A link to an open descriptor (/dev/stdout's /proc/self/fd/1) is no file to write beside:
+    // renamed over, a file the shell opened for >> lost what it held.
+    fs::create_symlink("/dev/fd/1", dir_ / "stdout.json");
+    EXPECT_EQ(Reason((dir_ / "stdout.json").string()),
+              "leads to /dev/fd/1, an open descriptor (as /dev/stdout does); rtrt writes whole "
+              "files through a temporary: name a file, and read it from there");
+    EXPECT_THROW(WriteWholeFile((dir_ / "stdout.json").string(), "x", false), InputError);
+    EXPECT_TRUE(fs::is_symlink(dir_ / "stdout.json"));
     fs::create_symlink("/dev/null", dir_ / "null.json");
     EXPECT_EQ(Reason((dir_ / "null.json").string()),
               "is not a regular file (a device, FIFO or socket) (where the link leads: /dev/null)");

@@ -147,7 +147,8 @@ def test_refused_submission(farm):
     shutil.copytree(os.path.join(WORK, "job"), resumed,
                     ignore=shutil.ignore_patterns("video.mp4", "contact_sheet.png"))
     before = open(os.path.join(resumed, "farm.json")).read()
-    run(*farm[:-1], resumed, env=refusing, expect=1)
+    # Other Slurm options than the job's: refused, they are not left in its farm.json.
+    run(*farm[:-1], resumed, "--partition", "gpux", env=refusing, expect=1)
     check(open(os.path.join(resumed, "farm.json")).read() == before and
           os.listdir(os.path.join(resumed, "slurm")) == [],
           "a job's folder keeps its farm.json and no unsubmitted script when sbatch refuses")

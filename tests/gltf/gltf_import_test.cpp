@@ -324,6 +324,32 @@ TEST_F(GltfTest, PrimitivesOfTheSameAccessorsShareABlas) {
     EXPECT_EQ(loaded.gltfFiles[0].triangles, 3u);
 }
 
+// A primitive shown under a skin is read whole wherever an unskinned node showed it first: its
+// skin attributes are checked whatever the nodes' order (a shared BLAS had skipped the check).
+TEST_F(GltfTest, ASkinnedUseOfASharedPrimitiveIsCheckedInAnyNodeOrder) {
+    for (const bool unskinnedFirst : {true, false}) {
+        GltfBuilder b;
+        const int mesh = b.Mesh(b.Floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3));
+        b.doc["meshes"][size_t(mesh)]["primitives"][0]["attributes"]["WEIGHTS_0"] =
+            b.Floats({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4", 4);
+        const Json plain = {{"mesh", mesh}};
+        const Json skinned = {{"mesh", mesh}, {"skin", 0}};
+        b.Node(unskinnedFirst ? plain : skinned);
+        b.Node(unskinnedFirst ? skinned : plain);
+        const int joint = b.Node(Json::object());
+        b.doc["skins"] = Json::array({{{"joints", {joint}}}});
+        b.doc["scenes"] = Json::array({{{"nodes", {0, 1, joint}}}});
+        try {
+            LoadSceneFile(Save("skin_order.gltf", b.GltfText()));
+            ADD_FAILURE() << "loaded, unskinned first: " << unskinnedFirst;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("WEIGHTS_0: given without JOINTS_0"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+}
+
 TEST_F(GltfTest, SceneFilePlacesAGltfModelPerInstance) {
     Save("tree.glb", test::TwoLevels().Glb());
     const std::string scene = R"({
