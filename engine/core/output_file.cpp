@@ -1,7 +1,9 @@
 #include "engine/core/output_file.h"
 
 #include <fcntl.h>
+#include <linux/magic.h>
 #include <sys/stat.h>
+#include <sys/vfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -64,11 +66,17 @@ ssize_t WriteSome(int fd, const void* data, size_t size, uint64_t done) {
 
 namespace {
 
-// A link into /proc or /dev/fd (where /dev/stdout leads): the kernel's name for an open
-// descriptor, whose text is no path to write beside ("pipe:[N]", or a file opened for appending,
-// which a rename over it would replace, losing what it held).
-bool IsDescriptorLink(const std::string& path) {
-    return path.rfind("/proc/", 0) == 0 || path.rfind("/dev/fd/", 0) == 0;
+// A link in a process's descriptor folder (/proc/PID/fd, which /dev/fd and /dev/stdout lead to,
+// however the way there is spelled): the kernel's name for an open descriptor, whose text is no
+// path to write beside ("pipe:[N]", or a file the shell opened for appending, which a rename over
+// it would replace, losing what it held). Told by the filesystem, not the spelling.
+bool IsDescriptorLink(const std::string& link) {
+    std::error_code ec;
+    const std::filesystem::path folder =
+        std::filesystem::canonical(std::filesystem::absolute(link, ec).parent_path(), ec);
+    struct statfs mounted {};
+    return !ec && folder.filename() == "fd" && ::statfs(folder.c_str(), &mounted) == 0 &&
+           mounted.f_type == PROC_SUPER_MAGIC;
 }
 
 }  // namespace
@@ -81,10 +89,8 @@ std::string FollowOutputLinks(const std::string& path) {
         if (!fs::is_symlink(fs::symlink_status(file, ec))) return file;
         const fs::path link = fs::read_symlink(file, ec);
         if (ec) return file;
-        const std::string next =
-            link.is_absolute() ? link.string() : (fs::path(file).parent_path() / link).string();
-        if (IsDescriptorLink(next) || IsDescriptorLink(file)) return file;  // not followed
-        file = next;
+        if (IsDescriptorLink(file)) return file;  // not followed
+        file = link.is_absolute() ? link.string() : (fs::path(file).parent_path() / link).string();
     }
     throw InputError(path, "", "is a loop of links");
 }
@@ -95,7 +101,7 @@ void CheckNotDescriptor(const std::string& path, const std::string& file) {
     std::error_code ec;
     if (std::filesystem::is_symlink(std::filesystem::symlink_status(file, ec)))
         throw InputError(path, "",
-                         "leads to " + std::filesystem::read_symlink(file, ec).string() +
+                         "leads to " + file +
                              ", an open descriptor (as /dev/stdout does); rtrt writes whole "
                              "files through a temporary: name a file, and read it from there");
 }
@@ -150,10 +156,12 @@ void CheckFolderWritable(const std::string& path, const std::string& folder) {
     TemporariesLock lock;
     const int flags = O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC;
     int fd = ::open(probe.c_str(), flags, 0600);
-    if (fd < 0 && errno == EEXIST && ::unlink(probe.c_str()) == 0)
+    int error = errno;
+    if (fd < 0 && error == EEXIST && ::unlink(probe.c_str()) == 0) {
         fd = ::open(probe.c_str(), flags, 0600);
+        error = errno;
+    }
     if (fd < 0) {
-        const int error = errno;
         // A full disk, a quota or an I/O error is the work failing (exit 1), not bad input.
         if (error == ENOSPC || error == EDQUOT || error == EIO)
             throw OutputError(

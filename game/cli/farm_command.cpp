@@ -322,6 +322,11 @@ int RunFarm(const FarmOptions& o) {
     const bool resumed = fs::is_directory(ManifestFolder(job.folder), ec);
     const FrameCheck check = resumed ? CheckAndReport(job) : CheckFrames(job);
     if (takenUp) CheckTakenUpFrames(job, check.done);
+    // The assembly's outputs are checked before any frame is rendered for them (a FIFO under the
+    // video's name had failed the job only at its end).
+    if (!o.dryRun)
+        for (const std::string& output : {VideoFile(job.folder), ContactSheetFile(job.folder)})
+            CheckOutputPath(output);
     const std::vector<int> frames = FramesToRender(check);
     if (frames.empty() && Assembled(job)) {
         std::printf("rtrt farm: nothing to do: every frame, %s and %s are there\n",

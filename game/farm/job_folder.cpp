@@ -42,7 +42,7 @@ FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
         // A temporary of some rtrt (".NAME.partialPID-HOST..."): a farm.json whose writer was
         // killed, or the file another run makes and removes at once to see that the folder
         // takes new files (CheckFolderWritable), before it takes the lock.
-        const size_t partial = name.find(".partial");
+        const size_t partial = name.rfind(".partial");
         const bool temporary = name[0] == '.' && partial != std::string::npos &&
                                partial + 8 < name.size() &&
                                std::isdigit(static_cast<unsigned char>(name[partial + 8]));
@@ -84,10 +84,15 @@ StartedJob StartJob(const FarmJob& job) {
     else
         started.before = ReadInputFile(FarmFile(job.folder), kMaxFarmFileBytes);
     WriteFarmJob(job);
-    for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder),
-                                   job.folder + "/slurm", job.folder + "/logs"}) {
-        if (!fs::exists(fs::symlink_status(dir, ec))) started.made.push_back(dir);
-        CreateOutputFolder(dir);
+    try {
+        for (const std::string& dir : {FramesFolder(job.folder), ManifestFolder(job.folder),
+                                       job.folder + "/slurm", job.folder + "/logs"}) {
+            if (!fs::exists(fs::symlink_status(dir, ec))) started.made.push_back(dir);
+            CreateOutputFolder(dir);
+        }
+    } catch (...) {
+        UndoStart(started, {});  // a folder that cannot be made leaves the job as it was
+        throw;
     }
     return started;
 }

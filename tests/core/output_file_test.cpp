@@ -184,12 +184,27 @@ TEST_F(OutputPathTest, AnOutputNamedByALinkIsWrittenThroughIt) {
     EXPECT_EQ(Reason((dir_ / "loop_a").string()), "is a loop of links");
     // A link to an open descriptor (/dev/stdout's /proc/self/fd/1) is no file to write beside:
     // renamed over, a file the shell opened for >> lost what it held.
-    fs::create_symlink("/dev/fd/1", dir_ / "stdout.json");
-    EXPECT_EQ(Reason((dir_ / "stdout.json").string()),
-              "leads to /dev/fd/1, an open descriptor (as /dev/stdout does); rtrt writes whole "
-              "files through a temporary: name a file, and read it from there");
-    EXPECT_THROW(WriteWholeFile((dir_ / "stdout.json").string(), "x", false), InputError);
-    EXPECT_TRUE(fs::is_symlink(dir_ / "stdout.json"));
+    // However the way there is spelled: relative, doubled slashes, through /dev/fd.
+    std::string relative;
+    for (auto part = ++dir_.begin(); part != dir_.end(); ++part) relative += "../";
+    for (const std::string& target : {std::string("/dev/fd/1"), std::string("//proc/self/fd/1"),
+                                      std::string("/dev//fd/1"), relative + "proc/self/fd/1"}) {
+        fs::remove(dir_ / "stdout.json");
+        fs::create_symlink(target, dir_ / "stdout.json");
+        EXPECT_NE(Reason((dir_ / "stdout.json").string())
+                      .find(", an open descriptor (as "
+                            "/dev/stdout does)"),
+                  std::string::npos)
+            << target;
+        EXPECT_THROW(WriteWholeFile((dir_ / "stdout.json").string(), "x", false), InputError);
+        EXPECT_TRUE(fs::is_symlink(dir_ / "stdout.json"));
+    }
+    // A link of one's own reached through /proc (a process's cwd or root) is an ordinary link.
+    fs::create_symlink("real/report.json", dir_ / "own.json");
+    const std::string viaProc = "/proc/self/root" + (dir_ / "own.json").string();
+    EXPECT_EQ(Reason(viaProc), "");
+    WriteWholeFile(viaProc, "via proc\n", false);
+    EXPECT_EQ(ReadAll(dir_ / "real" / "report.json"), "via proc\n");
     fs::create_symlink("/dev/null", dir_ / "null.json");
     EXPECT_EQ(Reason((dir_ / "null.json").string()),
               "is not a regular file (a device, FIFO or socket) (where the link leads: /dev/null)");

@@ -190,6 +190,17 @@ def test_broken_video(farm):
     shutil.copy(os.path.join(job, "contact_sheet.png"), broken)
     status = run("farm", "--status", broken, expect=3)
     check("video: not made yet" in status, "--status does not count a cut-short video as made")
+    # A FIFO under the video's name: --status answers at once, and a run is refused before it
+    # renders anything (it had hung on the check, then failed only at the assembly).
+    fifo = os.path.join(WORK, "fifo_video")
+    shutil.copytree(job, fifo, ignore=shutil.ignore_patterns("video.mp4"))
+    os.remove(os.path.join(fifo, "frames", "frame_000003." + FORMAT))
+    os.mkfifo(os.path.join(fifo, "video.mp4"))
+    status = run("farm", "--status", fifo, expect=3)
+    check("video: not made yet" in status, "--status of a job whose video is a FIFO: exit 3")
+    out = run(*farm[:-1], fifo, "--local", expect=2)
+    check("video.mp4: is not a regular file" in out and "task" not in out,
+          "a run whose video is a FIFO is refused (exit 2) before any task")
     out = run(*farm[:-1], broken, "--local")
     check("are ready" in out and "task" not in out and
           open(os.path.join(broken, "video.mp4"), "rb").read() == whole,
