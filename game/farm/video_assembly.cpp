@@ -8,8 +8,8 @@
 
 #include "engine/core/child_process.h"
 #include "engine/core/error.h"
-#include "engine/core/output_file.h"
 #include "engine/core/media_file_check.h"
+#include "engine/core/output_file.h"
 
 namespace rtrt {
 namespace {

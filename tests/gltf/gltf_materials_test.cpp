@@ -109,16 +109,22 @@ TEST_F(GltfTest, MaterialMapping) {
     EXPECT_NE(features & kFeatureRefraction, 0u);
 }
 
-// Every texture slot of a material, KHR_texture_transform on two of them: one image decoded once
-// per encoding, recorded once per encoding and transform, the transform as the specification's
-// matrix.
-TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
+// The textured quad (nearest, clamped) with a 4 x 4 grey BMP as its image, in a data URI.
+GltfBuilder GreyBmpQuad() {
     GltfBuilder b = test::TexturedQuadScene(9728, 33071);
     const std::vector<uint8_t> rgb(16 * 3, 200);
     const std::string bmp = GltfBuilder::Bmp(4, 4, rgb);
     b.doc["images"] =
         Json::array({{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>(
                                                              bmp.begin(), bmp.end()))}}});
+    return b;
+}
+
+// Every texture slot of a material, KHR_texture_transform on two of them: one image decoded once
+// per encoding, recorded once per encoding and transform, the transform as the specification's
+// matrix.
+TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
+    GltfBuilder b = GreyBmpQuad();
     Json& m = b.doc["materials"][0];
     const Json transform = {
         {"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", 0.0}, {"scale", {2, 3}}}}};
@@ -154,12 +160,7 @@ TEST_F(GltfTest, PbrTextureSlotsAndTransforms) {
 // mip chains (out of memory from a 57 KB file). Textures of other samplers keep their own
 // records.
 TEST_F(GltfTest, TexturesOfOneImageShareItsTexels) {
-    GltfBuilder b = test::TexturedQuadScene(9728, 33071);
-    const std::vector<uint8_t> rgb(16 * 3, 200);
-    const std::string bmp = GltfBuilder::Bmp(4, 4, rgb);
-    b.doc["images"] =
-        Json::array({{{"uri", "data:image/bmp;base64," + GltfBuilder::Base64(std::vector<uint8_t>(
-                                                             bmp.begin(), bmp.end()))}}});
+    GltfBuilder b = GreyBmpQuad();
     b.doc["samplers"].push_back({{"magFilter", 9729}, {"minFilter", 9729}, {"wrapS", 10497}});
     b.doc["textures"] = Json::array({{{"source", 0}, {"sampler", 0}},
                                      {{"source", 0}, {"sampler", 1}},
