@@ -6,7 +6,6 @@
 #include <glm/glm.hpp>
 #include <map>
 #include <memory>
-#include <random>
 #include <vector>
 
 #include "engine/core/error.h"
@@ -17,9 +16,11 @@
 #include "game/scene/default_scene.h"
 #include "game/scene/json_fields.h"
 #include "game/scene/scene_animation.h"
+#include "game/scene/scene_camera_path.h"
 #include "game/scene/scene_deform.h"
 #include "game/scene/scene_models.h"
 #include "game/scene/scene_rigid_body.h"
+#include "game/scene/spawn_places.h"
 
 namespace rtrt {
 namespace {
@@ -51,7 +52,8 @@ class SceneParser {
         if (top.Has("models")) ParseModels(top.Get("models"), scene);
         ParseInstances(top.Get("instances"), out);
         if (top.Has("spawners")) ParseSpawners(top.Get("spawners"), out);
-        if (top.Has("camera_path")) ParseCameraPath(top.Get("camera_path"), out);
+        if (top.Has("camera_path"))
+            out.cameraPath = ParseCameraPath(top.Get("camera_path"), scene.camera.up, file_);
         top.Finish();
         // A scene of display colours uses its glTF models' textures as they are, as it always has.
         if (!out.output.srgbEncode)
@@ -315,7 +317,8 @@ class SceneParser {
             const bool grid = f.Has("grid"), rain = f.Has("rain");
             if (grid == rain) f.Fail("", "give exactly one of grid or rain");
             const std::vector<vec3> places =
-                grid ? GridPlaces(f, proto) : RainPlaces(f, out, proto);
+                grid ? GridPlaces(f, proto.local.translation, file_)
+                     : RainPlaces(f, BodyRadius(proto, out.scene), file_);
             Reserve(f, grid ? "grid.count" : "rain.count", places.size());
             if (proto.body) CheckRigidBodyPlaces(f, grid ? "grid" : "rain", places);
             proto.sourceArray = "spawners";
@@ -344,7 +347,7 @@ class SceneParser {
         if (proto.spawnTime != 0.0f) f.Fail("time", "a glTF grid is placed at time 0");
         const float phase = f.Number("phase", 0.0f);
         const float spread = f.InRange("phase_spread", 0.0f, 1e6f, 0.0f);
-        const std::vector<vec3> places = GridPlaces(f, proto);
+        const std::vector<vec3> places = GridPlaces(f, proto.local.translation, file_);
         if (places.size() > 100000) f.Fail("grid.count", "at most 100,000 places of a glTF scene");
         size_t perPlace = 0;  // the root and its nodes' entities, found by the first place
         for (size_t k = 0; k < places.size(); ++k) {
@@ -364,6 +367,16 @@ class SceneParser {
         }
     }
 
+    // The radius of a ball about the entity's model that a rain keeps apart: the sphere's own for a
+    // sphere model, half the scaled box's diagonal for any other.
+    float BodyRadius(const EntityDesc& proto, const RenderScene& scene) const {
+        const Aabb bounds = scene.blases[proto.blasId]->bounds;
+        const ModelShape& shape = modelShapes_.at(proto.blasId);
+        return shape.kind == ModelShape::kSphere
+                   ? shape.radius * MaxComponent(proto.local.scale)
+                   : 0.5f * glm::length(bounds.Extent() * proto.local.scale);
+    }
+
     // Fails on field of f when `more` entities on top of those made so far would exceed the
     // scene's budget.
     void Reserve(const JsonFields& f, const std::string& field, uint64_t more) const {
@@ -371,122 +384,6 @@ class SceneParser {
         if (total <= kMaxSceneEntities) return;
         f.Fail(field, "the scene would have " + std::to_string(total) +
                           " entities or more; a scene may have at most 2,000,000");
-    }
-
-    std::vector<vec3> GridPlaces(JsonFields& f, const EntityDesc& proto) {
-        JsonFields g(f.Get("grid"), f.Path("grid"), file_);
-        const vec3 count = g.Vec3("count");
-        const float spacing = g.Positive("spacing", 1.5f);
-        g.Finish();
-        if (count.x < 1 || count.y < 1 || count.z < 1 || count.x * count.y * count.z > 2e6f ||
-            count != glm::floor(count))
-            f.Fail("grid.count", "expected 3 whole numbers >= 1 (at most 2,000,000 places)");
-        std::vector<vec3> places;
-        const vec3 half = 0.5f * (count - vec3(1.0f));
-        for (int z = 0; z < int(count.z); ++z)
-            for (int y = 0; y < int(count.y); ++y)
-                for (int x = 0; x < int(count.x); ++x)
-                    places.push_back(proto.local.translation + spacing * (vec3(x, y, z) - half));
-        return places;
-    }
-
-    // Jittered cells of a grid that fills [min, max], chosen in a seeded order: places never
-    // overlap, so a rain of bodies starts without interpenetration.
-    std::vector<vec3> RainPlaces(JsonFields& f, const LoadedScene& out, const EntityDesc& proto) {
-        JsonFields r(f.Get("rain"), f.Path("rain"), file_);
-        const uint32_t count = r.Count("count", 1, 1000000, 100);
-        const vec3 lo = r.Vec3("min"), hi = r.Vec3("max");
-        const uint32_t seed = r.Count("seed", 0, UINT32_MAX - 1, 1);
-        r.Finish();
-        const Aabb bounds = out.scene.blases[proto.blasId]->bounds;
-        const ModelShape& shape = modelShapes_[proto.blasId];
-        const float radius = shape.kind == ModelShape::kSphere
-                                 ? shape.radius * MaxComponent(proto.local.scale)
-                                 : 0.5f * glm::length(bounds.Extent() * proto.local.scale);
-        const float cell = 2.2f * radius;
-        // Counted in doubles: tiny bodies in a large region make more cells than an int holds
-        // (the conversion's overflow had said "holds only 0 bodies").
-        const glm::dvec3 across =
-            glm::floor(glm::dvec3(glm::max(hi - lo, vec3(0.0f))) / double(cell));
-        const double cellCount = across.x * across.y * across.z;
-        if (!(cellCount <= 50000000.0))
-            f.Fail("rain", "the region is too large for bodies of this size (over 50M cells)");
-        const glm::ivec3 cells(across);
-        const int64_t total = int64_t(cells.x) * cells.y * cells.z;
-        if (total < int64_t(count))
-            f.Fail("rain", "the region holds only " + std::to_string(total) +
-                               " bodies of this size, not " + std::to_string(count));
-        std::vector<uint32_t> order(static_cast<size_t>(total));
-        for (size_t i = 0; i < order.size(); ++i) order[i] = uint32_t(i);
-        std::mt19937 rng(seed);
-        std::shuffle(order.begin(), order.end(), rng);
-        std::uniform_real_distribution<float> jitter(-1.0f, 1.0f);
-        const float slack = 0.5f * (cell - 2.0f * radius);
-        std::vector<vec3> places;
-        for (uint32_t i = 0; i < count; ++i) {
-            const uint32_t c = order[i];
-            const vec3 index(float(c % cells.x), float((c / cells.x) % cells.y),
-                             float(c / (cells.x * cells.y)));
-            places.push_back(lo + cell * (index + vec3(0.5f)) +
-                             slack * vec3(jitter(rng), jitter(rng), jitter(rng)));
-        }
-        return places;
-    }
-
-    // camera_path: keys {time, position, look_at}, in increasing time.
-    void ParseCameraPath(const Json& j, LoadedScene& out) {
-        if (!j.is_array() || j.empty())
-            throw InputError(file_, "camera_path", "expected a non-empty array of camera keys");
-        for (size_t i = 0; i < j.size(); ++i) {
-            JsonFields f(j[i], JsonIndexed("camera_path", i), file_);
-            CameraKey key;
-            key.time = f.InRange("time", 0.0f, 1e6f, 0.0f);
-            key.position = f.Vec3("position");
-            key.lookAt = f.Vec3("look_at");
-            f.Finish();
-            if (!out.cameraPath.empty() && key.time <= out.cameraPath.back().time)
-                f.Fail("time", "camera keys must come in increasing time");
-            if (key.position == key.lookAt) f.Fail("look_at", "must differ from position");
-            const vec3 up = out.scene.camera.up;
-            if (!IsFinite(key.lookAt - key.position))
-                f.Fail("look_at",
-                       "the view direction is beyond float's range (look_at too far "
-                       "from position)");
-            if (!CameraBasisDefined(key.lookAt - key.position, up))
-                f.Fail("look_at",
-                       "the view direction is parallel to the camera's up (camera.up, "
-                       "default [0, 1, 0]): give the camera another up");
-            if (!out.cameraPath.empty() && PathTurnsParallelToUp(out.cameraPath.back(), key, up))
-                f.Fail("look_at",
-                       "on the way from the key before, the view direction turns "
-                       "parallel to the camera's up (camera.up, default [0, 1, 0]) or "
-                       "look_at passes through position: add a key between them or "
-                       "give the camera another up");
-            out.cameraPath.push_back(key);
-        }
-    }
-
-    // Whether the view direction, interpolated linearly from key A to key B as CameraAt does
-    // (look_at(w) - position(w) = F + w G), passes through zero or comes parallel to UP on the
-    // way. Both are found in closed form: the view's length is smallest where w = -F.G / G.G,
-    // and its part across UP, cross(F + w G, up), is linear in w too. A view at least 1e-6 of
-    // the keys' views long whose part across up is at least 1e-6 of its length has a basis
-    // (the keys themselves are checked on their own).
-    static bool PathTurnsParallelToUp(const CameraKey& a, const CameraKey& b, vec3 up) {
-        const glm::dvec3 u = glm::normalize(glm::dvec3(ScaledForNormalize(up)));
-        const glm::dvec3 fa = glm::dvec3(a.lookAt) - glm::dvec3(a.position);
-        const glm::dvec3 fb = glm::dvec3(b.lookAt) - glm::dvec3(b.position);
-        const glm::dvec3 g = fb - fa;
-        auto smallestAt = [](glm::dvec3 from, glm::dvec3 step) {
-            const double stepSquared = glm::dot(step, step);
-            return stepSquared > 0.0 ? std::clamp(-glm::dot(from, step) / stepSquared, 0.0, 1.0)
-                                     : 0.0;
-        };
-        const double keys = std::max(glm::length(fa), glm::length(fb));
-        if (glm::length(fa + smallestAt(fa, g) * g) <= 1e-6 * keys) return true;
-        const glm::dvec3 side = glm::cross(fa, u), turn = glm::cross(g, u);
-        const double w = smallestAt(side, turn);
-        return glm::length(side + w * turn) < 1e-6 * glm::length(fa + w * g);
     }
 
     // position * rotation (degrees about x, then y, then z) * scale.
