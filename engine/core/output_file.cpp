@@ -240,8 +240,8 @@ void OutputFile::Commit() {
     lock.Unregister(temp_);
 }
 
-std::optional<long> TemporaryOwnerHere(const std::string& name) {
-    // .STEM.partialPID-HOST[.EXT], as TemporaryPathFor makes it on this host.
+std::optional<TemporaryName> ParseTemporaryName(const std::string& name) {
+    // .STEM.partialPID[-HOST][.EXT], as TemporaryPathFor makes it on any host.
     const size_t at = name.rfind(".partial");
     if (name.size() < 2 || name[0] != '.' || at == std::string::npos || at == 0)
         return std::nullopt;
@@ -252,15 +252,27 @@ std::optional<long> TemporaryOwnerHere(const std::string& name) {
         if (pid > 1L << 31) return std::nullopt;
     }
     if (end == at + 8 || pid <= 0) return std::nullopt;
-    std::string rest = name.substr(end);
-    const std::string& host = HostTag();
-    if (!host.empty()) {
-        if (rest.compare(0, host.size() + 1, "-" + host) != 0) return std::nullopt;
-        rest = rest.substr(host.size() + 1);
+    TemporaryName parsed{pid, ""};
+    if (end < name.size() && name[end] == '-') {
+        const size_t hostEnd = std::min(name.find('.', end), name.size());
+        parsed.host = name.substr(end + 1, hostEnd - end - 1);
+        const bool tag =
+            !parsed.host.empty() && std::all_of(parsed.host.begin(), parsed.host.end(), [](char c) {
+                return std::isalnum(static_cast<unsigned char>(c)) || c == '-';
+            });
+        if (!tag) return std::nullopt;
+        end = hostEnd;
     }
-    if (!rest.empty() && (rest[0] != '.' || rest.find('.', 1) != std::string::npos))
+    const std::string extension = name.substr(end);
+    if (!extension.empty() && (extension[0] != '.' || extension.find('.', 1) != std::string::npos))
         return std::nullopt;
-    return pid;
+    return parsed;
+}
+
+std::optional<long> TemporaryOwnerHere(const std::string& name) {
+    const std::optional<TemporaryName> parsed = ParseTemporaryName(name);
+    if (!parsed || parsed->host != HostTag()) return std::nullopt;
+    return parsed->pid;
 }
 
 std::string TemporaryPathFor(const std::string& target) {

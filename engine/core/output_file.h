@@ -39,6 +39,15 @@ class OutputFile {
 // folder (so the rename stays on one filesystem) that carries the process id and the host name,
 // so that an interrupt removes only this process's temporaries and two machines never share one.
 std::string TemporaryPathFor(const std::string& target);
+// What a temporary's file name (no folder) tells: the process that made it, and its host's tag
+// (empty where the host has no name).
+struct TemporaryName {
+    long pid = 0;
+    std::string host;
+};
+// NAME's process and host when it is a temporary that TemporaryPathFor made on any host, else
+// nothing.
+std::optional<TemporaryName> ParseTemporaryName(const std::string& name);
 // The process id in NAME (a file name, no folder) when it is a temporary that TemporaryPathFor
 // made on this host, else nothing: what is left behind by a process that was killed (SIGKILL)
 // and can be removed once that process is gone.

@@ -1,7 +1,6 @@
 #include "game/farm/job_folder.h"
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -42,10 +41,7 @@ FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
         // A temporary of some rtrt (".NAME.partialPID-HOST..."): a farm.json whose writer was
         // killed, or the file another run makes and removes at once to see that the folder
         // takes new files (CheckFolderWritable), before it takes the lock.
-        const size_t partial = name.rfind(".partial");
-        const bool temporary = name[0] == '.' && partial != std::string::npos &&
-                               partial + 8 < name.size() &&
-                               std::isdigit(static_cast<unsigned char>(name[partial + 8]));
+        const bool temporary = ParseTemporaryName(name).has_value();
         if (name == "frames" || name == "manifest" || name == "logs" || name == "slurm") {
             *takenUp = true;
         } else if (name != kFarmLockName && !temporary) {

@@ -156,6 +156,31 @@ TEST_F(OutputPathTest, TemporariesNameTheirProcess) {
         EXPECT_EQ(TemporaryOwnerHere(other), std::nullopt) << other;
 }
 
+// Another host's temporary is still a temporary (a farm's job folder holds those of every
+// machine), with its host and process told; names that only look alike are none.
+TEST(TemporaryNameTest, ParsesTheProcessAndHostOfAnyHost) {
+    const std::optional<TemporaryName> other = ParseTemporaryName(".farm.partial4242-node-07.json");
+    ASSERT_TRUE(other);
+    EXPECT_EQ(other->pid, 4242);
+    EXPECT_EQ(other->host, "node-07");
+    EXPECT_EQ(
+        TemporaryOwnerHere(".farm.partial4242-node-07.json") == std::nullopt,
+        fs::path(TemporaryPathFor("x")).filename().string().find("-node-07") == std::string::npos);
+    const std::optional<TemporaryName> bare = ParseTemporaryName(".check.partial9");
+    ASSERT_TRUE(bare);
+    EXPECT_EQ(bare->pid, 9);
+    EXPECT_EQ(bare->host, "");
+    ASSERT_TRUE(ParseTemporaryName(".a.b.partial12-h.png"));
+    EXPECT_EQ(ParseTemporaryName(".a.b.partial12-h.png")->host, "h");
+    for (const std::string& none :
+         {std::string("farm.partial1-h.json"), std::string(".farm.partial-h.json"),
+          std::string(".farm.partial1-.json"), std::string(".farm.partial1-h_x.json"),
+          std::string(".farm.partial1x.json"), std::string(".farm.partial1-h.json.bak"),
+          std::string(".partial1-h"), std::string(".farm.partial0-h"),
+          std::string(".farm.partial99999999999-h")})
+        EXPECT_EQ(ParseTemporaryName(none), std::nullopt) << none;
+}
+
 std::string ReadAll(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
