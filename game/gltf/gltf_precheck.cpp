@@ -8,6 +8,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
+#include "game/gltf/gltf_required_fields.h"
 #include "game/scene/json_fields.h"
 
 namespace rtrt {
@@ -270,8 +271,9 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
     CheckJsonDepth(file, json);
     const Json root = ParseJson(json, file, DuplicateKeys::kLastWins);
     if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
-    for (const char* array : {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers",
-                              "images", "textures", "materials", "animations", "cameras"}) {
+    for (const char* array :
+         {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers", "images", "textures",
+          "materials", "animations", "cameras", "skins", "samplers"}) {
         if (!root.contains(array)) continue;
         const Json& list = root[array];
         if (!IsKind(list, JsonKind::kObjects))
@@ -283,6 +285,7 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                     ExpectNestedKind(file, list[i], JsonIndexed(array, i), f.field, f.kind);
         }
     }
+    CheckRequiredGltfFields(file, root);
     // tinygltf reads 5124 (a 32-bit signed integer, which glTF does not have) as an integer
     // type, and float positions stored so were read as integers.
     if (root.contains("accessors"))

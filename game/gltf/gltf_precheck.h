@@ -1,6 +1,7 @@
 #pragma once
 // What rtrt checks of a glTF file before tinygltf reads it: the GLB container, the JSON types of
-// the fields rtrt reads (tinygltf drops a mistyped field silently) and that referenced buffer
+// the fields rtrt reads (tinygltf drops a mistyped field silently), the fields glTF requires
+// (gltf_required_fields.h) and that referenced buffer
 // and image files exist, so that each defect gets a message naming its field.
 #include <string>
 #include <vector>

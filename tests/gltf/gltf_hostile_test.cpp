@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 
 #include "engine/core/error.h"
@@ -103,6 +104,69 @@ TEST_F(GltfTest, MistypedMaterialFieldsAndUnknownComponentTypesAreRefused) {
     d["accessors"][0]["componentType"] = 5124;
     ExpectGltfError(Save("int32.gltf", d.dump()), "accessors[0].componentType",
                     "must be 5120, 5121, 5122, 5123, 5125 or 5126");
+}
+
+// Fields glTF requires, and its enumerations, are checked by field before tinygltf reads the
+// file: its messages named no element ("'count' property is missing in Accessor.") or, for a
+// skin without joints, nothing but "could not load the file".
+TEST_F(GltfTest, MissingRequiredFieldsAreNamed) {
+    const Json base = Json::parse(test::TwoLevels().GltfText());
+    struct Case {
+        std::function<void(Json&)> edit;
+        const char* field;
+        const char* reason;
+    };
+    const Case cases[] = {
+        {[](Json& d) { d["accessors"][0].erase("count"); }, "accessors[0].count",
+         "missing (glTF 2.0 requires it)"},
+        {[](Json& d) { d["accessors"][0]["type"] = "VEC7"; }, "accessors[0].type",
+         "expected one of SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3, MAT4, got \"VEC7\""},
+        {[](Json& d) {
+             d["accessors"][0]["sparse"] = {{"count", 1}};
+         },
+         "accessors[0].sparse.indices", "missing"},
+        {[](Json& d) { d["bufferViews"][0].erase("buffer"); }, "bufferViews[0].buffer", "missing"},
+        {[](Json& d) { d["buffers"][0].erase("byteLength"); }, "buffers[0].byteLength", "missing"},
+        {[](Json& d) { d["meshes"][0]["primitives"][0].erase("attributes"); },
+         "meshes[0].primitives[0].attributes", "missing"},
+        {[](Json& d) { d["meshes"][0].erase("primitives"); }, "meshes[0].primitives", "missing"},
+        {[](Json& d) { d["skins"] = Json::array({Json::object()}); }, "skins[0].joints", "missing"},
+        {[](Json& d) {
+             d["cameras"] = Json::array({{{"type", "perspective"}}});
+         },
+         "cameras[0].perspective", "missing"},
+        {[](Json& d) {
+             d["cameras"] = Json::array({{{"type", "fisheye"}}});
+         },
+         "cameras[0].type", "expected one of perspective, orthographic"},
+        {[](Json& d) {
+             d["cameras"] =
+                 Json::array({{{"type", "orthographic"}, {"orthographic", {{"xmag", 1}}}}});
+         },
+         "cameras[0].orthographic.ymag", "missing"},
+        {[](Json& d) { d["images"] = Json::array({Json::object()}); }, "images[0]",
+         "give a uri or a bufferView"},
+        {[](Json& d) {
+             d["animations"] = Json::array(
+                 {{{"channels", Json::array({{{"sampler", 0}, {"target", Json::object()}}})},
+                   {"samplers", Json::array({{{"input", 0}, {"output", 0}}})}}});
+         },
+         "animations[0].channels[0].target.path", "missing"},
+        {[](Json& d) {
+             d["animations"] = Json::array(
+                 {{{"channels", Json::array()},
+                   {"samplers",
+                    Json::array({{{"input", 0}, {"output", 0}, {"interpolation", "CUBIC"}}})}}});
+         },
+         "animations[0].samplers[0].interpolation", "expected one of LINEAR, STEP, CUBICSPLINE"},
+        {[](Json& d) { d["asset"].erase("version"); }, "asset.version", "missing"},
+        {[](Json& d) { d.erase("asset"); }, "asset", "missing"},
+    };
+    for (const Case& c : cases) {
+        Json d = base;
+        c.edit(d);
+        ExpectGltfError(Save("required.gltf", d.dump()), c.field, c.reason);
+    }
 }
 
 // A buffer file of another size than its byteLength is refused by its size, before it is read:
