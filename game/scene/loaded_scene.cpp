@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/core/error.h"
+#include "engine/physics_anim/animator.h"
 
 namespace rtrt {
 
@@ -23,6 +24,11 @@ void FinishLoadedScene(LoadedScene& out, const std::string& file) {
     std::stable_sort(
         out.entities.begin(), out.entities.end(),
         [](const EntityDesc& a, const EntityDesc& b) { return a.spawnTime < b.spawnTime; });
+    // An animated entity starts posed at its animation's time 0 (the runtime advances the clock
+    // before it poses again): its own "position" showed in the first frame, and the second
+    // jumped to the animation (demo_glass's orbiting ball).
+    for (EntityDesc& e : out.entities)
+        if (e.animator) e.local = physics::EvaluateAnimator(*e.animator);
     const std::vector<glm::mat4> worlds = InitialWorlds(out);
     for (size_t i = 0; i < out.entities.size(); ++i) {
         const EntityDesc& e = out.entities[i];

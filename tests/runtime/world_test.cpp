@@ -120,6 +120,25 @@ TEST(World, KeyframesMoveAnEntity) {
     EXPECT_NEAR(world.Scene().instances[0].Position()[1], 0.5f, 1e-5f);
 }
 
+// An animated entity shows its animation's pose from the first frame, in the loaded scene that
+// render draws and in a World before its first step: it had shown its own "position" there, and
+// the second frame jumped to the animation.
+TEST(World, AnimatedEntitiesArePosedAtTimeZero) {
+    const LoadedScene scene = ParseScene(R"({
+      "models": { "ball": { "type": "sphere" } },
+      "instances": [ { "model": "ball", "position": [0, 9, 0], "animate": {
+          "keyframes": { "translation": [[0, 3, 0, 0], [1, 5, 0, 0]] } } },
+        { "model": "ball", "animate": { "orbit": { "centre": [0, 0, 0], "radius": 2 } } } ] })",
+                                         "posed.json", "");
+    EXPECT_EQ(scene.scene.instances[0].Position(), glm::vec3(3.0f, 0.0f, 0.0f));
+    EXPECT_NEAR(glm::length(scene.scene.instances[1].Position()), 2.0f, 1e-5f);
+    World world(scene);
+    EXPECT_EQ(world.Scene().instances[0].Position(), glm::vec3(3.0f, 0.0f, 0.0f));
+    EXPECT_NEAR(glm::length(world.Scene().instances[1].Position()), 2.0f, 1e-5f);
+    world.Advance(0.5f);
+    EXPECT_NEAR(world.Scene().instances[0].Position()[0], 4.0f, 1e-5f);
+}
+
 TEST(World, BadDynamicFieldsAreRejected) {
     auto expectError = [](const std::string& json, const std::string& field) {
         try {
