@@ -51,17 +51,26 @@ RT_HD inline vec3 PbrNeutral(vec3 c) {
 // Narkowicz, "ACES Filmic Tone Mapping Curve" (2015): a rational fit of the ACES reference
 // rendering and output transforms, per channel.
 RT_HD inline float AcesFit(float x) {
-    x = fmaxf(x, 0.0f);
+    // Past 1e18 the fit is its limit to float's precision, and x * x would overflow (inf / inf).
+    x = fminf(fmaxf(x, 0.0f), 1e18f);
     return (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
 }
 
 RT_HD inline float Saturate(float v) { return fminf(fmaxf(v, 0.0f), 1.0f); }
 
+// Radiance as an image stores it: NaN is 0 and what overflowed float is its largest value, so
+// that light beyond float's range (a colour of 1e34 under exposure, two lights of 3e38) is white
+// after tone mapping, where inf / inf in the tone maps had made it NaN and so black.
+RT_HD inline float FiniteRadiance(float v) { return fminf(fmaxf(v, 0.0f), 3.40282347e38f); }
+RT_HD inline vec3 FiniteRadiance(vec3 c) {
+    return vec3(FiniteRadiance(c.x), FiniteRadiance(c.y), FiniteRadiance(c.z));
+}
+
 // Linear radiance to a display value in [0, 1].
 RT_HD inline vec3 ApplyOutputTransform(vec3 c, const OutputTransform& t) {
     if (t.exposureEv != 0.0f) c *= exp2f(t.exposureEv);  // display values pass exactly
-    if (t.toneMap == ToneMap::kPbrNeutral)
-        c = PbrNeutral(vec3(fmaxf(c.x, 0.0f), fmaxf(c.y, 0.0f), fmaxf(c.z, 0.0f)));
+    c = FiniteRadiance(c);
+    if (t.toneMap == ToneMap::kPbrNeutral) c = PbrNeutral(c);
     if (t.toneMap == ToneMap::kAces) c = vec3(AcesFit(c.x), AcesFit(c.y), AcesFit(c.z));
     c = vec3(Saturate(c.x), Saturate(c.y), Saturate(c.z));
     if (t.srgbEncode) c = vec3(SrgbEncode(c.x), SrgbEncode(c.y), SrgbEncode(c.z));

@@ -51,8 +51,10 @@ std::string EncodePortable(const Image& image, const std::string& ext,
         bytes =
             "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
         for (uint32_t y = image.height; y-- > 0;)
-            bytes.append(reinterpret_cast<const char*>(&image.At(0, y)),
-                         sizeof(vec3) * image.width);
+            for (uint32_t x = 0; x < image.width; ++x) {
+                const vec3 c = FiniteRadiance(image.At(x, y));
+                bytes.append(reinterpret_cast<const char*>(&c), sizeof(vec3));
+            }
     } else {
         bytes =
             "P6\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n255\n";
@@ -68,8 +70,12 @@ std::string EncodePortable(const Image& image, const std::string& ext,
 // failed write.
 std::vector<unsigned char> EncodeWithLibrary(const std::string& path, const Image& image,
                                              const OutputTransform& transform) {
-    if (IsFloatFormat(Extension(path)))
-        return EncodeImage(path, image.width, image.height, true, image.pixels.data());
+    if (IsFloatFormat(Extension(path))) {
+        std::vector<vec3> finite(image.pixels.size());
+        std::transform(image.pixels.begin(), image.pixels.end(), finite.begin(),
+                       [](vec3 c) { return FiniteRadiance(c); });
+        return EncodeImage(path, image.width, image.height, true, finite.data());
+    }
     return EncodeImage(path, image.width, image.height, false, EightBit(image, transform).data());
 }
 #endif

@@ -76,6 +76,25 @@ TEST(AcesTest, FitAtKnownValues) {
     EXPECT_EQ(hot.x, 1.0f);  // the fit tends to 2.51 / 2.43 and is clamped
 }
 
+// Radiance beyond float's range is white under every tone map, NaN is black, and float files
+// store neither: a light of 1e34 under exposure had made lit pixels NaN (inf / inf) and so black.
+TEST(OutputTransformTest, OverflowedRadianceIsWhite) {
+    const float inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (ToneMap map : {ToneMap::kClamp, ToneMap::kPbrNeutral, ToneMap::kAces})
+        for (float v : {inf, 3e38f, 1e20f}) {
+            const vec3 c = ApplyOutputTransform(vec3(v, 0.0f, v), {20.0f, map, 1});
+            EXPECT_EQ(c.x, 1.0f) << ToneMapName(map) << " " << v;
+            EXPECT_EQ(c.z, 1.0f) << ToneMapName(map) << " " << v;
+            EXPECT_FALSE(std::isnan(c.y)) << ToneMapName(map) << " " << v;
+            EXPECT_EQ(ApplyOutputTransform(vec3(nan), {0.0f, map, 1}).x, 0.0f) << ToneMapName(map);
+        }
+    EXPECT_EQ(FiniteRadiance(inf), std::numeric_limits<float>::max());
+    EXPECT_EQ(FiniteRadiance(nan), 0.0f);
+    EXPECT_EQ(FiniteRadiance(-2.0f), 0.0f);
+    EXPECT_EQ(FiniteRadiance(0.5f), 0.5f);
+}
+
 TEST(OutputTransformTest, DisplayValuesAreOnlyClamped) {
     for (float v : {-1.0f, 0.0f, 0.25f, 0.5f, 0.999f, 1.0f, 3.0f})
         EXPECT_EQ(ApplyOutputTransform(vec3(v), kDisplayValues).x,

@@ -385,6 +385,22 @@ TEST(LightFalloff, PointLightOverAPlaneFallsOffWithDistance) {
     }
 }
 
+// A point light exactly at the shaded point has no direction: it lights nothing there, where
+// normalising the zero vector had made the pixel NaN (black in an 8-bit file).
+TEST(LightFalloff, APointLightAtTheShadedPointAddsNothing) {
+    for (uint32_t falloff : {0u, 1u}) {
+        RenderScene scene = QuadScene(Lambert());
+        scene.camera.position = vec3(0, 0, 0.5f);  // the one pixel's ray meets the quad at 0
+        Light light;
+        light.type = LightType::kPoint;
+        light.vector = vec3(0.0f);
+        light.falloff = falloff;
+        scene.lights = {light};
+        const Image image = Render(scene, 1);
+        EXPECT_EQ(image.At(0, 0), vec3(0.0f)) << falloff;
+    }
+}
+
 TEST(PbrFeatures, KernelsFollowTheMaterialsInstancesUse) {
     // A rough PBR material: no mirror rays; with a metallic-roughness texture that may make
     // parts of it smooth, mirror rays.

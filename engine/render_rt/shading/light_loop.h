@@ -25,7 +25,8 @@ RT_HD inline void ForEachLight(const RenderSceneView& scene, const Surface& s, v
         }
         const vec3 l = glm::normalize(toLight);
         const float nDotL = glm::dot(n, l);
-        if (nDotL <= 0.0f || glm::dot(s.geomNormal, l) <= 0.0f) continue;
+        // Written so that NaN fails too: a point light exactly at the point has no direction.
+        if (!(nDotL > 0.0f) || !(glm::dot(s.geomNormal, l) > 0.0f)) continue;
         // What arrives is worked out after the shadow ray, from the light's record again: a
         // value kept across the traversal cost the Blinn-Phong kernels an occupancy step
         // (bench/results/pbr-h200-2026-12-02.txt). Only PBR kernels skip the shadow rays of
