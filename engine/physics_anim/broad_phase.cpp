@@ -150,13 +150,14 @@ constexpr size_t kMaxDealChunks = 64;
 
 }  // namespace
 
-void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
+bool SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
                               std::vector<std::pair<uint32_t, uint32_t>>& pairs,
                               std::span<const uint32_t> names) {
     pairs.clear();
+    tests_ = 0;
     if (boxes.size() < 2) {
         order_.assign(boxes.size(), {0.0f, 0});
-        return;
+        return true;
     }
     const Spread spread = SpreadOf(boxes);
     const std::array<int, 3> axes = AxesBySpread(spread, boxes.size());
@@ -205,6 +206,7 @@ void SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
         }
         for (const auto& [i, j] : stripPairs_[strip]) *out++ = {names[i], names[j]};
     });
+    return tests_ <= maxTests_;
 }
 
 void SweepAndPrune::SweptBoxes::Resize(size_t n) {
@@ -227,7 +229,9 @@ void SweepAndPrune::SweepStrip(const Strips& strips, uint32_t strip,
     const SweptBoxes& s = sorted_;
     static_assert(kLanes == 8, "laneIndex and the full-row mask below count eight lanes");
     const LaneMask laneIndex = {0, 1, 2, 3, 4, 5, 6, 7};
+    const bool limited = maxTests_ != SIZE_MAX;
     for (uint32_t i = begin; i < end; ++i) {
+        size_t tested = 0;
         const Lanes aMax0 = Splat(s.max0[i]);
         const Lanes aMin1 = Splat(s.min1[i]);
         const Lanes aMax1 = Splat(s.max1[i]);
@@ -239,6 +243,7 @@ void SweepAndPrune::SweepStrip(const Strips& strips, uint32_t strip,
             const uint32_t ahead = LaneBits((LoadLanes(&s.min0[j]) <= aMax0) & inStrip);
             const uint32_t candidates = ahead & ~(ahead + 1);  // up to the first lane that is not
             if (candidates == 0) break;
+            tested += static_cast<size_t>(__builtin_popcount(candidates));
             const LaneMask overlap =
                 (aMin1 <= LoadLanes(&s.max1[j])) & (LoadLanes(&s.min1[j]) <= aMax1) &
                 (aMin2 <= LoadLanes(&s.max2[j])) & (LoadLanes(&s.min2[j]) <= aMax2) &
@@ -251,6 +256,8 @@ void SweepAndPrune::SweepStrip(const Strips& strips, uint32_t strip,
             }
             if (candidates != (1u << kLanes) - 1) break;
         }
+        if (limited && tests_.fetch_add(tested, std::memory_order_relaxed) + tested > maxTests_)
+            return;
     }
 }
 

@@ -58,6 +58,7 @@ class SceneParser {
         // A scene of display colours uses its glTF models' textures as they are, as it always has.
         if (!out.output.srgbEncode)
             for (Texture& t : scene.textures) t.srgb = 0;
+        CheckRigidBodiesHaveRoom(out, file_);
         FinishLoadedScene(out, file_);
         return out;
     }

@@ -20,4 +20,9 @@ void ParseRigidBody(const Json& j, const std::string& path, const std::string& f
 void CheckRigidBodyPlaces(const JsonFields& f, const std::string& field,
                           std::span<const vec3> places);
 
+// Fails when the scene's rigid bodies (all its instances' and spawners', each where it starts)
+// are packed so closely that the simulation's pairs of nearby bodies would grow with the square
+// of their number.
+void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file);
+
 }  // namespace rtrt

@@ -177,6 +177,20 @@ TEST(SceneFile, RigidBodiesBeyondWhatTheSimulationHandlesAreRejected) {
                     "spawners": [{"model": "b", "position": [90000, 0, 0], "rigid_body": {},
                                   "grid": {"count": [3, 1, 1], "spacing": 1e5}}]})",
                 "spawners[0].grid", "beyond 100 km");
+    // Found by probing: a ball scaled [3, 0.3, 0.3] rested on its longest axis; "static": "true"
+    // was ignored and the body fell; 1,000 balls in one spot took 830 MB a step.
+    ExpectError(scene(ball, R"({"model": "b", "scale": [3, 0.3, 0.3], "rigid_body": {}})"),
+                "instances[0].rigid_body", "uniform scale");
+    ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"static": "true"}})"),
+                "instances[0].rigid_body.static", "expected true or false, got string");
+    ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
+                    "spawners": [{"model": "b", "rigid_body": {},
+                                  "grid": {"count": [10, 10, 10], "spacing": 1e-6}}]})",
+                "rigid_body", "1000 rigid bodies start packed into one place");
+    EXPECT_NO_THROW(ParseScene(R"({"models": {"b": {"type": "sphere", "radius": 0.5}},
+                    "instances": [], "spawners": [{"model": "b", "rigid_body": {},
+                                  "grid": {"count": [10, 10, 10], "spacing": 1}}]})",
+                               "s.json", ""));
     // The same bodies without a rigid body are only drawn, and a static one may weigh nothing.
     EXPECT_NO_THROW(
         ParseScene(scene(ball, R"({"model": "b", "position": [0, 0, 2e5]})"), "s.json", ""));
