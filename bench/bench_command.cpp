@@ -53,7 +53,7 @@ void RequireSomeBenchModel(const std::vector<std::string>& models) {
     }
     throw InputError(ModelDir(), "--models",
                      "none of the models asked for is there (" + names +
-                         "); run tools/fetch_models.sh, or set RTRT_MODEL_DIR to where they are");
+                         "); run rtrt fetch-models, or set RTRT_MODEL_DIR to where they are");
 }
 
 bool LoadBenchModel(const std::string& name, TriangleMesh* mesh) {
@@ -132,7 +132,7 @@ void RunBench(const BenchOptions& o) {
         TriangleMesh mesh;
         Stopwatch loadTimer;
         if (!LoadBenchModel(name, &mesh)) {
-            std::printf("%-12s skipped: model file missing in %s (run tools/fetch_models.sh)\n",
+            std::printf("%-12s skipped: model file missing in %s (run rtrt fetch-models)\n",
                         name.c_str(), ModelDir().c_str());
             continue;
         }
@@ -198,7 +198,7 @@ void RunGpuBench(const BenchOptions& o) {
     for (const std::string& name : o.models) {
         TriangleMesh mesh;
         if (!LoadBenchModel(name, &mesh)) {
-            std::printf("%-12s skipped: model file missing (run tools/fetch_models.sh)\n",
+            std::printf("%-12s skipped: model file missing (run rtrt fetch-models)\n",
                         name.c_str());
             continue;
         }
@@ -243,7 +243,7 @@ void RunGridBench(const std::vector<uint32_t>& counts, int frames, const std::st
     TriangleMesh mesh;
     if (!LoadBenchModel("dragon_res4", &mesh))
         throw InputError(ModelDir() + "/dragon_vrip_res4.ply.gz", "",
-                         "missing; run tools/fetch_models.sh");
+                         "missing; run rtrt fetch-models");
     FitMesh(mesh, 1.0f);  // the grid's instances have largest extent 1
     auto blas = std::make_shared<const Blas>(BuildTriangleBlas(mesh));
     nlohmann::json report;
@@ -430,9 +430,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     auto runtime = std::make_shared<RuntimeOptions>();
     CLI::App* runtimeBench = bench->add_subcommand(
         "runtime", "CPU time per runtime stage (physics, animation, transforms, extraction, TLAS)");
-    runtimeBench->add_option("scenes", runtime->scenes, "Scene files to play")
-        ->required()
-        ->check(CLI::ExistingFile);
+    runtimeBench->add_option("scenes", runtime->scenes, "Scene files or names to play")->required();
     runtimeBench->add_option("--frames", runtime->frames, "Frames to play")
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();

@@ -3,7 +3,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -32,12 +35,21 @@ struct ConvertBenchOptions {
     std::string output;
 };
 
-// The bench's scratch folder, removed at the end, on an error and on an interrupt.
+// The bench's scratch folder, removed at the end, on an error and on an interrupt. A new folder
+// of a name no one can foresee (mkdtemp): a fixed name in /tmp let another user's link there send
+// the models elsewhere, and a folder already there was removed with what it held.
 class ScratchFolder {
   public:
-    explicit ScratchFolder(fs::path path) : path_(std::move(path)) {
+    explicit ScratchFolder(const std::string& prefix) {
+        std::error_code ec;
+        const fs::path base = fs::temp_directory_path(ec);
+        if (ec)
+            throw OutputError("TMPDIR", "no folder for temporary files (" + ec.message() +
+                                            "): set TMPDIR to a folder that exists");
+        std::string pattern = (base / (prefix + "XXXXXX")).string();
         TemporariesLock lock;
-        fs::create_directories(path_);
+        if (!::mkdtemp(pattern.data())) throw OutputError(pattern, std::strerror(errno));
+        path_ = pattern;
         lock.Register(path_.string());
     }
     ~ScratchFolder() {
@@ -62,8 +74,7 @@ void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine
     KeepLargeAllocationsInHeap();  // as rtrt convert does
     BvhBuildOptions options;
     ParseBuilder(o.builder, &options.builder);
-    const ScratchFolder scratch(fs::temp_directory_path() /
-                                ("rtrt_bench_convert_" + std::to_string(getpid())));
+    const ScratchFolder scratch("rtrt_bench_convert_");
     const fs::path& dir = scratch.Path();
     nlohmann::json report;
     report["machine"] = machine;
@@ -78,7 +89,7 @@ void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine
     for (const std::string& name : o.models) {
         const std::string path = BenchModelFile(name);
         if (!fs::exists(path)) {
-            std::printf("%-12s skipped: %s missing (run tools/fetch_models.sh)\n", name.c_str(),
+            std::printf("%-12s skipped: %s missing (run rtrt fetch-models)\n", name.c_str(),
                         path.c_str());
             continue;
         }

@@ -214,9 +214,7 @@ void AddDeformBench(CLI::App& bench, int* exitCode) {
         "deform",
         "A deforming mesh under refit, rebuild and adaptive BLAS policies, and the "
         "refit tree's quality drift");
-    cmd->add_option("scene", o->scene, "Scene file with a deforming instance")
-        ->required()
-        ->check(CLI::ExistingFile);
+    cmd->add_option("scene", o->scene, "Scene file or name with a deforming instance")->required();
     AddBackendOption(cmd, &o->backend);
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT (default: the scene's image size)");
     cmd->add_option("--frames", o->frames, "Frames to play at 60 fps")

@@ -182,9 +182,7 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
     auto o = std::make_shared<FrameBenchOptions>();
     CLI::App* cmd = bench.add_subcommand(
         "frame", "Whole frames of played scenes: simulation, extraction, upload, TLAS, trace");
-    cmd->add_option("scenes", o->scenes, "Scene files to play")
-        ->required()
-        ->check(CLI::ExistingFile);
+    cmd->add_option("scenes", o->scenes, "Scene files or names to play")->required();
     AddBackendOption(cmd, &o->backend);
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT (default: the scene's image size)");
     cmd->add_option("--frames", o->frames, "Timed frames per scene")
@@ -205,6 +203,7 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
     cmd->callback([o, exitCode] {
         const Backend backend = ResolveBackendOption(&o->backend);
         o->split = ResolveGpus(o->gpus, backend);
+        CheckTraversalBackend(o->traversal, backend);
         if (backend != Backend::kCuda && o->traceBands > 1)
             throw InputError("--trace-bands", std::to_string(o->traceBands),
                              "row bands are CUDA streams and need the CUDA back end; use "

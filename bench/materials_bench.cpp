@@ -40,8 +40,8 @@ constexpr ShadingVariant kVariants[] = {
     {"blinn_phong_untextured", kAllFeatures & ~kFeaturePbr & ~kFeatureTextures},
 };
 
-nlohmann::json RunScene(const std::string& path, const MaterialsBenchOptions& o) {
-    const LoadedScene loaded = LoadSceneFile(path);
+nlohmann::json RunScene(const std::string& path, const LoadedScene& loaded,
+                        const MaterialsBenchOptions& o) {
     RenderSettings settings;
     ParseSize(o.size, &settings.width, &settings.height);
     settings.maxDepth = loaded.scene.maxDepth;
@@ -84,9 +84,8 @@ void AddMaterialsBench(CLI::App& bench, int* exitCode) {
                              "Trace time with PBR shading against its Blinn-Phong approximation, "
                              "textured and untextured (median of --frames)");
     cmd->add_option("scenes", o->scenes,
-                    "Scene or glTF files (e.g. assets/models/pbr_showcase.gltf)")
-        ->required()
-        ->check(CLI::ExistingFile);
+                    "Scene or glTF files (e.g. assets/models/pbr_showcase.gltf), or scene names")
+        ->required();
     AddBackendOption(cmd, &o->backend, false);
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--frames", o->frames, "Timed frames per variant")
@@ -99,6 +98,13 @@ void AddMaterialsBench(CLI::App& bench, int* exitCode) {
         ->check(WritableFile());
     cmd->callback([o, exitCode] {
         ResolveBackendOption(&o->backend);
+        // The size and every scene are read before any is measured: a bad one had failed the
+        // command after the scenes before it were measured.
+        uint32_t width = 0, height = 0;
+        ParseSize(o->size, &width, &height);
+        std::vector<LoadedScene> loaded;
+        loaded.reserve(o->scenes.size());
+        for (const std::string& path : o->scenes) loaded.push_back(LoadSceneFile(path));
         nlohmann::json report;
         report["machine"] = BenchMachine(o->backend == "cuda");
         report["backend"] = o->backend;
@@ -108,7 +114,8 @@ void AddMaterialsBench(CLI::App& bench, int* exitCode) {
         std::printf("rtrt bench materials (%s back end, %s), medians over %d frames\n",
                     o->backend.c_str(), o->size.c_str(), o->frames);
         std::printf("%-24s %-24s %9s %9s %12s\n", "scene", "shading", "trace ms", "x pbr", "rays");
-        for (const std::string& path : o->scenes) report["rows"].push_back(RunScene(path, *o));
+        for (size_t i = 0; i < o->scenes.size(); ++i)
+            report["rows"].push_back(RunScene(o->scenes[i], loaded[i], *o));
         WriteReportIfNamed(o->output, report);
         *exitCode = kExitOk;
     });

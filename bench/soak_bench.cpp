@@ -167,6 +167,18 @@ void AddSoakBench(CLI::App& bench, int* exitCode) {
         ->check(WritableFile());
     cmd->callback([o, exitCode] {
         ResolveBackendOption(&o->backend);
+        // Memory is sampled at frames past --warmup that --every divides: with fewer than two
+        // samples nothing says whether it stayed flat (it had reported "flat within 5%").
+        int samples = 0;
+        for (int f = o->warmup + 1; f <= o->frames && samples < 2; ++f)
+            samples += f % o->every == 0;
+        if (samples < 2)
+            throw InputError("--frames", "",
+                             std::to_string(o->frames) + " frames take " + std::to_string(samples) +
+                                 " memory sample(s) after --warmup " + std::to_string(o->warmup) +
+                                 " every " + std::to_string(o->every) +
+                                 " frames; at least 2 tell whether memory stays flat: give more "
+                                 "--frames, or a smaller --warmup or --every");
         RunSoak(*o);
         *exitCode = kExitOk;
     });

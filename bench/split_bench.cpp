@@ -115,7 +115,7 @@ std::shared_ptr<const Blas> BenchBlas(const std::string& model, float extent) {
     if (!LoadBenchModel(model, &mesh))
         throw InputError(
             ModelDir() + "/dragon_vrip" + (model == "dragon" ? "" : model.substr(6)) + ".ply.gz",
-            "", "missing; run tools/fetch_models.sh");
+            "", "missing; run rtrt fetch-models");
     FitMesh(mesh, extent);
     return std::make_shared<const Blas>(BuildTriangleBlas(mesh));
 }

@@ -111,11 +111,16 @@ std::string AccuracyName(uint32_t bits) {
     return name;
 }
 
-TriangleMesh LoadDragon() {
+// The full dragon's file; InputError when it has not been fetched.
+std::string DragonPath() {
     const std::string path = ModelDir() + "/dragon_vrip.ply.gz";
     if (!std::filesystem::exists(path))
-        throw InputError(path, "", "missing; run tools/fetch_models.sh");
-    TriangleMesh mesh = LoadMesh(path);
+        throw InputError(path, "", "missing; run rtrt fetch-models");
+    return path;
+}
+
+TriangleMesh LoadDragon() {
+    TriangleMesh mesh = LoadMesh(DragonPath());
     FitMesh(mesh, 5.0f);
     return mesh;
 }
@@ -192,7 +197,19 @@ void RunAccuracyBench(const AccuracyOptions& o) {
     size.width = gpu && !cpu ? 1280 : 480;
     size.height = gpu && !cpu ? 720 : 270;
     if (!o.size.empty()) ParseSize(o.size, &size.width, &size.height);
-    if (!o.images.empty()) CreateOutputFolder(o.images);
+    if (!o.images.empty()) {
+        // Nothing is made before the input is known to be there (an empty folder was left), and
+        // the report does not go where the images go (it had replaced dragon_reference.png).
+        DragonPath();
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        if (!o.output.empty() && fs::weakly_canonical(fs::absolute(o.output).parent_path(), ec) ==
+                                     fs::weakly_canonical(fs::absolute(o.images), ec))
+            throw InputError("-o", o.output,
+                             "is in the --images folder, where the bench writes its images: "
+                             "give the report another folder");
+        CreateOutputFolder(o.images);
+    }
     nlohmann::json report;
     report["machine"] = BenchMachine(gpu);
     report["backend"] = o.backend;

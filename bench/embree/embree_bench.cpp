@@ -75,7 +75,7 @@ void RunEmbreeBench(const EmbreeBenchOptions& o) {
     for (const std::string& name : o.models) {
         TriangleMesh mesh;
         if (!LoadBenchModel(name, &mesh)) {
-            std::printf("%-12s skipped: model file missing (run tools/fetch_models.sh)\n",
+            std::printf("%-12s skipped: model file missing (run rtrt fetch-models)\n",
                         name.c_str());
             continue;
         }

@@ -1,6 +1,7 @@
 #include "game/cli/cli_options.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <regex>
@@ -16,19 +17,13 @@
 namespace rtrt {
 
 void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
-    unsigned long w = 0, h = 0;
-    size_t x = text.find('x');
-    try {
-        size_t used = 0;
-        if (x == std::string::npos) throw std::invalid_argument("");
-        w = std::stoul(text.substr(0, x), &used);
-        if (used != x) throw std::invalid_argument("");
-        h = std::stoul(text.substr(x + 1), &used);
-        if (used != text.size() - x - 1) throw std::invalid_argument("");
-    } catch (const std::exception&) {
+    // Decimal digits only: stoul had taken a sign, spaces and negatives that wrapped around.
+    static const std::regex kSize("([0-9]{1,9})x([0-9]{1,9})");
+    std::smatch m;
+    if (!std::regex_match(text, m, kSize))
         throw InputError("--size", "",
                          "expected WIDTHxHEIGHT such as 1920x1080, got \"" + text + "\"");
-    }
+    const unsigned long w = std::stoul(m[1].str()), h = std::stoul(m[2].str());
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
         throw InputError("--size", "", "width and height must be between 1 and 16384, got " + text);
     *width = uint32_t(w);
@@ -42,6 +37,68 @@ bool ParseFrames(const std::string& text, int* first, int* end) {
     *first = m[2].matched ? std::stoi(m[1].str()) : 0;
     *end = m[2].matched ? std::stoi(m[3].str()) : std::stoi(m[1].str());
     return *first < *end && *end <= 10000000;
+}
+
+namespace {
+
+// A whole number in decimal, leading zeros dropped: CLI11 reads integers in C's base 0, so "017"
+// was 15, "0x10" 16, and "-18446744073709551612" wrapped to 4 in an unsigned option.
+CLI::Validator DecimalInteger(bool signedType) {
+    return CLI::Validator(
+        [signedType](std::string& value) -> std::string {
+            const bool negative = signedType && !value.empty() && value[0] == '-';
+            const size_t start = negative ? 1 : 0;
+            const bool digits = value.size() > start &&
+                                value.find_first_not_of("0123456789", start) == std::string::npos;
+            if (!digits)
+                return "expected a whole number" + std::string(signedType ? "" : " >= 0") +
+                       " in decimal digits, got \"" + value + "\"";
+            const size_t first = std::min(value.find_first_not_of('0', start), value.size() - 1);
+            value = (negative ? "-" : "") + value.substr(first);
+            return "";
+        },
+        "");
+}
+
+// A number in decimal notation (or inf or nan, which the range checks refuse by name): strtod's
+// hexadecimal floats ("0x10" was 16) are not what a user of --fps means.
+CLI::Validator DecimalNumber() {
+    static const std::regex kDecimal(R"([+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?)");
+    static const std::regex kWord(R"([+-]?(inf|infinity|nan)([(][^)]*[)])?)", std::regex::icase);
+    return CLI::Validator(
+        [](std::string& value) -> std::string {
+            if (std::regex_match(value, kDecimal) || std::regex_match(value, kWord)) return "";
+            return "expected a number in decimal notation, got \"" + value + "\"";
+        },
+        "");
+}
+
+// A text value that says something: an empty one (a script's unset variable) had meant the
+// option's default, so that `--size ""` rendered at 1280x720 and `fetch-models --dir ""`
+// fetched into the default folder.
+CLI::Validator NonEmptyText() {
+    return CLI::Validator(
+        [](std::string& value) -> std::string {
+            return value.empty() ? "an empty value: give one, or leave the option out" : "";
+        },
+        "");
+}
+
+}  // namespace
+
+void CheckOptionValues(CLI::App& app) {
+    for (CLI::Option* option : app.get_options()) {
+        if (option->get_type_size() == 0) continue;  // a flag
+        const std::string type = option->get_type_name();
+        const std::string base = type.substr(0, type.find(':'));
+        if (base == "INT" || base == "UINT")
+            option->transform(DecimalInteger(base == "INT"));
+        else if (base == "FLOAT")
+            option->transform(DecimalNumber());
+        else if (base == "TEXT")
+            option->transform(NonEmptyText());
+    }
+    for (CLI::App* command : app.get_subcommands({})) CheckOptionValues(*command);
 }
 
 CLI::Validator FiniteRange(double min, double max) {
@@ -150,6 +207,13 @@ void AddTraversalOption(CLI::App* command, std::string* traversal) {
                      "image is the same")
         ->check(CLI::IsMember({"auto", "nested", "single"}))
         ->capture_default_str();
+}
+
+void CheckTraversalBackend(const std::string& traversal, Backend backend) {
+    if (backend == Backend::kCuda || traversal == "auto") return;
+    throw InputError("--traversal", traversal,
+                     "nested and single are the CUDA back end's traversals (the CPU back end has "
+                     "one); use --backend cuda or leave --traversal out");
 }
 
 void AddPhysicsSolverOption(CLI::App* command, std::string* solver) {

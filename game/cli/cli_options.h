@@ -25,6 +25,12 @@ inline constexpr int kExitBadInput = 2;  // bad command line, scene, model or ou
 // its comparisons are false for it.
 CLI::Validator FiniteRange(double min, double max);
 
+// Checks every option of APP and its subcommands takes: integers and numbers in decimal only
+// (CLI11 reads integers in C's base 0: "017" was 15, "0x10" 16, a negative wrapped in an unsigned
+// option; and numbers with strtod's hexadecimal floats), and no empty text. Call once every
+// option is added.
+void CheckOptionValues(CLI::App& app);
+
 // A file option's check, when the command line is read and so before any work: the file can be
 // written whole (CheckOutputPath: its folder exists, it is not a folder or a device).
 CLI::Validator WritableFile();
@@ -60,6 +66,9 @@ GpuSplit ResolveGpus(const std::string& gpus, Backend backend);
 // --traversal auto|nested|single: the CUDA back end's scene traversal for scenes of many
 // instances (traversal/traversal_form.h; default auto).
 void AddTraversalOption(CLI::App* command, std::string* traversal);
+// InputError naming --traversal when a form other than auto is asked of the CPU back end, which
+// has one traversal and had ignored the option.
+void CheckTraversalBackend(const std::string& traversal, Backend backend);
 
 // --physics-solver cpu|gpu: where the rigid bodies' contacts are solved (default cpu; gpu gives
 // the same bits, see gpu_contact_solver.h).

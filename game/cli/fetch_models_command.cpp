@@ -30,6 +30,11 @@ void RunFetchModels(const FetchOptions& o, int* exitCode) {
     const std::string dir = o.dir.empty() ? ModelDir() : o.dir;
     const std::string script = FetchModelsScript();
     std::error_code ec;
+    // The folder is made if it is not there; something else of its name is refused here, where
+    // the script's mkdir had said "File exists" and the command exit 1.
+    if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+        throw InputError(o.dir.empty() ? dir : "--dir", o.dir.empty() ? "" : dir,
+                         "is not a folder: give a folder to fetch the models into");
     if (!std::filesystem::exists(script, ec))
         throw InputError(script, "", "the model fetching script is missing (reinstall rtrt)");
     std::printf("rtrt: fetching the models into %s (%s)\n", dir.c_str(), script.c_str());

@@ -1,7 +1,10 @@
 // `rtrt info FILE`: what a mesh, an .rtmodel, a scene file or a glTF file holds — counts, bounds,
 // materials, lights, animation, and the statistics of every BVH.
+#include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "engine/core/content_hash.h"
@@ -176,11 +179,27 @@ void RunInfo(const std::string& argument) {
         throw InputError(path, "", "no such file (nor a scene of that name)");
     if (std::filesystem::is_directory(path, ec))
         throw InputError(path, "", "is a folder; name a file in it");
-    const std::string ext = std::filesystem::path(path).extension().string();
-    if (ext == ".json" || ext == ".JSON" || IsGltfPath(path))
-        PrintScene(path);
-    else
-        PrintModel(path);
+    std::string name = std::filesystem::path(path).filename().string();
+    for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const auto endsWith = [&](const char* tail) {
+        const size_t n = std::strlen(tail);
+        return name.size() >= n && name.compare(name.size() - n, n, tail) == 0;
+    };
+    if (endsWith(".obj") || endsWith(".ply") || endsWith(".ply.gz") || endsWith(".rtmodel"))
+        return PrintModel(path);
+    if (endsWith(".json") || IsGltfPath(path)) return PrintScene(path);
+    // Any other name is a scene file if it holds a JSON object, as render reads it ("G.Json",
+    // "a.scene"); info had taken it for a mesh of an unknown extension.
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw InputError(path, "", "not a regular file");
+    std::ifstream in(path, std::ios::binary);
+    char first = 0;
+    while (in.get(first) && std::isspace(static_cast<unsigned char>(first))) {
+    }
+    if (in && first == '{') return PrintScene(path);
+    throw InputError(path, "",
+                     "unknown kind of file: info reads a mesh (.obj, .ply, .ply.gz), an .rtmodel, "
+                     "a scene file (a JSON object) or a glTF file (.gltf, .glb)");
 }
 
 }  // namespace

@@ -102,6 +102,7 @@ int RunCommandLine(int argc, char** argv) {
     rtrt::AddFetchModelsCommand(app, &exitCode);
     rtrt::AddFarmCommand(app, &exitCode);
     rtrt::AddBenchCommand(app, &exitCode);
+    rtrt::CheckOptionValues(app);
     app.parse_complete_callback([&app] { rtrt::RefuseOutputsOverInputs(app); });
     if (ReportUnknownCommand(app, argc, argv)) return rtrt::kExitBadInput;
     try {

@@ -67,6 +67,7 @@ void RunRender(const RenderOptions& o) {
     if (backend == Backend::kCuda && !CudaBackendAvailable(&why))
         throw InputError("--backend", "cuda", why + "; use --backend cpu");
     const GpuSplit gpus = ResolveGpus(o.gpus, backend);
+    CheckTraversalBackend(o.traversal, backend);
 
     Stopwatch renderTimer;
     RenderStats stats;

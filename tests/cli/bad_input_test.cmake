@@ -511,7 +511,7 @@ set(saved_model_dir "$ENV{RTRT_MODEL_DIR}")
 file(MAKE_DIRECTORY ${WORK_DIR}/no_models)
 set(ENV{RTRT_MODEL_DIR} ${WORK_DIR}/no_models)
 expect_failure(bench_cpu_no_models 2
-    "--models: none of the models asked for is there (dragon, teapot); run tools/fetch_models.sh"
+    "--models: none of the models asked for is there (dragon, teapot); run rtrt fetch-models"
     bench cpu --models dragon,teapot --frames 1)
 expect_failure(bench_convert_no_models 2 "none of the models asked for is there (dragon_res4)"
     bench convert --models dragon_res4)

@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Option values and odd arguments found by probing the command line: each case's exit status,
+message, and what must (not) be left behind.
+
+- Integers and numbers are read in decimal: CLI11 read integers in C's base 0 ("017" was 15,
+  "0x10" 16, a negative wrapped around in an unsigned option) and numbers as strtod does
+  (hexadecimal floats). --size takes digits only; no option takes an empty value.
+- bench convert's scratch folder has a name no one can foresee: a folder of its old name
+  (rtrt_bench_convert_PID in the temporary folder) is neither used nor removed.
+- bench soak refuses a run that takes fewer than two memory samples; fetch-models refuses a --dir
+  that is a file; info reads a scene file of any name; benches take scene names; --traversal
+  is refused on the CPU back end.
+
+usage: option_values_test.py RTRT WORK_DIR
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+RTRT, WORK = sys.argv[1], sys.argv[2]
+shutil.rmtree(WORK, ignore_errors=True)
+os.makedirs(WORK)
+failures = []
+
+
+def run(*args, env=None):
+    return subprocess.run([RTRT, *args], capture_output=True, text=True, cwd=WORK, timeout=300,
+                          env=dict(os.environ, **(env or {})))
+
+
+def expect(name, args, status, text, env=None):
+    r = run(*args, env=env)
+    if r.returncode != status or text not in r.stderr + r.stdout:
+        failures.append(f"{name}: exit {r.returncode} (expected {status}), wanted {text!r}:\n"
+                        f"{r.stderr}{r.stdout[-400:]}")
+    return r
+
+
+image = ["render", "default", "--backend", "cpu", "--size", "8x4", "-o", "out.ppm"]
+expect("octal depth", image + ["--max-depth", "017"], 2, "Value 17 not in range 1 to 16")
+expect("hex depth", image + ["--max-depth", "0x3"], 2,
+       '--max-depth: expected a whole number in decimal digits, got "0x3"')
+expect("wrapped spp", image + ["--spp", "-18446744073709551612"], 2,
+       '--spp: expected a whole number >= 0 in decimal digits')
+expect("leading zero spp", image + ["--spp", "016"], 0, "wrote out.ppm")
+expect("hex fps", ["play", "default", "--headless", "--frames", "1", "--fps", "0x10", "--backend",
+                   "cpu", "--size", "8x4", "-o", "f%d.ppm"], 2,
+       '--fps: expected a number in decimal notation, got "0x10"')
+expect("nan exposure", image + ["--exposure", "nan"], 2, "--exposure: nan is not a finite number")
+expect("fraction count", ["bench", "ecs", "--count", "5.5"], 2,
+       '--count: expected a whole number >= 0 in decimal digits, got "5.5"')
+unsized = ["render", "default", "--backend", "cpu", "-o", "sized.ppm"]
+for size in ["-1x4", "+8x4", " 8x4", "8x4 "]:
+    expect(f"size {size!r}", unsized + [f"--size={size}"], 2,
+           f'--size: expected WIDTHxHEIGHT such as 1920x1080, got "{size}"')
+expect("empty size", unsized + ["--size", ""], 2,
+       "--size: an empty value: give one, or leave the option out")
+if os.path.exists(os.path.join(WORK, "sized.ppm")):
+    failures.append("a refused command wrote its output")
+expect("decimal size", unsized + ["--size", "010x004"], 0, "(10x4,")
+
+# The old scratch name, made before rtrt starts (exec keeps the shell's process id).
+tmp = os.path.join(WORK, "tmp")
+os.makedirs(tmp)
+script = ('mkdir "$TMPDIR/rtrt_bench_convert_$$" && echo keep > "$TMPDIR/rtrt_bench_convert_$$/own" '
+          '&& exec "$0" bench convert --models dragon_res4 --runs 1')
+r = subprocess.run(["/bin/bash", "-c", script, RTRT], capture_output=True, text=True, cwd=WORK,
+                   env=dict(os.environ, TMPDIR=tmp), timeout=300)
+left = sorted(os.listdir(tmp))
+if "none of the models asked for is there" in r.stderr:
+    print("bench convert's scratch folder: skipped (dragon_res4 not fetched)")
+elif r.returncode != 0 or len(left) != 1 or not os.path.exists(os.path.join(tmp, left[0], "own")):
+    failures.append(f"bench convert: exit {r.returncode}, the temporary folder holds {left}:\n"
+                    f"{r.stderr}")
+expect("no temporary folder", ["bench", "convert", "--models", "dragon_res4", "--runs", "1"], 1,
+       "TMPDIR: no folder for temporary files", env={"TMPDIR": os.path.join(WORK, "nowhere")})
+
+expect("soak without samples", ["bench", "soak", "--backend", "cpu", "--frames", "5", "--every",
+                                "1", "--warmup", "10"], 2,
+       "--frames: 5 frames take 0 memory sample(s)")
+with open(os.path.join(WORK, "afile"), "w") as f:
+    f.write("x\n")
+expect("fetch into a file", ["fetch-models", "--dir", "afile"], 2,
+       "--dir: afile: is not a folder")
+expect("fetch into nothing", ["fetch-models", "--dir", ""], 2, "--dir: an empty value")
+shutil.copy(os.path.join(os.path.dirname(__file__), "..", "..", "assets", "scenes",
+                         "teapot_shadow.json"), os.path.join(WORK, "T.Json"))
+expect("info of a scene named .Json", ["info", "T.Json"], 0, "T.Json: scene file")
+expect("info of an unknown kind", ["info", "afile"], 2, "afile: unknown kind of file")
+expect("bench frame by name", ["bench", "frame", "teapot_shadow", "--backend", "cpu", "--frames",
+                               "1", "--warmup", "0", "--size", "8x4"], 0, "teapot_shadow")
+expect("traversal on the CPU", image + ["--traversal", "single"], 2,
+       "--traversal: single: nested and single are the CUDA back end's traversals")
+
+if failures:
+    sys.exit("\n\n".join(failures))
+print("all option-value cases behave")
