@@ -3,6 +3,8 @@
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -129,6 +131,13 @@ class PhysicsWorld {
     void SolveContactsOnGpu();
     bool SolvesContactsOnGpu() const { return gpuSolver_ != nullptr; }
 
+    // Frames of FRAME_DT each, as an offline player advances (play --fps): every frame takes all
+    // the steps its time holds, where the real-time cap (maxStepsPerFrame) ran frames longer
+    // than 8 steps in slow motion (at 5 fps physics ran at a third of its speed).
+    void KeepUpWithFrames(float frameDt) {
+        const int steps = static_cast<int>(std::ceil(double(frameDt) / settings_.fixedStep)) + 1;
+        settings_.maxStepsPerFrame = std::max(settings_.maxStepsPerFrame, steps);
+    }
     const PhysicsSettings& Settings() const { return settings_; }
     const PhysicsStats& Stats() const { return stats_; }
     // Where between the last two steps the rendered poses are, in [0, 1).

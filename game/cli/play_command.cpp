@@ -208,6 +208,7 @@ void RunPlay(PlayOptions o) {
     const std::unique_ptr<FrameRenderer> renderer =
         MakeFrameRenderer(backend, world.Scene(), {}, {}, ResolveGpus(o.gpus, backend));
     const float dt = float(1.0 / o.fps);
+    world.PlayAtFixedFrames(dt);
     // Frames before A are played, not traced: the simulation and every update of the frame
     // renderer (TLAS and BLAS refits, rebuild decisions) happen as in a full run, so frame A on
     // is byte for byte what a run from frame 0 writes.

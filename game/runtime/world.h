@@ -89,6 +89,9 @@ class World {
     // Solves the rigid bodies' contacts on the first CUDA device (the same values as on the CPU);
     // throws std::runtime_error saying why when there is none.
     void SolveContactsOnGpu() { physics_.SolveContactsOnGpu(); }
+    // Every Advance is FRAME_DT long (an offline player): physics keeps up however long a frame
+    // is, rather than running long frames in slow motion as a real-time loop must.
+    void PlayAtFixedFrames(float frameDt) { physics_.KeepUpWithFrames(frameDt); }
 
   private:
     void SpawnDue();

@@ -352,6 +352,20 @@ TEST(PhysicsWorldTest, AccumulatorTakesWholeStepsAndInterpolatesTheRest) {
     EXPECT_LT(world.InterpolationAlpha(), 1.0f);
 }
 
+// An offline player's frames of 1/5 s each take every step their time holds: the real-time cap
+// of 8 steps a frame had run them at a third of the speed.
+TEST(PhysicsWorldTest, FixedLongFramesKeepUp) {
+    Registry registry;
+    const Entity ball = AddBody(registry, vec3(0.0f, 100.0f, 0.0f), Collider::Sphere(0.5f), 1.0f);
+    PhysicsWorld world;
+    world.KeepUpWithFrames(0.2f);
+    for (int frame = 0; frame < 5; ++frame) world.Advance(registry, 0.2f);
+    EXPECT_GE(world.Stats().steps, 119u);
+    EXPECT_LE(world.Stats().steps, 120u);
+    // A second of free fall: 100 - g / 2 within the symplectic step's error.
+    EXPECT_NEAR(registry.Get<LocalTransform>(ball)->translation.y, 100.0f - 0.5f * 9.81f, 0.1f);
+}
+
 TEST(PhysicsWorldTest, SleepingBodyWakesWhenHitOrPushed) {
     Registry registry;
     AddPlane(registry, vec3(0.0f), vec3(0.0f, 1.0f, 0.0f));
