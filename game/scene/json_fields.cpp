@@ -355,6 +355,13 @@ vec3 JsonFields::Vec3(const std::string& key, std::optional<vec3> fallback) {
                 ToNumber(v[2], key + "[2]"));
 }
 
+vec3 JsonFields::Position(const std::string& key, std::optional<vec3> fallback) {
+    const vec3 p = Vec3(key, fallback);
+    if (!(MaxComponent(glm::abs(p)) <= kMaxSceneCoordinate))
+        Fail(key, "coordinates must be at most 1e7 in magnitude");
+    return p;
+}
+
 vec3 JsonFields::Colour(const std::string& key, vec3 fallback) {
     const vec3 c = Has(key) && j_.at(key).is_number() ? vec3(Number(key)) : Vec3(key, fallback);
     if (c.x < 0 || c.y < 0 || c.z < 0) Fail(key, "colour components must not be negative");

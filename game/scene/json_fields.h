@@ -10,6 +10,10 @@
 
 namespace rtrt {
 
+// The largest coordinate a scene may place anything at: beyond it 32-bit floats are too coarse to
+// trace (a sphere 1e15 away vanished).
+inline constexpr float kMaxSceneCoordinate = 1e7f;
+
 using Json = nlohmann::json;
 
 // Whether a key given twice in one object is an error (rtrt's scene files) or, as most JSON
@@ -60,6 +64,9 @@ class JsonFields {
     float InRange(const std::string& key, float lo, float hi, float fallback);
     uint32_t Count(const std::string& key, uint32_t lo, uint32_t hi, uint32_t fallback);
     vec3 Vec3(const std::string& key, std::optional<vec3> fallback = std::nullopt);
+    // A Vec3 that is a place in the scene: each coordinate at most kMaxSceneCoordinate in
+    // magnitude (beyond it floats are too coarse to trace: objects vanished).
+    vec3 Position(const std::string& key, std::optional<vec3> fallback = std::nullopt);
     // A colour: 3 numbers, or one number for grey.
     vec3 Colour(const std::string& key, vec3 fallback);
     std::string String(const std::string& key, std::optional<std::string> fallback = std::nullopt);

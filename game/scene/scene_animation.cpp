@@ -1,5 +1,6 @@
 #include "game/scene/scene_animation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
 #include <memory>
@@ -43,21 +44,30 @@ std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std:
             const std::string at = channel + "[" + std::to_string(k) + "]";
             if (!key.is_array() || key.size() != 4) f.Fail(at, "expected [time, x, y, z]");
             for (const Json& v : key)
-                if (!v.is_number() || !std::isfinite(v.get<double>()))
-                    f.Fail(at, "expected finite numbers");
-            add(key[0].get<float>(),
+                if (!v.is_number() || !(std::fabs(v.get<double>()) <= 3.4e38))
+                    f.Fail(at, "expected numbers within float's range (at most 3.4e38)");
+            add(at, key[0].get<float>(),
                 vec3(key[1].get<float>(), key[2].get<float>(), key[3].get<float>()));
         }
     };
-    keys("translation", [&](float t, vec3 v) {
+    // Poses within what the scene's own fields allow (positions, scales), and angles a float
+    // turns precisely: a key of 1e20 or a scale of 1e30 made the object vanish.
+    const auto within = [&](const std::string& at, vec3 v, float lo, float hi, const char* rule) {
+        if (!(std::min({v.x, v.y, v.z}) >= lo && std::max({v.x, v.y, v.z}) <= hi)) f.Fail(at, rule);
+    };
+    keys("translation", [&](const std::string& at, float t, vec3 v) {
+        within(at, v, -kMaxSceneCoordinate, kMaxSceneCoordinate,
+               "coordinates must be at most 1e7 in magnitude");
         clip->translation.times.push_back(t);
         clip->translation.values.push_back(v);
     });
-    keys("rotation", [&](float t, vec3 degrees) {
+    keys("rotation", [&](const std::string& at, float t, vec3 degrees) {
+        within(at, degrees, -1e6f, 1e6f, "angles must be at most 1e6 degrees in magnitude");
         clip->rotation.times.push_back(t);
         clip->rotation.values.push_back(EulerDegrees(degrees));
     });
-    keys("scale", [&](float t, vec3 v) {
+    keys("scale", [&](const std::string& at, float t, vec3 v) {
+        within(at, v, 1e-6f, 1e6f, "scale factors must be between 1e-6 and 1e6");
         clip->scale.times.push_back(t);
         clip->scale.values.push_back(v);
     });
@@ -89,8 +99,8 @@ physics::Animator ParseAnimator(const Json& j, const std::string& path,
     if (f.Has("orbit")) {
         JsonFields o(f.Get("orbit"), f.Path("orbit"), file);
         physics::Orbit orbit;
-        orbit.centre = o.Vec3("centre", base.translation);
-        orbit.radius = o.Positive("radius", 1.0f);
+        orbit.centre = o.Position("centre", base.translation);
+        orbit.radius = o.InRange("radius", 1e-6f, kMaxSceneCoordinate, 1.0f);
         orbit.axis = NonZero(o, "axis", vec3(0, 1, 0));
         orbit.period = o.Positive("period", 4.0f);
         o.Finish();
@@ -107,7 +117,7 @@ physics::Animator ParseAnimator(const Json& j, const std::string& path,
     if (f.Has("bob")) {
         JsonFields b(f.Get("bob"), f.Path("bob"), file);
         physics::Bob bob;
-        bob.amplitude = b.Number("amplitude", 0.25f);
+        bob.amplitude = b.InRange("amplitude", -kMaxSceneCoordinate, kMaxSceneCoordinate, 0.25f);
         bob.frequency = b.Positive("frequency", 0.5f);
         bob.axis = NonZero(b, "axis", vec3(0, 1, 0));
         b.Finish();

@@ -389,7 +389,7 @@ class SceneParser {
 
     // position * rotation (degrees about x, then y, then z) * scale.
     physics::LocalTransform ParseTransform(JsonFields& f) {
-        const vec3 position = f.Vec3("position", vec3(0.0f));
+        const vec3 position = f.Position("position", vec3(0.0f));
         const vec3 rotation = f.Vec3("rotation", vec3(0.0f));
         vec3 scale(1.0f);
         if (f.Has("scale")) {
@@ -409,9 +409,6 @@ class SceneParser {
             if (!(std::max({scale.x, scale.y, scale.z}) <= 1e6f))
                 f.Fail("scale", "scale factors must be at most 1e6");
         }
-        if (!(std::max({std::fabs(position.x), std::fabs(position.y), std::fabs(position.z)}) <=
-              1e7f))
-            f.Fail("position", "coordinates must be at most 1e7 in magnitude");
         physics::LocalTransform t;
         t.translation = position;
         t.rotation = EulerDegrees(rotation);

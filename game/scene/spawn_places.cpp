@@ -14,8 +14,12 @@ std::vector<vec3> GridPlaces(JsonFields& f, vec3 centre, const std::string& file
     if (count.x < 1 || count.y < 1 || count.z < 1 || count.x * count.y * count.z > 2e6f ||
         count != glm::floor(count))
         f.Fail("grid.count", "expected 3 whole numbers >= 1 (at most 2,000,000 places)");
-    std::vector<vec3> places;
+    // The grid's corners are its farthest places: within the scene's bounds as a position must be
+    // (a spacing of 1e20 put places at 1e20, where the objects vanished).
     const vec3 half = 0.5f * (count - vec3(1.0f));
+    if (!(MaxComponent(glm::abs(centre) + spacing * half) <= kMaxSceneCoordinate))
+        f.Fail("grid.spacing", "the grid's places would reach beyond 1e7 from the origin");
+    std::vector<vec3> places;
     for (int z = 0; z < int(count.z); ++z)
         for (int y = 0; y < int(count.y); ++y)
             for (int x = 0; x < int(count.x); ++x)
@@ -26,7 +30,7 @@ std::vector<vec3> GridPlaces(JsonFields& f, vec3 centre, const std::string& file
 std::vector<vec3> RainPlaces(JsonFields& f, float bodyRadius, const std::string& file) {
     JsonFields r(f.Get("rain"), f.Path("rain"), file);
     const uint32_t count = r.Count("count", 1, 1000000, 100);
-    const vec3 lo = r.Vec3("min"), hi = r.Vec3("max");
+    const vec3 lo = r.Position("min"), hi = r.Position("max");
     const uint32_t seed = r.Count("seed", 0, UINT32_MAX - 1, 1);
     r.Finish();
     const float cell = 2.2f * bodyRadius;

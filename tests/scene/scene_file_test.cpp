@@ -233,6 +233,56 @@ TEST(SceneFile, ExtentsBeyondWhatFloatsTraceAreRejected) {
                                "s.json", ""));
 }
 
+// Found by probing: animation keys, motions, deformations and spawner places went around the
+// bounds an instance's own fields have, and the object vanished (a key at 1e20, a scale of 1e30,
+// an orbit of radius 1e20, a wavelength of 1e-45 that made every vertex NaN, a grid spacing of
+// 1e20); a key time of 1e300 was called "not finite".
+TEST(SceneFile, AnimationsDeformationsAndSpawnsStayWithinTheSceneBounds) {
+    const auto animated = [](const std::string& animate) {
+        return R"({"models": {"m": {"type": "sphere"}}, "instances": [{"model": "m", "animate": )" +
+               animate + "}]}";
+    };
+    const std::string keys = "instances[0].animate.keyframes.";
+    ExpectError(animated(R"({"keyframes": {"translation": [[0, 0, 0, 0], [1, 1e20, 0, 0]]}})"),
+                keys + "translation[1]", "at most 1e7 in magnitude");
+    ExpectError(animated(R"({"keyframes": {"scale": [[0, 1, 1, 1], [1, 1e30, 1, 1]]}})"),
+                keys + "scale[1]", "between 1e-6 and 1e6");
+    ExpectError(animated(R"({"keyframes": {"scale": [[0, 0, 1, 1]]}})"), keys + "scale[0]",
+                "between 1e-6 and 1e6");
+    ExpectError(animated(R"({"keyframes": {"rotation": [[0, 0, 0, 0], [1, 1e300, 0, 0]]}})"),
+                keys + "rotation[1]", "within float's range");
+    ExpectError(animated(R"({"keyframes": {"translation": [[1e300, 0, 0, 0]]}})"),
+                keys + "translation[0]", "within float's range");
+    ExpectError(animated(R"({"orbit": {"radius": 1e20}})"), "instances[0].animate.orbit.radius",
+                "between");
+    ExpectError(animated(R"({"orbit": {"centre": [3e38, 0, 0]}})"),
+                "instances[0].animate.orbit.centre", "at most 1e7");
+    ExpectError(animated(R"({"bob": {"amplitude": 3e38}})"), "instances[0].animate.bob.amplitude",
+                "between");
+    const auto deformed = [](const std::string& deform) {
+        return R"({"models": {"m": {"type": "box"}}, "instances": [{"model": "m", "deform": )" +
+               deform + "}]}";
+    };
+    ExpectError(deformed(R"({"wave": {"amplitude": 0.1, "wavelength": 1e-45}})"),
+                "instances[0].deform.wave.wavelength", "between 1e-6 and 1e7");
+    ExpectError(deformed(R"({"wave": {"amplitude": 0.1, "wavelength": 1, "phase": 3e38}})"),
+                "instances[0].deform.wave.phase", "between");
+    ExpectError(
+        deformed(R"({"wave": {"amplitude": 0.1, "wavelength": 1, "centre": [3e38, 0, 0]}})"),
+        "instances[0].deform.wave.centre", "at most 1e7");
+    ExpectError(R"({"models": {"m": {"type": "sphere"}}, "instances": [],
+                    "spawners": [{"model": "m", "grid": {"count": [3, 1, 1], "spacing": 1e20}}]})",
+                "spawners[0].grid.spacing", "beyond 1e7");
+    ExpectError(R"({"models": {"m": {"type": "sphere"}}, "instances": [],
+                    "spawners": [{"model": "m", "rain": {"count": 1, "min": [5e8, 0, 0],
+                                                         "max": [5e8, 5, 5]}}]})",
+                "spawners[0].rain.min", "at most 1e7");
+    EXPECT_NO_THROW(
+        ParseScene(animated(R"({"keyframes": {"translation": [[0, 0, 0, 0], [1, 1e7, 0, 0]],
+                                  "scale": [[0, 1e-6, 1, 1e6]]}, "orbit": {"radius": 1e7}})"),
+                   "s.json", ""));
+}
+
 TEST(SceneFile, DanglingReferencesAreRejected) {
     ExpectError(R"({"instances": [{"model": "nothing"}]})", "instances[0].model", "no model named");
     ExpectError(
