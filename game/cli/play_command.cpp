@@ -12,6 +12,7 @@
 #include "engine/core/child_process.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
@@ -74,6 +75,37 @@ void CheckPattern(const std::string& pattern) {
         throw InputError("--output", pattern,
                          "the frame number must be in the file name, not in a folder's, e.g. "
                          "out/frame_%04d.png");
+}
+
+// InputError naming OPTION when FILE is the name of one of the frames [first, end) the pattern
+// makes: the check of outputs against inputs compared the pattern itself, so a manifest named
+// like frame 1 got the frame appended to it, and a scene named so was written over.
+void RefuseFrameOver(const std::string& pattern, int first, int end, const std::string& option,
+                     const std::string& file) {
+    if (file.empty()) return;
+    const size_t slash = pattern.rfind('/');
+    const std::string name = slash == std::string::npos ? pattern : pattern.substr(slash + 1);
+    const size_t field = name.find('%'), fieldEnd = name.find('d', field);
+    // The file's name read as the pattern's: its literal parts around digits for the field.
+    const auto escaped = [](const std::string& text) {
+        std::string out;
+        for (char c : text) {
+            if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) out += '\\';
+            out += c;
+        }
+        return out;
+    };
+    const std::regex named(escaped(name.substr(0, field)) + "(-?[0-9]+)" +
+                           escaped(name.substr(fieldEnd + 1)));
+    const size_t fileSlash = file.rfind('/');
+    const std::string fileName = fileSlash == std::string::npos ? file : file.substr(fileSlash + 1);
+    std::smatch m;
+    if (!std::regex_match(fileName, m, named) || m[1].length() > 9) return;
+    const int frame = std::stoi(m[1].str());
+    if (frame < first || frame >= end || !NameTheSameFile(FramePath(pattern, frame), file)) return;
+    throw InputError("--output", pattern,
+                     "frame " + std::to_string(frame) + " would be written over " + option + " (" +
+                         file + "); name the frames or that file otherwise");
 }
 
 // The most pixels the window opens with on the CPU back end unless --size says otherwise.
@@ -185,6 +217,8 @@ void RunPlay(PlayOptions o) {
     if (o.output.empty())
         throw InputError("--output", "", "give where frames go, e.g. out/frame_%04d.png");
     CheckPattern(o.output);
+    RefuseFrameOver(o.output, first, end, "--manifest", o.manifest);
+    RefuseFrameOver(o.output, first, end, "the scene file", ScenePathFor(o.scenes[0]));
     CheckImagePath(FramePath(o.output, first));
     if (!o.manifest.empty()) CheckManifestPath(o.manifest);
     CheckSceneChecksum(o.scenes[0], o.sceneChecksum);

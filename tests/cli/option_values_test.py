@@ -9,7 +9,7 @@ message, and what must (not) be left behind.
   (rtrt_bench_convert_PID in the temporary folder) is neither used nor removed.
 - bench soak refuses a run that takes fewer than two memory samples; fetch-models refuses a --dir
   that is a file; info reads a scene file of any name; benches take scene names; --traversal
-  is refused on the CPU back end.
+  is refused on the CPU back end; play refuses a manifest or scene named like one of its frames.
 
 usage: option_values_test.py RTRT WORK_DIR
 """
@@ -92,6 +92,25 @@ expect("bench frame by name", ["bench", "frame", "teapot_shadow", "--backend", "
                                "1", "--warmup", "0", "--size", "8x4"], 0, "teapot_shadow")
 expect("traversal on the CPU", image + ["--traversal", "single"], 2,
        "--traversal: single: nested and single are the CUDA back end's traversals")
+
+# A manifest or a scene named like one of the frames is refused before any frame (the manifest
+# had got frame 1 appended to it, the scene had been written over).
+frames = os.path.join(WORK, "frames")
+os.makedirs(frames)
+scene = os.path.join(frames, "f_0001.ppm")
+shutil.copy(os.path.join(WORK, "T.Json"), scene)
+play = ["play", "--headless", "--backend", "cpu", "--size", "8x4", "--frames", "3", "-o",
+        "frames/f_%04d.ppm"]
+expect("manifest over a frame", play + ["default", "--manifest", "frames/f_0002.ppm"], 2,
+       "frame 2 would be written over --manifest (frames/f_0002.ppm)")
+expect("scene over a frame", play + [scene], 2, "frame 1 would be written over the scene file")
+with open(scene) as f:
+    if '"instances"' not in f.read():
+        failures.append("the scene named like a frame was written over")
+if sorted(os.listdir(frames)) != ["f_0001.ppm"]:
+    failures.append(f"refused plays left {sorted(os.listdir(frames))}")
+expect("manifest past the frames", play + ["default", "--manifest", "frames/f_0003.ppm"], 0,
+       "wrote frames 0 to 2")
 
 if failures:
     sys.exit("\n\n".join(failures))
