@@ -120,6 +120,11 @@ bool NameTheSameFile(const std::string& a, const std::string& b) {
 
 void CheckOutputPath(const std::string& path) {
     if (path.empty()) throw InputError(path, "", "the output needs a file name");
+    // Where other tools read "-" as standard output, rtrt had made a file of that name.
+    if (path == "-")
+        throw InputError(path, "",
+                         "rtrt writes outputs to files, not to standard output: name a file (./- "
+                         "for a file called -)");
     const std::string file = FollowOutputLinks(path);
     CheckNotDescriptor(path, file);
     // Named in the reasons where a link led elsewhere.

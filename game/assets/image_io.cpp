@@ -25,7 +25,7 @@ std::string Extension(const std::string& path) {
     return ext;
 }
 
-bool IsFloatFormat(const std::string& ext) {
+[[maybe_unused]] bool IsFloatFormat(const std::string& ext) {  // used with OpenImageIO
     return ext == ".exr" || ext == ".pfm" || ext == ".hdr";
 }
 

@@ -47,6 +47,11 @@ void ParseRigidBody(const Json& j, const std::string& path, const std::string& f
     body.velocity = f.Vec3("velocity", vec3(0.0f));
     if (MaxComponent(glm::abs(body.velocity)) > kMaxBodySpeed)
         f.Fail("velocity", "each component must be within 1e6 m/s");
+    // What a static body or a plane would ignore is refused rather than dropped silently.
+    if (body.mass == 0.0f && body.velocity != vec3(0.0f))
+        f.Fail("velocity", "a static body does not move: leave velocity out, or give it a mass");
+    if (shape.kind == ModelShape::kPlane && f.Has("mass") && body.mass > 0.0f)
+        f.Fail("mass", "a plane is always static: leave mass out");
     f.Finish();
     if (!WithinWorld(e.local.translation))
         throw InputError(file, path,

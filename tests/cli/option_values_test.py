@@ -112,6 +112,11 @@ if sorted(os.listdir(frames)) != ["f_0001.ppm"]:
 expect("manifest past the frames", play + ["default", "--manifest", "frames/f_0003.ppm"], 0,
        "wrote frames 0 to 2")
 
+expect("report to -", ["bench", "cpu", "--models", "cube", "--output=-"], 2,
+       "rtrt writes outputs to files, not to standard output")
+if os.path.exists(os.path.join(WORK, "-")):
+    failures.append("-o - made a file called -")
+
 if failures:
     sys.exit("\n\n".join(failures))
 print("all option-value cases behave")

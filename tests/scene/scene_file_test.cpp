@@ -181,6 +181,10 @@ TEST(SceneFile, RigidBodiesBeyondWhatTheSimulationHandlesAreRejected) {
     // was ignored and the body fell; 1,000 balls in one spot took 830 MB a step.
     ExpectError(scene(ball, R"({"model": "b", "scale": [3, 0.3, 0.3], "rigid_body": {}})"),
                 "instances[0].rigid_body", "uniform scale");
+    ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"mass": 0, "velocity": [3, 0, 0]}})"),
+                "instances[0].rigid_body.velocity", "a static body does not move");
+    ExpectError(scene(R"({"type": "plane"})", R"({"model": "b", "rigid_body": {"mass": 5}})"),
+                "instances[0].rigid_body.mass", "a plane is always static");
     ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"static": "true"}})"),
                 "instances[0].rigid_body.static", "expected true or false, got string");
     ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
