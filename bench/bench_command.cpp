@@ -18,6 +18,7 @@
 
 #include "bench/bench_commands.h"
 #include "bench/bench_report.h"
+#include "bench/build_commit.h"
 #include "bench/ecs_benchmark.h"
 #include "bench/gpu_trace_timing.h"
 #include "bench/instance_grid_bench.h"
@@ -108,10 +109,11 @@ nlohmann::json MachineInfo() {
     m["cpu"] = CommandOutput("grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //'");
     m["threads"] = std::thread::hardware_concurrency();
     m["host"] = CommandOutput("hostname");
-    // RTRT_COMMIT names the commit where the tree has no .git (the GPU machine's copy).
+    // The commit the binary was built from ("-dirty" with changes not committed); RTRT_COMMIT
+    // overrides it. The commit of the folder the command ran in had named whatever repository
+    // that was.
     const char* commit = std::getenv("RTRT_COMMIT");
-    m["commit"] = commit && *commit ? std::string(commit)
-                                    : CommandOutput("git rev-parse --short HEAD 2>/dev/null");
+    m["commit"] = commit && *commit ? std::string(commit) : std::string(RTRT_BUILD_COMMIT);
     std::time_t now = std::time(nullptr);
     char date[32];
     std::strftime(date, sizeof(date), "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
