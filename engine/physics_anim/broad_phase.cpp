@@ -154,7 +154,7 @@ bool SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
                               std::vector<std::pair<uint32_t, uint32_t>>& pairs,
                               std::span<const uint32_t> names) {
     pairs.clear();
-    tests_ = 0;
+    found_ = 0;
     if (boxes.size() < 2) {
         order_.assign(boxes.size(), {0.0f, 0});
         return true;
@@ -206,7 +206,7 @@ bool SweepAndPrune::FindPairs(std::span<const BroadPhaseBox> boxes,
         }
         for (const auto& [i, j] : stripPairs_[strip]) *out++ = {names[i], names[j]};
     });
-    return tests_ <= maxTests_;
+    return found_ <= maxPairs_;
 }
 
 void SweepAndPrune::SweptBoxes::Resize(size_t n) {
@@ -229,9 +229,9 @@ void SweepAndPrune::SweepStrip(const Strips& strips, uint32_t strip,
     const SweptBoxes& s = sorted_;
     static_assert(kLanes == 8, "laneIndex and the full-row mask below count eight lanes");
     const LaneMask laneIndex = {0, 1, 2, 3, 4, 5, 6, 7};
-    const bool limited = maxTests_ != SIZE_MAX;
+    const bool limited = maxPairs_ != SIZE_MAX;
     for (uint32_t i = begin; i < end; ++i) {
-        size_t tested = 0;
+        const size_t before = out.size();
         const Lanes aMax0 = Splat(s.max0[i]);
         const Lanes aMin1 = Splat(s.min1[i]);
         const Lanes aMax1 = Splat(s.max1[i]);
@@ -243,7 +243,6 @@ void SweepAndPrune::SweepStrip(const Strips& strips, uint32_t strip,
             const uint32_t ahead = LaneBits((LoadLanes(&s.min0[j]) <= aMax0) & inStrip);
             const uint32_t candidates = ahead & ~(ahead + 1);  // up to the first lane that is not
             if (candidates == 0) break;
-            tested += static_cast<size_t>(__builtin_popcount(candidates));
             const LaneMask overlap =
                 (aMin1 <= LoadLanes(&s.max1[j])) & (LoadLanes(&s.min1[j]) <= aMax1) &
                 (aMin2 <= LoadLanes(&s.max2[j])) & (LoadLanes(&s.min2[j]) <= aMax2) &
@@ -256,8 +255,10 @@ void SweepAndPrune::SweepStrip(const Strips& strips, uint32_t strip,
             }
             if (candidates != (1u << kLanes) - 1) break;
         }
-        if (limited && tests_.fetch_add(tested, std::memory_order_relaxed) + tested > maxTests_)
-            return;
+        if (limited) {
+            const size_t added = out.size() - before;
+            if (found_.fetch_add(added, std::memory_order_relaxed) + added > maxPairs_) return;
+        }
     }
 }
 

@@ -29,14 +29,14 @@ class SweepAndPrune {
     // Replaces pairs with every overlapping (i, j), i < j, that is not static-static; touching
     // boxes (equal bounds) overlap. With names, box i is named names[i] in the pairs instead
     // (names must increase with i, so that the pairs stay in order).
-    // With a test limit (SetTestLimit), stops once the sweep has tested more box pairs than it
+    // With a pair limit (SetPairLimit), stops once the sweep has found more pairs than it
     // allows and returns false, the pairs then incomplete; true otherwise.
     bool FindPairs(std::span<const BroadPhaseBox> boxes,
                    std::vector<std::pair<uint32_t, uint32_t>>& pairs,
                    std::span<const uint32_t> names = {});
-    // Bounds the work and memory of FindPairs (boxes packed into one place make pairs of every
-    // two): at most MAX_TESTS pairs of boxes that meet on the sweep axis are tested.
-    void SetTestLimit(size_t maxTests) { maxTests_ = maxTests; }
+    // Bounds the memory and work of FindPairs where boxes packed into one place make pairs of
+    // every two: it stops past MAX_PAIRS pairs (give or take one box's pairs).
+    void SetPairLimit(size_t maxPairs) { maxPairs_ = maxPairs; }
     // After FindPairs: each box's place in the sweep order, a spatial key (nearby boxes have
     // nearby ranks along the sweep axis).
     void Ranks(std::vector<uint32_t>& rankOfBox) const;
@@ -85,8 +85,8 @@ class SweepAndPrune {
     std::vector<size_t> pairStart_;          // each strip's pairs in the output
     SweptBoxes sorted_;
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> stripPairs_;
-    size_t maxTests_ = SIZE_MAX;
-    mutable std::atomic<size_t> tests_{0};  // counted only under a limit
+    size_t maxPairs_ = SIZE_MAX;
+    mutable std::atomic<size_t> found_{0};  // counted only under a limit
 };
 
 }  // namespace rtrt::physics

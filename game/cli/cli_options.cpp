@@ -47,14 +47,16 @@ CLI::Validator DecimalInteger(bool signedType) {
     return CLI::Validator(
         [signedType](std::string& value) -> std::string {
             const bool negative = signedType && !value.empty() && value[0] == '-';
-            const size_t start = negative ? 1 : 0;
-            const bool digits = value.size() > start &&
-                                value.find_first_not_of("0123456789", start) == std::string::npos;
-            if (!digits)
+            const bool plus = !value.empty() && value[0] == '+';
+            const size_t start = negative || plus ? 1 : 0;
+            const bool decimal = value.size() > start &&
+                                 value.find_first_not_of("0123456789", start) == std::string::npos;
+            if (!decimal)
                 return "expected a whole number" + std::string(signedType ? "" : " >= 0") +
                        " in decimal digits, got \"" + value + "\"";
             const size_t first = std::min(value.find_first_not_of('0', start), value.size() - 1);
-            value = (negative ? "-" : "") + value.substr(first);
+            const std::string magnitude = value.substr(first);
+            value = (negative && magnitude != "0" ? "-" : "") + magnitude;
             return "";
         },
         "");
@@ -212,8 +214,9 @@ void AddTraversalOption(CLI::App* command, std::string* traversal) {
 void CheckTraversalBackend(const std::string& traversal, Backend backend) {
     if (backend == Backend::kCuda || traversal == "auto") return;
     throw InputError("--traversal", traversal,
-                     "nested and single are the CUDA back end's traversals (the CPU back end has "
-                     "one); use --backend cuda or leave --traversal out");
+                     "nested and single are the CUDA back end's traversals, and this command "
+                     "runs on the CPU back end (which has one): use --backend cuda on a machine "
+                     "with a CUDA device, or leave --traversal out");
 }
 
 void AddPhysicsSolverOption(CLI::App* command, std::string* solver) {

@@ -95,14 +95,19 @@ void RefuseFrameOver(const std::string& pattern, int first, int end, const std::
         }
         return out;
     };
-    const std::regex named(escaped(name.substr(0, field)) + "(-?[0-9]+)" +
+    // Digits as any printf field writes them, padded with zeros or spaces (%4d).
+    const std::regex named(escaped(name.substr(0, field)) + "( *-?[0-9]{1,9})" +
                            escaped(name.substr(fieldEnd + 1)));
-    const size_t fileSlash = file.rfind('/');
-    const std::string fileName = fileSlash == std::string::npos ? file : file.substr(fileSlash + 1);
+    // The file a link leads to is the one a frame would be written over.
+    const std::string target = FollowOutputLinks(file);
+    const size_t targetSlash = target.rfind('/');
+    const std::string fileName =
+        targetSlash == std::string::npos ? target : target.substr(targetSlash + 1);
     std::smatch m;
-    if (!std::regex_match(fileName, m, named) || m[1].length() > 9) return;
+    if (!std::regex_match(fileName, m, named)) return;
     const int frame = std::stoi(m[1].str());
-    if (frame < first || frame >= end || !NameTheSameFile(FramePath(pattern, frame), file)) return;
+    if (frame < first || frame >= end || !NameTheSameFile(FramePath(pattern, frame), target))
+        return;
     throw InputError("--output", pattern,
                      "frame " + std::to_string(frame) + " would be written over " + option + " (" +
                          file + "); name the frames or that file otherwise");

@@ -67,7 +67,9 @@ std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std:
         clip->rotation.values.push_back(EulerDegrees(degrees));
     });
     keys("scale", [&](const std::string& at, float t, vec3 v) {
-        within(at, v, 1e-6f, 1e6f, "scale factors must be between 1e-6 and 1e6");
+        within(at, v, 1e-6f, 1e6f,
+               "scale factors must be between 1e-6 and 1e6 (a pop-in starts at 1e-6: a scale of 0 "
+               "has no inverse to trace with)");
         clip->scale.times.push_back(t);
         clip->scale.values.push_back(v);
     });

@@ -68,13 +68,16 @@ script = ('mkdir "$TMPDIR/rtrt_bench_convert_$$" && echo keep > "$TMPDIR/rtrt_be
 r = subprocess.run(["/bin/bash", "-c", script, RTRT], capture_output=True, text=True, cwd=WORK,
                    env=dict(os.environ, TMPDIR=tmp), timeout=300)
 left = sorted(os.listdir(tmp))
-if "none of the models asked for is there" in r.stderr:
+models_fetched = "none of the models asked for is there" not in r.stderr
+if not models_fetched:
     print("bench convert's scratch folder: skipped (dragon_res4 not fetched)")
 elif r.returncode != 0 or len(left) != 1 or not os.path.exists(os.path.join(tmp, left[0], "own")):
     failures.append(f"bench convert: exit {r.returncode}, the temporary folder holds {left}:\n"
                     f"{r.stderr}")
-expect("no temporary folder", ["bench", "convert", "--models", "dragon_res4", "--runs", "1"], 1,
-       "TMPDIR: no folder for temporary files", env={"TMPDIR": os.path.join(WORK, "nowhere")})
+if models_fetched:
+    expect("no temporary folder", ["bench", "convert", "--models", "dragon_res4", "--runs", "1"],
+           1, "TMPDIR: no folder for temporary files",
+           env={"TMPDIR": os.path.join(WORK, "nowhere")})
 
 expect("soak without samples", ["bench", "soak", "--backend", "cpu", "--frames", "5", "--every",
                                 "1", "--warmup", "10"], 2,
@@ -109,6 +112,13 @@ with open(scene) as f:
         failures.append("the scene named like a frame was written over")
 if sorted(os.listdir(frames)) != ["f_0001.ppm"]:
     failures.append(f"refused plays left {sorted(os.listdir(frames))}")
+os.symlink("frames/f_0001.ppm", os.path.join(WORK, "link.tsv"))
+expect("manifest linked to a frame", play + ["default", "--manifest", "link.tsv"], 2,
+       "frame 1 would be written over --manifest (link.tsv)")
+expect("space-padded frames", ["play", "--headless", "--backend", "cpu", "--size", "8x4",
+                               "--frames", "3", "-o", "frames/g%4d.ppm", "default", "--manifest",
+                               "frames/g   2.ppm"], 2, "frame 2 would be written over --manifest")
+expect("plus sign", image + ["--max-depth", "+3"], 0, "wrote out.ppm")
 expect("manifest past the frames", play + ["default", "--manifest", "frames/f_0003.ppm"], 0,
        "wrote frames 0 to 2")
 

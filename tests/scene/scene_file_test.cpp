@@ -190,10 +190,24 @@ TEST(SceneFile, RigidBodiesBeyondWhatTheSimulationHandlesAreRejected) {
     ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
                     "spawners": [{"model": "b", "rigid_body": {},
                                   "grid": {"count": [10, 10, 10], "spacing": 1e-6}}]})",
-                "rigid_body", "1000 rigid bodies start packed into one place");
+                "rigid_body", "1000 rigid bodies that start at time 0 s overlap in more than");
+    // Many bodies apart are not packed, however many meet on one axis (a 40^3 lattice of
+    // touching balls, 64,000); nor are bodies of one place that appear at different times, or
+    // static ones, which never pair with each other.
     EXPECT_NO_THROW(ParseScene(R"({"models": {"b": {"type": "sphere", "radius": 0.5}},
                     "instances": [], "spawners": [{"model": "b", "rigid_body": {},
-                                  "grid": {"count": [10, 10, 10], "spacing": 1}}]})",
+                                  "grid": {"count": [40, 40, 40], "spacing": 1}}]})",
+                               "s.json", ""));
+    std::string apartInTime = R"({"models": {"b": {"type": "sphere"}}, "instances": [],
+                                  "spawners": [)";
+    for (int i = 0; i < 600; ++i)
+        apartInTime += (i ? ", " : "") +
+                       std::string(R"({"model": "b", "rigid_body": {}, "time": )") +
+                       std::to_string(i) + R"(, "grid": {"count": [1, 1, 1]}})";
+    EXPECT_NO_THROW(ParseScene(apartInTime + "]}", "s.json", ""));
+    EXPECT_NO_THROW(ParseScene(R"({"models": {"b": {"type": "box"}}, "instances": [],
+                    "spawners": [{"model": "b", "rigid_body": {"static": true},
+                                  "grid": {"count": [10, 10, 10], "spacing": 1e-6}}]})",
                                "s.json", ""));
     // The same bodies without a rigid body are only drawn, and a static one may weigh nothing.
     EXPECT_NO_THROW(
