@@ -1,12 +1,15 @@
 #include "game/app/input_script.h"
 
+#include <algorithm>
 #include <charconv>
 #include <climits>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
+#include "engine/core/output_file.h"
 #include "game/app/controls.h"
 #include "game/assets/image_io.h"
 
@@ -33,6 +36,29 @@ bool ParseFrame(const std::string& word, long long* frame) {
     // Beyond a long long: out of the frames' range below, whichever sign.
     if (error == std::errc::result_out_of_range) *frame = word[0] == '-' ? -1 : LLONG_MAX;
     return next == end && (error == std::errc() || error == std::errc::result_out_of_range);
+}
+
+// WORD as a message quotes it: cut short, so that a line of five million letters is not repeated
+// whole in a one-line error.
+std::string Quoted(const std::string& word) {
+    constexpr size_t kMaxQuoted = 64;
+    return "\"" + (word.size() <= kMaxQuoted ? word : word.substr(0, kMaxQuoted) + "...") + "\"";
+}
+
+// Window pixels and mouse movements a script may give: 1e38 had overflowed the mouse position to
+// inf and left the camera NaN for good.
+constexpr float kMaxScriptCoordinate = 1e6f;
+
+// Whether a screenshot would be written over by a frame of --record DIR (DIR/frame_NNNNN.png).
+bool IsRecordedFrame(const std::string& shot, const std::string& recordFolder) {
+    if (recordFolder.empty()) return false;
+    const std::filesystem::path path(shot);
+    std::filesystem::path folder = std::filesystem::path(recordFolder).lexically_normal();
+    if (!folder.has_filename()) folder = folder.parent_path();  // "DIR/"
+    const std::string name = path.filename().string();
+    return path.parent_path().lexically_normal() == folder && name.size() == 15 &&
+           name.starts_with("frame_") && name.ends_with(".png") &&
+           name.find_first_not_of("0123456789", 6) == 11;
 }
 
 // Whether a screenshot goes into the folder that does not exist yet but will (--record DIR).
@@ -63,9 +89,9 @@ InputScript InputScript::Load(const std::string& path, const std::string& pendin
         long long frame = 0;
         if (!(words >> frameWord)) continue;  // blank or a comment
         if (!ParseFrame(frameWord, &frame))
-            throw InputError(path, field,
-                             "expected FRAME COMMAND ARGS, with FRAME a whole number, got \"" +
-                                 frameWord + "\"");
+            throw InputError(
+                path, field,
+                "expected FRAME COMMAND ARGS, with FRAME a whole number, got " + Quoted(frameWord));
         // Bounded so that an event's follow-up frames (LastFrame) stay within an int.
         constexpr int kMaxFrame = 100000000;
         if (frame < 0 || frame > kMaxFrame)
@@ -75,16 +101,25 @@ InputScript InputScript::Load(const std::string& path, const std::string& pendin
         const int arity = Arity(e.command);
         if (arity == -2)
             throw InputError(path, field,
-                             "unknown command \"" + e.command +
-                                 "\" (expected key, click, drag, look, screenshot or quit)");
+                             "unknown command " + Quoted(e.command) +
+                                 " (expected key, click, drag, look, screenshot or quit)");
         if (arity == -1) {
             std::string word;
             if (!(words >> word)) throw InputError(path, field, e.command + " needs an argument");
             e.text.push_back(word);
             if (e.command == "key" && (e.key = KeyByName(word)) < 0)
-                throw InputError(path, field, "unknown key \"" + word + "\"");
+                throw InputError(path, field, "unknown key " + Quoted(word));
             // Checked now, not when the frame comes: a bad path fails before the window opens.
             if (e.command == "screenshot") {
+                if (NameTheSameFile(word, path))
+                    throw InputError(path, field,
+                                     "screenshot " + Quoted(word) +
+                                         " would be written over this script: name another file");
+                if (IsRecordedFrame(word, pendingFolder))
+                    throw InputError(path, field,
+                                     "screenshot " + Quoted(word) +
+                                         " would be written over by a frame of --record: name "
+                                         "another file");
                 try {
                     if (IntoPendingFolder(word, pendingFolder))
                         CheckImageFormat(word);
@@ -96,16 +131,27 @@ InputScript InputScript::Load(const std::string& path, const std::string& pendin
             }
         }
         for (int i = 0; i < arity; ++i) {
-            float v;
-            if (!(words >> v))
+            std::string word;
+            if (!(words >> word))
                 throw InputError(path, field,
                                  e.command + " needs " + std::to_string(arity) + " numbers");
+            float v = 0.0f;
+            const char* end = word.data() + word.size();
+            const auto [next, error] = std::from_chars(word.data(), end, v);
+            if (next != end || error != std::errc() || !(std::fabs(v) <= kMaxScriptCoordinate))
+                throw InputError(
+                    path, field,
+                    e.command + ": expected a number of pixels within 1e6, got " + Quoted(word));
             e.numbers.push_back(v);
         }
         std::string extra;
-        if (words >> extra) throw InputError(path, field, "unexpected \"" + extra + "\"");
+        if (words >> extra) throw InputError(path, field, "unexpected " + Quoted(extra));
         script.events_.push_back(std::move(e));
     }
+    // In frame order, whatever the lines' order: a key pressed on the frame its earlier press is
+    // released had been dropped when its line came first.
+    std::stable_sort(script.events_.begin(), script.events_.end(),
+                     [](const Event& a, const Event& b) { return a.frame < b.frame; });
     return script;
 }
 

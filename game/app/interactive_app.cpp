@@ -152,11 +152,27 @@ class App {
             median(&StageTimes::swap));
     }
 
-    void LoadScene(size_t index) {
+    // Switching scenes (Page Up/Down): a scene that no longer loads (edited since the window
+    // opened) is reported and the window stays on the one it shows; it had ended the session
+    // and dropped its recording.
+    void SwitchScene(size_t index) {
+        std::unique_ptr<LoadedScene> next;
+        try {
+            next = std::make_unique<LoadedScene>(LoadSceneFile(o_.scenes[index]));
+        } catch (const InputError& e) {
+            std::fprintf(stderr, "rtrt: error: %s; staying on %s\n", e.what(),
+                         model_.scene.c_str());
+            return;
+        }
+        LoadScene(index, std::move(next));
+    }
+
+    void LoadScene(size_t index, std::unique_ptr<LoadedScene> next = nullptr) {
+        if (!next) next = std::make_unique<LoadedScene>(LoadSceneFile(o_.scenes[index]));
         sceneIndex_ = index;
         renderer_.reset();
         world_.reset();
-        loaded_ = std::make_unique<LoadedScene>(LoadSceneFile(o_.scenes[index]));
+        loaded_ = std::move(next);
         world_ = std::make_unique<World>(*loaded_);
         if (o_.contactsOnGpu) world_->SolveContactsOnGpu();
         std::vector<std::string> notes;
@@ -211,7 +227,21 @@ class App {
         return PrimaryRay(MakeCameraFrame(world_->Scene().camera, fb.x, fb.y), x, y, fb.x, fb.y);
     }
 
+    // Whether the mouse is over the frame: a click outside it (a script's 1e38) picks nothing,
+    // where the clamped position had picked what the frame's edge showed.
+    bool MouseOverFrame() const {
+        int ww = 0, wh = 0;
+        glfwGetWindowSize(window_.Handle(), &ww, &wh);
+        const vec2 m = window_.GetInputConst().mouse;
+        return m.x >= 0.0f && m.y >= 0.0f && m.x < float(ww) && m.y < float(wh);
+    }
+
     void Pick() {
+        if (!MouseOverFrame()) {
+            selected_ = ecs::Entity{};
+            model_.selected.clear();
+            return;
+        }
         const Ray ray = RayThroughMouse();
         SceneHit hit{};
         const bool found = renderer_->Pick(ray, &hit);
@@ -322,16 +352,16 @@ class App {
             case Action::kStep:
                 stepOnce_ = true;
                 return;
-            case Action::kSlower:
-                model_.timeScale *= 0.5f;
+            case Action::kSlower:  // down to 1/1024: halving had reached 0, which ] could not undo
+                model_.timeScale = std::max(model_.timeScale * 0.5f, 1.0f / 1024.0f);
                 return;
             case Action::kFaster:
                 model_.timeScale = std::min(model_.timeScale * 2.0f, 16.0f);
                 return;
             case Action::kNextScene:
-                return LoadScene((sceneIndex_ + 1) % o_.scenes.size());
+                return SwitchScene((sceneIndex_ + 1) % o_.scenes.size());
             case Action::kPreviousScene:
-                return LoadScene((sceneIndex_ + o_.scenes.size() - 1) % o_.scenes.size());
+                return SwitchScene((sceneIndex_ + o_.scenes.size() - 1) % o_.scenes.size());
             case Action::kScreenshot:
                 screenshotKey_ = true;
                 return;

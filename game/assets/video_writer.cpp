@@ -47,6 +47,16 @@ void CheckRecordPath(const std::string& path) {
     if (std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec))
         throw InputError("--record", path,
                          "is a file; give a video (.mp4, .mkv, .mov) or a folder for PNG frames");
+    // Frames of an earlier recording there would mix with this one's (a shorter recording left
+    // the rest of the older one after its last frame).
+    for (const auto& entry : std::filesystem::directory_iterator(path, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.size() == 15 && name.starts_with("frame_") && name.ends_with(".png") &&
+            name.find_first_not_of("0123456789", 6) == 11)
+            throw InputError("--record", path,
+                             "holds frames of an earlier recording (" + name +
+                                 "): remove them or give another folder");
+    }
 }
 
 VideoWriter::VideoWriter(std::string path, uint32_t width, uint32_t height, double fps)

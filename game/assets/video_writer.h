@@ -22,7 +22,8 @@ void CheckVideoPath(const std::string& path);
 
 // --record PATH checked before a window opens: a video as CheckVideoPath, else a folder for PNG
 // frames, which must not be an existing file nor named like a video or image rtrt does not
-// record (out.avi had silently become a folder of PNGs). InputError(--record, PATH, reason).
+// record (out.avi had silently become a folder of PNGs), nor a folder holding an earlier
+// recording's frames. InputError(--record, PATH, reason).
 void CheckRecordPath(const std::string& path);
 
 class VideoWriter {

@@ -53,6 +53,52 @@ TEST(InputScript, MalformedLinesNameTheLineAndReason) {
     ExpectError("1 quit\n2 screenshot /nonexistent-rtrt-folder/shot.png\n", "line 2",
                 "screenshot /nonexistent-rtrt-folder/shot.png: ");
     ExpectError("3 screenshot shot.unknown-format\n", "line 1", "screenshot shot.unknown-format");
+    // Found by probing: 1e38 pixels overflowed the mouse to inf and the camera to NaN; "nan" was
+    // "needs 2 numbers"; a five-million-letter key name was quoted whole.
+    ExpectError("0 look 3e38 3e38\n", "line 1", "look: expected a number of pixels within 1e6");
+    ExpectError("0 click nan 1\n", "line 1",
+                "click: expected a number of pixels within 1e6, got \"nan\"");
+    try {
+        InputScript::Load(Write("0 key " + std::string(100000, 'A') + "\n"));
+        FAIL() << "no error for a long key name";
+    } catch (const InputError& e) {
+        EXPECT_LT(std::string(e.what()).size(), 300u);
+    }
+}
+
+// A screenshot over the script itself, or where --record DIR will write a frame, is refused when
+// the script is read: the script had been replaced by the image, the screenshot by the frame.
+TEST(InputScript, ScreenshotsOverTheScriptOrARecordedFrameAreRefused) {
+    const std::string script = Write("");
+    std::ofstream(script) << "0 screenshot " << script << "\n";
+    EXPECT_THROW(InputScript::Load(script), InputError);
+    const std::string folder =
+        (std::filesystem::temp_directory_path() / ("rtrt_frames_" + std::to_string(getpid())))
+            .string();
+    const std::string frame = Write("0 screenshot " + folder + "/frame_00000.png\n");
+    try {
+        InputScript::Load(frame, folder);
+        FAIL() << "no error for a screenshot named like a recorded frame";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("written over by a frame of --record"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_NO_THROW(InputScript::Load(Write("0 screenshot " + folder + "/shot.png\n"), folder));
+}
+
+// Events act in frame order whatever the order of their lines: a key pressed again on the frame
+// its first press is released was dropped when its line came first.
+TEST(InputScript, EventsActInFrameOrder) {
+    InputScript script = InputScript::Load(Write("1 key 1\n0 key 1\n"));
+    Input in;
+    int presses = 0;
+    for (int frame = 0; frame < 4; ++frame) {
+        in.BeginFrame();
+        script.Apply(frame, in);
+        presses += in.Pressed(KeyByName("1"));
+    }
+    EXPECT_EQ(presses, 2);
 }
 
 // play --record DIR makes DIR once the window opens: screenshots into it are checked for their

@@ -122,6 +122,13 @@ expect("plus sign", image + ["--max-depth", "+3"], 0, "wrote out.ppm")
 expect("manifest past the frames", play + ["default", "--manifest", "frames/f_0003.ppm"], 0,
        "wrote frames 0 to 2")
 
+# --record DIR holding an earlier recording's frames is refused before a window opens (a shorter
+# recording had left the older one's later frames after its own).
+recorded = os.path.join(WORK, "recorded")
+os.makedirs(recorded)
+open(os.path.join(recorded, "frame_00003.png"), "wb").close()
+expect("record over frames", ["play", "default", "--backend", "cpu", "--record", "recorded"], 2,
+       "--record: recorded: holds frames of an earlier recording (frame_00003.png)")
 expect("report to -", ["bench", "cpu", "--models", "cube", "--output=-"], 2,
        "rtrt writes outputs to files, not to standard output")
 if os.path.exists(os.path.join(WORK, "-")):
