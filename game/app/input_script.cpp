@@ -12,6 +12,7 @@
 #include "engine/core/output_file.h"
 #include "game/app/controls.h"
 #include "game/assets/image_io.h"
+#include "game/assets/video_writer.h"
 
 namespace rtrt {
 namespace {
@@ -55,10 +56,8 @@ bool IsRecordedFrame(const std::string& shot, const std::string& recordFolder) {
     const std::filesystem::path path(shot);
     std::filesystem::path folder = std::filesystem::path(recordFolder).lexically_normal();
     if (!folder.has_filename()) folder = folder.parent_path();  // "DIR/"
-    const std::string name = path.filename().string();
-    return path.parent_path().lexically_normal() == folder && name.size() == 15 &&
-           name.starts_with("frame_") && name.ends_with(".png") &&
-           name.find_first_not_of("0123456789", 6) == 11;
+    return path.parent_path().lexically_normal() == folder &&
+           IsRecordedFrameName(path.filename().string());
 }
 
 // Whether a screenshot goes into the folder that does not exist yet but will (--record DIR).

@@ -97,9 +97,7 @@ class App {
                                                                o_.fps);
                     video_->AddFrame(shown);
                 } else if (!o_.record.empty()) {
-                    char name[32];
-                    std::snprintf(name, sizeof(name), "/frame_%05d.png", recorded_++);
-                    WriteImage(o_.record + name, shown);
+                    WriteImage(o_.record + "/" + RecordedFrameName(recorded_++), shown);
                 }
             }
             Stopwatch stageTimer;

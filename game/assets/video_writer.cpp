@@ -51,12 +51,23 @@ void CheckRecordPath(const std::string& path) {
     // the rest of the older one after its last frame).
     for (const auto& entry : std::filesystem::directory_iterator(path, ec)) {
         const std::string name = entry.path().filename().string();
-        if (name.size() == 15 && name.starts_with("frame_") && name.ends_with(".png") &&
-            name.find_first_not_of("0123456789", 6) == 11)
+        if (IsRecordedFrameName(name))
             throw InputError("--record", path,
                              "holds frames of an earlier recording (" + name +
                                  "): remove them or give another folder");
     }
+}
+
+std::string RecordedFrameName(int frame) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%05d.png", frame);
+    return name;
+}
+
+bool IsRecordedFrameName(const std::string& name) {
+    const size_t digits = name.size() - std::min(name.size(), sizeof("frame_.png") - 1);
+    return digits >= 5 && name.starts_with("frame_") && name.ends_with(".png") &&
+           name.find_first_not_of("0123456789", 6) == 6 + digits;
 }
 
 VideoWriter::VideoWriter(std::string path, uint32_t width, uint32_t height, double fps)

@@ -26,6 +26,11 @@ void CheckVideoPath(const std::string& path);
 // recording's frames. InputError(--record, PATH, reason).
 void CheckRecordPath(const std::string& path);
 
+// The file name of frame N that --record DIR writes: frame_NNNNN.png (more digits past 99999).
+std::string RecordedFrameName(int frame);
+// Whether NAME (a file name, no folder) is one that RecordedFrameName makes.
+bool IsRecordedFrameName(const std::string& name);
+
 class VideoWriter {
   public:
     // A video of WIDTH x HEIGHT at FPS frames per second (odd sizes are padded to even ones).

@@ -84,7 +84,10 @@ TEST(InputScript, ScreenshotsOverTheScriptOrARecordedFrameAreRefused) {
                   std::string::npos)
             << e.what();
     }
+    EXPECT_THROW(InputScript::Load(Write("0 screenshot " + folder + "/frame_123456.png\n"), folder),
+                 InputError);  // past frame 99999 the names grow a digit
     EXPECT_NO_THROW(InputScript::Load(Write("0 screenshot " + folder + "/shot.png\n"), folder));
+    EXPECT_NO_THROW(InputScript::Load(Write("0 screenshot " + folder + "/frame_1.png\n"), folder));
 }
 
 // Events act in frame order whatever the order of their lines: a key pressed again on the frame
