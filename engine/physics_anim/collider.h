@@ -1,5 +1,6 @@
 #pragma once
 // Collision shapes, in the body's frame and in world units (LocalTransform::scale is ignored).
+#include <cmath>
 #include <cstdint>
 
 #include "engine/core/math.h"
@@ -52,6 +53,18 @@ inline float BoundingRadius(const Collider& collider) {
             break;
     }
     return 0.0f;
+}
+
+// Half the extent of the shape on each world axis once turned by ROTATION: the half size of the
+// box that holds it about the body's origin (a plane's is 0; it is kept out of such boxes).
+inline vec3 WorldHalfExtent(const Collider& collider, const glm::mat3& rotation) {
+    if (collider.shape != ColliderShape::kBox) return vec3(collider.radius);
+    const vec3 h = collider.halfExtents;
+    vec3 extent;
+    for (int k = 0; k < 3; ++k)
+        extent[k] = std::fabs(rotation[0][k]) * h.x + std::fabs(rotation[1][k]) * h.y +
+                    std::fabs(rotation[2][k]) * h.z;
+    return extent;
 }
 
 }  // namespace rtrt::physics

@@ -174,16 +174,7 @@ void PhysicsWorld::FindPairs() {
     boxes_.resize(broadBodies_.size());
     ParallelFor(0, broadBodies_.size(), kBodyGrain, boxAffinity_, [&](size_t k) {
         const SimBody& s = bodies_[broadBodies_[k]];
-        vec3 extent(s.collider.radius);
-        if (s.collider.shape == ColliderShape::kBox) {
-            const glm::mat3& r = s.rotation;
-            const vec3 h = s.collider.halfExtents;
-            for (int k = 0; k < 3; ++k) {
-                extent[k] =
-                    std::fabs(r[0][k]) * h.x + std::fabs(r[1][k]) * h.y + std::fabs(r[2][k]) * h.z;
-            }
-        }
-        extent += vec3(Margin(s));
+        const vec3 extent = WorldHalfExtent(s.collider, s.rotation) + vec3(Margin(s));
         boxes_[k] = {s.position - extent, s.position + extent, !s.dynamic};
     });
     sweep_.FindPairs(boxes_, pairs_, broadBodies_);

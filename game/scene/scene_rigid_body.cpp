@@ -24,13 +24,6 @@ constexpr float kMaxBodySpeed = 1e6f;  // per component; the world clamps speeds
 
 bool WithinWorld(vec3 p) { return MaxComponent(glm::abs(p)) <= kMaxBodyCoordinate; }
 
-// Half the extent, on each world axis, of a box of half sides HALF turned by R.
-vec3 AbsoluteExtent(const glm::mat3& r, vec3 half) {
-    vec3 out(0.0f);
-    for (int column = 0; column < 3; ++column) out += glm::abs(r[column]) * half[column];
-    return out;
-}
-
 }  // namespace
 
 void ParseRigidBody(const Json& j, const std::string& path, const std::string& file,
@@ -109,10 +102,7 @@ void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file)
     std::map<float, std::vector<physics::BroadPhaseBox>> together;
     for (const EntityDesc& e : scene.entities) {
         if (!e.body || e.collider.shape == physics::ColliderShape::kPlane) continue;
-        const vec3 half =
-            e.collider.shape == physics::ColliderShape::kSphere
-                ? vec3(e.collider.radius)
-                : AbsoluteExtent(glm::mat3_cast(e.local.rotation), e.collider.halfExtents);
+        const vec3 half = physics::WorldHalfExtent(e.collider, glm::mat3_cast(e.local.rotation));
         together[e.spawnTime].push_back(
             {e.local.translation - half, e.local.translation + half, e.body->mass == 0});
     }
