@@ -30,13 +30,31 @@ void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
     *height = uint32_t(h);
 }
 
-bool ParseFrames(const std::string& text, int* first, int* end) {
+// "N" or "A:B" read into *first and *end, unchecked; false when the text is neither.
+static bool SplitFrames(const std::string& text, int* first, int* end) {
     static const std::regex kRange("([0-9]{1,8})(:([0-9]{1,8}))?");
     std::smatch m;
     if (!std::regex_match(text, m, kRange)) return false;
     *first = m[2].matched ? std::stoi(m[1].str()) : 0;
     *end = m[2].matched ? std::stoi(m[3].str()) : std::stoi(m[1].str());
-    return *first < *end && *end <= 10000000;
+    return true;
+}
+
+bool ParseFrames(const std::string& text, int* first, int* end) {
+    return SplitFrames(text, first, end) && *first < *end && *end <= kMaxFrames;
+}
+
+std::string FramesProblem(const std::string& text) {
+    int first = 0, end = 0;
+    if (text.empty()) return "give the frames: N (0 to N-1) or A:B (A to B-1), e.g. 0:480";
+    if (!SplitFrames(text, &first, &end))
+        return "expected N (frames 0 to N-1) or A:B (frames A to B-1), e.g. 0:480";
+    if (end > kMaxFrames) return "frames end at 10,000,000 at the latest";
+    if (first >= end)
+        return text.find(':') == std::string::npos
+                   ? "N is how many frames: at least 1"
+                   : "A:B renders frames A to B-1, so A must be below B";
+    return "";
 }
 
 namespace {

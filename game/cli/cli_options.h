@@ -46,7 +46,10 @@ void ParseSize(const std::string& text, uint32_t* width, uint32_t* height);
 
 // --frames: "N" means frames 0 to N-1, "A:B" frames A to B-1 (A < B <= 10,000,000); false when
 // malformed.
+inline constexpr int kMaxFrames = 10000000;
 bool ParseFrames(const std::string& text, int* first, int* end);
+// Why ParseFrames refuses TEXT ("" when it takes it): malformed, reversed or beyond kMaxFrames.
+std::string FramesProblem(const std::string& text);
 
 // --exposure EV and --tone-map NAME, over what the scene says (its "colours", "exposure" and
 // "tone_map"); absent, the scene's own.

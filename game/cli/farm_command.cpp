@@ -9,7 +9,6 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -29,6 +28,7 @@
 #include "game/farm/frame_manifest.h"
 #include "game/farm/job_folder.h"
 #include "game/farm/shard_plan.h"
+#include "game/farm/slurm_queue.h"
 #include "game/farm/video_assembly.h"
 #include "game/scene/scene_file.h"
 
@@ -47,10 +47,8 @@ struct FarmOptions {
     int shards = 1, cpusPerTask = 1;
     uint32_t spp = 1;
     double fps = 60.0;
-    bool gpu = false, dryRun = false, local = false;
+    bool gpu = false, dryRun = false, local = false, ignoreQueue = false;
 };
-
-std::string QueueState(const FarmJob& job);
 
 std::string RtrtPath() {
     std::error_code ec;
@@ -123,8 +121,7 @@ FarmJob JobFromOptions(const FarmOptions& o) {
     CheckSlurmField("--time", o.timeLimit);
     FarmFrames& f = job.frames;
     if (!ParseFrames(o.frames, &f.frames.first, &f.frames.end))
-        throw InputError("--frames", o.frames,
-                         "give the frames to render: N (0 to N-1) or A:B (A to B-1), e.g. 0:480");
+        throw InputError("--frames", o.frames, FramesProblem(o.frames));
     std::string scene = ScenePathFor(o.scene);
     std::error_code ec;
     if (fs::exists(scene, ec)) scene = fs::absolute(scene).lexically_normal().string();
@@ -206,6 +203,11 @@ std::string NextScript(const FarmJob& job, const char* kind) {
            ".sbatch";
 }
 
+// sbatch exited 0 without a job id: what it took is unknown, so nothing is undone.
+struct SubmittedUnknown {
+    std::string folder, reason;
+};
+
 // Submits a script with sbatch --parsable: the job id. OutputError naming the job's folder when
 // sbatch fails, ending with what to do instead (next).
 std::string Submit(const std::vector<std::string>& command, const FarmJob& job, const char* what,
@@ -213,12 +215,37 @@ std::string Submit(const std::vector<std::string>& command, const FarmJob& job, 
     std::string output, error;
     const int status = RunProgram(command, &output, {}, &error);
     const std::string id = output.substr(0, output.find_first_of(";\n"));
-    if (status != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+    if (!error.empty())  // it did not start
+        throw OutputError(job.folder, "could not run sbatch (" + error + "); " + next);
+    if (status != 0)
         throw OutputError(job.folder, std::string("sbatch refused the ") + what + " (exit " +
-                                          std::to_string(status) + "; " +
-                                          (error.empty() ? "its message is above" : error) + "); " +
+                                          std::to_string(status) + "; its message is above); " +
                                           next);
+    if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos) {
+        // It exited 0, so it may have taken the job: the folder and its scripts stay for it.
+        throw SubmittedUnknown{
+            job.folder, std::string("sbatch exited 0 but printed no job id for the ") + what +
+                            " (it printed \"" + WithoutControlCharacters(output.substr(0, 200)) +
+                            "\"); it may have been submitted: look for it with squeue --me, "
+                            "scancel it or let it run, then rerun this command"};
+    }
     return id;
+}
+
+// farm.json records what sbatch took; when it cannot be written (a full disk), the error names
+// the job ids, which no rerun could otherwise see.
+void RecordSubmission(const FarmJob& job) {
+    try {
+        WriteFarmJob(job);
+    } catch (const std::exception& e) {
+        const FarmSubmission& s = job.submissions.back();
+        std::string ids = s.renderJob;
+        if (!s.assembleJob.empty()) ids += (ids.empty() ? "" : " ") + s.assembleJob;
+        throw OutputError(job.folder, "Slurm took job " + ids + " (" + SubmissionText(s) +
+                                          "), but farm.json could not record it (" + e.what() +
+                                          "); scancel " + ids +
+                                          ", free some space, and rerun this command");
+    }
 }
 
 int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
@@ -239,7 +266,7 @@ int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks
                            FarmCommandLine(job, " --local"));
             lock.Keep();
             // Recorded at once: --status and the queue check see it even if the assembly fails.
-            WriteFarmJob(job);
+            RecordSubmission(job);
         }
         WriteWholeFile(assembleScript, AssembleScript(job, RtrtPath()), /*durable=*/true);
         submission.assembleJob = Submit(
@@ -252,15 +279,18 @@ int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks
                       " is queued and recorded; once it has ended, rerun this command (or rtrt "
                       "farm --assemble " +
                       ShellQuote(job.folder) + ")");
+    } catch (const SubmittedUnknown& unknown) {
+        lock.Keep();
+        throw OutputError(unknown.folder, unknown.reason);
     } catch (...) {
         if (submission.renderJob.empty())
             UndoStart(started, {renderScript, assembleScript});
         else
-            UndoStart({}, {assembleScript});  // farm.json records the render job
+            UndoStart({}, {assembleScript});  // the render job is recorded, or the error names it
         throw;
     }
     lock.Keep();
-    WriteFarmJob(job);
+    RecordSubmission(job);
     if (!submission.renderJob.empty())
         std::printf("rtrt farm: submitted render job %s (%zu tasks) and assemble job %s after it\n",
                     submission.renderJob.c_str(), tasks.size(), submission.assembleJob.c_str());
@@ -310,12 +340,23 @@ int RunFarm(const FarmOptions& o) {
     if (lock) ReportStaleTemporaries(*lock);
     // Frames of queued tasks are not missing, only unfinished: a second job would render them
     // again and race the first one's assembly.
-    if (const std::string queue = QueueState(job); !queue.empty() && !o.dryRun) {
-        std::fprintf(stderr,
-                     "rtrt: error: %s: its Slurm jobs are still queued (%s); follow them with rtrt "
-                     "farm --status %s, or scancel them, then rerun this command\n",
-                     job.folder.c_str(), queue.c_str(), ShellQuote(job.folder).c_str());
-        return kExitFailure;
+    if (const SlurmQueueState queue = AskSlurmQueue(job); !o.dryRun) {
+        if (!queue.active.empty()) {
+            std::fprintf(stderr,
+                         "rtrt: error: %s: its Slurm jobs are still queued (%s); follow them with "
+                         "rtrt farm --status %s, or scancel them, then rerun this command\n",
+                         job.folder.c_str(), queue.active.c_str(), ShellQuote(job.folder).c_str());
+            return kExitFailure;
+        }
+        if (!queue.known && !o.ignoreQueue) {
+            std::fprintf(stderr,
+                         "rtrt: error: %s: cannot tell whether its Slurm jobs (%s) are still "
+                         "queued: %s; rerun this once squeue works, or, when they have surely "
+                         "ended (scancel them to be sure), with --ignore-queue\n",
+                         job.folder.c_str(), SubmissionText(job.submissions.back()).c_str(),
+                         queue.problem.c_str());
+            return kExitFailure;
+        }
     }
     // A new folder has no manifest: every frame is missing, and there is nothing to report.
     std::error_code ec;
@@ -334,7 +375,7 @@ int RunFarm(const FarmOptions& o) {
         return kExitOk;
     }
     std::vector<std::vector<FrameRange>> tasks = PlanShards(frames, job.scheduling.shards);
-    if (!o.dryRun && !o.local && ProgramOnPath("scontrol"))
+    if (!o.local && ProgramOnPath("scontrol"))
         if (const int most = SlurmMaxArraySize(); most > 0 && tasks.size() > size_t(most)) {
             std::printf(
                 "rtrt farm: the cluster takes arrays of at most %d tasks (MaxArraySize): "
@@ -358,36 +399,6 @@ int RunFarm(const FarmOptions& o) {
     return SubmitToSlurm(job, tasks, *lock);
 }
 
-// Counts of the job's Slurm jobs by state ("2 RUNNING, 1 PENDING"), or "" when none is queued.
-std::string QueueState(const FarmJob& job) {
-    if (job.submissions.empty() || !ProgramOnPath("squeue")) return {};
-    std::string ids;
-    for (const FarmSubmission& s : job.submissions)
-        for (const std::string& id : {s.renderJob, s.assembleJob})
-            if (!id.empty()) ids += (ids.empty() ? "" : ",") + id;
-    std::string output;
-    ChildOptions quiet;
-    quiet.quietStderr = true;
-    if (ids.empty() ||
-        RunProgram({"squeue", "-h", "-r", "-j", ids, "-o", "%j %T"}, &output, quiet) != 0)
-        return {};
-    std::map<std::string, int> states;
-    size_t start = 0;
-    for (size_t end; (end = output.find('\n', start)) != std::string::npos; start = end + 1) {
-        const std::string line = output.substr(start, end - start);
-        // "rtrt-render-NAME RUNNING" counts as "render running".
-        const size_t space = line.rfind(' ');
-        if (space == std::string::npos) continue;
-        std::string state = line.substr(space + 1);
-        for (char& c : state) c = char(std::tolower(static_cast<unsigned char>(c)));
-        ++states[(line.rfind("rtrt-render", 0) == 0 ? "render " : "assemble ") + state];
-    }
-    std::string text;
-    for (const auto& [state, count] : states)
-        text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + state;
-    return text;
-}
-
 int RunStatus(const std::string& folder) {
     const FarmJob job = ReadFarmJob(fs::absolute(folder).lexically_normal().string());
     const FarmFrames& f = job.frames;
@@ -395,19 +406,21 @@ int RunStatus(const std::string& folder) {
                 f.scene.c_str(), RangeText(f.frames).c_str(), f.width, f.height, f.spp,
                 f.backend.c_str());
     const FrameCheck check = CheckAndReport(job);
-    const std::string queue = QueueState(job);
-    std::printf(
-        "rtrt farm: Slurm: %s\n",
-        job.submissions.empty() ? "nothing submitted (rendered with --local)"
-        : queue.empty()
-            ? ("no job queued (last: " + SubmissionText(job.submissions.back()) + ")").c_str()
-            : (queue + " (" + SubmissionText(job.submissions.back()) + ")").c_str());
+    const SlurmQueueState queue = AskSlurmQueue(job);
+    std::string slurm = "nothing submitted";
+    if (!job.submissions.empty()) {
+        const std::string last = SubmissionText(job.submissions.back());
+        slurm = !queue.known ? "cannot tell whether " + last + " still run: " + queue.problem
+                : queue.active.empty() ? "no job queued (last: " + last + ")"
+                                       : queue.active + " (" + last + ")";
+    }
+    std::printf("rtrt farm: Slurm: %s\n", slurm.c_str());
     const bool assembled = Assembled(job);
     std::printf("rtrt farm: video: %s\n",
                 assembled ? (VideoFile(job.folder) + " and " + ContactSheetFile(job.folder)).c_str()
                           : "not made yet");
     if (check.done.size() == size_t(f.frames.Count()) && assembled) return kExitOk;
-    if (queue.empty())
+    if (queue.known && queue.active.empty())
         std::printf("rtrt farm: to finish it: %s\n", FarmCommandLine(job, LocalFlag(job)).c_str());
     return kExitIncomplete;
 }
@@ -474,6 +487,9 @@ void AddFarmCommand(CLI::App& app, int* exitCode) {
                       "Print the batch scripts; write and submit nothing (not with --local)");
     CLI::Option* local =
         cmd->add_flag("--local", o->local, "Run the tasks here, one after another, without Slurm");
+    cmd->add_flag("--ignore-queue", o->ignoreQueue,
+                  "Go on when squeue cannot say whether the folder's Slurm jobs still run (a "
+                  "machine outside the cluster); only once they have surely ended");
     CLI::Option* status =
         cmd->add_option("--status", o->status, "Say what the job in this folder has done");
     CLI::Option* assemble = cmd->add_option(

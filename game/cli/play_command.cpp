@@ -217,10 +217,7 @@ void RunPlay(PlayOptions o) {
         throw InputError("play", "", "--headless plays one scene; give exactly one");
     int first = 0, end = 0;
     if (!ParseFrames(o.frames, &first, &end))
-        throw InputError(
-            "--frames", o.frames,
-            "give the frames to write: N (0 to N-1) or A:B (A to B-1, A < B), e.g. 0:48; "
-            "at most 10,000,000");
+        throw InputError("--frames", o.frames, FramesProblem(o.frames));
     if (o.output.empty())
         throw InputError("--output", "", "give where frames go, e.g. out/frame_%04d.png");
     CheckPattern(o.output);

@@ -165,9 +165,17 @@ void FarmFolderLock::Release() {
     // Before the lock is let go; a run that was waiting for it then finds the file gone
     // (LockedFileIsCurrent) and locks the one in its place.
     std::error_code ec;
-    if (!made_.empty())
-        fs::remove_all(made_, ec);
-    else if (madeLockFile_)
+    if (!made_.empty()) {
+        // The job's folder goes with what this run put into it; the folders above it that this
+        // run made go only while empty: another job's folder may have been made in one since (a
+        // slow sbatch that then refused had taken a sibling job's finished frames with it).
+        fs::path folder = fs::absolute(folder_, ec).lexically_normal();
+        if (folder.filename().empty()) folder = folder.parent_path();
+        fs::remove_all(folder, ec);
+        for (fs::path above = folder.parent_path(); above.string().size() >= made_.size();
+             above = above.parent_path())
+            if (!fs::remove(above, ec)) break;  // not empty: someone else's now
+    } else if (madeLockFile_)
         ::unlink(path_.c_str());
     made_.clear();
     madeLockFile_ = false;

@@ -16,6 +16,18 @@ namespace rtrt {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Whether FOLDER/frames holds anything but the temporaries of unfinished writes.
+bool HoldsFrames(const std::string& folder) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(FramesFolder(folder), ec))
+        if (!ParseTemporaryName(entry.path().filename().string())) return true;
+    return false;
+}
+
+}  // namespace
+
 FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
     *takenUp = false;
     std::error_code ec;
@@ -24,6 +36,10 @@ FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
     if (fs::exists(fs::symlink_status(FarmFile(job.folder), ec))) {
         const FarmJob there = ReadFarmJob(job.folder);
         const std::string difference = FramesDifference(there.frames, job.frames);
+        // A start that never got further (interrupted while sbatch hung) holds nothing the
+        // new settings could spoil: they replace its own.
+        if (!difference.empty() && there.submissions.empty() && !HoldsFrames(job.folder))
+            return job;
         if (!difference.empty())
             throw InputError(job.folder, "",
                              "holds frames of other settings (" + difference +

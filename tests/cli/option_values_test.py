@@ -10,6 +10,7 @@ message, and what must (not) be left behind.
 - bench soak refuses a run that takes fewer than two memory samples; fetch-models refuses a --dir
   that is a file; info reads a scene file of any name; benches take scene names; --traversal
   is refused on the CPU back end; play refuses a manifest or scene named like one of its frames.
+- --frames says why a range is refused (reversed, beyond 10,000,000, empty, malformed).
 
 usage: option_values_test.py RTRT WORK_DIR
 """
@@ -133,6 +134,19 @@ expect("report to -", ["bench", "cpu", "--models", "cube", "--output=-"], 2,
        "rtrt writes outputs to files, not to standard output")
 if os.path.exists(os.path.join(WORK, "-")):
     failures.append("-o - made a file called -")
+
+# --frames says what is wrong with a range, in play and farm alike.
+headless = ["play", "default", "--headless", "--backend", "cpu", "--size", "8x4", "-o", "p%d.ppm"]
+farm = ["farm", "default", "--backend", "cpu", "--size", "8x4", "--dry-run", "-o", "farm_job"]
+for command in (headless, farm):
+    expect(f"{command[0]} reversed frames", command + ["--frames", "9:3"], 2,
+           "A:B renders frames A to B-1, so A must be below B")
+    expect(f"{command[0]} frames beyond the limit", command + ["--frames", "10000001"], 2,
+           "frames end at 10,000,000 at the latest")
+    expect(f"{command[0]} no frames", command + ["--frames", "0"], 2,
+           "N is how many frames: at least 1")
+    expect(f"{command[0]} malformed frames", command + ["--frames", "1-4"], 2,
+           "expected N (frames 0 to N-1) or A:B (frames A to B-1)")
 
 if failures:
     sys.exit("\n\n".join(failures))

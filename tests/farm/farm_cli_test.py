@@ -2,7 +2,8 @@
 """`rtrt farm` without a cluster: the dry run's scripts, the message where Slurm is missing,
 --local renders that equal `rtrt play --headless` byte for byte, a resume that renders only the
 missing and corrupt frames, --status's exit statuses, a folder of other settings (or of no job)
-refused and left as it was, options of two modes refused, and a task that ends with its farm.
+refused and left as it was, options of two modes refused, a task that ends with its farm, and
+a Slurm whose squeue cannot say what is queued (refused, not submitted twice).
 
 usage: farm_cli_test.py RTRT WORK_DIR FORMAT   (FORMAT: png, or ppm where rtrt has no PNG)
 """
@@ -165,6 +166,77 @@ def test_refused_submission(farm):
     check([s.get("render") for s in recorded] == ["4242"] and
           os.listdir(os.path.join(taken, "slurm")) == ["render-1.sbatch"],
           f"a refused assembly keeps the submitted render job recorded ({recorded})")
+
+
+def fake_slurm(folder, sbatch, squeue):
+    """fake_sbatch's bin folder with an squeue that runs squeue (sh) too."""
+    env = fake_sbatch(folder, sbatch)
+    with open(os.path.join(folder, "squeue"), "w") as f:
+        f.write("#!/bin/sh\n" + squeue + "\n")
+    os.chmod(os.path.join(folder, "squeue"), 0o755)
+    return env
+
+
+def test_unknown_queue(farm):
+    """A queue squeue cannot report is no empty queue: no second submission, no false status;
+    ids sbatch took are never lost without a word."""
+    down = "echo 'slurm_load_jobs error: Unable to contact slurm controller' >&2; exit 1"
+    unreachable = fake_slurm(os.path.join(WORK, "down_bin"), 'echo "501;cluster"', down)
+    folder = os.path.join(WORK, "unknown_queue")
+    run(*farm[:-1], folder, env=unreachable)
+    out = run(*farm[:-1], folder, env=unreachable, expect=1)
+    recorded = json.load(open(os.path.join(folder, "farm.json")))["submissions"]
+    check("Unable to contact slurm controller" in out and
+          "cannot tell whether its Slurm jobs (render 501 assemble 501) are still queued" in out and
+          "--ignore-queue" in out and len(recorded) == 1,
+          "a rerun while squeue fails is refused, not submitted a second time")
+    out = run("farm", "--status", folder, env=unreachable, expect=3)
+    check("Slurm: cannot tell whether render 501 assemble 501 still run" in out and
+          "to finish it" not in out, "--status says it cannot tell, and suggests no rerun")
+    missing = fake_sbatch(os.path.join(WORK, "no_squeue_bin"), 'echo "502;cluster"')
+    out = run(*farm[:-1], folder, env=missing, expect=1)
+    check("squeue is not on PATH here" in out, "a machine without squeue cannot tell either")
+    run(*farm[:-1], folder, "--ignore-queue", env=missing)
+    recorded = json.load(open(os.path.join(folder, "farm.json")))["submissions"]
+    check([s["render"] for s in recorded] == ["501", "502"],
+          "--ignore-queue submits once the user says the jobs have ended")
+    # squeue asked about one id at a time fails for a forgotten one: it is always asked two.
+    asked = os.path.join(WORK, "squeue_args")
+    listing = fake_slurm(os.path.join(WORK, "listing_bin"), 'echo "503"',
+                         f'echo "$*" > {asked}; exit 0')
+    single = os.path.join(WORK, "single_id")
+    shutil.copytree(os.path.join(WORK, "job"), single)
+    os.remove(os.path.join(single, "video.mp4"))
+    run(*farm[:-1], single, env=listing)  # every frame done: only the assembly, one id
+    run("farm", "--status", single, env=listing, expect=3)
+    check("-j 503,503 " in open(asked).read(), "a single job id is given to squeue twice")
+
+    # sbatch exited 0 without an id: it may have taken the job, so its script stays.
+    wordy = fake_sbatch(os.path.join(WORK, "wordy_bin"), 'echo "Submitted batch job 777"')
+    folder = os.path.join(WORK, "no_id")
+    out = run(*farm[:-1], folder, env=wordy, expect=1)
+    check('sbatch exited 0 but printed no job id for the render array (it printed "Submitted '
+          'batch job 777' in out and "squeue --me" in out and
+          os.path.exists(os.path.join(folder, "slurm", "render-1.sbatch")),
+          "sbatch's exit 0 without an id is said with its output, and the script stays")
+    # Interrupted while sbatch hangs: the folder holds a start without frames or jobs, which the
+    # corrected command with other settings replaces.
+    interrupting = fake_sbatch(os.path.join(WORK, "interrupting_bin"),
+                               "kill -INT $PPID; sleep 1; exit 1")
+    folder = os.path.join(WORK, "interrupted")
+    run(*farm[:-1], folder, env=interrupting, expect=130)
+    out = run("farm", "--status", folder, expect=3)
+    check("Slurm: nothing submitted\n" in out, "--status of an interrupted start: nothing submitted")
+    other = [("32x18" if a == SIZE else a) for a in farm[:-1]]
+    check("dry run" in run(*other, folder, "--dry-run"),
+          "a start interrupted before any frame or job does not hold the folder to its settings")
+    # farm.json cannot take the id (a folder in its place stands in for a full disk).
+    blocking = fake_sbatch(os.path.join(WORK, "blocking_bin"),
+                           'job=${2%/slurm/*}; /bin/rm "$job/farm.json"; '
+                           '/bin/mkdir "$job/farm.json"; echo 601')
+    out = run(*farm[:-1], os.path.join(WORK, "unrecorded"), env=blocking, expect=1)
+    check("Slurm took job 601 (render 601 assemble -)" in out and "scancel 601" in out,
+          "a submitted id farm.json cannot record is named, with what to do")
 
 
 def test_broken_video(farm):
@@ -471,6 +543,7 @@ def main():
     check("partition: expected a Slurm name" in out, "a partition that is no Slurm name: exit 2")
 
     test_refused_submission(farm)
+    test_unknown_queue(farm)
     test_broken_video(farm)
 
     # A folder that cannot be made (a file in the way) is bad input, exit 2.

@@ -65,6 +65,23 @@ TEST_F(FarmLockTest, NewFoldersGoWhenNothingIsKept) {
     EXPECT_TRUE(Names().empty());
 }
 
+// A run that made a/ for its job a/one and was refused (sbatch said no) after another run had
+// made a/two beside it takes its own folder back, not a/ with the other job in it.
+TEST_F(FarmLockTest, RefusedRunKeepsAFolderAnotherJobWroteIntoSince) {
+    {
+        FarmFolderLock first(folder_ + "/a/one");
+        {
+            FarmFolderLock second(folder_ + "/a/two");
+            second.Keep();
+        }
+        std::ofstream(folder_ + "/a/two/frame_000000.png") << "frame\n";
+        std::ofstream(folder_ + "/a/one/farm.json") << "{}\n";
+    }
+    EXPECT_FALSE(fs::exists(folder_ + "/a/one"));
+    EXPECT_TRUE(fs::exists(folder_ + "/a/two/frame_000000.png"));
+    EXPECT_EQ(Names(), (std::set<std::string>{"a"}));
+}
+
 TEST_F(FarmLockTest, LockFileThatIsAFolderIsBadInputSayingWhatToDo) {
     fs::create_directory(lockFile_);
     try {
