@@ -23,6 +23,19 @@ AccessorView GltfAccessor(const GltfDocument& doc, int index, const std::string&
         doc.Fail(at + ".componentType",
                  "unknown component type " + std::to_string(a.componentType));
     if (a.count == 0) doc.Fail(at + ".count", "must be at least 1");
+    if (a.bufferView == -1) {
+        // No buffer view: every element is zero (glTF 2.0, 5.1.2), e.g. a morph target that
+        // moves no normal. One zero element, read again for each (a stride of 0).
+        static constexpr uint8_t kZeros[64] = {};
+        AccessorView v;
+        v.data = kZeros;
+        v.stride = 0;
+        v.count = a.count;
+        v.componentType = a.componentType;
+        v.components = components;
+        v.normalized = a.normalized;
+        return v;
+    }
     if (a.bufferView < 0 || size_t(a.bufferView) >= model.bufferViews.size())
         doc.Fail(at + ".bufferView",
                  "buffer view " + std::to_string(a.bufferView) + " out of range");

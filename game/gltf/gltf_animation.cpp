@@ -221,7 +221,16 @@ void ReadGltfAnimation(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, 
     // value until the animation's end.
     for (auto& [slot, clip] : clips) {
         Pad(clip, duration);
-        if (clip.Duration() <= 0.0f) continue;  // one key at time 0: a constant pose
+        if (clip.Duration() <= 0.0f) {
+            // Keys at time 0 only (how exporters write a pose): the node's own transform and
+            // weights become that pose. Dropped, the node had stayed at its rest pose.
+            GltfNode& node = asset.nodes[size_t(slot)];
+            physics::SampleClip(clip, 0.0, node.local);
+            const physics::WeightsTrack& w = clip.weights;
+            if (!w.Empty() && w.count == node.morphWeights.size())
+                node.morphWeights.assign(w.values.begin(), w.values.begin() + long(w.count));
+            continue;
+        }
         asset.nodes[size_t(slot)].clip = std::make_shared<const physics::KeyframeClip>(clip);
         asset.summary.animatedNodes++;
     }

@@ -48,7 +48,7 @@ std::string WithoutOptionalFieldErrors(const std::string& err) {
 bool ReadExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                       void*) {
     try {
-        const std::string bytes = ReadInputFile(path);
+        const std::string bytes = ReadAssetFile(path);
         out->assign(bytes.begin(), bytes.end());
         return true;
     } catch (const InputError& e) {

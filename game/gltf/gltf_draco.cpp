@@ -116,7 +116,7 @@ std::string BufferBytes(const std::string& file, const Json& root, size_t index,
     }
     const fs::path path = fs::path(dir.empty() ? "." : dir) / DecodeGltfUri(uri);
     try {
-        return ReadInputFile(path.string());
+        return ReadAssetFile(path.string());
     } catch (const InputError& e) {
         throw InputError(file, field + ".uri", "\"" + path.string() + "\": " + e.Reason());
     }

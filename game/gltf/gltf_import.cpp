@@ -39,11 +39,22 @@ Aabb SceneBounds(const LoadedScene& out) {
         const EntityDesc& e = out.entities[i];
         if (!e.renderable) continue;
         const Aabb b = out.scene.blases[e.blasId]->bounds;
-        for (int corner = 0; corner < 8; ++corner) {
-            const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
-                         (corner & 4) ? b.max.z : b.min.z);
-            bounds.Grow(vec3(worlds[i] * glm::vec4(p, 1.0f)));
+        auto grow = [&](const glm::mat4& toWorld) {
+            for (int corner = 0; corner < 8; ++corner) {
+                const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                             (corner & 4) ? b.max.z : b.min.z);
+                bounds.Grow(vec3(toWorld * glm::vec4(p, 1.0f)));
+            }
+        };
+        if (!e.skin) {
+            grow(worlds[i]);
+            continue;
         }
+        // A skinned vertex is a weighted mean of its joints' transforms of it, all inside the
+        // boxes each joint makes of the mesh's; the skinned node's own transform does not apply
+        // (glTF 2.0, 3.7.3.3): framed by it, the camera had looked elsewhere.
+        for (size_t k = 0; k < e.skin->joints.size(); ++k)
+            grow(worlds[size_t(e.skin->joints[k])] * e.skin->inverseBind[k]);
     }
     return bounds;
 }

@@ -74,8 +74,6 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
     for (size_t i = 0; i < asset.nodes.size(); ++i) {
         const GltfNode& node = asset.nodes[i];
         const int32_t up = node.parent >= 0 ? entity[size_t(node.parent)] : parent;
-        world[i] = (node.parent >= 0 ? world[size_t(node.parent)] : parentWorld) *
-                   physics::ToMatrix(node.local);
         EntityDesc e;
         e.renderable = false;
         e.parent = up;
@@ -90,6 +88,10 @@ std::optional<Camera> InstantiateGltf(const GltfAsset& asset, LoadedScene& out, 
             e.animator = animator;
             e.local = physics::EvaluateAnimator(animator);  // posed at its phase, also at 0
         }
+        // Cameras and lights are placed where the animation has their nodes when the scene
+        // starts, as the meshes are (they do not follow it afterwards).
+        world[i] = (node.parent >= 0 ? world[size_t(node.parent)] : parentWorld) *
+                   physics::ToMatrix(e.local);
         out.entities.push_back(e);
         for (const GltfPrimitive& prim : node.primitives) {
             EntityDesc p;

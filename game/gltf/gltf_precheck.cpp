@@ -415,7 +415,7 @@ std::string ReadWholeFile(const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(path, "", "no such file");
     if (fs::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a glTF file");
-    return ReadInputFile(path);
+    return ReadAssetFile(path);
 }
 
 }  // namespace

@@ -35,6 +35,12 @@ std::vector<glm::mat4> InverseBindMatrices(const GltfDocument& doc, const tinygl
 void ReadGltfSkins(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, GltfAsset& asset) {
     const tinygltf::Model& model = doc.Model();
     asset.skins.resize(model.skins.size());
+    // The skins the scene shown uses: another scene's may have its joints there.
+    std::vector<bool> used(model.skins.size(), false);
+    for (size_t n = 0; n < model.nodes.size(); ++n) {
+        const int skin = model.nodes[n].skin;
+        if (nodeSlot[n] >= 0 && skin >= 0 && size_t(skin) < used.size()) used[size_t(skin)] = true;
+    }
     for (size_t i = 0; i < model.skins.size(); ++i) {
         const tinygltf::Skin& skin = model.skins[i];
         const std::string at = JsonIndexed("skins", i);
@@ -42,12 +48,17 @@ void ReadGltfSkins(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, Gltf
         auto slotOf = [&](int node, const std::string& field) {
             if (node < 0 || size_t(node) >= model.nodes.size())
                 doc.Fail(field, "node " + std::to_string(node) + " out of range");
-            if (nodeSlot[size_t(node)] < 0)
+            if (nodeSlot[size_t(node)] < 0 && used[i])
                 doc.Fail(field, "node " + std::to_string(node) + " is not in the scene shown");
             return nodeSlot[size_t(node)];
         };
         GltfSkin& out = asset.skins[i];
         if (skin.skeleton >= 0) out.skeleton = slotOf(skin.skeleton, at + ".skeleton");
+        if (!used[i]) {  // its fields checked, nothing of it is shown
+            for (size_t j = 0; j < skin.joints.size(); ++j)
+                slotOf(skin.joints[j], JsonIndexed(at + ".joints", j));
+            continue;
+        }
         try {
             out.inverseBind = InverseBindMatrices(doc, skin, at);
         } catch (const GltfUnsupported& u) {

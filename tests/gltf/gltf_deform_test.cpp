@@ -285,6 +285,61 @@ TEST_F(GltfDeformTest, MorphTargetsAtKnownWeights) {
               vec3(1, 0, 0.25f));
 }
 
+// An accessor without a buffer view is all zeros (glTF 2.0, 5.1.2): a target that moves no
+// normal; it had been refused as "buffer view -1 out of range".
+TEST_F(GltfDeformTest, AnAccessorWithoutABufferViewIsZeros) {
+    GltfBuilder b = MorphTriangle(false);
+    b.doc["accessors"].push_back({{"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+    b.doc["meshes"][0]["primitives"][0]["targets"][1]["NORMAL"] = b.doc["accessors"].size() - 1;
+    b.doc["meshes"][0]["primitives"][0]["targets"][0]["NORMAL"] = b.doc["accessors"].size() - 1;
+    const LoadedScene loaded = LoadSceneFile(Save("zero_normals.gltf", b.GltfText()));
+    const DeformableMesh& mesh = *loaded.scene.deformableMeshes.at(0);
+    ASSERT_EQ(mesh.normalDeltas.size(), 6u);
+    for (const vec3& delta : mesh.normalDeltas) EXPECT_EQ(delta, vec3(0.0f));
+    EXPECT_EQ(mesh.positionDeltas.at(0), vec3(0, 0, 1));
+}
+
+// A weights channel of one key sets the node's weights for good; it had been dropped.
+TEST_F(GltfDeformTest, AWeightsChannelOfOneKeyIsTheNodesWeights) {
+    GltfBuilder b = MorphTriangle(false);
+    const int times = b.Floats({0}, "SCALAR", 1);
+    const int values = b.Floats({0.0f, 1.0f}, "SCALAR", 1);
+    b.doc["animations"] = Json::array(
+        {{{"samplers", {{{"input", times}, {"output", values}}}},
+          {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}}}}}});
+    World world(LoadSceneFile(Save("posed_weights.gltf", b.GltfText())));
+    world.Advance(0.5f);
+    // (0, 0, 0) + 0 (0, 0, 1) + 1 (1, 0, 0).
+    EXPECT_EQ(Deformed(world.Scene(), world.Scene().deformations.at(0), 0), vec3(1, 0, 0));
+}
+
+// A skin only another scene of the file uses does not fail the scene shown ("node 1 is not in
+// the scene shown").
+TEST_F(GltfDeformTest, ASkinOfAnotherSceneDoesNotFailTheSceneShown) {
+    GltfBuilder b = TwoBoneCylinder(0.0f, false);
+    const int triangle = b.Floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
+    b.Mesh(triangle);
+    const int plain = b.Node({{"mesh", 1}});
+    b.doc["scenes"] = Json::array({{{"nodes", {plain}}}, {{"nodes", {0, 1}}}});
+    b.doc["scene"] = 0;
+    const LoadedScene loaded = LoadSceneFile(Save("other_scene_skin.gltf", b.GltfText()));
+    EXPECT_TRUE(loaded.scene.deformableMeshes.empty());
+    // The skin's fields are still checked.
+    b.doc["skins"][0]["joints"] = {1, 9};
+    EXPECT_THROW(LoadSceneFile(Save("bad_other_skin.gltf", b.GltfText())), InputError);
+}
+
+// The camera rtrt frames a file without one with looks at the skinned cylinder (around
+// (0, 1, 0)), not at its mesh node's x = 5, which does not place a skinned mesh.
+TEST_F(GltfDeformTest, TheFramingCameraLooksAtASkinnedMeshNotItsNode) {
+    const LoadedScene loaded =
+        LoadSceneFile(Save("framed.gltf", TwoBoneCylinder(0.0f, false).GltfText()));
+    const Camera& c = loaded.scene.camera;
+    const vec3 toCentre = vec3(0, 1, 0) - c.position;
+    EXPECT_NEAR(glm::length(glm::cross(toCentre, glm::normalize(c.forward))), 0.0f, 1e-4f);
+    EXPECT_LT(glm::length(toCentre), 10.0f);  // framed to the cylinder's size (2 tall)
+}
+
 TEST_F(GltfDeformTest, WeightsChannelAnimatesEachInstanceInItsOwnPhase) {
     Save("morph.glb", MorphTriangle(true).Glb());
     const LoadedScene loaded = ParseScene(R"({

@@ -256,6 +256,43 @@ TEST_F(GltfTest, AnimationIsSampledAtKnownTimes) {
     EXPECT_NEAR(glm::length(pointAt(1.0f) - vec3(3, 1, 0)), 0.0f, 1e-4f);
 }
 
+// Keys at time 0 only are a pose (how exporters write one): the node takes it, at the start
+// and after. The channel had been dropped, leaving the node at rest.
+TEST_F(GltfTest, AChannelOfOneKeyPosesItsNode) {
+    GltfBuilder b = test::TwoLevels();
+    const int time = b.Floats({0}, "SCALAR", 1);
+    const int move = b.Floats({0, 4, 2}, "VEC3", 3);
+    b.doc["animations"] = Json::array(
+        {{{"samplers", {{{"input", time}, {"output", move}}}},
+          {"channels", {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}}}});
+    World world(LoadSceneFile(Save("pose.gltf", b.GltfText())));
+    // The child at (0, 4, 2) under the parent: rotated to (2, 4, 0), moved to (3, 4, 0).
+    const vec3 expected(3, 4, 0);
+    EXPECT_NEAR(glm::length(world.Scene().instances[0].ObjectToWorld().Point(vec3(0)) - expected),
+                0.0f, 1e-4f);
+    world.Advance(0.75f);
+    EXPECT_NEAR(glm::length(world.Scene().instances[0].ObjectToWorld().Point(vec3(0)) - expected),
+                0.0f, 1e-4f);
+}
+
+// A camera whose node an animation moves starts where the animation's first pose has it, as
+// the meshes do: (0, 0, 7) under the parent is world (8, 0, 0), not its node's rest (6, 0, 0).
+TEST_F(GltfTest, ACameraStartsAtItsAnimationsFirstPose) {
+    GltfBuilder b = test::TwoLevels();
+    b.doc["cameras"] =
+        Json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}});
+    const int camera = b.Node({{"camera", 0}, {"translation", {0, 0, 5}}});
+    b.doc["nodes"][0]["children"].push_back(camera);
+    const int times = b.Floats({0, 1}, "SCALAR", 1);
+    const int moves = b.Floats({0, 0, 7, 0, 0, 9}, "VEC3", 3);
+    b.doc["animations"] = Json::array(
+        {{{"samplers", {{{"input", times}, {"output", moves}}}},
+          {"channels",
+           {{{"sampler", 0}, {"target", {{"node", camera}, {"path", "translation"}}}}}}}});
+    const LoadedScene loaded = LoadSceneFile(Save("moving_camera.gltf", b.GltfText()));
+    EXPECT_NEAR(glm::length(loaded.scene.camera.position - vec3(8, 0, 0)), 0.0f, 1e-5f);
+}
+
 TEST_F(GltfTest, LightsAndCameraSitOnTheirNodes) {
     GltfBuilder b = test::TwoLevels();
     b.doc["cameras"] =
