@@ -1,10 +1,14 @@
 #include "engine/core/input_file.h"
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <mutex>
+#include <vector>
 
 #include "engine/core/error.h"
 
@@ -17,7 +21,47 @@ std::string SizeText(size_t bytes) {
     return std::to_string(bytes >> 20) + " MiB";
 }
 
+struct AssetFile {
+    dev_t device;
+    ino_t inode;
+    std::string path;
+};
+
+// Read by the loaders of every thread (a window's scene switch, the benches' loads).
+std::mutex& AssetFilesMutex() {
+    static std::mutex mutex;
+    return mutex;
+}
+std::vector<AssetFile>& AssetFiles() {
+    static std::vector<AssetFile> files;
+    return files;
+}
+
 }  // namespace
+
+void RememberAssetFile(const std::string& path) {
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) return;
+    std::lock_guard<std::mutex> lock(AssetFilesMutex());
+    for (const AssetFile& f : AssetFiles())
+        if (f.device == info.st_dev && f.inode == info.st_ino) return;
+    AssetFiles().push_back({info.st_dev, info.st_ino, path});
+}
+
+std::string ReadAssetFile(const std::string& path, size_t maxBytes) {
+    std::string bytes = ReadInputFile(path, maxBytes);
+    RememberAssetFile(path);
+    return bytes;
+}
+
+std::optional<std::string> AssetFileAt(const std::string& path) {
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) return std::nullopt;
+    std::lock_guard<std::mutex> lock(AssetFilesMutex());
+    for (const AssetFile& f : AssetFiles())
+        if (f.device == info.st_dev && f.inode == info.st_ino) return f.path;
+    return std::nullopt;
+}
 
 uintmax_t CheckInputFile(const std::string& path, size_t maxBytes) {
     std::error_code ec;

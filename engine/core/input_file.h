@@ -5,6 +5,7 @@
 // hostile input cannot exhaust memory.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace rtrt {
@@ -16,5 +17,16 @@ uintmax_t CheckInputFile(const std::string& path, size_t maxBytes = kMaxInputFil
 // The file's bytes; InputError(path, "", reason) for a missing, irregular, unreadable or
 // oversized file.
 std::string ReadInputFile(const std::string& path, size_t maxBytes = kMaxInputFileBytes);
+
+// The files a command reads as its scene and assets (scene files, models, a glTF file's buffers
+// and images) are remembered, so that an output naming one is refused (OutputFile) rather than
+// written over: the command line's own check sees only the files it names, not those a scene
+// refers to (`render model.gltf -o texture.png` had replaced the model's texture).
+void RememberAssetFile(const std::string& path);
+// ReadInputFile, remembering the file as an asset.
+std::string ReadAssetFile(const std::string& path, size_t maxBytes = kMaxInputFileBytes);
+// The path an asset file was read under when PATH names the same file (links followed), or
+// nothing.
+std::optional<std::string> AssetFileAt(const std::string& path);
 
 }  // namespace rtrt

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/core/interrupt.h"
 
 namespace rtrt {
@@ -197,6 +198,11 @@ OutputFile::OutputFile(std::string target)
     if (replacing && !S_ISREG(old.st_mode)) {
         throw InputError(target_, "", "is not a regular file (a folder, device, FIFO or socket)");
     }
+    if (replacing)
+        if (const std::optional<std::string> asset = AssetFileAt(file_))
+            throw InputError(target_, "",
+                             "is a file of the scene this command read (" + *asset +
+                                 "), which would be written over; name another file");
     TemporariesLock lock;
     fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd_ < 0) throw OutputError(target_, std::strerror(errno));

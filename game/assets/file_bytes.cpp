@@ -13,10 +13,11 @@
 #include "engine/core/input_file.h"
 
 namespace rtrt {
-std::string ReadPlainFile(const std::string& path) { return ReadInputFile(path); }
+std::string ReadPlainFile(const std::string& path) { return ReadAssetFile(path); }
 
 std::string ReadGzipFile(const std::string& path) {
     CheckInputFile(path, kMaxInputFileBytes);
+    RememberAssetFile(path);
     std::unique_ptr<gzFile_s, int (*)(gzFile)> file(gzopen(path.c_str(), "rb"), &gzclose);
     if (!file) throw InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
     gzbuffer(file.get(), 1 << 18);

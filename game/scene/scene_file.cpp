@@ -484,7 +484,7 @@ LoadedScene LoadSceneFile(const std::string& path) {
     }
     if (std::filesystem::is_directory(path, ec))
         throw InputError(path, "", "is a directory, not a scene file");
-    const std::string text = ReadInputFile(path);
+    const std::string text = ReadAssetFile(path);
     const std::string dir = std::filesystem::path(path).parent_path().string();
     return ParseScene(text, path, dir);
 }

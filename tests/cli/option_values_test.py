@@ -10,6 +10,7 @@ message, and what must (not) be left behind.
 - bench soak refuses a run that takes fewer than two memory samples; fetch-models refuses a --dir
   that is a file; info reads a scene file of any name; benches take scene names; --traversal
   is refused on the CPU back end; play refuses a manifest or scene named like one of its frames.
+- An output naming a file the scene reads (a glTF file's texture) is refused.
 - --frames says why a range is refused (reversed, beyond 10,000,000, empty, malformed).
 
 usage: option_values_test.py RTRT WORK_DIR
@@ -134,6 +135,56 @@ expect("report to -", ["bench", "cpu", "--models", "cube", "--output=-"], 2,
        "rtrt writes outputs to files, not to standard output")
 if os.path.exists(os.path.join(WORK, "-")):
     failures.append("-o - made a file called -")
+
+# An output naming a file the scene reads (a glTF file's texture) is refused, not written over.
+def png_1x1():
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 1, 1, 8, 2, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(b"\x00\xff\x00\x00")) + chunk(b"IEND", b""))
+
+
+def textured_triangle():
+    import base64
+    import json
+    import struct
+    data = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<6f", 0, 0, 1, 0, 0, 1)
+    uri = "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+    return json.dumps({
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1},
+                                    "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+        "textures": [{"source": 0}], "images": [{"uri": "texture.png"}],
+        "buffers": [{"byteLength": len(data), "uri": uri}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36,
+                                                           "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]})
+
+
+with open(os.path.join(WORK, "texture.png"), "wb") as f:
+    f.write(png_1x1())
+with open(os.path.join(WORK, "textured.gltf"), "w") as f:
+    f.write(textured_triangle())
+texture = open(os.path.join(WORK, "texture.png"), "rb").read()
+writes_png = run("render", "default", "--backend", "cpu", "--size", "8x4",
+                 "-o", "probe.png").returncode == 0
+if writes_png:
+    expect("output over a glTF texture",
+           ["render", "textured.gltf", "--backend", "cpu", "--size", "8x4", "-o", "texture.png"],
+           2, "texture.png: is a file of the scene this command read (./texture.png), which "
+              "would be written over")
+    if open(os.path.join(WORK, "texture.png"), "rb").read() != texture:
+        failures.append("the glTF file's texture was written over")
+expect("a glTF file with a texture renders", ["render", "textured.gltf", "--backend", "cpu",
+                                             "--size", "8x4", "-o", "textured.ppm"], 0, "wrote")
 
 # --frames says what is wrong with a range, in play and farm alike.
 headless = ["play", "default", "--headless", "--backend", "cpu", "--size", "8x4", "-o", "p%d.ppm"]
