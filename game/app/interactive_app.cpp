@@ -84,10 +84,7 @@ class App {
                 const Image shown = FrameDisplay::ReadBack(fb.x, fb.y);
                 for (const std::string& path : effects.screenshots) WriteImage(path, shown);
                 if (screenshotKey_) {
-                    const std::string path =
-                        "rtrt-screenshot-" + std::to_string(screenshotCount_++) + ".png";
-                    WriteImage(path, shown);
-                    std::printf("rtrt: wrote %s\n", path.c_str());
+                    TakeScreenshot(shown);
                     screenshotKey_ = false;
                 }
                 if (IsVideoPath(o_.record)) {
@@ -163,6 +160,25 @@ class App {
             return;
         }
         LoadScene(index, std::move(next));
+    }
+
+    // F12: the first rtrt-screenshot-N.png not there yet (an earlier run's stay). A screenshot
+    // that cannot be written (a read-only folder, a full disk) is reported; it had ended the
+    // session and taken its recording with it.
+    void TakeScreenshot(const Image& shown) {
+        std::string path;
+        std::error_code ec;
+        do {
+            path = "rtrt-screenshot-" + std::to_string(screenshotCount_++) + ".png";
+        } while (std::filesystem::exists(std::filesystem::symlink_status(path, ec)));
+        try {
+            WriteImage(path, shown);
+            std::printf("rtrt: wrote %s\n", path.c_str());
+        } catch (const OutputError& e) {
+            std::fprintf(stderr, "rtrt: error: no screenshot: %s\n", e.what());
+        } catch (const InputError& e) {
+            std::fprintf(stderr, "rtrt: error: no screenshot: %s\n", e.what());
+        }
     }
 
     void LoadScene(size_t index, std::unique_ptr<LoadedScene> next = nullptr) {

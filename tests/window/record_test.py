@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """`rtrt play --record out.mp4` in a real window (under Xvfb): the video has every frame shown,
 at the window's size, and each decoded frame matches the frame that `--record DIR` writes for the
-same fixed-step run (H.264 at CRF 18 is lossy: mean absolute error under 2 of 255 per channel).
+same fixed-step run (H.264 at CRF 18 is lossy: mean absolute error under 2 of 255 per channel);
+F12 takes the first free rtrt-screenshot-N.png, leaving an earlier run's.
 
 usage: record_test.py LAUNCHER... -- RTRT WORK_DIR SCENE BACKEND
 """
@@ -68,6 +69,27 @@ def main():
     if worst >= 2.0:
         fail(f"a decoded frame differs from its PNG by {worst:.2f}/255 on average")
     print(f"ok: every decoded frame matches its PNG (worst mean error {worst:.2f}/255)")
+
+    # F12 takes the first free rtrt-screenshot-N.png: an earlier run's file stays.
+    shots = os.path.join(WORK, "shots")
+    os.makedirs(shots)
+    earlier = os.path.join(shots, "rtrt-screenshot-0.png")
+    with open(earlier, "wb") as f:
+        f.write(b"an earlier run's screenshot")
+    script = os.path.join(WORK, "f12.script")
+    with open(script, "w") as f:
+        f.write("2 key F12\n4 quit\n")
+    p = subprocess.run([*LAUNCHER, RTRT, "play", SCENE, "--backend", BACKEND, "--size", f"{W}x{H}",
+                        "--no-vsync", "--script", script], cwd=shots, capture_output=True,
+                       text=True, timeout=300)
+    if p.returncode != 0 or "wrote rtrt-screenshot-1.png" not in p.stdout:
+        fail(f"F12: exit {p.returncode}\n{p.stdout}\n{p.stderr}")
+    if open(earlier, "rb").read() != b"an earlier run's screenshot":
+        fail("F12 wrote over an earlier run's screenshot")
+    with open(os.path.join(shots, "rtrt-screenshot-1.png"), "rb") as f:
+        if f.read(8) != b"\x89PNG\r\n\x1a\n":
+            fail("rtrt-screenshot-1.png is no PNG")
+    print("ok: F12 wrote rtrt-screenshot-1.png beside an earlier run's rtrt-screenshot-0.png")
 
 
 if __name__ == "__main__":
