@@ -1,5 +1,6 @@
 #include "engine/core/content_hash.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -40,6 +41,17 @@ uint64_t HashFile(const std::string& path) {
     while ((got = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0)
         hash.Update(buffer.data(), got);
     if (std::ferror(file.get())) throw InputError(path, "", "read error");
+    return hash.Digest();
+}
+
+uint64_t HashFiles(std::vector<std::string> paths) {
+    if (paths.size() == 1) return HashFile(paths[0]);
+    std::sort(paths.begin(), paths.end());
+    StreamHash hash;
+    for (const std::string& path : paths) {
+        const uint64_t file = HashFile(path);
+        hash.Update(&file, sizeof(file));
+    }
     return hash.Digest();
 }
 

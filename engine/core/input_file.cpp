@@ -63,6 +63,13 @@ std::optional<std::string> AssetFileAt(const std::string& path) {
     return std::nullopt;
 }
 
+std::vector<std::string> AssetFilesRead() {
+    std::lock_guard<std::mutex> lock(AssetFilesMutex());
+    std::vector<std::string> paths;
+    for (const AssetFile& f : AssetFiles()) paths.push_back(f.path);
+    return paths;
+}
+
 uintmax_t CheckInputFile(const std::string& path, size_t maxBytes) {
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace rtrt {
 
@@ -28,5 +29,7 @@ std::string ReadAssetFile(const std::string& path, size_t maxBytes = kMaxInputFi
 // The path an asset file was read under when PATH names the same file (links followed), or
 // nothing.
 std::optional<std::string> AssetFileAt(const std::string& path);
+// The asset files read so far, each once, as they were named when first read.
+std::vector<std::string> AssetFilesRead();
 
 }  // namespace rtrt

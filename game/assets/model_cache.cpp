@@ -7,6 +7,7 @@
 
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/core/timer.h"
 #include "game/assets/mesh_io.h"
 
@@ -101,6 +102,8 @@ MeshModel BuildMeshModel(const std::string& path, const BvhBuildOptions& options
 }
 
 MeshModel LoadMeshModel(const std::string& path, const BvhBuildOptions& options) {
+    // Read from its cache or not, the file is the scene's (a farm job's checksum covers it).
+    RememberAssetFile(path);
     if (IsRtModelPath(path)) {
         MeshModel model;
         Stopwatch timer;

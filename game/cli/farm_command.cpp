@@ -17,6 +17,7 @@
 #include "engine/core/child_process.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/core/output_file.h"
 #include "engine/render_rt/render_settings.h"
 #include "game/assets/image_io.h"
@@ -128,7 +129,10 @@ FarmJob JobFromOptions(const FarmOptions& o) {
     CheckFarmPath("scene", scene);
     const LoadedScene loaded = LoadSceneFile(scene);  // bad scenes fail here, not on the nodes
     f.scene = scene;
-    if (fs::is_regular_file(scene, ec)) f.sceneChecksum = HexDigest(HashFile(scene));
+    // Of the scene file and every file it brought in (models, a glTF file's buffers and
+    // images): a task finds any of them edited.
+    if (const std::vector<std::string> files = AssetFilesRead(); !files.empty())
+        f.sceneChecksum = HexDigest(HashFiles(files));
     f.width = loaded.width.value_or(1280);
     f.height = loaded.height.value_or(720);
     if (!o.size.empty()) ParseSize(o.size, &f.width, &f.height);

@@ -12,6 +12,7 @@
 #include "engine/core/child_process.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
@@ -175,13 +176,16 @@ void RunWindowed(const PlayOptions& o) {
 
 // A farm task plays the scene its job was made from, or nothing: frames of an edited scene
 // would be mixed into the job's video.
+// After the scene is loaded: the checksum of its file and every file it brought in (as rtrt
+// farm takes it) must be the job's.
 void CheckSceneChecksum(const std::string& scene, const std::string& expected) {
     if (expected.empty()) return;
-    const std::string actual = HexDigest(HashFile(scene));
+    const std::string actual = HexDigest(HashFiles(AssetFilesRead()));
     if (actual != expected)
         throw InputError(scene, "",
-                         "changed since its farm job was made (checksum " + actual +
-                             ", the job's " + expected +
+                         "or a file it brings in (a model, a texture) changed since its farm job "
+                         "was made (checksum " +
+                             actual + ", the job's " + expected +
                              "); restore it, or render the new scene as a new job (another -o)");
 }
 
@@ -225,9 +229,8 @@ void RunPlay(PlayOptions o) {
     RefuseFrameOver(o.output, first, end, "the scene file", ScenePathFor(o.scenes[0]));
     CheckImagePath(FramePath(o.output, first));
     if (!o.manifest.empty()) CheckManifestPath(o.manifest);
-    CheckSceneChecksum(o.scenes[0], o.sceneChecksum);
     const LoadedScene loaded = LoadSceneFile(o.scenes[0]);
-    CheckSceneChecksum(o.scenes[0], o.sceneChecksum);  // and it did not change while loading
+    CheckSceneChecksum(o.scenes[0], o.sceneChecksum);
     RenderSettings settings;
     settings.width = loaded.width.value_or(1280);
     settings.height = loaded.height.value_or(720);

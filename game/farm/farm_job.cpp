@@ -171,8 +171,9 @@ std::string FramesDifference(const FarmFrames& there, const FarmFrames& here) {
     };
     differ("scene", there.scene, here.scene);
     if (there.scene == here.scene && there.sceneChecksum != here.sceneChecksum)
-        differences.push_back("the scene file changed since the job started (checksum " +
-                              there.sceneChecksum + " there, " + here.sceneChecksum + " here)");
+        differences.push_back(
+            "the scene or a file it brings in changed since the job started (scene checksum " +
+            there.sceneChecksum + " there, " + here.sceneChecksum + " here)");
     differ("frames", RangeText(there.frames), RangeText(here.frames));
     differ("size", std::to_string(there.width) + "x" + std::to_string(there.height),
            std::to_string(here.width) + "x" + std::to_string(here.height));

@@ -463,8 +463,11 @@ def main():
     # instead of mixing its frames into the job.
     digest = json.load(open(os.path.join(job, "farm.json")))["scene_checksum"]
     scene = os.path.join(WORK, "scene.json")
+    with open(os.path.join(WORK, "tri.obj"), "w") as f:
+        f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
     with open(scene, "w") as f:
-        f.write('{ "background": [0.1, 0.2, 0.3] }\n')
+        f.write('{ "models": { "m": { "type": "mesh", "file": "tri.obj" } },'
+                ' "instances": [ { "model": "m" } ] }\n')
     out = run("play", scene, "--headless", "--frames", "1", "--size", SIZE, "-o",
               os.path.join(WORK, f"c_%d.{FORMAT}"), "--scene-checksum", "0123456789abcdef",
               expect=2)
@@ -473,6 +476,24 @@ def main():
           "play --scene-checksum refuses a scene of another checksum before any frame")
     check(re.fullmatch(r"[0-9a-f]{16}", digest) is not None,
           f"farm.json keeps the scene's checksum ({digest})")
+    # The checksum covers the files the scene brings in: a model edited after the job was made
+    # fails its task too (its frames had been mixed into the job).
+    modelled = os.path.join(WORK, "modelled")
+    run("farm", scene, "--frames", "0:2", "--size", SIZE, "--format", FORMAT, "--dry-run", "-o",
+        modelled)
+    run("farm", scene, "--frames", "0:2", "--size", SIZE, "--format", FORMAT, "--local", "-o",
+        modelled)
+    with open(os.path.join(WORK, "tri.obj"), "a") as f:
+        f.write("v 0 0 1\n")
+    os.remove(frame(modelled, 1))
+    out = run("farm", scene, "--frames", "0:2", "--size", SIZE, "--format", FORMAT, "--local",
+              "-o", modelled, expect=2)
+    check("scene checksum" in out, "a resume after the scene's model was edited is refused")
+    job_digest = json.load(open(os.path.join(modelled, "farm.json")))["scene_checksum"]
+    out = run("play", scene, "--headless", "--frames", "1", "--size", SIZE, "-o",
+              os.path.join(WORK, f"m_%d.{FORMAT}"), "--scene-checksum", job_digest, expect=2)
+    check("or a file it brings in (a model, a texture) changed since its farm job" in out,
+          "a task whose scene's model was edited fails as bad input")
 
     # A hostile farm.json: a FIFO is refused at once instead of waited on; Slurm fields that are
     # not names are refused instead of printed into a command line.

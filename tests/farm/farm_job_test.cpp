@@ -72,7 +72,8 @@ TEST_F(FarmJobTest, DifferencesAreNamed) {
     b.sceneChecksum = "00000000000000bb";
     b.fps = 24000.0 / 1001.0;
     EXPECT_EQ(FramesDifference(a, b),
-              "the scene file changed since the job started (checksum 00000000000000aa there, "
+              "the scene or a file it brings in changed since the job started (scene checksum "
+              "00000000000000aa there, "
               "00000000000000bb here); fps 60 there, 23.976023976023978 here");
 }
 
