@@ -165,6 +165,9 @@ TriangleMesh GltfMeshes::ReadPrimitive(const tinygltf::Primitive& prim, const st
     mesh.positions =
         ReadGltfFloats<3>(doc_, position, at + ".attributes.POSITION", TINYGLTF_TYPE_VEC3);
     const size_t vertices = mesh.positions.size();
+    if (attribute("COLOR_0") >= 0)
+        doc_.Warn("color0", at + ".attributes.COLOR_0: vertex colours are not supported; the "
+                                 "base colour is the material's alone");
     if (const int normal = attribute("NORMAL"); normal >= 0) {
         mesh.normals =
             ReadGltfFloats<3>(doc_, normal, at + ".attributes.NORMAL", TINYGLTF_TYPE_VEC3);

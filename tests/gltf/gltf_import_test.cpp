@@ -256,6 +256,20 @@ TEST_F(GltfTest, AnimationIsSampledAtKnownTimes) {
     EXPECT_NEAR(glm::length(pointAt(1.0f) - vec3(3, 1, 0)), 0.0f, 1e-4f);
 }
 
+// Vertex colours are not shaded: a warning says so, once per file, rather than nothing.
+TEST_F(GltfTest, VertexColoursAreNamedAsUnsupported) {
+    GltfBuilder b = test::TwoLevels();
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] =
+        b.Floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4", 4);
+    ::testing::internal::CaptureStderr();
+    LoadSceneFile(Save("coloured.gltf", b.GltfText()));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("meshes[0].primitives[0].attributes.COLOR_0: vertex colours are not "
+                            "supported"),
+              std::string::npos)
+        << warnings;
+}
+
 // Keys at time 0 only are a pose (how exporters write one): the node takes it, at the start
 // and after. The channel had been dropped, leaving the node at rest.
 TEST_F(GltfTest, AChannelOfOneKeyPosesItsNode) {
