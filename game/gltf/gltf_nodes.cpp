@@ -102,6 +102,31 @@ std::vector<int> Roots(GltfDocument& doc, const std::vector<int>& parentOf) {
     return roots;
 }
 
+// The rotation of a basis with zero-length axes (LENGTHS): the others normalised, the missing
+// ones made perpendicular to them, right-handed.
+glm::quat CompletedRotation(const glm::mat3& basis, const vec3& lengths) {
+    glm::mat3 axes(1.0f);
+    int kept = 0, only = 0;
+    for (int c = 0; c < 3; ++c)
+        if (lengths[c] > 0.0f) {
+            axes[c] = basis[c] / lengths[c];
+            ++kept;
+            only = c;
+        }
+    if (kept == 0) return glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+    if (kept == 1) {
+        const vec3 a = axes[only];
+        const vec3 helper = std::fabs(a.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0);
+        axes[(only + 1) % 3] = glm::normalize(glm::cross(a, helper));
+        axes[(only + 2) % 3] = glm::cross(a, axes[(only + 1) % 3]);
+    } else {
+        for (int c = 0; c < 3; ++c)
+            if (!(lengths[c] > 0.0f))
+                axes[c] = glm::normalize(glm::cross(axes[(c + 1) % 3], axes[(c + 2) % 3]));
+    }
+    return glm::normalize(glm::quat_cast(axes));
+}
+
 // A node matrix as translation, rotation and scale (rtrt's LocalTransform); a shear is lost,
 // with a warning.
 physics::LocalTransform Decompose(GltfDocument& doc, const std::vector<double>& m,
@@ -113,8 +138,12 @@ physics::LocalTransform Decompose(GltfDocument& doc, const std::vector<double>& 
     t.translation = vec3(matrix[3]);
     glm::mat3 basis(matrix);
     t.scale = vec3(glm::length(basis[0]), glm::length(basis[1]), glm::length(basis[2]));
-    if (!(t.scale.x > 0.0f && t.scale.y > 0.0f && t.scale.z > 0.0f))
-        doc.Fail(field, "the matrix is singular (a zero scale)");
+    if (!(t.scale.x > 0.0f && t.scale.y > 0.0f && t.scale.z > 0.0f)) {
+        // A zero scale (what hides a node, as "scale": [0, 0, 0] does): the rotation is made
+        // of the axes left, completed to a right-handed basis.
+        t.rotation = CompletedRotation(basis, t.scale);
+        return t;
+    }
     if (glm::determinant(basis) < 0.0f) t.scale.x = -t.scale.x;
     for (int c = 0; c < 3; ++c) basis[c] /= t.scale[c];
     const float shear = std::fabs(glm::dot(basis[0], basis[1])) +

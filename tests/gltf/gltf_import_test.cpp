@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.h"
+#include "engine/physics_anim/transform.h"
 #include "engine/render_rt/renderer.h"
 #include "game/gltf/gltf_meshes.h"
 #include "game/runtime/world.h"
@@ -254,6 +255,26 @@ TEST_F(GltfTest, AnimationIsSampledAtKnownTimes) {
     EXPECT_NEAR(glm::length(pointAt(1.0f) - vec3(7, 9, 0)), 0.0f, 1e-4f);
     // t = 2.5 loops to 0.5.
     EXPECT_NEAR(glm::length(pointAt(1.0f) - vec3(3, 1, 0)), 0.0f, 1e-4f);
+}
+
+// A matrix with a zero scale is taken as TRS with that scale (it had been refused as singular,
+// while "scale": [0, 0, 0] was not): the axes left keep their directions.
+TEST_F(GltfTest, AMatrixWithAZeroScaleIsItsTrs) {
+    GltfBuilder b = test::TwoLevels();
+    b.doc["nodes"][1].erase("translation");
+    b.doc["nodes"][1].erase("scale");
+    // Scale (2, 0, 1), rotation x -> y, y -> z, z -> x, translation (0, 0, 2).
+    const std::vector<float> m = {0, 2, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 2, 1};
+    b.doc["nodes"][1]["matrix"] = m;
+    const LoadedScene loaded = LoadSceneFile(Save("flat.gltf", b.GltfText()));
+    const glm::mat4 local = physics::ToMatrix(loaded.entities.at(1).local);
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            EXPECT_NEAR(local[c][r], m[size_t(c * 4 + r)], 1e-6f) << "column " << c << " row " << r;
+    b.doc["nodes"][1]["matrix"] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 5, 0, 0, 1};
+    const LoadedScene hidden = LoadSceneFile(Save("hidden.gltf", b.GltfText()));
+    EXPECT_EQ(hidden.entities.at(1).local.scale, vec3(0.0f));
+    EXPECT_EQ(hidden.entities.at(1).local.translation, vec3(5, 0, 0));
 }
 
 // Vertex colours are not shaded: a warning says so, once per file, rather than nothing.
