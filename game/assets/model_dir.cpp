@@ -16,6 +16,9 @@ std::string InstalledShareDir() {
 std::string ModelDir() {
     if (const char* env = std::getenv("RTRT_MODEL_DIR"); env && *env) return env;
     if (InstalledShareDir().empty()) return RTRT_DEFAULT_MODEL_DIR;
+#ifdef RTRT_CONFIGURED_MODEL_DIR
+    return RTRT_CONFIGURED_MODEL_DIR;
+#endif
     if (const char* data = std::getenv("XDG_DATA_HOME"); data && *data)
         return std::string(data) + "/rtrt/models";
     const char* home = std::getenv("HOME");

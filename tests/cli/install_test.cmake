@@ -31,6 +31,20 @@ function(run expected_status)
     set(stderr "${stderr}" PARENT_SCOPE)
 endfunction()
 
+# The installed rtrt starts wherever the build tree's does, without the dynamic linker's cache
+# (where the CUDA toolkit's folder is registered on this machine, but need not be elsewhere): the
+# install kept the run path to libcudart.
+set(loader /lib64/ld-linux-x86-64.so.2)
+if(EXISTS ${loader})
+    execute_process(COMMAND ${loader} --inhibit-cache ${BUILD_DIR}/game/rtrt --version
+        RESULT_VARIABLE built OUTPUT_QUIET ERROR_QUIET)
+    execute_process(COMMAND ${loader} --inhibit-cache ${RTRT} --version
+        RESULT_VARIABLE installed OUTPUT_QUIET ERROR_VARIABLE stderr)
+    if(built EQUAL 0 AND NOT installed EQUAL 0)
+        message(FATAL_ERROR "the installed rtrt does not start without ld.so.cache: ${stderr}")
+    endif()
+endif()
+
 # A scene without fetched models, by name, from the installed scenes.
 run(0 render reflective_sphere -o sphere.ppm --size 32x18 --backend cpu)
 if(NOT EXISTS ${WORK_DIR}/elsewhere/sphere.ppm)
