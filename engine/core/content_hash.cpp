@@ -46,12 +46,13 @@ uint64_t HashFile(const std::string& path) {
 
 uint64_t HashFiles(std::vector<std::string> paths) {
     if (paths.size() == 1) return HashFile(paths[0]);
-    std::sort(paths.begin(), paths.end());
+    std::vector<uint64_t> files;
+    for (const std::string& path : paths) files.push_back(HashFile(path));
+    // Sorted by value, not by path: the same files under other folders (a node's own copy of
+    // the models) give the same hash.
+    std::sort(files.begin(), files.end());
     StreamHash hash;
-    for (const std::string& path : paths) {
-        const uint64_t file = HashFile(path);
-        hash.Update(&file, sizeof(file));
-    }
+    hash.Update(files.data(), files.size() * sizeof(uint64_t));
     return hash.Digest();
 }
 

@@ -30,8 +30,8 @@ class StreamHash {
 // Hash of a file's bytes; InputError (file, "", reason) when it cannot be read.
 uint64_t HashFile(const std::string& path);
 
-// One hash of several files' bytes, whatever the order given (they are sorted by path): a lone
-// file's is its HashFile. InputError naming a file that cannot be read.
+// One hash of several files' bytes, whatever their order and paths (the files' hashes are
+// sorted): a lone file's is its HashFile. InputError naming a file that cannot be read.
 uint64_t HashFiles(std::vector<std::string> paths);
 
 // 16 lowercase hex digits.

@@ -21,10 +21,20 @@ std::string SizeText(size_t bytes) {
     return std::to_string(bytes >> 20) + " MiB";
 }
 
+// A file as it was when read: a file system reuses a removed file's inode number at once (an
+// editor that saves by renaming a new file over the old), so its size and change time tell the
+// file read from another that took its number since.
 struct AssetFile {
     dev_t device;
     ino_t inode;
+    off_t size;
+    timespec changed;
     std::string path;
+
+    bool Is(const struct stat& info) const {
+        return device == info.st_dev && inode == info.st_ino && size == info.st_size &&
+               changed.tv_sec == info.st_ctim.tv_sec && changed.tv_nsec == info.st_ctim.tv_nsec;
+    }
 };
 
 // Read by the loaders of every thread (a window's scene switch, the benches' loads).
@@ -43,9 +53,13 @@ void RememberAssetFile(const std::string& path) {
     struct stat info {};
     if (::stat(path.c_str(), &info) != 0) return;
     std::lock_guard<std::mutex> lock(AssetFilesMutex());
-    for (const AssetFile& f : AssetFiles())
-        if (f.device == info.st_dev && f.inode == info.st_ino) return;
-    AssetFiles().push_back({info.st_dev, info.st_ino, path});
+    for (AssetFile& f : AssetFiles())
+        if (f.device == info.st_dev && f.inode == info.st_ino) {
+            // Read again (a window's scene switch), or another file with its number: as now.
+            if (!f.Is(info)) f = {info.st_dev, info.st_ino, info.st_size, info.st_ctim, path};
+            return;
+        }
+    AssetFiles().push_back({info.st_dev, info.st_ino, info.st_size, info.st_ctim, path});
 }
 
 std::string ReadAssetFile(const std::string& path, size_t maxBytes) {
@@ -59,7 +73,7 @@ std::optional<std::string> AssetFileAt(const std::string& path) {
     if (::stat(path.c_str(), &info) != 0) return std::nullopt;
     std::lock_guard<std::mutex> lock(AssetFilesMutex());
     for (const AssetFile& f : AssetFiles())
-        if (f.device == info.st_dev && f.inode == info.st_ino) return f.path;
+        if (f.Is(info)) return f.path;
     return std::nullopt;
 }
 

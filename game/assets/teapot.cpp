@@ -28,7 +28,7 @@ constexpr uintmax_t kMaxFileBytes = uintmax_t{16} << 20;
 // Control point (row, column) is points[4 * row + column]; u runs along a row, v along a column.
 using Patch = std::array<vec3, kPointsPerPatch>;
 
-std::string ReadTextFile(const std::string& path) { return ReadInputFile(path, kMaxFileBytes); }
+std::string ReadTextFile(const std::string& path) { return ReadAssetFile(path, kMaxFileBytes); }
 
 // Blanks out // and /* */ comments and string literals, so that nothing inside them counts.
 std::string BlankCommentsAndStrings(std::string text) {

@@ -227,9 +227,12 @@ std::string Submit(const std::vector<std::string>& command, const FarmJob& job, 
                                           next);
     if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos) {
         // It exited 0, so it may have taken the job: the folder and its scripts stay for it.
+        std::string printed = output.substr(0, 200);
+        while (!printed.empty() && std::isspace(static_cast<unsigned char>(printed.back())))
+            printed.pop_back();
         throw SubmittedUnknown{
             job.folder, std::string("sbatch exited 0 but printed no job id for the ") + what +
-                            " (it printed \"" + WithoutControlCharacters(output.substr(0, 200)) +
+                            " (it printed \"" + WithoutControlCharacters(printed) +
                             "\"); it may have been submitted: look for it with squeue --me, "
                             "scancel it or let it run, then rerun this command"};
     }
@@ -284,7 +287,10 @@ int SubmitToSlurm(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks
                       "farm --assemble " +
                       ShellQuote(job.folder) + ")");
     } catch (const SubmittedUnknown& unknown) {
+        // The submission stays recorded, without ids: the folder keeps these settings, and the
+        // rerun's queue check has nothing to ask about, as the message says.
         lock.Keep();
+        RecordSubmission(job);
         throw OutputError(unknown.folder, unknown.reason);
     } catch (...) {
         if (submission.renderJob.empty())
@@ -353,12 +359,14 @@ int RunFarm(const FarmOptions& o) {
             return kExitFailure;
         }
         if (!queue.known && !o.ignoreQueue) {
+            std::string jobs;
+            for (const FarmSubmission& s : job.submissions)
+                jobs += (jobs.empty() ? "" : "; ") + SubmissionText(s);
             std::fprintf(stderr,
                          "rtrt: error: %s: cannot tell whether its Slurm jobs (%s) are still "
                          "queued: %s; rerun this once squeue works, or, when they have surely "
                          "ended (scancel them to be sure), with --ignore-queue\n",
-                         job.folder.c_str(), SubmissionText(job.submissions.back()).c_str(),
-                         queue.problem.c_str());
+                         job.folder.c_str(), jobs.c_str(), queue.problem.c_str());
             return kExitFailure;
         }
     }

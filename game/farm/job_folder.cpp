@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/content_hash.h"
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
 #include "engine/core/media_file_check.h"
@@ -18,12 +19,28 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Whether FOLDER/frames holds anything but the temporaries of unfinished writes.
-bool HoldsFrames(const std::string& folder) {
+// Whether the job's folder holds any work: a frame, a manifest line, the video or the contact
+// sheet (temporaries of unfinished writes aside).
+bool HoldsWork(const std::string& folder) {
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(FramesFolder(folder), ec))
-        if (!ParseTemporaryName(entry.path().filename().string())) return true;
-    return false;
+    for (const std::string& dir : {FramesFolder(folder), ManifestFolder(folder)})
+        for (const auto& entry : fs::directory_iterator(dir, ec))
+            if (!ParseTemporaryName(entry.path().filename().string()) &&
+                !(fs::is_regular_file(entry.path(), ec) && fs::file_size(entry.path(), ec) == 0))
+                return true;
+    return fs::exists(fs::symlink_status(VideoFile(folder), ec)) ||
+           fs::exists(fs::symlink_status(ContactSheetFile(folder), ec));
+}
+
+// The scene file's own checksum ("" where it is none), what jobs made before held.
+std::string SceneFileChecksum(const std::string& scene) {
+    std::error_code ec;
+    if (!fs::is_regular_file(scene, ec)) return "";
+    try {
+        return HexDigest(HashFile(scene));
+    } catch (const InputError&) {
+        return "";
+    }
 }
 
 }  // namespace
@@ -34,12 +51,18 @@ FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
     // Whatever has farm.json's name is read as the job, so that a folder or a FIFO there is
     // refused for what it is.
     if (fs::exists(fs::symlink_status(FarmFile(job.folder), ec))) {
-        const FarmJob there = ReadFarmJob(job.folder);
+        FarmJob there = ReadFarmJob(job.folder);
+        // A job made before the checksum covered the files a scene brings in holds the scene
+        // file's alone: the same scene file is the same job, as it was then.
+        if (there.frames.scene == job.frames.scene &&
+            there.frames.sceneChecksum != job.frames.sceneChecksum &&
+            there.frames.sceneChecksum == SceneFileChecksum(job.frames.scene))
+            there.frames.sceneChecksum = job.frames.sceneChecksum;
         const std::string difference = FramesDifference(there.frames, job.frames);
         // A start that never got further (interrupted while sbatch hung) holds nothing the
-        // new settings could spoil: they replace its own.
-        if (!difference.empty() && there.submissions.empty() && !HoldsFrames(job.folder))
-            return job;
+        // new settings could spoil: they replace its own. A submission, even one whose id is
+        // unknown, pins the folder to its settings.
+        if (!difference.empty() && there.submissions.empty() && !HoldsWork(job.folder)) return job;
         if (!difference.empty())
             throw InputError(job.folder, "",
                              "holds frames of other settings (" + difference +

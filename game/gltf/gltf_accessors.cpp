@@ -25,7 +25,17 @@ AccessorView GltfAccessor(const GltfDocument& doc, int index, const std::string&
     if (a.count == 0) doc.Fail(at + ".count", "must be at least 1");
     if (a.bufferView == -1) {
         // No buffer view: every element is zero (glTF 2.0, 5.1.2), e.g. a morph target that
-        // moves no normal. One zero element, read again for each (a stride of 0).
+        // moves no normal. One zero element, read again for each (a stride of 0). Its count
+        // parallels data the buffers hold (the positions it deltas, say), so that a small file
+        // cannot ask for gigabytes of zeros.
+        uint64_t bytes = 0;
+        for (const tinygltf::Buffer& buffer : model.buffers) bytes += buffer.data.size();
+        if (uint64_t(a.count) > bytes / 4)
+            doc.Fail(at + ".count", std::to_string(a.count) +
+                                        " elements without a buffer view: more than the file's "
+                                        "buffers (" +
+                                        std::to_string(bytes) +
+                                        " bytes) hold of any attribute they could go with");
         static constexpr uint8_t kZeros[64] = {};
         AccessorView v;
         v.data = kZeros;

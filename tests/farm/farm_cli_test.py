@@ -216,9 +216,13 @@ def test_unknown_queue(farm):
     folder = os.path.join(WORK, "no_id")
     out = run(*farm[:-1], folder, env=wordy, expect=1)
     check('sbatch exited 0 but printed no job id for the render array (it printed "Submitted '
-          'batch job 777' in out and "squeue --me" in out and
+          'batch job 777"); it' in out and "squeue --me" in out and
           os.path.exists(os.path.join(folder, "slurm", "render-1.sbatch")),
           "sbatch's exit 0 without an id is said with its output, and the script stays")
+    other = [("32x18" if a == SIZE else a) for a in farm[:-1]]
+    out = run(*other, folder, "--dry-run", expect=2)
+    check("holds frames of other settings" in out,
+          "a submission of unknown id pins the folder to its settings")
     # Interrupted while sbatch hangs: the folder holds a start without frames or jobs, which the
     # corrected command with other settings replaces.
     interrupting = fake_sbatch(os.path.join(WORK, "interrupting_bin"),
@@ -490,9 +494,26 @@ def main():
               "-o", modelled, expect=2)
     check("scene checksum" in out, "a resume after the scene's model was edited is refused")
     job_digest = json.load(open(os.path.join(modelled, "farm.json")))["scene_checksum"]
+    # The same files under other paths (a node's own copy of the models) have the same
+    # checksum, whichever way the paths sort.
+    for models in ("a_models", "zz_models"):
+        os.makedirs(os.path.join(WORK, models))
+        shutil.copy(os.path.join(WORK, "tri.obj"), os.path.join(WORK, models))
+    os.makedirs(os.path.join(WORK, "s"))
+    with open(os.path.join(WORK, "s", "scene.json"), "w") as f:
+        f.write('{ "models": { "m": { "type": "mesh", "file": "@models/tri.obj" } },'
+                ' "instances": [ { "model": "m" } ] }\n')
+
+    def dry_checksum(models):
+        out = run("farm", os.path.join(WORK, "s", "scene.json"), "--frames", "0:2", "--size",
+                  SIZE, "--format", FORMAT, "--dry-run", "-o", os.path.join(WORK, "dry_job"),
+                  env=dict(os.environ, RTRT_MODEL_DIR=os.path.join(WORK, models)))
+        return re.search(r"--scene-checksum ([0-9a-f]{16})", out).group(1)
+    here, there = dry_checksum("a_models"), dry_checksum("zz_models")
+    check(here == there, f"the same model in another folder gives the same checksum ({there})")
     out = run("play", scene, "--headless", "--frames", "1", "--size", SIZE, "-o",
               os.path.join(WORK, f"m_%d.{FORMAT}"), "--scene-checksum", job_digest, expect=2)
-    check("or a file it brings in (a model, a texture) changed since its farm job" in out,
+    check("changed since its farm job was made, or a file it brings in did" in out,
           "a task whose scene's model was edited fails as bad input")
 
     # A hostile farm.json: a FIFO is refused at once instead of waited on; Slurm fields that are

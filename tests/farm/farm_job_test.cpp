@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "game/farm/job_folder.h"
 
 namespace rtrt {
 namespace {
@@ -59,6 +61,29 @@ TEST_F(FarmJobTest, WrittenJobReadsBackEqual) {
     EXPECT_EQ(back.scheduling.cpusPerTask, 4);
     EXPECT_EQ(back.submissions, job.submissions);
     EXPECT_FALSE(fs::exists(folder_ + "/.farm.partial" + std::to_string(::getpid()) + ".json"));
+}
+
+// A job made before the checksum covered the files a scene brings in holds the scene file's
+// own: resumed with the same scene file, it is the same job; with an edited one, it is not.
+TEST_F(FarmJobTest, AJobOfTheSceneFilesOwnChecksumResumes) {
+    const std::string scene = folder_ + "/scene.json";
+    std::ofstream(scene) << "{}\n";
+    FarmJob old;
+    old.folder = folder_ + "/job";
+    fs::create_directories(old.folder);
+    old.frames.scene = scene;
+    old.frames.sceneChecksum = HexDigest(HashFile(scene));
+    old.frames.frames = {0, 4};
+    old.frames.width = old.frames.height = 8;
+    old.submissions = {{"17", "18"}};
+    WriteFarmJob(old);
+    FarmJob now = old;
+    now.submissions.clear();
+    now.frames.sceneChecksum = "00000000000000cc";  // of the scene file and its models
+    bool takenUp = false;
+    EXPECT_EQ(ResumeOrStart(now, &takenUp).submissions, old.submissions);
+    std::ofstream(scene) << "{ }\n";
+    EXPECT_THROW(ResumeOrStart(now, &takenUp), InputError);
 }
 
 TEST_F(FarmJobTest, DifferencesAreNamed) {

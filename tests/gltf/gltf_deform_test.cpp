@@ -297,6 +297,16 @@ TEST_F(GltfDeformTest, AnAccessorWithoutABufferViewIsZeros) {
     ASSERT_EQ(mesh.normalDeltas.size(), 6u);
     for (const vec3& delta : mesh.normalDeltas) EXPECT_EQ(delta, vec3(0.0f));
     EXPECT_EQ(mesh.positionDeltas.at(0), vec3(0, 0, 1));
+    // A count no buffer could parallel is refused (a 600-byte file had asked for 1.6 GB).
+    b.doc["accessors"].back()["count"] = 30000000;
+    try {
+        LoadSceneFile(Save("many_zeros.gltf", b.GltfText()));
+        ADD_FAILURE() << "30,000,000 zero normals were taken";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("30000000 elements without a buffer view"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 // A weights channel of one key sets the node's weights for good; it had been dropped.
