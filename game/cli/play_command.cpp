@@ -40,7 +40,7 @@ struct PlayOptions {
     std::string physicsSolver = "cpu";
     std::string record, script;
     std::string manifest;       // headless: a line per finished frame, with its checksum
-    std::string sceneChecksum;  // headless: the scene file's XXH3-64 must be this
+    std::string sceneChecksum;  // headless: the scene files' checksum (HashFiles) must be this
     bool headless = false;
     bool noVsync = false;
     bool finishStages = false;
@@ -323,8 +323,8 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
                     "Headless: append a line per finished frame to this file (frame, file, "
                     "bytes, XXH3-64 checksum), as rtrt farm's tasks do");
     cmd->add_option("--scene-checksum", options->sceneChecksum,
-                    "Headless: play only if the scene file's XXH3-64 checksum (hex) is this, as "
-                    "rtrt farm's tasks do");
+                    "Headless: play only if the checksum (hex, XXH3-64) of the scene file and "
+                    "every file it brings in is this, as rtrt farm's tasks do");
     cmd->add_option("--record", options->record,
                     "Window: record every frame shown (fixed time step) to a video (.mp4, .mkv, "
                     ".mov: H.264 through ffmpeg) or to DIR/frame_NNNNN.png");
