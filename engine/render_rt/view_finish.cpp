@@ -14,7 +14,7 @@ vec3 HeatColour(float t) {
                                   {0.1f, 0.8f, 0.2f},
                                   {0.95f, 0.9f, 0.1f},
                                   {0.9f, 0.1f, 0.05f}};
-    t = std::clamp(t, 0.0f, 1.0f) * 4.0f;
+    t = (t > 0.0f ? std::min(t, 1.0f) : 0.0f) * 4.0f;  // NaN too is 0: it indexes the stops
     const int i = std::min(int(t), 3);
     return glm::mix(kStops[i], kStops[i + 1], t - float(i));
 }
@@ -51,7 +51,9 @@ void DrawLegend(Image& image, float maxSteps) {
     for (int y = top; y < int(image.height); ++y)
         for (uint32_t x = 0; x < image.width; ++x)
             image.At(x, y) =
-                y < top + barHeight ? HeatColour(float(x) / float(image.width - 1)) : vec3(0.0f);
+                y < top + barHeight
+                    ? HeatColour(image.width > 1 ? float(x) / float(image.width - 1) : 0.0f)
+                    : vec3(0.0f);
     const vec3 white(1.0f);
     const int labelY = top + barHeight + scale;
     const uint32_t maxLabel = uint32_t(maxSteps);

@@ -82,6 +82,15 @@ std::vector<unsigned char> EncodeWithLibrary(const std::string& path, const Imag
 
 }  // namespace
 
+void CheckImageSize(const std::string& path, uint32_t width, uint32_t height) {
+    constexpr uint32_t kWebPMaxSide = 16383;  // the format's 14-bit sizes
+    if (Extension(path) == ".webp" && (width > kWebPMaxSide || height > kWebPMaxSide))
+        throw InputError(path, "",
+                         "WebP images are at most 16383 pixels a side, and this one is " +
+                             std::to_string(width) + "x" + std::to_string(height) +
+                             "; give a smaller --size or another format");
+}
+
 void CheckImageFormat(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))

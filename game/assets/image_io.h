@@ -14,6 +14,9 @@ namespace rtrt {
 void CheckImagePath(const std::string& path);
 // Only the format part of that: an extension rtrt can write, and path no folder.
 void CheckImageFormat(const std::string& path);
+// InputError when the format cannot hold an image of this size (WebP: 16383 pixels a side), so
+// that it fails before the render rather than after.
+void CheckImageSize(const std::string& path, uint32_t width, uint32_t height);
 
 // Writes through a temporary file renamed into place, every write checked: a failure throws
 // OutputError naming PATH with the system's reason and leaves no partial output.

@@ -238,6 +238,7 @@ void RunPlay(PlayOptions o) {
     settings.width = loaded.width.value_or(1280);
     settings.height = loaded.height.value_or(720);
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
+    CheckImageSize(o.output, settings.width, settings.height);
     settings.maxDepth = loaded.scene.maxDepth;
     settings.samplesPerPixel = o.spp;
     Backend backend;

@@ -58,6 +58,7 @@ void RunRender(const RenderOptions& o) {
     settings.width = loaded.width.value_or(1280);
     settings.height = loaded.height.value_or(720);
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
+    CheckImageSize(o.output, settings.width, settings.height);
     settings.maxDepth = o.maxDepth > 0 ? uint32_t(o.maxDepth) : loaded.scene.maxDepth;
     settings.view = ParseView(o.view);
     settings.samplesPerPixel = o.spp;

@@ -2,8 +2,10 @@
 // that links it. Built as a module and loaded by rtrt at the first image that needs it.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -65,13 +67,35 @@ std::vector<unsigned char> EncodeToMemory(const char* path, int32_t width, int32
     return bytes;
 }
 
+// Whether BYTES, written to a scratch file of PATH's extension, read back as a 2x2 image.
+bool DecodesAsTwoByTwo(const char* path, const std::vector<unsigned char>& bytes) {
+    const std::string ext = OIIO::Filesystem::extension(path);
+    std::string scratch = OIIO::Filesystem::temp_directory_path() + "/rtrt-format-XXXXXX" + ext;
+    const int fd = ::mkstemps(scratch.data(), int(ext.size()));
+    if (fd < 0) return true;  // no scratch file: the encoding alone has to do
+    const bool written = ::write(fd, bytes.data(), bytes.size()) == ssize_t(bytes.size());
+    ::close(fd);
+    bool whole = false;
+    if (written) {
+        std::vector<unsigned char> rgb(2 * 2 * 3);
+        auto in = OIIO::ImageInput::open(scratch);
+        whole = in && in->spec().width == 2 && in->spec().height == 2 &&
+                in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data());
+    }
+    ::unlink(scratch.c_str());
+    return whole;
+}
+
 // Whether a small image is encoded whole: a writer OpenImageIO has may still not write into
-// memory (SGI, FITS) or write nothing (the "null" format), which only the encoding itself shows.
+// memory (SGI, FITS), write nothing (the "null" format) or write a file without its pixels (JPEG
+// 2000 into memory: the header boxes alone), which only encoding and decoding it show.
 int CanWrite(const char* path) noexcept {
     try {
         const unsigned char rgb[2 * 2 * 3] = {};
         std::string why;
-        return EncodeToMemory(path, 2, 2, OIIO::TypeDesc::UINT8, rgb, &why).empty() ? 0 : 1;
+        const std::vector<unsigned char> bytes =
+            EncodeToMemory(path, 2, 2, OIIO::TypeDesc::UINT8, rgb, &why);
+        return !bytes.empty() && DecodesAsTwoByTwo(path, bytes) ? 1 : 0;
     } catch (const std::exception&) {
         return 0;
     }

@@ -445,6 +445,12 @@ std::string SceneByName(const std::string& name) {
     for (const std::string& candidate : {name, name + ".json"})
         if (std::filesystem::is_regular_file(dir / candidate, ec))
             return (dir / candidate).string();
+    // rtrt's own glTF models (walker, pbr_showcase...), which an installed rtrt keeps in
+    // share/rtrt/models.
+    const std::filesystem::path models = std::filesystem::path(AssetDir()) / "models";
+    for (const std::string& candidate : {name + ".gltf", name + ".glb"})
+        if (std::filesystem::is_regular_file(models / candidate, ec))
+            return (models / candidate).string();
     return {};
 }
 
@@ -460,6 +466,13 @@ std::string SceneNamesHint(const std::string& name) {
     std::sort(names.begin(), names.end());
     std::string hint = " (scenes by name:";
     for (size_t i = 0; i < names.size(); ++i) hint += (i ? ", " : " ") + names[i];
+    std::vector<std::string> models;
+    for (const auto& entry :
+         std::filesystem::directory_iterator(std::filesystem::path(AssetDir()) / "models", ec))
+        if (entry.path().extension() == ".gltf" || entry.path().extension() == ".glb")
+            models.push_back(entry.path().stem().string());
+    std::sort(models.begin(), models.end());
+    for (size_t i = 0; i < models.size(); ++i) hint += (i ? ", " : "; glTF models: ") + models[i];
     return hint + ")";
 }
 

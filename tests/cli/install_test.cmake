@@ -52,9 +52,11 @@ if(NOT EXISTS ${WORK_DIR}/elsewhere/sphere.ppm)
 endif()
 # A name that is no scene lists the ones there are.
 run(2 render nosuch -o x.ppm)
-if(NOT stderr MATCHES "nosuch: no such file \\(scenes by name: .*teapot_shadow")
+if(NOT stderr MATCHES "nosuch: no such file \\(scenes by name: .*teapot_shadow.*; glTF models: .*walker")
     message(FATAL_ERROR "unexpected message for an unknown scene: ${stderr}")
 endif()
+# rtrt's own glTF models by name, from the installed share/rtrt/models.
+run(0 info walker)
 # No models in the data folder: the scene, the field, the folder and the way out.
 run(2 render teapot_shadow -o teapot.ppm --size 32x18 --backend cpu)
 set(models ${WORK_DIR}/data/rtrt/models)

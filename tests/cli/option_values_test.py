@@ -10,7 +10,9 @@ message, and what must (not) be left behind.
 - bench soak refuses a run that takes fewer than two memory samples; fetch-models refuses a --dir
   that is a file; info reads a scene file of any name; benches take scene names; --traversal
   is refused on the CPU back end; play refuses a manifest or scene named like one of its frames.
-- An output naming a file the scene reads (a glTF file's texture) is refused.
+- An output naming a file the scene reads (a glTF file's texture) is refused; .jp2 (written
+  without its pixels) is refused, WebP beyond 16383 pixels before the render; a 1-pixel-wide
+  heatmap renders (it had crashed).
 - --frames says why a range is refused (reversed, beyond 10,000,000, empty, malformed).
 
 usage: option_values_test.py RTRT WORK_DIR
@@ -183,6 +185,16 @@ if writes_png:
               "would be written over")
     if open(os.path.join(WORK, "texture.png"), "rb").read() != texture:
         failures.append("the glTF file's texture was written over")
+# Formats: one that writes a file without its pixels (JPEG 2000 through OpenImageIO's memory
+# writer: its header boxes alone) is refused up front; WebP's 16383-pixel limit is checked
+# before the render; the heatmap of a 1-pixel-wide image draws its legend.
+if writes_png:
+    expect("jp2", ["render", "default", "--backend", "cpu", "--size", "8x4", "-o", "d.jp2"], 2,
+           "rtrt cannot write .jp2 images")
+    expect("wide webp", ["render", "default", "--backend", "cpu", "--size", "16384x1", "-o",
+                         "w.webp"], 2, "WebP images are at most 16383 pixels a side")
+expect("narrow heatmap", ["render", "default", "--backend", "cpu", "--size", "1x11", "--view",
+                          "heatmap", "-o", "h.ppm"], 0, "wrote h.ppm")
 expect("a glTF file with a texture renders", ["render", "textured.gltf", "--backend", "cpu",
                                              "--size", "8x4", "-o", "textured.ppm"], 0, "wrote")
 
