@@ -189,7 +189,7 @@ CLI::Validator WritableFile() {
 void AddOutputOptions(CLI::App* command, OutputOptions* options) {
     command
         ->add_option("--exposure", options->exposureEv,
-                     "Exposure in EV (stops) over the scene's own, before the tone map")
+                     "Exposure in EV (stops), in place of the scene's own, before the tone map")
         ->check(FiniteRange(-20.0, 20.0));
     command
         ->add_option("--tone-map", options->toneMap,

@@ -342,6 +342,11 @@ int SlurmMaxArraySize() {
 
 int RunFarm(const FarmOptions& o) {
     FarmJob described = JobFromOptions(o);
+    if (described.frames.backend == "cuda" && !described.scheduling.gpu && !o.local)
+        std::fprintf(stderr,
+                     "rtrt farm: warning: --backend cuda without --gpu: the tasks ask Slurm for no "
+                     "GPU, so they run only on nodes whose GPUs any job may use; add --gpu to give "
+                     "each task one\n");
     // Held until the tasks have run (--local) or been submitted; a dry run writes nothing.
     std::optional<FarmFolderLock> lock;
     if (!o.dryRun) lock.emplace(described.folder);

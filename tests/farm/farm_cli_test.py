@@ -300,6 +300,9 @@ def main():
           "2) ranges=\"8:12\"" in out and "--dependency=afterok:RENDER_JOB_ID" in out,
           "dry run prints the render array and the assembly after it")
     check(not os.path.exists(job), "dry run writes nothing")
+    out = run(*farm, "--backend", "cuda", "--dry-run")
+    check("--backend cuda without --gpu: the tasks ask Slurm for no GPU" in out,
+          "CUDA tasks that ask Slurm for no GPU are warned of")
 
     # Without Slurm: said so, with the local command, and nothing written.
     no_slurm = dict(os.environ, PATH="/nonexistent")
