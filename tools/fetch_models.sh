@@ -9,8 +9,9 @@
 set -euo pipefail
 
 repoRoot="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-# Installed (share/rtrt/tools/), the models go where an installed rtrt looks for them, as
-# `rtrt fetch-models` says; in the source tree, to its .cache/models.
+# Installed (share/rtrt/tools/), the models go to the user's data folder, where an installed rtrt
+# built with the default model folder looks (`rtrt fetch-models`, which passes RTRT_MODEL_DIR,
+# also knows a folder given at configure time); in the source tree, to its .cache/models.
 if [ -d "${repoRoot}/scenes" ] && [ ! -d "${repoRoot}/assets" ]; then
     modelDir="${RTRT_MODEL_DIR:-${XDG_DATA_HOME:-${HOME:-.}/.local/share}/rtrt/models}"
 else

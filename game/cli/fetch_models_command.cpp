@@ -58,8 +58,9 @@ void AddFetchModelsCommand(CLI::App& app, int* exitCode) {
         "fetch-models",
         "Fetch the real models the demos use (Stanford dragon, Utah teapot) into the model folder");
     cmd->add_option("--dir", o->dir,
-                    "Folder to fetch into (default: $RTRT_MODEL_DIR, else the user's data folder "
-                    "for an installed rtrt, else the build tree's .cache/models)");
+                    "Folder to fetch into (default: $RTRT_MODEL_DIR, else the folder rtrt was "
+                    "configured with, else the user's data folder for an installed rtrt or the "
+                    "source tree's .cache/models)");
     cmd->callback([o, exitCode] { RunFetchModels(*o, exitCode); });
 }
 

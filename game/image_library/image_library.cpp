@@ -2,7 +2,10 @@
 
 #include <dlfcn.h>
 
+#include <cctype>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <new>
 
 #include "engine/core/error.h"
@@ -105,7 +108,17 @@ const ImageLibraryTable& ImageLibrary(const std::string& file) {
 }
 
 bool CanWriteImageFormat(const std::string& path) {
-    return ImageLibrary(path).canWrite(path.c_str()) != 0;
+    // Asked once per extension and process: the answer costs an encoding and a decoding, and a
+    // headless play asks for every frame.
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    static std::mutex mutex;
+    static std::map<std::string, bool> known;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (const auto it = known.find(ext); it != known.end()) return it->second;
+    const bool writable = ImageLibrary(path).canWrite(path.c_str()) != 0;
+    known[ext] = writable;
+    return writable;
 }
 
 std::vector<unsigned char> EncodeImage(const std::string& path, uint32_t width, uint32_t height,

@@ -2,10 +2,8 @@
 // that links it. Built as a module and loaded by rtrt at the first image that needs it.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -67,23 +65,24 @@ std::vector<unsigned char> EncodeToMemory(const char* path, int32_t width, int32
     return bytes;
 }
 
-// Whether BYTES, written to a scratch file of PATH's extension, read back as a 2x2 image.
-bool DecodesAsTwoByTwo(const char* path, const std::vector<unsigned char>& bytes) {
-    const std::string ext = OIIO::Filesystem::extension(path);
-    std::string scratch = OIIO::Filesystem::temp_directory_path() + "/rtrt-format-XXXXXX" + ext;
-    const int fd = ::mkstemps(scratch.data(), int(ext.size()));
-    if (fd < 0) return true;  // no scratch file: the encoding alone has to do
-    const bool written = ::write(fd, bytes.data(), bytes.size()) == ssize_t(bytes.size());
-    ::close(fd);
-    bool whole = false;
-    if (written) {
-        std::vector<unsigned char> rgb(2 * 2 * 3);
-        auto in = OIIO::ImageInput::open(scratch);
-        whole = in && in->spec().width == 2 && in->spec().height == 2 &&
-                in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data());
-    }
-    ::unlink(scratch.c_str());
-    return whole;
+// Whether IN, opened as NAME, reads a 2x2 image.
+bool ReadsTwoByTwo(OIIO::ImageInput& in, const std::string& name) {
+    OIIO::ImageSpec spec;
+    std::vector<unsigned char> rgb(2 * 2 * 3);
+    return in.open(name, spec) && spec.width == 2 && spec.height == 2 &&
+           in.read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data());
+}
+
+// Whether BYTES, encoded for PATH's format, read back from memory as a 2x2 image. A format
+// whose reader is missing or cannot read from memory is taken on its encoding alone.
+bool DecodesAsTwoByTwo(const char* path, std::vector<unsigned char>& bytes) {
+    const std::string format = OIIO::Filesystem::extension(path, /*include_dot=*/false);
+    // Declared before the reader, which closes through it when destroyed.
+    OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+    auto in = OIIO::ImageInput::create(format);  // by format: a file name would be opened
+    if (!in || !in->supports("ioproxy")) return true;
+    in->set_ioproxy(&memory);
+    return ReadsTwoByTwo(*in, "probe." + format);
 }
 
 // Whether a small image is encoded whole: a writer OpenImageIO has may still not write into
@@ -93,7 +92,7 @@ int CanWrite(const char* path) noexcept {
     try {
         const unsigned char rgb[2 * 2 * 3] = {};
         std::string why;
-        const std::vector<unsigned char> bytes =
+        std::vector<unsigned char> bytes =
             EncodeToMemory(path, 2, 2, OIIO::TypeDesc::UINT8, rgb, &why);
         return !bytes.empty() && DecodesAsTwoByTwo(path, bytes) ? 1 : 0;
     } catch (const std::exception&) {
