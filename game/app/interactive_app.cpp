@@ -174,9 +174,7 @@ class App {
         try {
             WriteImage(path, shown);
             std::printf("rtrt: wrote %s\n", path.c_str());
-        } catch (const OutputError& e) {
-            std::fprintf(stderr, "rtrt: error: no screenshot: %s\n", e.what());
-        } catch (const InputError& e) {
+        } catch (const std::runtime_error& e) {  // OutputError, or InputError (the path)
             std::fprintf(stderr, "rtrt: error: no screenshot: %s\n", e.what());
         }
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <vector>
@@ -454,24 +455,29 @@ std::string SceneByName(const std::string& name) {
     return {};
 }
 
-// " (scenes by name: a, b, ...)" for a bare name, so that a user sees what exists.
-std::string SceneNamesHint(const std::string& name) {
-    if (name.find('/') != std::string::npos) return {};
+// The sorted stems of the files in AssetDir()/FOLDER with one of EXTENSIONS.
+std::vector<std::string> AssetNames(const char* folder,
+                                    std::initializer_list<const char*> extensions) {
     std::error_code ec;
     std::vector<std::string> names;
     for (const auto& entry :
-         std::filesystem::directory_iterator(std::filesystem::path(AssetDir()) / "scenes", ec))
-        if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
-    if (names.empty()) return {};
+         std::filesystem::directory_iterator(std::filesystem::path(AssetDir()) / folder, ec))
+        for (const char* extension : extensions)
+            if (entry.path().extension() == extension)
+                names.push_back(entry.path().stem().string());
     std::sort(names.begin(), names.end());
+    return names;
+}
+
+// " (scenes by name: a, b, ...; glTF models: c, d)" for a bare name, so that a user sees what
+// exists.
+std::string SceneNamesHint(const std::string& name) {
+    if (name.find('/') != std::string::npos) return {};
+    const std::vector<std::string> scenes = AssetNames("scenes", {".json"});
+    if (scenes.empty()) return {};
     std::string hint = " (scenes by name:";
-    for (size_t i = 0; i < names.size(); ++i) hint += (i ? ", " : " ") + names[i];
-    std::vector<std::string> models;
-    for (const auto& entry :
-         std::filesystem::directory_iterator(std::filesystem::path(AssetDir()) / "models", ec))
-        if (entry.path().extension() == ".gltf" || entry.path().extension() == ".glb")
-            models.push_back(entry.path().stem().string());
-    std::sort(models.begin(), models.end());
+    for (size_t i = 0; i < scenes.size(); ++i) hint += (i ? ", " : " ") + scenes[i];
+    const std::vector<std::string> models = AssetNames("models", {".gltf", ".glb"});
     for (size_t i = 0; i < models.size(); ++i) hint += (i ? ", " : "; glTF models: ") + models[i];
     return hint + ")";
 }
