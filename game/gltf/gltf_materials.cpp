@@ -1,6 +1,7 @@
 #include "game/gltf/gltf_materials.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <vector>
 
@@ -9,6 +10,10 @@
 namespace rtrt {
 
 namespace fs = std::filesystem;
+
+// Larger indices are kept at this one: its reflectance differs from 1 by under 4e-6, and the
+// refraction's eta^2 stays finite in float.
+constexpr float kLargestIor = 1e6f;
 
 // glTF's metallic-roughness material as the PBR material it is, with rtrt's Blinn-Phong version of
 // it (the README's table says how) for kernels without PBR.
@@ -50,11 +55,17 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     const float metallic = number(pbr.metallicFactor, "pbrMetallicRoughness.metallicFactor", 0, 1);
     const float roughness =
         number(pbr.roughnessFactor, "pbrMetallicRoughness.roughnessFactor", 0, 1);
-    const float transmission =
+    // KHR_materials_ior: at least 1, or 0, the specular-glossiness compatibility mode: an infinite
+    // index, whose Fresnel term is 1 at every angle, so that nothing is transmitted.
+    const double iorValue = extension("KHR_materials_ior", "ior", 1.5);
+    if (!(iorValue == 0.0 || (iorValue >= 1.0 && std::isfinite(iorValue))))
+        doc_.Fail(at + ".extensions.KHR_materials_ior.ior", "must be 0 or at least 1");
+    const bool infiniteIor = iorValue == 0.0;
+    const float ior = infiniteIor ? kLargestIor : float(std::min(iorValue, double(kLargestIor)));
+    const float transmissionFactor =
         number(extension("KHR_materials_transmission", "transmissionFactor", 0.0),
                "extensions.KHR_materials_transmission.transmissionFactor", 0, 1);
-    const float ior = number(extension("KHR_materials_ior", "ior", 1.5),
-                             "extensions.KHR_materials_ior.ior", 1, 10);
+    const float transmission = infiniteIor ? 0.0f : transmissionFactor;
     const float specularFactor = number(extension("KHR_materials_specular", "specularFactor", 1.0),
                                         "extensions.KHR_materials_specular.specularFactor", 0, 1);
     vec3 specularColour(1.0f);
@@ -88,7 +99,8 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
 
     // Dielectric reflectance at normal incidence from the index of refraction, scaled by
     // KHR_materials_specular; metals reflect their base colour (the glTF BRDF's F0).
-    const float f0Dielectric = ((ior - 1.0f) / (ior + 1.0f)) * ((ior - 1.0f) / (ior + 1.0f));
+    const float f0Dielectric =
+        infiniteIor ? 1.0f : ((ior - 1.0f) / (ior + 1.0f)) * ((ior - 1.0f) / (ior + 1.0f));
     const vec3 f0 = glm::mix(
         glm::min(vec3(f0Dielectric) * specularColour, vec3(1.0f)) * specularFactor, base, metallic);
     const float smooth = (1.0f - roughness) * (1.0f - roughness);

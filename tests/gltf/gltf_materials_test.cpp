@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "engine/core/error.h"
 #include "engine/render_rt/renderer.h"
 #include "game/gltf/gltf_import.h"
 #include "game/scene/scene_file.h"
@@ -107,6 +108,49 @@ TEST_F(GltfTest, MaterialMapping) {
     const uint32_t features = loaded.scene.Features();
     EXPECT_NE(features & kFeaturePbr, 0u);
     EXPECT_NE(features & kFeatureRefraction, 0u);
+}
+
+// KHR_materials_ior takes any index from 1 (a diamond's 2.42, a metal-like 20) and 0, the
+// specular-glossiness mode: an infinite index, reflectance 1 at every angle (times
+// KHR_materials_specular), nothing transmitted; between 0 and 1 it is refused.
+TEST_F(GltfTest, IorBeyondGlassAndItsZeroMode) {
+    auto load = [&](double ior) {
+        GltfBuilder b = test::TwoLevels();
+        b.doc["materials"] = Json::array(
+            {{{"pbrMetallicRoughness", {{"metallicFactor", 0.0}}},
+              {"extensions",
+               {{"KHR_materials_transmission", {{"transmissionFactor", 0.5}}},
+                {"KHR_materials_ior", {{"ior", ior}}},
+                {"KHR_materials_specular", {{"specularColorFactor", {0.5, 1.0, 1.0}}}}}}}});
+        b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+        return LoadSceneFile(Save("ior.gltf", b.GltfText()));
+    };
+    const LoadedScene twenty = load(20.0);
+    const PbrMaterial& p20 = twenty.scene.pbrMaterials[twenty.scene.materials[0].pbrMaterial];
+    EXPECT_FLOAT_EQ(p20.ior, 20.0f);
+    EXPECT_FLOAT_EQ(p20.dielectricF0.y, (19.0f / 21.0f) * (19.0f / 21.0f));
+    EXPECT_EQ(p20.transmission, 0.5f);
+
+    const LoadedScene zero = load(0.0);
+    const Material& m0 = zero.scene.materials[0];
+    const PbrMaterial& p0 = zero.scene.pbrMaterials[m0.pbrMaterial];
+    EXPECT_EQ(p0.dielectricF0, vec3(0.5f, 1.0f, 1.0f));
+    EXPECT_EQ(p0.transmission, 0.0f);
+    EXPECT_EQ(m0.transmissivity, 0.0f);
+    EXPECT_GE(p0.ior, 1e6f);
+    EXPECT_EQ(zero.scene.Features() & kFeatureRefraction, 0u);
+
+    for (const double bad : {0.5, -1.0}) {
+        try {
+            load(bad);
+            ADD_FAILURE() << bad << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(
+                          "materials[0].extensions.KHR_materials_ior.ior: must be 0 or at least 1"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 // The textured quad (nearest, clamped) with a 4 x 4 grey BMP as its image, in a data URI.
