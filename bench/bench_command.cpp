@@ -72,13 +72,27 @@ bool LoadBenchModel(const std::string& name, TriangleMesh* mesh) {
     return true;
 }
 
+std::vector<BenchModel> LoadBenchModels(const std::vector<std::string>& names) {
+    std::vector<BenchModel> models;
+    for (const std::string& name : names) {
+        BenchModel& model = models.emplace_back();
+        model.name = name;
+        Stopwatch timer;
+        TriangleMesh mesh;
+        if (LoadBenchModel(name, &mesh)) model.mesh = std::move(mesh);
+        model.loadMs = timer.Milliseconds();
+    }
+    return models;
+}
+
 CLI::Option* AddModelsOption(CLI::App* command, std::vector<std::string>* models) {
     return command
         ->add_option("--models", *models,
                      "cube, teapot, dragon_res4, dragon_res3, dragon_res2, dragon")
         ->check(CLI::IsMember(
             {"cube", "teapot", "dragon_res4", "dragon_res3", "dragon_res2", "dragon"}))
-        ->delimiter(',');
+        ->delimiter(',')
+        ->capture_default_str();
 }
 
 namespace {
@@ -130,18 +144,18 @@ void RunBench(const BenchOptions& o) {
                 std::thread::hardware_concurrency());
     std::printf("%-12s %10s %-9s %10s %9s %8s | %10s %8s %9s\n", "model", "triangles", "builder",
                 "build ms", "SAH cost", "nodes", "frame ms", "M rays", "M rays/s");
-    for (const std::string& name : o.models) {
-        TriangleMesh mesh;
-        Stopwatch loadTimer;
-        if (!LoadBenchModel(name, &mesh)) {
+    for (const BenchModel& model : LoadBenchModels(o.models)) {
+        const std::string& name = model.name;
+        if (!model.mesh) {
             std::printf("%-12s skipped: model file missing in %s (run rtrt fetch-models)\n",
                         name.c_str(), ModelDir().c_str());
             continue;
         }
+        const TriangleMesh& mesh = *model.mesh;
         nlohmann::json row;
         row["model"] = name;
         row["triangles"] = mesh.indices.size();
-        row["load_ms"] = loadTimer.Milliseconds();
+        row["load_ms"] = model.loadMs;
         std::shared_ptr<const Blas> binned;
         for (const std::string& builderName : o.builders) {
             BvhBuildOptions options;
@@ -197,13 +211,14 @@ void RunGpuBench(const BenchOptions& o) {
     std::printf("rtrt bench gpu: %s\n", report["machine"]["gpu"].get<std::string>().c_str());
     std::printf("%-12s %10s %-9s %10s %10s %8s %9s %10s\n", "model", "triangles", "builder",
                 "median ms", "min ms", "M rays", "G rays/s", "B/tri");
-    for (const std::string& name : o.models) {
-        TriangleMesh mesh;
-        if (!LoadBenchModel(name, &mesh)) {
+    for (const BenchModel& model : LoadBenchModels(o.models)) {
+        const std::string& name = model.name;
+        if (!model.mesh) {
             std::printf("%-12s skipped: model file missing (run rtrt fetch-models)\n",
                         name.c_str());
             continue;
         }
+        const TriangleMesh& mesh = *model.mesh;
         for (const std::string& builderName : o.gpuBuilders) {
             BvhBuildOptions options;
             ParseBuilder(builderName, &options.builder);
@@ -373,6 +388,9 @@ void RunEcsBench(uint32_t count) {
 void AddBenchCommand(CLI::App& app, int* exitCode) {
     CLI::App* bench = app.add_subcommand("bench", "Benchmarks (see README: Benchmarks)");
     bench->require_subcommand(1);
+    // A report's lines are written as they are measured, also into a file or pipe: an interrupt
+    // exits at once (_exit), and would drop the rows a full buffer still held.
+    bench->preparse_callback([](size_t) { std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ); });
     AddConvertBench(*bench, exitCode, &MachineInfo);
     auto options = std::make_shared<BenchOptions>();
     CLI::App* cpu = bench->add_subcommand(
@@ -383,7 +401,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     AddModelsOption(cpu, &options->models);
     cpu->add_option("--builders", options->builders, "binned, sweep, centroid, sbvh")
         ->check(CLI::IsMember({"binned", "sweep", "centroid", "sbvh"}))
-        ->delimiter(',');
+        ->delimiter(',')
+        ->capture_default_str();
     cpu->add_option("-o,--output", options->output, "Write the results as JSON here")
         ->check(WritableFile());
     cpu->callback([options, exitCode] {
@@ -411,7 +430,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         "grid", "GPU: N moving dragon instances, TLAS rebuilt every frame (update, TLAS, trace)");
     gridBench->add_option("--counts", grid->counts, "Instance counts")
         ->delimiter(',')
-        ->check(CLI::Range(1u, 10000000u));
+        ->check(CLI::Range(1u, 10000000u))
+        ->capture_default_str();
     gridBench->add_option("--frames", grid->frames, "Timed frames per count")
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();

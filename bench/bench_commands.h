@@ -2,6 +2,9 @@
 // `rtrt bench` and its subcommands. Each registers itself and sets *exitCode when it runs.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "engine/geometry/triangle_mesh.h"
 #include "game/cli/cli_options.h"
@@ -12,6 +15,15 @@ void AddBenchCommand(CLI::App& app, int* exitCode);
 // Loads a benchmark model of the paper scene (cube, teapot, dragon_res4 .. dragon), fitted to
 // extent 5; false when its file is missing (tools/fetch_models.sh fetches it).
 bool LoadBenchModel(const std::string& name, TriangleMesh* mesh);
+// A benchmark model as LoadBenchModels read it: no mesh when its file is missing.
+struct BenchModel {
+    std::string name;
+    std::optional<TriangleMesh> mesh;
+    double loadMs = 0.0;
+};
+// Every model of a benchmark, read before any is measured: a bad file late in the list fails the
+// command before its work, not after the rows of the models before it.
+std::vector<BenchModel> LoadBenchModels(const std::vector<std::string>& names);
 // The file a benchmark model is read from ("" for the cube, which is made, not read).
 std::string BenchModelFile(const std::string& name);
 // InputError unless at least one of models is there to run: a benchmark of none measures nothing

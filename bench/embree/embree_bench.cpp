@@ -72,13 +72,14 @@ void RunEmbreeBench(const EmbreeBenchOptions& o) {
                 std::thread::hardware_concurrency(), RTC_VERSION_STRING);
     std::printf("%-12s %10s %9s | %10s %10s %10s | %8s %9s %9s\n", "model", "triangles", "build ms",
                 "rtrt ms", "embree ms", "rtrt/emb", "M rays", "diff px", "max lvl");
-    for (const std::string& name : o.models) {
-        TriangleMesh mesh;
-        if (!LoadBenchModel(name, &mesh)) {
+    for (const BenchModel& model : LoadBenchModels(o.models)) {
+        const std::string& name = model.name;
+        if (!model.mesh) {
             std::printf("%-12s skipped: model file missing (run rtrt fetch-models)\n",
                         name.c_str());
             continue;
         }
+        const TriangleMesh& mesh = *model.mesh;
         const RenderScene scene =
             MakePaperScene(std::make_shared<const Blas>(BuildTriangleBlas(mesh)));
         const RenderSettings settings{kPaperWidth, kPaperHeight, kPaperMaxDepth};

@@ -515,6 +515,16 @@ expect_failure(bench_cpu_no_models 2
     bench cpu --models dragon,teapot --frames 1)
 expect_failure(bench_convert_no_models 2 "none of the models asked for is there (dragon_res4)"
     bench convert --models dragon_res4)
+# A bad model late in the list fails the benchmark before any model is measured (the cube's rows
+# were measured, printed and then thrown away with the report).
+file(MAKE_DIRECTORY ${WORK_DIR}/bad_models)
+file(WRITE ${WORK_DIR}/bad_models/dragon_vrip_res3.ply.gz "not a gzip stream\n")
+set(ENV{RTRT_MODEL_DIR} ${WORK_DIR}/bad_models)
+execute_process(COMMAND ${RTRT} bench cpu --models cube,dragon_res3 --builders binned --frames 1
+    RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+if(NOT status EQUAL 2 OR NOT stderr MATCHES "dragon_vrip_res3.ply.gz" OR stdout MATCHES "\ncube ")
+    message(FATAL_ERROR "bench cpu with a bad model after the cube: status ${status}\n${stdout}${stderr}")
+endif()
 set(ENV{RTRT_MODEL_DIR} "${saved_model_dir}")
 
 # info takes what render and play take, a scene's bare name, and says what is wrong with a folder

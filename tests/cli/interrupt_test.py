@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""SIGINT and SIGTERM at random moments under convert, render and play --headless.
+"""SIGINT and SIGTERM at random moments under convert, render and play --headless (and a
+benchmark whose report goes to a file: the rows it printed are kept).
 
 Each command runs once uninterrupted (the reference), then TRIALS times, each in a fresh folder,
 with SIGINT or SIGTERM sent at a random moment of the reference's run time. Every trial must exit
@@ -176,7 +177,37 @@ def main():
                               os.path.join(d, "f_%04d" + EXT)],
                    [f"f_{i:04d}{EXT}" for i in range(frames)])
     interrupt_farm_task()
+    interrupt_report()
     shutil.rmtree(WORK)
+
+
+def interrupt_report():
+    """SIGINT to a benchmark whose report goes to a file: the rows it printed are in the file, as
+    they were before the signal (stdio's full buffer had kept them, and the exit dropped them)."""
+    report = os.path.join(WORK, "report.txt")
+    with open(report, "w") as out:
+        proc = subprocess.Popen([RTRT, "bench", "frame", "default", "demo_physics", "--backend",
+                                 "cpu", "--size", "16x9", "--frames", "20000", "--warmup", "0"],
+                                stdout=out, stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 60
+        while True:
+            with open(report) as f:
+                rows = f.read().splitlines()
+            if any(row.startswith("default ") for row in rows):
+                break
+            if proc.poll() is not None or time.monotonic() > deadline:
+                proc.kill()
+                sys.exit(f"FAIL: bench frame's first row was not in its report while it ran "
+                         f"(exit {proc.wait()}): {rows}")
+            time.sleep(0.01)
+        proc.send_signal(signal.SIGINT)
+        _, stderr = proc.communicate(timeout=30)
+    with open(report) as f:
+        kept = f.read().splitlines()
+    if proc.returncode != 130 or kept[:len(rows)] != rows:
+        sys.exit(f"FAIL: bench frame after SIGINT: exit {proc.returncode}, report {kept} "
+                 f"(had {rows})\n{stderr}")
+    print(f"ok: an interrupted benchmark keeps the {len(rows)} lines of its report")
 
 
 def processes_naming(text):
