@@ -7,6 +7,8 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/bvh/build/bvh_builder.h"
+
 namespace rtrt {
 namespace {
 
@@ -47,6 +49,17 @@ TEST(DynamicTlas, AlwaysRebuildModeRebuildsEveryFrame) {
     DynamicTlas tlas(TlasPolicy::AlwaysRebuild());
     for (int frame = 0; frame < 3; ++frame)
         EXPECT_TRUE(tlas.Update(instances, std::span(&kUnitBox, 1), false).rebuilt);
+}
+
+// A scene with no instance yet (its bodies spawn later): the empty tree costs nothing, frame after
+// frame (its SAH cost recursed into the empty root, its own child, until the stack ran out).
+TEST(DynamicTlas, EmptySceneCostsNothing) {
+    DynamicTlas tlas(TlasPolicy::RefitWhileGood());
+    for (int frame = 0; frame < 3; ++frame) {
+        const TlasUpdateStats stats = tlas.Update({}, std::span(&kUnitBox, 1), frame == 0);
+        EXPECT_EQ(stats.sahCost, 0.0f);
+    }
+    EXPECT_EQ(ComputeStats(BuildLbvh({}, LbvhLeaves::kPrimitiveIds).nodes).nodeCount, 0u);
 }
 
 TEST(DynamicTlas, RefitsWhileQualityHoldsThenRebuilds) {

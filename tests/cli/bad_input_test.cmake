@@ -100,6 +100,16 @@ if(NOT status EQUAL 2 OR NOT stderr MATCHES "--manifest: .*is also the input fil
     message(FATAL_ERROR "play --manifest its own scene: status ${status}: ${stderr}")
 endif()
 
+# A scene with nothing to draw until its spawner's bodies come plays its empty frames (it crashed:
+# the empty TLAS's cost recursed until the stack ran out).
+file(WRITE ${WORK_DIR}/spawn_later.json [=[{ "models": { "b": { "type": "box" } }, "instances": [],
+  "spawners": [ { "model": "b", "time": 0.02, "grid": { "count": [1, 1, 1] } } ] }]=])
+execute_process(COMMAND ${RTRT} play ${WORK_DIR}/spawn_later.json --headless --backend cpu
+    --frames 3 --size 8x8 -o ${WORK_DIR}/later_%d${EXT} RESULT_VARIABLE status ERROR_VARIABLE stderr)
+if(NOT status EQUAL 0 OR NOT EXISTS ${WORK_DIR}/later_2${EXT})
+    message(FATAL_ERROR "play of a scene whose bodies spawn later: status ${status}: ${stderr}")
+endif()
+
 # Bad input found after the manifest's check leaves no empty manifest behind; a frame number in a
 # folder's name is refused before any frame (frame 0 had been written, then frame 1 failed).
 execute_process(COMMAND ${RTRT} play ${WORK_DIR}/own_scene.json --headless --frames 2 --size 0x9

@@ -306,7 +306,9 @@ float SahCost(std::span<const BvhNode> nodes) { return ComputeStats(nodes).sahCo
 
 BvhStats ComputeStats(std::span<const BvhNode> nodes) {
     BvhStats stats;
-    if (nodes.empty() || (nodes[0].IsLeaf() && nodes[0].Bounds().IsEmpty())) return stats;
+    // An empty root, a builder's empty leaf or the LBVH's empty pair (an interior node whose
+    // children are itself and the unused position), holds nothing.
+    if (nodes.empty() || nodes[0].Bounds().IsEmpty()) return stats;
     uint64_t leafPrims = 0;
     stats.minLeafSize = UINT32_MAX;
     AccumulateStats(nodes, 0, 0, nodes[0].Bounds().Area(), &stats, &leafPrims);
