@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <stdexcept>
 
 #include "engine/core/error.h"
 #include "engine/physics_anim/animator.h"
@@ -18,12 +20,42 @@ std::vector<glm::mat4> InitialWorlds(const LoadedScene& out) {
     return worlds;
 }
 
+namespace {
+
+// The entities in the order they appear (the runtime spawns them front to back), those of one
+// time as loaded. Their links to one another (parents, skin joints, the animator of morph
+// weights) are indices, renumbered with them: a glTF spawner's node tree listed after a later
+// spawner moves past that one's bodies.
+void SortBySpawnTime(std::vector<EntityDesc>& entities) {
+    std::vector<uint32_t> order(entities.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return entities[a].spawnTime < entities[b].spawnTime;
+    });
+    std::vector<int32_t> newIndex(entities.size());
+    for (size_t at = 0; at < order.size(); ++at) newIndex[order[at]] = int32_t(at);
+    auto renumber = [&](int32_t& index) {
+        if (index >= 0) index = newIndex[size_t(index)];
+    };
+    std::vector<EntityDesc> sorted;
+    sorted.reserve(entities.size());
+    for (const uint32_t from : order) {
+        EntityDesc& e = sorted.emplace_back(std::move(entities[from]));
+        renumber(e.parent);
+        if (e.skin)
+            for (int32_t& joint : e.skin->joints) renumber(joint);
+        if (e.morph) renumber(e.morph->animator);
+        // A parent appears with its children or before them, so it still comes first.
+        if (e.parent >= int32_t(sorted.size()) - 1)
+            throw std::logic_error("FinishLoadedScene: an entity appears before its parent");
+    }
+    entities = std::move(sorted);
+}
+
+}  // namespace
+
 void FinishLoadedScene(LoadedScene& out, const std::string& file) {
-    // Entities with parents are all of time 0 and come before every spawner's, so the stable
-    // sort moves none of them nor their parents.
-    std::stable_sort(
-        out.entities.begin(), out.entities.end(),
-        [](const EntityDesc& a, const EntityDesc& b) { return a.spawnTime < b.spawnTime; });
+    SortBySpawnTime(out.entities);
     // An animated entity starts posed at its animation's time 0 (the runtime advances the clock
     // before it poses again): its own "position" showed in the first frame, and the second
     // jumped to the animation (demo_glass's orbiting ball).

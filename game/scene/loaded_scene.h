@@ -41,7 +41,7 @@ struct EntityDesc {
     // A skinned deforming instance: its joints, other entities of the scene (World makes them
     // the physics::Skin's joints), one per joint of the mesh's skin.
     struct SkinDesc {
-        std::vector<int32_t> joints;         // LoadedScene::entities indices, each of spawn time 0
+        std::vector<int32_t> joints;         // LoadedScene::entities indices, of its spawn time
         std::vector<glm::mat4> inverseBind;  // one per joint
     };
     std::optional<SkinDesc> skin;

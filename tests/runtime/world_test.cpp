@@ -72,6 +72,33 @@ TEST(World, SameSceneAndFrameCountGiveIdenticalImages) {
               0);
 }
 
+// Entities are ordered by the time they appear, their links (parents, skin joints) renumbered with
+// them: a glTF spawner listed after a later one's plays as when listed first (its node tree moved
+// past the later bodies and kept the old parent indices: the walkers' limbs were tangled).
+TEST(World, SpawnerOrderDoesNotChangeTheScene) {
+    const std::string walkers =
+        R"({ "model": "walker", "grid": { "count": [2, 1, 1], "spacing": 1.5 }, "phase_spread": 1 })";
+    const std::string balls =
+        R"({ "model": "ball", "time": 0.02, "grid": { "count": [3, 1, 1], "spacing": 1 },
+             "position": [0, 3, 0] })";
+    auto scene = [&](const std::string& first, const std::string& second) {
+        return ParseScene(R"({ "camera": { "position": [0, 1, 6], "look_at": [0, 1, 0] },
+          "models": { "walker": { "type": "gltf", "file": "walker.gltf" },
+                      "ball": { "type": "sphere", "radius": 0.2 } },
+          "instances": [], "spawners": [ )" +
+                              first + ", " + second + " ] }",
+                          "order.json", test::SourcePath("assets/models"));
+    };
+    const std::vector<Image> walkersFirst = Play(scene(walkers, balls), 4);
+    const std::vector<Image> ballsFirst = Play(scene(balls, walkers), 4);
+    for (size_t f = 0; f < walkersFirst.size(); ++f) {
+        size_t differ = 0;
+        for (size_t p = 0; p < walkersFirst[f].pixels.size(); ++p)
+            differ += walkersFirst[f].pixels[p] != ballsFirst[f].pixels[p];
+        EXPECT_EQ(differ, 0u) << "frame " << f;
+    }
+}
+
 TEST(World, SpawnersActOnTimeAndBodiesFall) {
     const LoadedScene scene = ParseScene(kPhysics, "physics.json", "");
     World world(scene);
