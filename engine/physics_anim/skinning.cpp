@@ -8,9 +8,17 @@
 
 namespace rtrt::physics {
 
+glm::mat4 SkinnedMeshFrame(const glm::mat4& meshWorld) {
+    glm::mat4 frame(1.0f);
+    frame[3] = glm::vec4(glm::vec3(meshWorld[3]), 1.0f);
+    return frame;
+}
+
 glm::mat4 JointMatrix(const glm::mat4& meshWorld, const glm::mat4& jointWorld,
                       const glm::mat4& inverseBind) {
-    return glm::affineInverse(meshWorld) * jointWorld * inverseBind;
+    glm::mat4 toFrame(1.0f);
+    toFrame[3] = glm::vec4(-glm::vec3(meshWorld[3]), 1.0f);
+    return toFrame * jointWorld * inverseBind;
 }
 
 vec3 SkinnedPosition(vec3 rest, std::span<const uint32_t> joints, std::span<const float> weights,

@@ -251,13 +251,17 @@ uint32_t World::Extract() {
     registry_.EachChanged<physics::WorldTransform>([&](ecs::Entity e, physics::WorldTransform& w) {
         Renderable* r = registry_.Get<Renderable>(e);
         if (!r) return;
+        // A skinned mesh is posed by its joints alone (skinning.h).
+        const glm::mat4 placement = registry_.Get<physics::Skin>(e) != nullptr
+                                        ? physics::SkinnedMeshFrame(w.objectToWorld)
+                                        : w.objectToWorld;
         if (r->instance == UINT32_MAX) {
-            r->instance = scene_.AddInstance(r->blasId, r->materialId, w.objectToWorld);
+            r->instance = scene_.AddInstance(r->blasId, r->materialId, placement);
             instanceOwner_.push_back(e);
             changed_.push_back(r->instance);
         } else {
             Instance& inst = scene_.instances[r->instance];
-            SetTransform(inst, w.objectToWorld);
+            SetTransform(inst, placement);
             changed_.push_back(r->instance);
         }
         ++extracted;

@@ -166,6 +166,32 @@ TEST_F(GltfDeformTest, SkinnedTwoBoneCylinderBendsAsTheClosedFormSays) {
         }
 }
 
+// glTF ignores a skinned mesh node's transform, so one that cannot be inverted (scaled to 0 on one
+// axis or all, or by 1e-20, itself or through its parent) poses the mesh as any other: the mesh
+// had vanished (its instance placed it by that transform and its joints undid it).
+TEST_F(GltfDeformTest, ASkinnedMeshNodeThatCannotBeInvertedIsStillIgnored) {
+    const std::vector<std::pair<std::string, Json>> nodes = {
+        {"zero", {{"scale", {0, 0, 0}}}},
+        {"flat", {{"scale", {1, 0, 1}}}},
+        {"tiny", {{"scale", {1e-20, 1e-20, 1e-20}}}},
+        {"rotated", {{"rotation", {0, 0.7071068, 0, 0.7071068}}, {"scale", {3, 3, 3}}}}};
+    for (const auto& [name, transform] : nodes)
+        for (const bool parented : {false, true}) {
+            GltfBuilder b = TwoBoneCylinder(90.0f, false);
+            Json& mesh = b.doc["nodes"][0];
+            if (parented) {
+                b.Node({{"children", {0}}});
+                b.doc["nodes"][3].update(transform);
+                b.doc["scenes"][0]["nodes"] = {3, 1};
+            } else {
+                mesh.update(transform);
+            }
+            const std::string file = name + (parented ? "_parent" : "") + ".glb";
+            World world(LoadSceneFile(Save(file, b.Glb())));
+            ExpectBentCylinder(world, glm::radians(90.0f), file);
+        }
+}
+
 // glTF makes a skin's inverseBindMatrices optional (identity matrices); Debian's tinygltf 2.7
 // reports it missing, and such a file was refused. With identities the skin matrices are the
 // joints' world transforms: the thigh moves with the hip to z = -3, the shin with the knee one
