@@ -223,8 +223,9 @@ class SceneParser {
             Reserve(f, "", 1);
             out.entities.push_back(ParseEntity(f, out.scene));
             out.entities.back().sourceIndex = uint32_t(i);
-            // A glTF instance may start its file's animation this many seconds in.
-            const float phase = gltf_ ? f.Number("phase", 0.0f) : 0.0f;
+            // A glTF instance may start its file's animation this many seconds in (bounded as
+            // the scene's other times are: at 1e20 the clock no longer advanced).
+            const float phase = gltf_ ? f.InRange("phase", -1e6f, 1e6f, 0.0f) : 0.0f;
             f.Finish();
             if (!gltf_) continue;
             // The instance is the root the glTF scene's nodes hang from; its entities are
@@ -347,7 +348,7 @@ class SceneParser {
         if (f.Has("rain")) f.Fail("rain", "a glTF scene is spawned on a grid, not by rain");
         if (!f.Has("grid")) f.Fail("grid", "a glTF scene is spawned on a grid: give one");
         if (proto.spawnTime != 0.0f) f.Fail("time", "a glTF grid is placed at time 0");
-        const float phase = f.Number("phase", 0.0f);
+        const float phase = f.InRange("phase", -1e6f, 1e6f, 0.0f);
         const float spread = f.InRange("phase_spread", 0.0f, 1e6f, 0.0f);
         const std::vector<vec3> places = GridPlaces(f, proto.local.translation, file_);
         if (places.size() > 100000) f.Fail("grid.count", "at most 100,000 places of a glTF scene");
@@ -364,7 +365,8 @@ class SceneParser {
             const double golden = 0.6180339887498949;
             const double fraction = std::fmod(double(k) * golden, 1.0);
             InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
-                            physics::ToMatrix(root.local), phase + spread * fraction);
+                            physics::ToMatrix(root.local),
+                            float(double(phase) + double(spread) * fraction));
             perPlace = out.entities.size() - before;
         }
     }

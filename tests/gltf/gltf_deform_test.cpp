@@ -434,6 +434,15 @@ TEST_F(GltfDeformTest, GridSpawnerOfAGltfSceneRefusesRainAndLaterTimes) {
     EXPECT_THROW(load(R"({ "model": "m", "grid": { "count": [2, 1, 1] }, "time": 1 })"),
                  InputError);
     EXPECT_THROW(load(R"({ "model": "m" })"), InputError);
+    // Phases are bounded as the scene's other times (at 1e20 the animation clock stood still).
+    EXPECT_THROW(load(R"({ "model": "m", "grid": { "count": [1, 1, 1] }, "phase": 1e20 })"),
+                 InputError);
+    EXPECT_THROW(load(R"({ "model": "m", "grid": { "count": [1, 1, 1] }, "phase": -2e6 })"),
+                 InputError);
+    EXPECT_THROW(ParseScene(R"({ "models": { "m": { "type": "gltf", "file": "morph.glb" } },
+                                 "instances": [ { "model": "m", "phase": 1e20 } ] })",
+                            "scene.json", dir_.string()),
+                 InputError);
 }
 
 struct BadDeform {
