@@ -4,6 +4,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -200,6 +201,7 @@ void ReadGltfAnimation(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, 
     std::map<int32_t, physics::KeyframeClip> clips;
     ChannelReader reader(doc, anim);
     float duration = 0.0f;
+    std::set<std::pair<int, std::string>> targets;
     for (size_t c = 0; c < anim.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = anim.channels[c];
         const std::string at = JsonIndexed("animations[0].channels", c);
@@ -211,6 +213,10 @@ void ReadGltfAnimation(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, 
                      "node " + std::to_string(ch.target_node) + " out of range");
         if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size())
             doc.Fail(at + ".sampler", "sampler " + std::to_string(ch.sampler) + " out of range");
+        // One animation drives each node's path once (glTF 2.0, 3.11).
+        if (!targets.insert({ch.target_node, ch.target_path}).second)
+            doc.Fail(at + ".target", "node " + std::to_string(ch.target_node) + "'s " +
+                                         ch.target_path + " is animated by an earlier channel too");
         const int32_t slot = nodeSlot[size_t(ch.target_node)];
         if (slot < 0) continue;  // a node outside the scene shown
         physics::KeyframeClip& clip = clips[slot];

@@ -122,7 +122,14 @@ bool ReadGltfSkinInfluences(GltfDocument& doc, const tinygltf::Primitive& prim,
 bool ReadGltfMorphTargets(GltfDocument& doc, const tinygltf::Primitive& prim, const std::string& at,
                           const tinygltf::Mesh& mesh, const std::string& meshAt,
                           DeformableMesh& out, uint64_t& fileDeltas) {
-    if (prim.targets.empty()) return false;
+    if (prim.targets.empty()) {
+        // The mesh's weights are one per morph target of each primitive: none without targets.
+        if (!mesh.weights.empty())
+            doc.Fail(meshAt + ".weights", std::to_string(mesh.weights.size()) +
+                                              " weights for 0 morph targets (" + at +
+                                              " has no targets)");
+        return false;
+    }
     const size_t vertices = out.rest.positions.size(), targets = prim.targets.size();
     const bool hasNormals = !out.rest.normals.empty();
     // Targets of many primitives can share one accessor too: the budget is the file's.

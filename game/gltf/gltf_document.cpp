@@ -26,18 +26,26 @@ std::string OneLine(std::string text) {
     return text.empty() ? "tinygltf could not load the file" : text;
 }
 
-// tinygltf 2.7 (Debian's) reports a skin without inverseBindMatrices as an error, though glTF
-// 2.0 makes the field optional (identity matrices, which gltf_skins.cpp supplies); it still loads
-// the skin. Its message is dropped so that such a file loads; every other message stays.
-std::string WithoutOptionalFieldErrors(const std::string& err) {
+// tinygltf 2.7 (Debian's) reports as errors two fields glTF 2.0 makes optional: a skin's
+// inverseBindMatrices (identity matrices, which gltf_skins.cpp supplies; it still loads the skin)
+// and an animation channel's target.node (an extension may name the target instead; it drops the
+// channel). Their messages are dropped so that such a file loads (*skippedChannels counts the
+// channels); every other message stays.
+std::string WithoutOptionalFieldErrors(const std::string& err, int* skippedChannels) {
     static const std::string kSkinMatrices = "'inverseBindMatrices' property is missing in Skin.";
+    static const std::string kChannelNode = "'node' property is missing.";
+    static const std::string kChannelNodeAgain =
+        "`node` field is missing in animation.channels.target";
     std::string out;
     size_t begin = 0;
+    *skippedChannels = 0;
     while (begin < err.size()) {
         size_t end = err.find('\n', begin);
         if (end == std::string::npos) end = err.size();
         const std::string line = err.substr(begin, end - begin);
-        if (line != kSkinMatrices) out += line + "\n";
+        if (line == kChannelNodeAgain) ++*skippedChannels;
+        if (line != kSkinMatrices && line != kChannelNode && line != kChannelNodeAgain)
+            out += line + "\n";
         begin = end + 1;
     }
     return out;
@@ -87,11 +95,17 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
                                              dir.empty() ? "." : dir)
                : loader.LoadASCIIFromString(&model_, &err, &warn, bytes.data(),
                                             unsigned(bytes.size()), dir.empty() ? "." : dir);
-    err = WithoutOptionalFieldErrors(err);
+    int skippedChannels = 0;
+    err = WithoutOptionalFieldErrors(err, &skippedChannels);
     if (imageFailure.fatal) std::rethrow_exception(imageFailure.fatal);
     if (imageFailure.index >= 0)
         Fail(JsonIndexed("images", size_t(imageFailure.index)), OneLine(imageFailure.reason));
     if (!ok || !err.empty()) Fail("", OneLine(err));
+    if (skippedChannels > 0)
+        Warn("animation-target",
+             std::to_string(skippedChannels) +
+                 " animation channel(s) without target.node (an extension's target, as "
+                 "KHR_animation_pointer's) are not played");
     if (draco)
         Warn("draco", std::to_string(draco->primitives) +
                           " Draco-compressed primitive(s) decoded with libdraco "

@@ -121,6 +121,7 @@ GltfAsset ReadGltfAsset(const std::string& path, LoadedScene& out) {
     asset.summary.materials = uint32_t(model.materials.size());
     asset.summary.animations = uint32_t(model.animations.size());
     const std::vector<int> parentOf = CheckGltfNodeGraph(doc);
+    CheckGltfSkinJoints(doc);
     ReadGltfCamerasAndLights(doc, asset);
     GltfMaterials materials(doc, out);
     GltfMeshes meshes(doc, out, materials, asset.summary);

@@ -1,5 +1,6 @@
 #include "game/gltf/gltf_skins.h"
 
+#include <algorithm>
 #include <string>
 
 #include "game/gltf/gltf_accessors.h"
@@ -32,6 +33,21 @@ std::vector<glm::mat4> InverseBindMatrices(const GltfDocument& doc, const tinygl
 
 }  // namespace
 
+void CheckGltfSkinJoints(const GltfDocument& doc) {
+    const tinygltf::Model& model = doc.Model();
+    for (size_t i = 0; i < model.skins.size(); ++i) {
+        const tinygltf::Skin& skin = model.skins[i];
+        const std::string at = JsonIndexed("skins", i) + ".joints";
+        if (skin.joints.empty()) doc.Fail(at, "a skin needs at least one joint");
+        // glTF's joints are unique: a node listed twice is two joints that cannot differ.
+        std::vector<int> sorted = skin.joints;
+        std::sort(sorted.begin(), sorted.end());
+        if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
+            twice != sorted.end())
+            doc.Fail(at, "node " + std::to_string(*twice) + " is listed twice");
+    }
+}
+
 void ReadGltfSkins(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, GltfAsset& asset) {
     const tinygltf::Model& model = doc.Model();
     asset.skins.resize(model.skins.size());
@@ -44,7 +60,6 @@ void ReadGltfSkins(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, Gltf
     for (size_t i = 0; i < model.skins.size(); ++i) {
         const tinygltf::Skin& skin = model.skins[i];
         const std::string at = JsonIndexed("skins", i);
-        if (skin.joints.empty()) doc.Fail(at + ".joints", "a skin needs at least one joint");
         auto slotOf = [&](int node, const std::string& field) {
             if (node < 0 || size_t(node) >= model.nodes.size())
                 doc.Fail(field, "node " + std::to_string(node) + " out of range");

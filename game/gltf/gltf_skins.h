@@ -8,6 +8,10 @@
 
 namespace rtrt {
 
+// Throws InputError for a skin without joints or with a node listed twice among them: checked
+// before the meshes, whose joint indices are read against their skin's joint count.
+void CheckGltfSkinJoints(const GltfDocument& doc);
+
 // The file's skins into asset.skins (by index), their joints mapped through NODESLOT
 // (ReadGltfNodes). Throws InputError for a skin without joints, a joint out of range or outside
 // the scene shown, or inverse bind matrices that are not finite float 4x4s, one per joint.

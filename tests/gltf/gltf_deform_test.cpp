@@ -349,6 +349,29 @@ TEST_F(GltfDeformTest, AWeightsChannelOfOneKeyIsTheNodesWeights) {
     EXPECT_EQ(Deformed(world.Scene(), world.Scene().deformations.at(0), 0), vec3(1, 0, 0));
 }
 
+// A channel may leave target.node to an extension (KHR_animation_pointer): it is skipped with a
+// warning and the others play (the file had been refused with tinygltf's raw message).
+TEST_F(GltfDeformTest, AChannelWithoutATargetNodeIsSkipped) {
+    GltfBuilder b = MorphTriangle(false);
+    const int times = b.Floats({0}, "SCALAR", 1);
+    const int values = b.Floats({0.0f, 1.0f}, "SCALAR", 1);
+    b.doc["animations"] = Json::array(
+        {{{"samplers", {{{"input", times}, {"output", values}}}},
+          {"channels",
+           {{{"sampler", 0},
+             {"target",
+              {{"path", "pointer"},
+               {"extensions", {{"KHR_animation_pointer", {{"pointer", "/nodes/0/weights"}}}}}}}},
+            {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}}}}}});
+    ::testing::internal::CaptureStderr();
+    World world(LoadSceneFile(Save("pointer.gltf", b.GltfText())));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("1 animation channel(s) without target.node"), std::string::npos)
+        << warnings;
+    world.Advance(0.5f);
+    EXPECT_EQ(Deformed(world.Scene(), world.Scene().deformations.at(0), 0), vec3(1, 0, 0));
+}
+
 // A skin only another scene of the file uses does not fail the scene shown ("node 1 is not in
 // the scene shown").
 TEST_F(GltfDeformTest, ASkinOfAnotherSceneDoesNotFailTheSceneShown) {
@@ -518,6 +541,14 @@ TEST_F(GltfDeformTest, MalformedSkinsAndMorphsNameTheirField) {
              b.doc["skins"][0]["joints"][0] = 3;
          },
          "skins[0].joints[0]", "not in the scene shown"},
+        {"joint_twice",
+         [](GltfBuilder& b) {
+             b.doc["skins"][0]["joints"] = {2, 1, 2};
+         },
+         "skins[0].joints", "node 2 is listed twice"},
+        // Named at the skin, not at the first vertex whose joint it lacks.
+        {"no_joints", [](GltfBuilder& b) { b.doc["skins"][0]["joints"] = Json::array(); },
+         "skins[0].joints", "a skin needs at least one joint"},
     };
     for (const BadDeform& c : others) {
         GltfBuilder b = TwoBoneCylinder(30.0f, false);
@@ -554,6 +585,14 @@ TEST_F(GltfDeformTest, MalformedSkinsAndMorphsNameTheirField) {
              b.doc["animations"][0]["samplers"][0]["interpolation"] = "CUBICSPLINE";
          },
          "animations[0].samplers[0].output", "(CUBICSPLINE"},
+        {"same_target_twice",
+         [](GltfBuilder& b) {
+             b.doc["animations"][0]["channels"].push_back(b.doc["animations"][0]["channels"][0]);
+         },
+         "animations[0].channels[1].target", "node 0's weights is animated by an earlier channel"},
+        {"mesh_weights_without_targets",
+         [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0].erase("targets"); },
+         "meshes[0].weights", "2 weights for 0 morph targets"},
     };
     for (const BadDeform& c : morphs) {
         GltfBuilder b = MorphTriangle(true);
