@@ -322,8 +322,10 @@ float JsonFields::Positive(const std::string& key, std::optional<float> fallback
 
 float JsonFields::InRange(const std::string& key, float lo, float hi, float fallback) {
     const float v = Number(key, fallback);
+    // The value as written: its float can round to the bound it passes (1.0000001e9 to 1e9).
     if (!(v >= lo && v <= hi))
-        Fail(key, "must be between " + Format(lo) + " and " + Format(hi) + ", got " + Format(v));
+        Fail(key, "must be between " + Format(lo) + " and " + Format(hi) + ", got " +
+                      (Has(key) ? j_.at(key).dump() : Format(v)));
     return v;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <cmath>
 #include <map>
 #include <vector>
 
@@ -31,7 +32,9 @@ void ParseRigidBody(const Json& j, const std::string& path, const std::string& f
     JsonFields f(j, path, file);
     physics::RigidBody body;
     body.mass = f.InRange("mass", 0.0f, 1e9f, body.mass);
-    if (body.mass > 0.0f && body.mass < kMinBodyMass)
+    // As written: 1e-50 is 0 as a float, and had made the body static.
+    const bool someMass = f.Has("mass") && f.Get("mass").get<double>() > 0.0;
+    if (someMass && body.mass < kMinBodyMass)
         f.Fail("mass", "a moving body weighs at least 1e-6 kg (0 makes it static)");
     if (f.Has("static")) {
         f.ExpectKind("static", JsonKind::kBool);
@@ -43,10 +46,13 @@ void ParseRigidBody(const Json& j, const std::string& path, const std::string& f
     if (MaxComponent(glm::abs(body.velocity)) > kMaxBodySpeed)
         f.Fail("velocity", "each component must be within 1e6 m/s");
     // What a static body or a plane would ignore is refused rather than dropped silently.
+    const bool plane = shape.kind == ModelShape::kPlane;
+    if (plane && f.Has("mass") && body.mass > 0.0f)
+        f.Fail("mass", "a plane is always static: leave mass out");
+    if (plane && body.velocity != vec3(0.0f))
+        f.Fail("velocity", "a plane is always static: leave velocity out");
     if (body.mass == 0.0f && body.velocity != vec3(0.0f))
         f.Fail("velocity", "a static body does not move: leave velocity out, or give it a mass");
-    if (shape.kind == ModelShape::kPlane && f.Has("mass") && body.mass > 0.0f)
-        f.Fail("mass", "a plane is always static: leave mass out");
     f.Finish();
     if (!WithinWorld(e.local.translation))
         throw InputError(file, path,
@@ -97,16 +103,23 @@ void CheckRigidBodyPlaces(const JsonFields& f, const std::string& field,
 }
 
 void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file) {
-    // The bodies that appear together, by the time they appear (a spawner's at its time, with
-    // the ones of time 0 the static scenery): bodies of different times never start together.
-    std::map<float, std::vector<physics::BroadPhaseBox>> together;
+    // The bodies that may appear together. A frame spawns every body whose time has come, and a
+    // frame is at most 1 s of scene time (play's --fps is at least 1), so bodies of times less
+    // than 1 s apart may start in one frame: they are checked together by whole seconds (the
+    // second after time t, ceil(t), with the next one), the ones of time 0 (the static scenery)
+    // first.
+    std::map<int64_t, std::vector<physics::BroadPhaseBox>> bySecond;
     for (const EntityDesc& e : scene.entities) {
         if (!e.body || e.collider.shape == physics::ColliderShape::kPlane) continue;
         const vec3 half = physics::WorldHalfExtent(e.collider, glm::mat3_cast(e.local.rotation));
-        together[e.spawnTime].push_back(
+        bySecond[int64_t(std::ceil(double(e.spawnTime)))].push_back(
             {e.local.translation - half, e.local.translation + half, e.body->mass == 0});
     }
-    for (const auto& [time, boxes] : together) {
+    for (auto second = bySecond.begin(); second != bySecond.end(); ++second) {
+        std::vector<physics::BroadPhaseBox> boxes = second->second;
+        if (const auto next = std::next(second);
+            next != bySecond.end() && next->first == second->first + 1)
+            boxes.insert(boxes.end(), next->second.begin(), next->second.end());
         // A few touching neighbours each, as in any pile, and room to spare; bodies packed into
         // one place touch every other (1,000 balls in one spot took 830 MB a step, 4,000 more
         // than 8 GB), and the simulation holds every touching pair.
@@ -115,11 +128,12 @@ void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file)
         sweep.SetPairLimit(limit);
         std::vector<std::pair<uint32_t, uint32_t>> pairs;
         if (sweep.FindPairs(boxes, pairs)) continue;
-        char at[64];
-        std::snprintf(at, sizeof(at), "%g", double(time));
+        const int64_t from = std::max<int64_t>(second->first - 1, 0);
         throw InputError(file, "rigid_body",
-                         std::to_string(boxes.size()) + " rigid bodies that start at time " + at +
-                             " s overlap in more than " + std::to_string(limit) +
+                         std::to_string(boxes.size()) + " rigid bodies that start between " +
+                             std::to_string(from) + " and " + std::to_string(second->first + 1) +
+                             " s (so maybe in one frame) overlap in more than " +
+                             std::to_string(limit) +
                              " pairs (packed into one place), each of which the simulation "
                              "would hold: give them room (a grid spacing above their size, or a "
                              "rain)");

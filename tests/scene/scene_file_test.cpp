@@ -185,12 +185,32 @@ TEST(SceneFile, RigidBodiesBeyondWhatTheSimulationHandlesAreRejected) {
                 "instances[0].rigid_body.velocity", "a static body does not move");
     ExpectError(scene(R"({"type": "plane"})", R"({"model": "b", "rigid_body": {"mass": 5}})"),
                 "instances[0].rigid_body.mass", "a plane is always static");
+    // A plane's velocity was dropped silently (its mass became 0 after the check); a mass that
+    // is 0 as a float made a body static; a mass past the bound by less than a float's step was
+    // shown as the bound itself.
+    ExpectError(
+        scene(R"({"type": "plane"})", R"({"model": "b", "rigid_body": {"velocity": [0, 5, 0]}})"),
+        "instances[0].rigid_body.velocity", "a plane is always static");
+    ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"mass": 1e-50}})"),
+                "instances[0].rigid_body.mass", "a moving body weighs at least 1e-6 kg");
+    ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"mass": 1.0000001e9}})"),
+                "instances[0].rigid_body.mass", "got 1000000100");
     ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"static": "true"}})"),
                 "instances[0].rigid_body.static", "expected true or false, got string");
     ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
                     "spawners": [{"model": "b", "rigid_body": {},
                                   "grid": {"count": [10, 10, 10], "spacing": 1e-6}}]})",
-                "rigid_body", "1000 rigid bodies that start at time 0 s overlap in more than");
+                "rigid_body",
+                "1000 rigid bodies that start between 0 and 1 s (so maybe in one frame) overlap "
+                "in more than");
+    // Bodies of different times that one frame spawns together count together (two packed
+    // spawners 1 ms apart, each within the limit alone, took 763 MB in three frames).
+    const std::string packed480 =
+        R"("rigid_body": {}, "grid": {"count": [8, 6, 10], "spacing": 0.001}})";
+    ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
+                    "spawners": [{"model": "b", "time": 1.5, )" +
+                    packed480 + R"(, {"model": "b", "time": 2.2, )" + packed480 + "]}",
+                "rigid_body", "960 rigid bodies that start between 1 and 3 s");
     // Many bodies apart are not packed, however many meet on one axis (a 40^3 lattice of
     // touching balls, 64,000); nor are bodies of one place that appear at different times, or
     // static ones, which never pair with each other.
