@@ -32,11 +32,20 @@ void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
 
 // "N" or "A:B" read into *first and *end, unchecked; false when the text is neither.
 static bool SplitFrames(const std::string& text, int* first, int* end) {
-    static const std::regex kRange("([0-9]{1,8})(:([0-9]{1,8}))?");
+    static const std::regex kRange("([0-9]+)(:([0-9]+))?");
     std::smatch m;
     if (!std::regex_match(text, m, kRange)) return false;
-    *first = m[2].matched ? std::stoi(m[1].str()) : 0;
-    *end = m[2].matched ? std::stoi(m[3].str()) : std::stoi(m[1].str());
+    // Any number of digits: one past the last frame stands for all beyond (2147483647 was
+    // "malformed", not too far).
+    auto frame = [](const std::string& digits) {
+        const size_t start = std::min(digits.find_first_not_of('0'), digits.size());
+        const std::string significant = digits.substr(start);
+        if (significant.empty()) return 0;
+        return significant.size() > 8 ? kMaxFrames + 1
+                                       : std::min(std::stoi(significant), kMaxFrames + 1);
+    };
+    *first = m[2].matched ? frame(m[1].str()) : 0;
+    *end = m[2].matched ? frame(m[3].str()) : frame(m[1].str());
     return true;
 }
 

@@ -296,7 +296,7 @@ void RunPlay(PlayOptions o) {
         DrawProgressBar("play", i - first + 1, end - first, what);
     }
     std::printf(
-        "rtrt: wrote frames %d to %d to %s (%ux%u, %.0f fps time step, %zu instances at the "
+        "rtrt: wrote frames %d to %d to %s (%ux%u, %g fps time step, %zu instances at the "
         "end)\n",
         first, end - 1, o.output.c_str(), settings.width, settings.height, o.fps,
         world.Scene().instances.size());

@@ -206,6 +206,8 @@ for command in (headless, farm):
            "A:B renders frames A to B-1, so A must be below B")
     expect(f"{command[0]} frames beyond the limit", command + ["--frames", "10000001"], 2,
            "frames end at 10,000,000 at the latest")
+    expect(f"{command[0]} frames far beyond the limit", command + ["--frames", "2:2147483647"],
+           2, "frames end at 10,000,000 at the latest")
     expect(f"{command[0]} no frames", command + ["--frames", "0"], 2,
            "N is how many frames: at least 1")
     expect(f"{command[0]} malformed frames", command + ["--frames", "1-4"], 2,
