@@ -45,7 +45,13 @@ std::string BenchModelFile(const std::string& name) {
     return ModelDir() + "/dragon_vrip" + suffix + ".ply.gz";
 }
 
-void RequireSomeBenchModel(const std::vector<std::string>& models) {
+void CheckBenchModels(const std::vector<std::string>& models, const std::string& output) {
+    for (const std::string& name : models)
+        if (const std::string file = BenchModelFile(name);
+            !output.empty() && !file.empty() && NameTheSameFile(output, file))
+            throw InputError("--output", output,
+                             "is also the file of the model " + name + " (" + file +
+                                 "), which would be written over; name another file");
     std::string names;
     for (const std::string& name : models) {
         const std::string file = BenchModelFile(name);
@@ -406,7 +412,7 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     cpu->add_option("-o,--output", options->output, "Write the results as JSON here")
         ->check(WritableFile());
     cpu->callback([options, exitCode] {
-        RequireSomeBenchModel(options->models);
+        CheckBenchModels(options->models, options->output);
         RunBench(*options);
         *exitCode = kExitOk;
     });
@@ -439,7 +445,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         ->check(WritableFile());
     gridBench->callback([grid, exitCode] {
         std::string why;
-        if (!CudaBackendAvailable(&why)) throw InputError("bench grid", "", why);
+        if (!CudaBackendAvailable(&why))
+            throw InputError("bench grid", "", why + "; the instance grid is timed on a GPU only");
         RunGridBench(grid->counts, grid->frames, grid->output);
         *exitCode = kExitOk;
     });
@@ -500,8 +507,9 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         ->check(WritableFile());
     gpu->callback([options, exitCode] {
         std::string why;
-        if (!CudaBackendAvailable(&why)) throw InputError("bench gpu", "", why);
-        RequireSomeBenchModel(options->models);
+        if (!CudaBackendAvailable(&why))
+            throw InputError("bench gpu", "", why + "; rtrt bench cpu times the CPU back end");
+        CheckBenchModels(options->models, options->output);
         RunGpuBench(*options);
         *exitCode = kExitOk;
     });

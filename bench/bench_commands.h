@@ -27,8 +27,9 @@ std::vector<BenchModel> LoadBenchModels(const std::vector<std::string>& names);
 // The file a benchmark model is read from ("" for the cube, which is made, not read).
 std::string BenchModelFile(const std::string& name);
 // InputError unless at least one of models is there to run: a benchmark of none measures nothing
-// (missing ones among others are skipped with a line that says so).
-void RequireSomeBenchModel(const std::vector<std::string>& models);
+// (missing ones among others are skipped with a line that says so); and when `output` (the
+// report's file, if any) names one of their files, before any work rather than at the report.
+void CheckBenchModels(const std::vector<std::string>& models, const std::string& output);
 // The --models option of the paper-scene benchmarks: a comma-separated subset of those models.
 CLI::Option* AddModelsOption(CLI::App* command, std::vector<std::string>* models);
 // `rtrt bench embree`, registered by AddBenchCommand.

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <sstream>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "bench/gpu_trace_timing.h"
 #include "engine/bvh/build/lbvh.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/cpu/cpu_deformer.h"
 #include "engine/render_rt/frame_renderer.h"
@@ -199,10 +201,20 @@ void RunDeformBench(const DeformBenchOptions& o) {
              {"deform_mtri_per_ms", double(triangles) * 1e-6 / Median(r.deform)}});
     }
     report["drift"] = drift;
-    WriteReportIfNamed(o.output, report);
-    if (writeCsv) {
-        WriteReportFile(o.csv, csv.str());
-        std::printf("rtrt: wrote %s\n", o.csv.c_str());
+    // Both outputs are finished before either takes its name: a failure leaves neither (the
+    // JSON had been in place when the CSV's write failed).
+    std::vector<std::pair<std::string, std::string>> outputs;
+    if (!o.output.empty()) outputs.emplace_back(o.output, report.dump(2) + "\n");
+    if (writeCsv) outputs.emplace_back(o.csv, csv.str());
+    std::vector<std::unique_ptr<OutputFile>> files;
+    for (const auto& [path, text] : outputs) {
+        files.push_back(std::make_unique<OutputFile>(path));
+        files.back()->Write(text.data(), text.size());
+        files.back()->Finish(/*durable=*/false);
+    }
+    for (size_t k = 0; k < files.size(); ++k) {
+        files[k]->Commit();
+        std::printf("rtrt: wrote %s\n", outputs[k].first.c_str());
     }
 }
 

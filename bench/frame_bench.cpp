@@ -208,6 +208,12 @@ void AddFrameBench(CLI::App& bench, int* exitCode) {
             throw InputError("--trace-bands", std::to_string(o->traceBands),
                              "row bands are CUDA streams and need the CUDA back end; use "
                              "--backend cuda or leave --trace-bands out");
+        // Checked before the report's header, as the other options.
+        if (!o->size.empty()) {
+            uint32_t width = 0, height = 0;
+            ParseSize(o->size, &width, &height);
+        }
+        CheckPhysicsSolver(o->physicsSolver);
         RunFrameBench(*o);
         *exitCode = kExitOk;
     });

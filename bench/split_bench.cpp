@@ -276,7 +276,8 @@ void AddSplitBench(CLI::App& bench, int* exitCode) {
         ->check(WritableFile());
     cmd->callback([o, exitCode] {
         std::string why;
-        if (!CudaBackendAvailable(&why)) throw InputError("bench split", "", why);
+        if (!CudaBackendAvailable(&why))
+            throw InputError("bench split", "", why + "; the split is of frames over GPUs only");
         for (const std::string& size : o->sizes) {
             uint32_t w, h;
             ParseSize(size, &w, &h);

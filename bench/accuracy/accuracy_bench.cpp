@@ -326,7 +326,7 @@ void AddAccuracyBench(CLI::App& bench, int* exitCode) {
     cmd->callback([o, exitCode] {
         std::string why;
         if (o->backend != "cpu" && !CudaBackendAvailable(&why))
-            throw InputError("bench accuracy --backend", o->backend, why);
+            throw InputError("bench accuracy --backend", o->backend, why + "; use --backend cpu");
         RunAccuracyBench(*o);
         *exitCode = kExitOk;
     });

@@ -38,7 +38,9 @@ bool ChooseGpus(const std::string& choice, std::vector<int>* devices, std::strin
     }
     if (count == 0 || count > present) {
         if (why) {
-            *why = present == 0 ? std::string("this machine has no usable CUDA device")
+            *why = present == 0 ? std::string(
+                                      "this machine has no usable CUDA device; leave out "
+                                      "--gpus to render on the CPU back end")
                                 : "this machine has " + std::to_string(present) + " CUDA device" +
                                       (present == 1 ? "" : "s") + "; use --gpus " +
                                       std::to_string(present) + " or --gpus all";

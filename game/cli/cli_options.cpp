@@ -42,7 +42,7 @@ static bool SplitFrames(const std::string& text, int* first, int* end) {
         const std::string significant = digits.substr(start);
         if (significant.empty()) return 0;
         return significant.size() > 8 ? kMaxFrames + 1
-                                       : std::min(std::stoi(significant), kMaxFrames + 1);
+                                      : std::min(std::stoi(significant), kMaxFrames + 1);
     };
     *first = m[2].matched ? frame(m[1].str()) : 0;
     *end = m[2].matched ? frame(m[3].str()) : frame(m[1].str());
@@ -156,12 +156,13 @@ void RefuseOutputsOverInputs(const CLI::App& app) {
             const bool positional = option->get_lnames().empty() && option->get_snames().empty();
             const bool output =
                 name == "--output" || name == "--csv" || name == "--manifest" || name == "--record";
-            if (!output && !positional && name != "--script") continue;
+            const bool scenes = positional || name == "--scenes";  // bench split's
+            if (!output && !scenes && name != "--script") continue;
             for (const std::string& path : option->results()) {
                 if (path.empty()) continue;
                 (output ? outputs : inputs).push_back({name, path});
                 // A scene given by name is the file it names (RTRT_ASSET_DIR's or the tree's).
-                if (positional)
+                if (scenes)
                     if (const std::string file = ScenePathFor(path); file != path)
                         inputs.push_back({name, file});
             }
@@ -217,7 +218,10 @@ void AddGpusOption(CLI::App* command, std::string* gpus) {
 
 GpuSplit ResolveGpus(const std::string& gpus, Backend backend) {
     GpuSplit split;
-    if (gpus == "1") return split;  // the current device, as without the option
+    // One GPU (also written 01) is the current device, as without the option.
+    if (gpus.find_first_not_of('0') != std::string::npos &&
+        gpus.substr(gpus.find_first_not_of('0')) == "1")
+        return split;
     std::string why;
     if (!ChooseGpus(gpus, &split.devices, &why)) throw InputError("--gpus", gpus, why);
     if (backend != Backend::kCuda && split.devices.size() > 1)

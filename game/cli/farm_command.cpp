@@ -167,7 +167,9 @@ int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
     if (Backend backend; job.frames.backend == "cuda") {
         std::string why;
         if (!ChooseBackend("cuda", &backend, &why))
-            throw InputError("--backend", "cuda", why + "; use --backend cpu with --local");
+            throw job.scheduling.gpu
+                ? InputError("--gpu", "the CUDA back end", why + "; leave out --gpu with --local")
+                : InputError("--backend", "cuda", why + "; use --backend cpu with --local");
     }
     lock.Keep();
     StartJob(job);

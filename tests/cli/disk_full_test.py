@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A full disk under render, play --headless, convert and the BLAS cache.
+"""A full disk under render, play --headless, convert, bench deform and the BLAS cache.
 
 Each failed write must exit 1 with "rtrt: error: FILE: No space left on device" (FILE the output
 the user named) and leave nothing behind: no output, no temporary. A failed BLAS cache write must
@@ -69,6 +69,13 @@ def check_all(mechanism, full, env, scratch):
     out = os.path.join(full, "grid.rtmodel")
     expect_write_failure(f"{mechanism} convert", ["convert", os.path.join(WORK, "grid.obj"),
                                                   "-o", out], out, full, keep, env)
+    # A benchmark's two outputs: the CSV fails, and the JSON, finished first, is not left alone
+    # (it had been in place).
+    report, table = os.path.join(full, "deform.json"), os.path.join(full, "deform.csv")
+    expect_write_failure(f"{mechanism} bench deform",
+                         ["bench", "deform", os.path.join(WORK, "wave.json"), "--backend", "cpu",
+                          "--size", "4x4", "--frames", "150", "--samples", "2", "-o", report,
+                          "--csv", table], table, full, keep, env)
     # The BLAS cache on the full disk, the image where there is room: the render succeeds.
     cache = os.path.join(full, "cache")
     image = os.path.join(scratch, "cached.ppm")
@@ -105,6 +112,10 @@ def main():
     with open(os.path.join(WORK, "grid.json"), "w") as f:
         f.write('{ "models": { "m": { "type": "mesh", "file": "grid.obj" } },'
                 ' "instances": [ { "model": "m" } ] }')
+    with open(os.path.join(WORK, "wave.json"), "w") as f:
+        f.write('{ "models": { "m": { "type": "mesh", "file": "grid.obj" } },'
+                ' "instances": [ { "model": "m", "deform": { "wave": { "amplitude": 0.05,'
+                ' "wavelength": 0.5 } } } ] }')
     scratch = os.path.join(WORK, "scratch")
     os.makedirs(scratch)
 

@@ -99,6 +99,30 @@ expect("bench frame by name", ["bench", "frame", "teapot_shadow", "--backend", "
                                "1", "--warmup", "0", "--size", "8x4"], 0, "teapot_shadow")
 expect("traversal on the CPU", image + ["--traversal", "single"], 2,
        "--traversal: single: nested and single are the CUDA back end's traversals")
+expect("one GPU written 01", image + ["--gpus", "01"], 0, "wrote out.ppm")
+# A report named like a benchmark's model file is refused before the benchmark (after it, the
+# whole run was lost).
+os.makedirs(os.path.join(WORK, "bench_models"))
+with open(os.path.join(WORK, "bench_models", "dragon_vrip_res4.ply.gz"), "wb") as f:
+    f.write(b"model")
+for bench in ("cpu", "convert"):
+    expect(f"bench {bench} report over its model",
+           ["bench", bench, "--models", "dragon_res4", "-o", "bench_models/dragon_vrip_res4.ply.gz"],
+           2, "is also the file of the model dragon_res4",
+           env={"RTRT_MODEL_DIR": os.path.join(WORK, "bench_models")})
+with open(os.path.join(WORK, "bench_models", "dragon_vrip_res4.ply.gz"), "rb") as f:
+    if f.read() != b"model":
+        failures.append("bench -o over its model changed the model file")
+# Without a GPU the refusals say what to do instead (a machine without the driver was told its
+# driver was too old).
+if not os.path.exists("/proc/driver/nvidia/version"):
+    expect("bench gpu without a GPU", ["bench", "gpu", "--models", "cube"], 2,
+           "(no NVIDIA driver is loaded: no NVIDIA GPU?); rtrt bench cpu times the CPU back end")
+    expect("gpus without a GPU", image + ["--gpus", "2"], 2,
+           "leave out --gpus to render on the CPU back end")
+    expect("farm --local --gpu without a GPU",
+           ["farm", "default", "--local", "--gpu", "--frames", "1", "--size", "8x4", "-o",
+            "gpu_job"], 2, "--gpu: the CUDA back end: no CUDA device is usable here")
 
 # A manifest or a scene named like one of the frames is refused before any frame (the manifest
 # had got frame 1 appended to it, the scene had been written over).

@@ -2,8 +2,8 @@
 // here (joints and weights in each component type the spec allows) bent at known angles against
 // the closed form, its knee driven by a CUBICSPLINE channel at a time with a known answer;
 // morph targets at known weights, animated by a weights channel, two instances of one file in
-// their own phases; malformed skins and morphs named by field; Debian's assimp-testmodels
-// (skipped when the package is missing).
+// their own phases; Debian's assimp-testmodels (skipped when the package is missing). Malformed
+// skins and morphs: gltf_deform_errors_test.cpp.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -15,109 +15,19 @@
 #include "game/gltf/gltf_import.h"
 #include "game/runtime/world.h"
 #include "game/scene/scene_file.h"
+#include "tests/gltf/deform_models.h"
 #include "tests/gltf/gltf_builder.h"
 
 namespace rtrt {
 namespace {
 
 namespace fs = std::filesystem;
+using test::Deformed;
 using test::GltfBuilder;
+using test::GltfDeformTest;
+using test::MorphTriangle;
+using test::TwoBoneCylinder;
 using Json = nlohmann::json;
-
-constexpr int kUByte = 5121, kUShort = 5123;
-
-class GltfDeformTest : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("rtrt_gltf_deform_" + std::to_string(getpid()) + "_" + info->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string Save(const std::string& name, const std::string& bytes) const {
-        const std::string path = (dir_ / name).string();
-        GltfBuilder::Save(path, bytes);
-        return path;
-    }
-    fs::path dir_;
-};
-
-// The deformed position of rest vertex v of deformation d, in the mesh's own space: linear blend
-// skinning by the record's joint matrices, after its morph (what the frame renderer computes).
-vec3 Deformed(const RenderScene& scene, const Deformation& d, uint32_t v) {
-    const DeformableMesh& mesh = *scene.deformableMeshes[d.mesh];
-    vec3 p = mesh.rest.positions[v];
-    for (uint32_t t = 0; t < mesh.targetCount; ++t)
-        p += d.morphWeights[t] * mesh.positionDeltas[size_t(t) * mesh.VertexCount() + v];
-    if (!mesh.Skinned()) return p;
-    vec3 skinned(0.0f);
-    for (uint32_t i = 0; i < mesh.influences; ++i) {
-        const size_t slot = size_t(v) * mesh.influences + i;
-        skinned += mesh.weights[slot] * d.jointMatrices[mesh.joints[slot]].Point(p);
-    }
-    return skinned;
-}
-
-// A cylinder of radius 0.25 along +y, rings at y = 0, 0.5, 1, 1.5, 2 of 6 vertices: the thigh
-// (y < 1) follows the hip alone, the shin (y > 1) the knee alone, the knee ring half each.
-// Joints as unsigned bytes and weights as normalised unsigned bytes, or joints as unsigned
-// shorts and weights as floats that do not sum to 1 (the importer normalises them).
-// Nodes: 0 the mesh (moved to x = 5: a skinned mesh's node transform does not move it), 1 the
-// hip at z = -3, 2 the knee 1 above it, turned by kneeDegrees about z. Bind pose: straight.
-GltfBuilder TwoBoneCylinder(float kneeDegrees, bool shortJoints) {
-    GltfBuilder b;
-    std::vector<float> positions;
-    std::vector<uint8_t> joints8, weights8;
-    std::vector<uint16_t> joints16;
-    std::vector<float> weightsF;
-    for (int ring = 0; ring < 5; ++ring)
-        for (int step = 0; step < 6; ++step) {
-            const float a = float(step) * float(M_PI) / 3.0f, y = 0.5f * float(ring);
-            positions.insert(positions.end(), {0.25f * std::cos(a), y, 0.25f * std::sin(a)});
-            const int knee = ring == 2, shin = ring > 2;
-            const uint16_t j[4] = {uint16_t(shin), uint16_t(knee), 0, 0};
-            for (uint16_t x : j) {
-                joints8.push_back(uint8_t(x));
-                joints16.push_back(x);
-            }
-            if (knee) {
-                weights8.insert(weights8.end(), {128, 128, 0, 0});
-                weightsF.insert(weightsF.end(), {3.0f, 3.0f, 0.0f, 0.0f});
-            } else {
-                weights8.insert(weights8.end(), {255, 0, 0, 0});
-                weightsF.insert(weightsF.end(), {2.0f, 0.0f, 0.0f, 0.0f});
-            }
-        }
-    std::vector<uint16_t> indices;
-    for (uint16_t ring = 0; ring < 4; ++ring)
-        for (uint16_t step = 0; step < 6; ++step) {
-            const uint16_t a = ring * 6 + step, b2 = ring * 6 + (step + 1) % 6;
-            indices.insert(indices.end(),
-                           {a, uint16_t(a + 6), b2, b2, uint16_t(a + 6), uint16_t(b2 + 6)});
-        }
-    const int pos = b.Floats(positions, "VEC3", 3);
-    const int idx = b.Accessor(indices, kUShort, "SCALAR", 1);
-    const int joints = shortJoints ? b.Accessor(joints16, kUShort, "VEC4", 4)
-                                   : b.Accessor(joints8, kUByte, "VEC4", 4);
-    const int weights =
-        shortJoints ? b.Floats(weightsF, "VEC4", 4) : b.Accessor(weights8, kUByte, "VEC4", 4);
-    if (!shortJoints) b.doc["accessors"][size_t(weights)]["normalized"] = true;
-    b.Mesh(pos, idx);
-    b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = joints;
-    b.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] = weights;
-    // Inverse bind matrices (column-major): translate(0, 0, 3) and translate(0, -1, 3).
-    const int ibm = b.Floats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0,  3, 1,  //
-                              1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 3, 1},
-                             "MAT4", 16);
-    b.doc["skins"] = Json::array({{{"joints", {1, 2}}, {"inverseBindMatrices", ibm}}});
-    const float half = glm::radians(kneeDegrees) / 2.0f;
-    b.Node({{"mesh", 0}, {"skin", 0}, {"translation", {5, 0, 0}}});
-    b.Node({{"children", {2}}, {"translation", {0, 0, -3}}});
-    b.Node({{"translation", {0, 1, 0}}, {"rotation", {0, 0, std::sin(half), std::cos(half)}}});
-    b.doc["scenes"] = Json::array({{{"nodes", {0, 1}}}});
-    return b;
-}
 
 // The bind pose is where the vertices are (each inverse bind matrix undoes its joint's bind
 // world), so a pose moves world positions by jointWorld * inverse(bind world): the thigh stays,
@@ -262,32 +172,6 @@ TEST_F(GltfDeformTest, UnweightedVerticesStayInTheirMeshNodesFrame) {
         scene.instances[0].ObjectToWorld().Point(Deformed(scene, scene.deformations[0], 29));
     EXPECT_NEAR(glm::length(shin - ExpectedWorld(mesh.rest.positions[29], glm::radians(90.0f))),
                 0.0f, 1e-5f);
-}
-
-// One triangle with normals and two morph targets: target 0 lifts every vertex by z = 1 (and
-// tilts normal 0), target 1 moves vertex 0 by x = 1. The weights channel runs LINEAR from
-// (0, 0) at t = 0 to (1, 0.5) at t = 2.
-GltfBuilder MorphTriangle(bool animated) {
-    GltfBuilder b;
-    const int pos = b.Floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
-    const int normal = b.Floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
-    const int lift = b.Floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
-    const int tilt = b.Floats({1, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC3", 3);
-    const int shift = b.Floats({1, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC3", 3);
-    b.Mesh(pos);
-    Json& prim = b.doc["meshes"][0]["primitives"][0];
-    prim["attributes"]["NORMAL"] = normal;
-    prim["targets"] = Json::array({{{"POSITION", lift}, {"NORMAL", tilt}}, {{"POSITION", shift}}});
-    b.doc["meshes"][0]["weights"] = {0.5, 0.0};
-    b.Node({{"mesh", 0}});
-    if (animated) {
-        const int times = b.Floats({0, 2}, "SCALAR", 1);
-        const int values = b.Floats({0, 0, 1, 0.5f}, "SCALAR", 1);
-        b.doc["animations"] = Json::array(
-            {{{"samplers", {{{"input", times}, {"output", values}}}},
-              {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}}}}}});
-    }
-    return b;
 }
 
 TEST_F(GltfDeformTest, MorphTargetsAtKnownWeights) {
@@ -466,145 +350,6 @@ TEST_F(GltfDeformTest, GridSpawnerOfAGltfSceneRefusesRainAndLaterTimes) {
                                  "instances": [ { "model": "m", "phase": 1e20 } ] })",
                             "scene.json", dir_.string()),
                  InputError);
-}
-
-struct BadDeform {
-    const char* name;
-    void (*edit)(GltfBuilder&);
-    const char* field;
-    const char* reason;
-};
-
-void SetAttribute(GltfBuilder& b, const char* name, int accessor) {
-    b.doc["meshes"][0]["primitives"][0]["attributes"][name] = accessor;
-}
-
-TEST_F(GltfDeformTest, MalformedSkinsAndMorphsNameTheirField) {
-    const std::string prim = "meshes[0].primitives[0]";
-    const BadDeform cases[] = {
-        {"joint_out_of_range",
-         [](GltfBuilder& b) {
-             std::vector<uint8_t> j(30 * 4, 0);
-             j[4 * 7] = 9;
-             SetAttribute(b, "JOINTS_0", b.Accessor(j, kUByte, "VEC4", 4));
-         },
-         ".attributes.JOINTS_0", "joint 9 out of range (the skin has 2 joints)"},
-        {"float_joints",
-         [](GltfBuilder& b) {
-             SetAttribute(b, "JOINTS_0", b.Floats(std::vector<float>(120, 0.0f), "VEC4", 4));
-         },
-         ".attributes.JOINTS_0", "unsigned bytes or unsigned shorts"},
-        {"negative_weight",
-         [](GltfBuilder& b) {
-             std::vector<float> w(120, 0.25f);
-             w[5] = -1.0f;
-             SetAttribute(b, "WEIGHTS_0", b.Floats(w, "VEC4", 4));
-         },
-         ".attributes.WEIGHTS_0", "vertex 1: a weight is negative"},
-        {"short_weights",
-         [](GltfBuilder& b) {
-             SetAttribute(b, "WEIGHTS_0", b.Floats(std::vector<float>(40, 0.25f), "VEC4", 4));
-         },
-         ".attributes.WEIGHTS_0", "10 elements, but POSITION has 30"},
-        {"joints_without_weights",
-         [](GltfBuilder& b) {
-             SetAttribute(b, "JOINTS_1",
-                          b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"]);
-         },
-         ".attributes.JOINTS_1", "given without WEIGHTS_1"},
-    };
-    for (const BadDeform& c : cases) {
-        GltfBuilder b = TwoBoneCylinder(30.0f, false);
-        c.edit(b);
-        try {
-            LoadSceneFile(Save(std::string(c.name) + ".glb", b.Glb()));
-            ADD_FAILURE() << c.name << ": loaded without an error";
-        } catch (const InputError& e) {
-            EXPECT_EQ(e.Field(), prim + c.field) << c.name << ": " << e.what();
-            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
-        }
-    }
-    const BadDeform others[] = {
-        {"skin_joint_out_of_range", [](GltfBuilder& b) { b.doc["skins"][0]["joints"][1] = 7; },
-         "skins[0].joints[1]", "node 7 out of range"},
-        {"few_inverse_binds",
-         [](GltfBuilder& b) {
-             b.doc["skins"][0]["inverseBindMatrices"] =
-                 b.Floats(std::vector<float>(16, 1.0f), "MAT4", 16);
-         },
-         "skins[0].inverseBindMatrices", "1 matrices for 2 joints"},
-        {"node_skin_out_of_range", [](GltfBuilder& b) { b.doc["nodes"][0]["skin"] = 3; },
-         "nodes[0].skin", "skin 3 out of range"},
-        {"joint_outside_scene",
-         [](GltfBuilder& b) {
-             b.Node(Json::object());
-             b.doc["skins"][0]["joints"][0] = 3;
-         },
-         "skins[0].joints[0]", "not in the scene shown"},
-        {"joint_twice",
-         [](GltfBuilder& b) {
-             b.doc["skins"][0]["joints"] = {2, 1, 2};
-         },
-         "skins[0].joints", "node 2 is listed twice"},
-        // Named at the skin, not at the first vertex whose joint it lacks.
-        {"no_joints", [](GltfBuilder& b) { b.doc["skins"][0]["joints"] = Json::array(); },
-         "skins[0].joints", "a skin needs at least one joint"},
-    };
-    for (const BadDeform& c : others) {
-        GltfBuilder b = TwoBoneCylinder(30.0f, false);
-        c.edit(b);
-        try {
-            LoadSceneFile(Save(std::string(c.name) + ".glb", b.Glb()));
-            ADD_FAILURE() << c.name << ": loaded without an error";
-        } catch (const InputError& e) {
-            EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
-            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
-        }
-    }
-    const BadDeform morphs[] = {
-        {"mesh_weights_count",
-         [](GltfBuilder& b) {
-             b.doc["meshes"][0]["weights"] = {1, 2, 3};
-         },
-         "meshes[0].weights", "3 weights for 2 morph targets"},
-        {"node_weights_count", [](GltfBuilder& b) { b.doc["nodes"][0]["weights"] = {1}; },
-         "nodes[0].weights", "1 weights for 2 morph targets"},
-        {"delta_count",
-         [](GltfBuilder& b) {
-             b.doc["meshes"][0]["primitives"][0]["targets"][1]["POSITION"] =
-                 b.Floats({1, 0, 0}, "VEC3", 3);
-         },
-         "meshes[0].primitives[0].targets[1].POSITION", "1 deltas, but POSITION has 3"},
-        {"weights_output_count",
-         [](GltfBuilder& b) {
-             b.doc["animations"][0]["samplers"][0]["output"] = b.Floats({0, 1, 0}, "SCALAR", 1);
-         },
-         "animations[0].samplers[0].output", "3 values for 2 key times of 2 weights"},
-        {"cubic_output_count",
-         [](GltfBuilder& b) {
-             b.doc["animations"][0]["samplers"][0]["interpolation"] = "CUBICSPLINE";
-         },
-         "animations[0].samplers[0].output", "(CUBICSPLINE"},
-        {"same_target_twice",
-         [](GltfBuilder& b) {
-             b.doc["animations"][0]["channels"].push_back(b.doc["animations"][0]["channels"][0]);
-         },
-         "animations[0].channels[1].target", "node 0's weights is animated by an earlier channel"},
-        {"mesh_weights_without_targets",
-         [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0].erase("targets"); },
-         "meshes[0].weights", "2 weights for 0 morph targets"},
-    };
-    for (const BadDeform& c : morphs) {
-        GltfBuilder b = MorphTriangle(true);
-        c.edit(b);
-        try {
-            LoadSceneFile(Save(std::string(c.name) + ".glb", b.Glb()));
-            ADD_FAILURE() << c.name << ": loaded without an error";
-        } catch (const InputError& e) {
-            EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
-            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
-        }
-    }
 }
 
 // Debian's assimp-testmodels: third-party files, never committed.

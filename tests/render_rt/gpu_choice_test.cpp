@@ -23,7 +23,9 @@ TEST(ChooseGpus, WithoutADeviceRefusesEveryCount) {
     std::vector<int> devices;
     std::string why;
     EXPECT_FALSE(ChooseGpus("1", &devices, &why));
-    EXPECT_EQ(why, "this machine has no usable CUDA device");
+    EXPECT_EQ(why,
+              "this machine has no usable CUDA device; leave out --gpus to render on the CPU "
+              "back end");
     EXPECT_FALSE(ChooseGpus("all", &devices, &why));
 }
 

@@ -11,6 +11,7 @@
 
 #include "engine/core/cuda_check.h"
 #include "engine/core/cuda_device_guard.h"
+#include "engine/core/cuda_unavailable.h"
 #include "engine/core/device_buffer.h"
 #include "engine/core/parallel_for.h"
 #include "engine/physics_anim/contact_rows.h"
@@ -473,9 +474,7 @@ std::unique_ptr<GpuContactSolver> CreateOnDevice0(std::string* why) {
     if (counted != cudaSuccess || devices == 0) {
         cudaGetLastError();  // clear the sticky error
         if (why) {
-            *why = counted == cudaSuccess
-                       ? "no CUDA device"
-                       : std::string("no usable CUDA device (") + cudaGetErrorString(counted) + ")";
+            *why = "no usable CUDA device (" + NoCudaDeviceReason(counted) + ")";
         }
         return nullptr;
     }

@@ -1,5 +1,8 @@
 // The CUDA back end: the trace kernel of trace_launch.cuh (the RT_HD body of pixel_kernel.h, one
 // thread per pixel) with production's policy, specialised per scene feature set.
+#include <string>
+
+#include "engine/core/cuda_unavailable.h"
 #include "engine/core/device_buffer.h"
 #include "engine/render_rt/cuda/cuda_trace.h"
 #include "engine/render_rt/cuda/device_scene.h"
@@ -19,9 +22,7 @@ bool CudaBackendAvailable(std::string* why) {
     int count = 0;
     const cudaError_t status = cudaGetDeviceCount(&count);
     if (status != cudaSuccess || count == 0) {
-        if (why)
-            *why = std::string("no CUDA device is usable here (") +
-                   (status != cudaSuccess ? cudaGetErrorString(status) : "no device found") + ")";
+        if (why) *why = "no CUDA device is usable here (" + NoCudaDeviceReason(status) + ")";
         return false;
     }
     return true;
