@@ -1,6 +1,7 @@
 // Skins and morph weights: a two-bone cylinder bent at known angles against the closed form of a
-// rotation about the knee, weights blended at the knee ring, joint matrices recomputed only when
-// a joint or the mesh moved; morphs at known weights, animated by their animator's weights track.
+// rotation about the knee, weights blended at the knee ring, joint matrices relative to the
+// mesh's position and recomputed only when a joint or the mesh moved; morphs at known weights,
+// animated by their animator's weights track.
 #include "engine/physics_anim/skinning.h"
 
 #include <gtest/gtest.h>
@@ -70,6 +71,15 @@ struct TwoBoneRig {
     const std::vector<glm::mat4>& JointMatrices() {
         return registry.Get<Skin>(mesh)->jointMatrices;
     }
+    // Where a skinned position lands in the world (the instance transform places the mesh's
+    // frame), and where a position of the mesh's own space does.
+    vec3 FromFrame(vec3 skinned) {
+        const glm::mat4 meshWorld = registry.Get<WorldTransform>(mesh)->objectToWorld;
+        return vec3(SkinnedMeshFrame(meshWorld) * glm::vec4(skinned, 1.0f));
+    }
+    vec3 FromMesh(vec3 local) {
+        return vec3(registry.Get<WorldTransform>(mesh)->objectToWorld * glm::vec4(local, 1.0f));
+    }
 };
 
 // A vertex above the knee follows the knee alone: bent by theta about z through (0, 1, 0),
@@ -94,24 +104,29 @@ TEST(SkinningTest, TwoBoneCylinderBentAtKnownAnglesMatchesTheClosedForm) {
                 const float a = float(step) * glm::radians(60.0f);
                 const vec3 p(0.25f * std::cos(a), y, 0.25f * std::sin(a));
                 if (y < 1.0f) {  // the thigh: the hip never turns
-                    ExpectNear(SkinnedPosition(p, hipOnly, rigid, m), p, "thigh");
+                    ExpectNear(rig.FromFrame(SkinnedPosition(p, hipOnly, rigid, m)),
+                               rig.FromMesh(p), "thigh");
                 } else if (y > 1.0f) {
-                    ExpectNear(SkinnedPosition(p, kneeOnly, rigid, m), BentAboutKnee(p, theta),
-                               "shin");
+                    ExpectNear(rig.FromFrame(SkinnedPosition(p, kneeOnly, rigid, m)),
+                               rig.FromMesh(BentAboutKnee(p, theta)), "shin");
                 } else {  // the knee ring, half each: the mean of straight and bent
                     const vec3 expected(0.5f * p.x * (1.0f + std::cos(theta)),
                                         1.0f + 0.5f * p.x * std::sin(theta), p.z);
-                    ExpectNear(SkinnedPosition(p, both, half, m), expected, "knee");
+                    ExpectNear(rig.FromFrame(SkinnedPosition(p, both, half, m)),
+                               rig.FromMesh(expected), "knee");
                 }
             }
         }
-        // Normals turn with the shin and stay unit length.
-        ExpectNear(SkinnedNormal(vec3(1, 0, 0), kneeOnly, rigid, m),
-                   vec3(std::cos(theta), std::sin(theta), 0.0f), "shin normal");
+        // Normals turn with the shin (and the rig's root, 30 degrees about y), unit length.
+        const vec3 shinNormal = glm::angleAxis(glm::radians(30.0f), vec3(0, 1, 0)) *
+                                vec3(std::cos(theta), std::sin(theta), 0.0f);
+        ExpectNear(SkinnedNormal(vec3(1, 0, 0), kneeOnly, rigid, m), shinNormal, "shin normal");
     }
 }
 
-TEST(SkinningTest, JointMatricesAreInTheMeshFrameSoMovingTheWholeRigChangesNone) {
+// Joint matrices are relative to the mesh's position only (SkinnedMeshFrame): a mesh node's
+// rotation and scale, which glTF ignores for a skinned mesh, are never undone.
+TEST(SkinningTest, JointMatricesAreRelativeToTheMeshPositionSoMovingTheWholeRigChangesNone) {
     TwoBoneRig rig;
     rig.BendKnee(45.0f);
     rig.Update();
@@ -119,7 +134,7 @@ TEST(SkinningTest, JointMatricesAreInTheMeshFrameSoMovingTheWholeRigChangesNone)
     // A static frame recomputes no skin.
     EXPECT_EQ(rig.Update(), 0u);
     // Moving the root moves mesh and joints alike: the skin is recomputed, to the same matrices
-    // (the world placement is the mesh instance's), and the world position is world(mesh) * p.
+    // (the world placement is the mesh instance's), and the world position is the frame's.
     rig.registry.Get<LocalTransform>(rig.root)->translation = vec3(-7.0f, 3.0f, 1.0f);
     rig.registry.MarkChanged<LocalTransform>(rig.root);
     EXPECT_EQ(rig.Update(), 1u);
@@ -128,7 +143,7 @@ TEST(SkinningTest, JointMatricesAreInTheMeshFrameSoMovingTheWholeRigChangesNone)
             for (int r = 0; r < 4; ++r)
                 EXPECT_NEAR(rig.JointMatrices()[j][c][r], before[j][c][r], 1e-5f);
     // The spec's world position of a shin vertex, jointWorld * inverseBind * p, equals the mesh
-    // world applied to the skinned position.
+    // frame applied to the skinned position.
     const vec3 p(0.25f, 2.0f, 0.0f);
     const glm::mat4 kneeWorld = rig.registry.Get<WorldTransform>(rig.knee)->objectToWorld;
     const glm::mat4 meshWorld = rig.registry.Get<WorldTransform>(rig.mesh)->objectToWorld;
@@ -137,8 +152,8 @@ TEST(SkinningTest, JointMatricesAreInTheMeshFrameSoMovingTheWholeRigChangesNone)
     const uint32_t kneeOnly[] = {1};
     const float rigid[] = {1.0f};
     const vec3 skinned = SkinnedPosition(p, kneeOnly, rigid, rig.JointMatrices());
-    const vec3 viaMesh = vec3(meshWorld * glm::vec4(skinned, 1.0f));
-    EXPECT_NEAR(glm::length(viaMesh - spec), 0.0f, 1e-5f);
+    const vec3 viaFrame = vec3(SkinnedMeshFrame(meshWorld) * glm::vec4(skinned, 1.0f));
+    EXPECT_NEAR(glm::length(viaFrame - spec), 0.0f, 1e-5f);
 }
 
 TEST(SkinningTest, OnlyTheMovedJointsSkinIsRecomputedAndMarked) {
