@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <memory>
 #include <sstream>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/backend_option.h"

@@ -1,5 +1,6 @@
 #include "engine/physics_anim/skinning.h"
 
+#include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <vector>
 
@@ -9,6 +10,15 @@
 namespace rtrt::physics {
 
 glm::mat4 SkinnedMeshFrame(const glm::mat4& meshWorld) {
+    // Usable: axes of lengths a float inverse keeps (1e-6 to 1e6; a scale of 1e-20 is not) that
+    // are not flattened together (the determinant against their lengths' product), in double.
+    const glm::dmat3 linear(meshWorld);
+    const double lengths[3] = {glm::length(linear[0]), glm::length(linear[1]),
+                               glm::length(linear[2])};
+    bool usable = true;
+    for (const double length : lengths) usable = usable && length >= 1e-6 && length <= 1e6;
+    const double det = glm::determinant(linear);
+    if (usable && std::fabs(det) > 1e-6 * lengths[0] * lengths[1] * lengths[2]) return meshWorld;
     glm::mat4 frame(1.0f);
     frame[3] = glm::vec4(glm::vec3(meshWorld[3]), 1.0f);
     return frame;
@@ -16,9 +26,7 @@ glm::mat4 SkinnedMeshFrame(const glm::mat4& meshWorld) {
 
 glm::mat4 JointMatrix(const glm::mat4& meshWorld, const glm::mat4& jointWorld,
                       const glm::mat4& inverseBind) {
-    glm::mat4 toFrame(1.0f);
-    toFrame[3] = glm::vec4(-glm::vec3(meshWorld[3]), 1.0f);
-    return toFrame * jointWorld * inverseBind;
+    return glm::affineInverse(SkinnedMeshFrame(meshWorld)) * jointWorld * inverseBind;
 }
 
 vec3 SkinnedPosition(vec3 rest, std::span<const uint32_t> joints, std::span<const float> weights,

@@ -30,13 +30,14 @@ struct MorphWeights {
     ecs::Entity animator;
 };
 
-// Where a skinned mesh's instance is placed: at its node's world position, unrotated and
-// unscaled. glTF ignores the skinned mesh node's transform (the joints alone pose the mesh), so it
-// must not be undone either: a node scaled to 0, or by 1e-20, has no usable inverse.
+// Where a skinned mesh's instance is placed: its node's world transform, so that the deformed
+// mesh stays in the orientation its rest tree was built in (refits stay tight); but only its
+// position when that transform has no usable inverse (a node scaled to 0, or by 1e-20), which
+// glTF allows, since it ignores a skinned mesh node's transform (the joints alone pose the mesh).
 glm::mat4 SkinnedMeshFrame(const glm::mat4& meshWorld);
 
 // glTF 2.0 skinning: inverse(SkinnedMeshFrame(meshWorld)) * jointWorld * inverseBind. Applied to
-// a rest position it gives the skinned position relative to the mesh's frame, which the instance
+// a rest position it gives the skinned position in the mesh's frame, which the instance
 // transform (that frame) then places: together jointWorld * inverseBind, the spec's world
 // position.
 glm::mat4 JointMatrix(const glm::mat4& meshWorld, const glm::mat4& jointWorld,

@@ -34,7 +34,8 @@ struct Deformation {
     uint32_t blasId = 0;  // the instance's own BLAS slot (the mesh's rest tree until deformed)
     ProceduralDeform procedural;
     // Skin: one matrix per joint of the mesh, from the rest mesh's space to the deformed mesh's
-    // space (glTF: inverse(world of the mesh's node) * world of the joint * inverse bind matrix).
+    // space, the instance's frame (glTF: inverse(the mesh node's frame) * world of the joint *
+    // inverse bind matrix; physics_anim/skinning.h's SkinnedMeshFrame).
     std::vector<Affine> jointMatrices;
     std::vector<float> morphWeights;  // one per morph target of the mesh
 };

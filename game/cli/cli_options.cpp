@@ -32,20 +32,25 @@ void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
 
 // "N" or "A:B" read into *first and *end, unchecked; false when the text is neither.
 static bool SplitFrames(const std::string& text, int* first, int* end) {
-    static const std::regex kRange("([0-9]+)(:([0-9]+))?");
-    std::smatch m;
-    if (!std::regex_match(text, m, kRange)) return false;
-    // Any number of digits: one past the last frame stands for all beyond (2147483647 was
-    // "malformed", not too far).
-    auto frame = [](const std::string& digits) {
-        const size_t start = std::min(digits.find_first_not_of('0'), digits.size());
-        const std::string significant = digits.substr(start);
+    // Split by hand: std::regex recurses once per character, and a long argument overflowed the
+    // stack.
+    const size_t colon = text.find(':');
+    const std::string a = text.substr(0, colon);
+    const std::string b = colon == std::string::npos ? "" : text.substr(colon + 1);
+    auto digits = [](const std::string& part) {
+        return !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (!digits(a) || (colon != std::string::npos && !digits(b))) return false;
+    // Any number of digits: one past the last frame stands for all beyond.
+    auto frame = [](const std::string& part) {
+        const size_t start = std::min(part.find_first_not_of('0'), part.size());
+        const std::string significant = part.substr(start);
         if (significant.empty()) return 0;
         return significant.size() > 8 ? kMaxFrames + 1
                                       : std::min(std::stoi(significant), kMaxFrames + 1);
     };
-    *first = m[2].matched ? frame(m[1].str()) : 0;
-    *end = m[2].matched ? frame(m[3].str()) : frame(m[1].str());
+    *first = colon != std::string::npos ? frame(a) : 0;
+    *end = colon != std::string::npos ? frame(b) : frame(a);
     return true;
 }
 
@@ -96,7 +101,11 @@ CLI::Validator DecimalNumber() {
     static const std::regex kWord(R"([+-]?(inf|infinity|nan)([(][^)]*[)])?)", std::regex::icase);
     return CLI::Validator(
         [](std::string& value) -> std::string {
-            if (std::regex_match(value, kDecimal) || std::regex_match(value, kWord)) return "";
+            // Bounded before matching: std::regex recurses once per character.
+            constexpr size_t kLongestNumber = 400;
+            if (value.size() <= kLongestNumber &&
+                (std::regex_match(value, kDecimal) || std::regex_match(value, kWord)))
+                return "";
             return "expected a number in decimal notation, got \"" + value + "\"";
         },
         "");

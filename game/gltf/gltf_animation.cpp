@@ -85,7 +85,7 @@ class ChannelReader {
     // Reads channel c into its node's clip, or skips it with a warning.
     void Read(size_t c, physics::KeyframeClip& clip, float& duration) {
         const tinygltf::AnimationChannel& ch = anim_.channels[c];
-        const std::string at = JsonIndexed("animations[0].channels", c);
+        const std::string at = doc_.FirstAnimationChannel(c);
         const tinygltf::AnimationSampler& s = anim_.samplers[size_t(ch.sampler)];
         const std::string samplerAt = JsonIndexed("animations[0].samplers", size_t(ch.sampler));
         physics::Interpolation mode = physics::Interpolation::kLinear;
@@ -204,7 +204,7 @@ void ReadGltfAnimation(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, 
     std::set<std::pair<int, std::string>> targets;
     for (size_t c = 0; c < anim.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = anim.channels[c];
-        const std::string at = JsonIndexed("animations[0].channels", c);
+        const std::string at = doc.FirstAnimationChannel(c);
         if (ch.target_path != "translation" && ch.target_path != "rotation" &&
             ch.target_path != "scale" && ch.target_path != "weights")
             doc.Fail(at + ".target.path", "unknown path \"" + ch.target_path + "\"");

@@ -75,7 +75,8 @@ bool IsRegularFile(const std::string& path, void*) {
 }  // namespace
 
 GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
-    const GltfFileBytes checked = ReadCheckedGltf(file_);
+    GltfFileBytes checked = ReadCheckedGltf(file_);
+    firstAnimationChannels_ = std::move(checked.firstAnimationChannels);
     const std::string dir = std::filesystem::path(file_).parent_path().string();
     const std::optional<DracoDecoded> draco =
         DecodeDracoPrimitives(file_, checked.bytes, checked.binary, dir);
@@ -114,6 +115,11 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
         Warn("image-unused", JsonIndexed("images", size_t(index)) +
                                  ": no texture's source names it (an extension's image, as "
                                  "KHR_texture_basisu's KTX2, or none); it is not decoded");
+}
+
+std::string GltfDocument::FirstAnimationChannel(size_t c) const {
+    return JsonIndexed("animations[0].channels",
+                       c < firstAnimationChannels_.size() ? firstAnimationChannels_[c] : c);
 }
 
 std::string CountGltfTexels(GltfImageFailure* failure, int width, int height) {

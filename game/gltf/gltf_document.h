@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace rtrt {
 
@@ -22,6 +23,10 @@ class GltfDocument {
     const std::string& File() const { return file_; }
     const tinygltf::Model& Model() const { return model_; }
 
+    // "animations[0].channels[N]" of tinygltf's channel c of the first animation: N counts the
+    // channels without target.node that tinygltf skipped.
+    std::string FirstAnimationChannel(size_t c) const;
+
     [[noreturn]] void Fail(const std::string& field, const std::string& reason) const;
     // One warning per kind of thing rtrt does not support, however often the file uses it.
     void Warn(const std::string& kind, const std::string& text);
@@ -29,6 +34,7 @@ class GltfDocument {
   private:
     std::string file_;
     tinygltf::Model model_;
+    std::vector<size_t> firstAnimationChannels_;
     std::set<std::string> warned_;
 };
 

@@ -266,11 +266,28 @@ void ExpectNestedKind(const std::string& file, const Json& element, const std::s
     JsonFields(*parent, path, file).ExpectKind(field.substr(start), kind);
 }
 
+// The first animation's channels that name a target.node (GltfFileBytes).
+std::vector<size_t> ChannelsWithNodes(const Json& root) {
+    std::vector<size_t> kept;
+    if (!root.contains("animations") || root["animations"].empty()) return kept;
+    const Json& animation = root["animations"][0];
+    if (!animation.contains("channels") || !animation["channels"].is_array()) return kept;
+    const Json& channels = animation["channels"];
+    for (size_t c = 0; c < channels.size(); ++c) {
+        const Json& channel = channels[c];
+        const bool named = channel.is_object() && channel.contains("target") &&
+                           channel["target"].is_object() && channel["target"].contains("node");
+        if (named) kept.push_back(c);
+    }
+    return kept;
+}
+
 std::vector<bool> CheckJson(const std::string& file, const std::string& json,
-                            const std::string& dir) {
+                            const std::string& dir, std::vector<size_t>* channels) {
     CheckJsonDepth(file, json);
     const Json root = ParseJson(json, file, DuplicateKeys::kLastWins);
     if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
+    *channels = ChannelsWithNodes(root);
     for (const char* array :
          {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers", "images", "textures",
           "materials", "animations", "cameras", "skins", "samplers"}) {
@@ -442,7 +459,7 @@ GltfFileBytes ReadCheckedGltf(const std::string& file) {
     out.binary = lower == ".glb" || out.bytes.compare(0, 4, "glTF") == 0;
     if (out.binary) CheckGlbHeader(file, out.bytes);
     out.imageUsed = CheckJson(file, out.binary ? GlbJson(out.bytes) : out.bytes,
-                              fs::path(file).parent_path().string());
+                              fs::path(file).parent_path().string(), &out.firstAnimationChannels);
     return out;
 }
 

@@ -14,6 +14,10 @@ struct GltfFileBytes {
     // Per image: whether a texture's own `source` names it, so rtrt may sample it. The others
     // (unused, or only an extension's source, as KHR_texture_basisu's KTX2) are not decoded.
     std::vector<bool> imageUsed;
+    // The index in the file of each channel of the first animation that names its target.node,
+    // in order: tinygltf keeps only those, so its channel c is the file's channel
+    // firstAnimationChannels[c].
+    std::vector<size_t> firstAnimationChannels;
 };
 
 // Reads FILE and checks it as above; throws InputError naming the file and field.

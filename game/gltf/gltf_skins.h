@@ -13,7 +13,7 @@ namespace rtrt {
 void CheckGltfSkinJoints(const GltfDocument& doc);
 
 // The file's skins into asset.skins (by index), their joints mapped through NODESLOT
-// (ReadGltfNodes). Throws InputError for a skin without joints, a joint out of range or outside
+// (ReadGltfNodes). Throws InputError for a joint out of range or outside
 // the scene shown, or inverse bind matrices that are not finite float 4x4s, one per joint.
 void ReadGltfSkins(GltfDocument& doc, const std::vector<int32_t>& nodeSlot, GltfAsset& asset);
 

@@ -41,6 +41,8 @@ struct FrameStats {
 class World {
   public:
     explicit World(const LoadedScene& scene);
+    // The World keeps a reference to its scene, which a temporary would not outlive.
+    explicit World(LoadedScene&&) = delete;
 
     // Advances time by dt: spawns what is due, runs the phases (physics, animation, transforms)
     // and extracts changed instances.

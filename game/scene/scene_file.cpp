@@ -366,7 +366,7 @@ class SceneParser {
             const double fraction = std::fmod(double(k) * golden, 1.0);
             InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
                             physics::ToMatrix(root.local),
-                            float(double(phase) + double(spread) * fraction));
+                            double(phase) + double(spread) * fraction);
             perPlace = out.entities.size() - before;
         }
     }

@@ -1,10 +1,10 @@
 #include "game/scene/scene_rigid_body.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <cmath>
 #include <map>
 #include <vector>
 
@@ -104,10 +104,10 @@ void CheckRigidBodyPlaces(const JsonFields& f, const std::string& field,
 
 void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file) {
     // The bodies that may appear together. A frame spawns every body whose time has come, and a
-    // frame is at most 1 s of scene time (play's --fps is at least 1), so bodies of times less
-    // than 1 s apart may start in one frame: they are checked together by whole seconds (the
-    // second after time t, ceil(t), with the next one), the ones of time 0 (the static scenery)
-    // first.
+    // frame of play is at most 1 s of scene time (its --fps is at least 1), so bodies of times
+    // less than 1 s apart may start in one frame: each whole second (ceil(t)) is checked with
+    // the next, which covers every such pair (and some up to 2 s apart), the ones of time 0
+    // (the static scenery) first.
     std::map<int64_t, std::vector<physics::BroadPhaseBox>> bySecond;
     for (const EntityDesc& e : scene.entities) {
         if (!e.body || e.collider.shape == physics::ColliderShape::kPlane) continue;

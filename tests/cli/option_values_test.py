@@ -232,6 +232,11 @@ for command in (headless, farm):
            "frames end at 10,000,000 at the latest")
     expect(f"{command[0]} frames far beyond the limit", command + ["--frames", "2:2147483647"],
            2, "frames end at 10,000,000 at the latest")
+    # 50,000 digits: refused, not a stack overflow in the pattern matcher.
+    expect(f"{command[0]} frames of 50,000 digits", command + ["--frames", "1" * 50000], 2,
+           "frames end at 10,000,000 at the latest")
+    expect(f"{command[0]} fps of 50,000 digits", command + ["--frames", "1", "--fps", "1" * 50000],
+           2, "--fps: expected a number in decimal notation")
     expect(f"{command[0]} no frames", command + ["--frames", "0"], 2,
            "N is how many frames: at least 1")
     expect(f"{command[0]} malformed frames", command + ["--frames", "1-4"], 2,

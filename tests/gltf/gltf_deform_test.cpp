@@ -97,7 +97,8 @@ TEST_F(GltfDeformTest, ASkinnedMeshNodeThatCannotBeInvertedIsStillIgnored) {
                 mesh.update(transform);
             }
             const std::string file = name + (parented ? "_parent" : "") + ".glb";
-            World world(LoadSceneFile(Save(file, b.Glb())));
+            const LoadedScene loaded = LoadSceneFile(Save(file, b.Glb()));
+            World world(loaded);
             ExpectBentCylinder(world, glm::radians(90.0f), file);
         }
 }
@@ -227,7 +228,8 @@ TEST_F(GltfDeformTest, AWeightsChannelOfOneKeyIsTheNodesWeights) {
     b.doc["animations"] = Json::array(
         {{{"samplers", {{{"input", times}, {"output", values}}}},
           {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}}}}}});
-    World world(LoadSceneFile(Save("posed_weights.gltf", b.GltfText())));
+    const LoadedScene loaded = LoadSceneFile(Save("posed_weights.gltf", b.GltfText()));
+    World world(loaded);
     world.Advance(0.5f);
     // (0, 0, 0) + 0 (0, 0, 1) + 1 (1, 0, 0).
     EXPECT_EQ(Deformed(world.Scene(), world.Scene().deformations.at(0), 0), vec3(1, 0, 0));
@@ -248,12 +250,21 @@ TEST_F(GltfDeformTest, AChannelWithoutATargetNodeIsSkipped) {
                {"extensions", {{"KHR_animation_pointer", {{"pointer", "/nodes/0/weights"}}}}}}}},
             {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}}}}}});
     ::testing::internal::CaptureStderr();
-    World world(LoadSceneFile(Save("pointer.gltf", b.GltfText())));
+    const LoadedScene loaded = LoadSceneFile(Save("pointer.gltf", b.GltfText()));
+    World world(loaded);
     const std::string warnings = ::testing::internal::GetCapturedStderr();
     EXPECT_NE(warnings.find("1 animation channel(s) without target.node"), std::string::npos)
         << warnings;
     world.Advance(0.5f);
     EXPECT_EQ(Deformed(world.Scene(), world.Scene().deformations.at(0), 0), vec3(1, 0, 0));
+    // Messages name the file's channel, counting the skipped one.
+    b.doc["animations"][0]["channels"][1]["sampler"] = 5;
+    try {
+        LoadSceneFile(Save("pointer_bad.gltf", b.GltfText()));
+        ADD_FAILURE() << "sampler 5 was taken";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.Field(), "animations[0].channels[1].sampler") << e.what();
+    }
 }
 
 // A skin only another scene of the file uses does not fail the scene shown ("node 1 is not in

@@ -300,7 +300,8 @@ TEST_F(GltfTest, AChannelOfOneKeyPosesItsNode) {
     b.doc["animations"] = Json::array(
         {{{"samplers", {{{"input", time}, {"output", move}}}},
           {"channels", {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}}}});
-    World world(LoadSceneFile(Save("pose.gltf", b.GltfText())));
+    const LoadedScene loaded = LoadSceneFile(Save("pose.gltf", b.GltfText()));
+    World world(loaded);
     // The child at (0, 4, 2) under the parent: rotated to (2, 4, 0), moved to (3, 4, 0).
     const vec3 expected(3, 4, 0);
     EXPECT_NEAR(glm::length(world.Scene().instances[0].ObjectToWorld().Point(vec3(0)) - expected),

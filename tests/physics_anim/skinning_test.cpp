@@ -1,6 +1,7 @@
 // Skins and morph weights: a two-bone cylinder bent at known angles against the closed form of a
-// rotation about the knee, weights blended at the knee ring, joint matrices relative to the
-// mesh's position and recomputed only when a joint or the mesh moved; morphs at known weights,
+// rotation about the knee, weights blended at the knee ring, joint matrices in the mesh's frame
+// (its world, or its position where that has no inverse) recomputed only when a joint or the
+// mesh moved; morphs at known weights,
 // animated by their animator's weights track.
 #include "engine/physics_anim/skinning.h"
 
@@ -77,6 +78,9 @@ struct TwoBoneRig {
         const glm::mat4 meshWorld = registry.Get<WorldTransform>(mesh)->objectToWorld;
         return vec3(SkinnedMeshFrame(meshWorld) * glm::vec4(skinned, 1.0f));
     }
+    glm::mat3 FrameRotation() {
+        return glm::mat3(SkinnedMeshFrame(registry.Get<WorldTransform>(mesh)->objectToWorld));
+    }
     vec3 FromMesh(vec3 local) {
         return vec3(registry.Get<WorldTransform>(mesh)->objectToWorld * glm::vec4(local, 1.0f));
     }
@@ -120,13 +124,12 @@ TEST(SkinningTest, TwoBoneCylinderBentAtKnownAnglesMatchesTheClosedForm) {
         // Normals turn with the shin (and the rig's root, 30 degrees about y), unit length.
         const vec3 shinNormal = glm::angleAxis(glm::radians(30.0f), vec3(0, 1, 0)) *
                                 vec3(std::cos(theta), std::sin(theta), 0.0f);
-        ExpectNear(SkinnedNormal(vec3(1, 0, 0), kneeOnly, rigid, m), shinNormal, "shin normal");
+        ExpectNear(rig.FrameRotation() * SkinnedNormal(vec3(1, 0, 0), kneeOnly, rigid, m),
+                   shinNormal, "shin normal");
     }
 }
 
-// Joint matrices are relative to the mesh's position only (SkinnedMeshFrame): a mesh node's
-// rotation and scale, which glTF ignores for a skinned mesh, are never undone.
-TEST(SkinningTest, JointMatricesAreRelativeToTheMeshPositionSoMovingTheWholeRigChangesNone) {
+TEST(SkinningTest, JointMatricesAreInTheMeshFrameSoMovingTheWholeRigChangesNone) {
     TwoBoneRig rig;
     rig.BendKnee(45.0f);
     rig.Update();
@@ -154,6 +157,28 @@ TEST(SkinningTest, JointMatricesAreRelativeToTheMeshPositionSoMovingTheWholeRigC
     const vec3 skinned = SkinnedPosition(p, kneeOnly, rigid, rig.JointMatrices());
     const vec3 viaFrame = vec3(SkinnedMeshFrame(meshWorld) * glm::vec4(skinned, 1.0f));
     EXPECT_NEAR(glm::length(viaFrame - spec), 0.0f, 1e-5f);
+}
+
+// A mesh node scaled flat, which glTF ignores for a skinned mesh, has no inverse: the frame is its
+// position alone, and the skinned world position is still jointWorld * inverseBind * p.
+TEST(SkinningTest, AMeshNodeWithoutAnInverseIsPlacedByItsPositionAlone) {
+    TwoBoneRig rig;
+    rig.registry.Get<LocalTransform>(rig.mesh)->scale = vec3(1.0f, 0.0f, 1.0f);
+    rig.registry.MarkChanged<LocalTransform>(rig.mesh);
+    rig.BendKnee(60.0f);
+    rig.Update();
+    const glm::mat4 meshWorld = rig.registry.Get<WorldTransform>(rig.mesh)->objectToWorld;
+    const glm::mat4 frame = SkinnedMeshFrame(meshWorld);
+    EXPECT_EQ(glm::mat3(frame), glm::mat3(1.0f));
+    EXPECT_EQ(vec3(frame[3]), vec3(meshWorld[3]));
+    const vec3 p(0.25f, 2.0f, 0.0f);
+    const glm::mat4 kneeWorld = rig.registry.Get<WorldTransform>(rig.knee)->objectToWorld;
+    const vec3 spec =
+        vec3(kneeWorld * rig.registry.Get<Skin>(rig.mesh)->inverseBind[1] * glm::vec4(p, 1.0f));
+    const uint32_t kneeOnly[] = {1};
+    const float rigid[] = {1.0f};
+    ExpectNear(rig.FromFrame(SkinnedPosition(p, kneeOnly, rigid, rig.JointMatrices())), spec,
+               "flat mesh node");
 }
 
 TEST(SkinningTest, OnlyTheMovedJointsSkinIsRecomputedAndMarked) {
