@@ -7,6 +7,7 @@
 
 #include "engine/core/error.h"
 #include "engine/physics_anim/animator.h"
+#include "engine/physics_anim/skinning.h"
 
 namespace rtrt {
 
@@ -64,12 +65,14 @@ void FinishLoadedScene(LoadedScene& out, const std::string& file) {
     const std::vector<glm::mat4> worlds = InitialWorlds(out);
     for (size_t i = 0; i < out.entities.size(); ++i) {
         const EntityDesc& e = out.entities[i];
+        // A skinned mesh is placed as the runtime places it (skinning.h).
+        const glm::mat4 placement = e.skin ? physics::SkinnedMeshFrame(worlds[i]) : worlds[i];
         if (e.renderable) {
             const Aabb b = out.scene.blases[e.blasId]->bounds;
             for (int corner = 0; corner < 8; ++corner) {
                 const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
                              (corner & 4) ? b.max.z : b.min.z);
-                const glm::vec4 w = worlds[i] * glm::vec4(p, 1.0f);
+                const glm::vec4 w = placement * glm::vec4(p, 1.0f);
                 if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
                     throw InputError(
                         file,
@@ -81,7 +84,7 @@ void FinishLoadedScene(LoadedScene& out, const std::string& file) {
         out.dynamic |= e.animator.has_value() || e.body.has_value() || e.spawnTime > 0.0f ||
                        e.deformableMesh >= 0;
         if (e.spawnTime == 0.0f && e.renderable)
-            out.scene.AddInstance(e.blasId, e.materialId, worlds[i]);
+            out.scene.AddInstance(e.blasId, e.materialId, placement);
     }
     out.dynamic |= !out.cameraPath.empty();
     if (!out.cameraPath.empty()) out.scene.camera = CameraAt(out, 0.0f);
