@@ -201,8 +201,8 @@ void RunDeformBench(const DeformBenchOptions& o) {
              {"deform_mtri_per_ms", double(triangles) * 1e-6 / Median(r.deform)}});
     }
     report["drift"] = drift;
-    // Both outputs are finished before either takes its name: a failure leaves neither (the
-    // JSON had been in place when the CSV's write failed).
+    // Both outputs are finished before either takes its name, so that a failure of either
+    // leaves neither.
     std::vector<std::pair<std::string, std::string>> outputs;
     if (!o.output.empty()) outputs.emplace_back(o.output, report.dump(2) + "\n");
     if (writeCsv) outputs.emplace_back(o.csv, csv.str());

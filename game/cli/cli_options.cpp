@@ -32,8 +32,8 @@ void ParseSize(const std::string& text, uint32_t* width, uint32_t* height) {
 
 // "N" or "A:B" read into *first and *end, unchecked; false when the text is neither.
 static bool SplitFrames(const std::string& text, int* first, int* end) {
-    // Split by hand: std::regex recurses once per character, and a long argument overflowed the
-    // stack.
+    // Split by hand: std::regex recurses once per character, and a long argument would overflow
+    // the stack.
     const size_t colon = text.find(':');
     const std::string a = text.substr(0, colon);
     const std::string b = colon == std::string::npos ? "" : text.substr(colon + 1);

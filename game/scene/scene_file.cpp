@@ -224,7 +224,7 @@ class SceneParser {
             out.entities.push_back(ParseEntity(f, out.scene));
             out.entities.back().sourceIndex = uint32_t(i);
             // A glTF instance may start its file's animation this many seconds in (bounded as
-            // the scene's other times are: at 1e20 the clock no longer advanced).
+            // the scene's other times are, so that a frame's step still moves the clock).
             const float phase = gltf_ ? f.InRange("phase", -1e6f, 1e6f, 0.0f) : 0.0f;
             f.Finish();
             if (!gltf_) continue;

@@ -32,7 +32,7 @@ void ParseRigidBody(const Json& j, const std::string& path, const std::string& f
     JsonFields f(j, path, file);
     physics::RigidBody body;
     body.mass = f.InRange("mass", 0.0f, 1e9f, body.mass);
-    // As written: 1e-50 is 0 as a float, and had made the body static.
+    // As written: 1e-50 is 0 as a float, which would make the body static.
     const bool someMass = f.Has("mass") && f.Get("mass").get<double>() > 0.0;
     if (someMass && body.mass < kMinBodyMass)
         f.Fail("mass", "a moving body weighs at least 1e-6 kg (0 makes it static)");
