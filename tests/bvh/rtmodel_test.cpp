@@ -246,6 +246,15 @@ std::vector<HostileCase> MakeHostileCorpus(const std::string& valid, const Blas&
          "child pair at odd index 1"},
         {"child_cycle", node(interior, [](BvhNode& n) { n.leftFirst = 0; }),
          "nodes[" + std::to_string(interior) + "].leftFirst", "child index 0 out of range"},
+        // An interior node made a leaf: its children stay, linked from nowhere (refits, which
+        // run over every node, read them).
+        {"unreachable_nodes",
+         node(interior,
+              [](BvhNode& n) {
+                  n.leftFirst = 0;
+                  n.primCount = 1;
+              }),
+         "nodes[" + std::to_string(blas.nodes[interior].leftFirst) + "]", "no node links to it"},
         {"leaf_out_of_range", node(leaf, [](BvhNode& n) { n.leftFirst = 40; }),
          "nodes[" + std::to_string(leaf) + "]", "out of range (40 primitives)"},
         {"huge_leaf", node(leaf, [](BvhNode& n) { n.primCount = 0xffffffffu; }),
@@ -324,6 +333,20 @@ TEST_F(RtModelTest, CommittedHostileCorpusIsCurrent) {
         if (write) WriteBytes(path, c.bytes);
         EXPECT_EQ(ReadBytes(path), c.bytes) << path << " is stale; see this test's comment";
         ExpectRejected(path, c);
+    }
+}
+
+// A file beyond 2 GiB is refused before its sections are allocated: a sparse one takes a few
+// kilobytes of disk.
+TEST_F(RtModelTest, AFileBeyondTwoGibibytesIsRefusedBeforeItIsRead) {
+    const std::string path = Path("sparse.rtmodel");
+    WriteBytes(path, ValidCorpusFile(dir_.string()));
+    fs::resize_file(path, (uint64_t(3) << 30));
+    try {
+        ReadRtModel(path);
+        ADD_FAILURE() << "a 3 GiB file was read";
+    } catch (const InputError& e) {
+        EXPECT_NE(e.Reason().find("at most 2 GiB"), std::string::npos) << e.what();
     }
 }
 

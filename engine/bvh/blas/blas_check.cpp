@@ -142,6 +142,12 @@ class Checker {
                 stack.push_back({uint32_t(c), item.depth + 1});
             }
         }
+        // Refits and SAH sums run over every node by index, not from the root: a node nothing
+        // links to would be read as a leaf of whatever range it holds.
+        for (size_t i = 2; i < nodes.size(); ++i)
+            if (!seen[i])
+                Fail(Indexed("nodes", i),
+                     "no node links to it (every node but slot 1 is reached from the root)");
     }
 
     void CheckWideTree() const {

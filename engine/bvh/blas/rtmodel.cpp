@@ -18,6 +18,7 @@
 #include "engine/bvh/blas/rtmodel_format.h"
 #include "engine/core/content_hash.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/core/math.h"
 #include "engine/core/output_file.h"
 
@@ -86,6 +87,9 @@ class Reader {
         struct stat st;
         if (::fstat(file_.Fd(), &st) != 0 || !S_ISREG(st.st_mode)) Fail("", "not a regular file");
         const uint64_t size = uint64_t(st.st_size);
+        // Bounded before any section is allocated: a sparse file is small on disk at any size.
+        if (size > kMaxInputFileBytes)
+            Fail("", std::to_string(size) + " bytes; rtrt reads model files of at most 2 GiB");
         if (size < sizeof(RtModelHeader) || !ReadAt(file_.Fd(), &h_, sizeof(h_), 0))
             Fail("header", "truncated: " + std::to_string(size) + " bytes, the header alone is " +
                                std::to_string(sizeof(RtModelHeader)));
