@@ -8,7 +8,10 @@ namespace rtrt::physics {
 
 LocalTransform EvaluateAnimator(const Animator& animator) {
     LocalTransform pose = animator.base;
-    if (animator.clip) SampleClip(*animator.clip, animator.time, pose);
+    if (animator.clip) {
+        SampleClip(*animator.clip, animator.time, pose);
+        if (!animator.clip->translation.times.empty()) pose.translation += animator.keyOffset;
+    }
     for (const ProceduralMotion& motion : animator.motions)
         ApplyMotion(motion, animator.time, pose);
     return pose;

@@ -20,6 +20,9 @@ struct Animator {
     std::shared_ptr<const KeyframeClip> clip;
     std::vector<ProceduralMotion> motions;
     LocalTransform base;
+    // Added to the clip's translation keys: a spawner's copies share one clip, each played at its
+    // own place.
+    vec3 keyOffset{0.0f};
     double time = 0.0;    // seconds of animation played
     float speed = 1.0f;   // playback rate: time advances by speed * dt
     bool playing = true;  // a paused animator is not touched at all

@@ -21,7 +21,7 @@ World::World(const LoadedScene& scene) : source_(scene) {
     scene_.maxDepth = scene.scene.maxDepth;
     scene_.deformableMeshes = scene.scene.deformableMeshes;
     physics::AddPhysicsAnimSystems(scheduler_, physics_, transforms_);
-    SpawnDue();
+    SpawnDue(0.0);
     transforms_.Update(registry_);
     physics::UpdateSkins(registry_);
     Extract();
@@ -30,12 +30,19 @@ World::World(const LoadedScene& scene) : source_(scene) {
     topologyPending_ = false;
 }
 
-void World::SpawnDue() {
+void World::SpawnDue(double pendingDt) {
     const std::vector<EntityDesc>& entities = source_.entities;
     const size_t first = nextSpawn_;
     for (; nextSpawn_ < entities.size() && entities[nextSpawn_].spawnTime <= time_; ++nextSpawn_) {
         const EntityDesc& d = entities[nextSpawn_];
         created_.push_back(Create(d));
+        // Its animation and deformation run from the time it is due, not from the frame that
+        // finds it due, so that its pose at a given time does not depend on the frame rate.
+        const double late = time_ - double(d.spawnTime) - pendingDt;
+        if (auto* animator = registry_.Get<physics::Animator>(created_.back()))
+            animator->time += double(animator->speed) * late;
+        if (auto* link = registry_.Get<DeformationLink>(created_.back()))
+            link->born = double(d.spawnTime);
         // Parents come first (FinishLoadedScene keeps them so): the link never closes a cycle.
         if (d.parent >= 0) physics::SetParent(registry_, created_.back(), created_[d.parent]);
     }
@@ -276,7 +283,7 @@ FrameStats World::Advance(float dt) {
     deformChanged_.clear();
     time_ += dt;
     const size_t before = nextSpawn_;
-    SpawnDue();
+    SpawnDue(dt);
     stats.spawned = uint32_t(nextSpawn_ - before);
     Stopwatch timer;
     scheduler_.RunFrame(registry_, dt);

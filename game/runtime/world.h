@@ -96,7 +96,9 @@ class World {
     void PlayAtFixedFrames(float frameDt) { physics_.KeepUpWithFrames(frameDt); }
 
   private:
-    void SpawnDue();
+    // Creates the entities whose time has come; PENDINGDT is the step this frame's systems are
+    // still to advance them by (0 when nothing runs before the first image).
+    void SpawnDue(double pendingDt);
     ecs::Entity Create(const EntityDesc& desc);
     uint32_t Extract();
     // A Deformation for a new deforming entity: a released one of the same mesh and rest tree

@@ -126,6 +126,11 @@ physics::Animator ParseAnimator(const Json& j, const std::string& path,
         a.motions.push_back(bob);
     }
     if (f.Has("keyframes")) a.clip = ParseClip(f.Get("keyframes"), f.Path("keyframes"), file);
+    // An orbit sets the position outright, so translation keys under it would do nothing.
+    if (f.Has("orbit") && a.clip && !a.clip->translation.Empty())
+        f.Fail("orbit",
+               "an orbit places the object itself: give translation keys or an orbit, "
+               "not both");
     f.Finish();
     if (a.motions.empty() && !a.clip)
         f.Fail("", "give at least one of keyframes, orbit, spin, bob");

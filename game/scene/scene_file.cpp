@@ -331,6 +331,7 @@ class SceneParser {
                 e.local.translation = p;
                 if (e.animator) {
                     e.animator->base.translation = p;
+                    e.animator->keyOffset = p - proto.local.translation;
                     for (physics::ProceduralMotion& m : e.animator->motions)
                         if (auto* orbit = std::get_if<physics::Orbit>(&m))
                             orbit->centre += p - proto.local.translation;

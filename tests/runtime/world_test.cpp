@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "engine/core/error.h"
@@ -145,6 +146,30 @@ TEST(World, KeyframesMoveAnEntity) {
     EXPECT_NEAR(world.Scene().instances[0].Position()[1], 2.5f, 1e-5f);
     for (int i = 0; i < 4; ++i) world.Advance(0.125f);  // t = 1.125: looped to 0.125
     EXPECT_NEAR(world.Scene().instances[0].Position()[1], 0.5f, 1e-5f);
+}
+
+// A keyframed spawner's copies each play the keys from their own place (all had played them at
+// the same place), and a spawned entity's animation runs from the time it is due, so that its
+// pose at a given time is the same at any frame rate (it had started a step late).
+TEST(World, SpawnedKeyframesKeepTheirPlaceAndTheirTime) {
+    const LoadedScene scene = ParseScene(R"({
+      "models": { "ball": { "type": "sphere", "radius": 0.1 } }, "instances": [],
+      "spawners": [ { "model": "ball", "time": 0.45, "position": [0, 0, 0],
+                      "grid": { "count": [3, 1, 1], "spacing": 1.5 },
+                      "animate": { "keyframes": { "translation": [[0, 0, 0, 0], [2, 2, 0, 0]] } } } ] })",
+                                         "spawned_keys.json", "");
+    for (const int fps : {4, 10, 20}) {
+        World world(scene);
+        for (int i = 0; i < fps; ++i) world.Advance(1.0f / float(fps));  // t = 1
+        std::vector<float> x;
+        for (const Instance& inst : world.Scene().instances) x.push_back(inst.Position()[0]);
+        std::sort(x.begin(), x.end());
+        ASSERT_EQ(x.size(), 3u) << fps;
+        // 0.55 s into keys that move x by 1 per second, from places -1.5, 0 and 1.5.
+        EXPECT_NEAR(x[0], -1.5f + 0.55f, 1e-5f) << fps << " fps";
+        EXPECT_NEAR(x[1], 0.55f, 1e-5f) << fps << " fps";
+        EXPECT_NEAR(x[2], 1.5f + 0.55f, 1e-5f) << fps << " fps";
+    }
 }
 
 // An animated entity shows its animation's pose from the first frame, in the loaded scene that

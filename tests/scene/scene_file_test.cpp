@@ -317,8 +317,15 @@ TEST(SceneFile, AnimationsDeformationsAndSpawnsStayWithinTheSceneBounds) {
                 "spawners[0].rain.min", "at most 1e7");
     EXPECT_NO_THROW(
         ParseScene(animated(R"({"keyframes": {"translation": [[0, 0, 0, 0], [1, 1e7, 0, 0]],
-                                  "scale": [[0, 1e-6, 1, 1e6]]}, "orbit": {"radius": 1e7}})"),
+                                  "scale": [[0, 1e-6, 1, 1e6]]}})"),
                    "s.json", ""));
+    EXPECT_NO_THROW(ParseScene(
+        animated(R"({"keyframes": {"scale": [[0, 1e-6, 1, 1e6]]}, "orbit": {"radius": 1e7}})"),
+        "s.json", ""));
+    // An orbit sets the position itself: translation keys beside it would do nothing.
+    ExpectError(animated(R"({"keyframes": {"translation": [[0, 0, 0, 0], [1, 1, 0, 0]]},
+                             "orbit": {"radius": 1}})"),
+                "instances[0].animate.orbit", "give translation keys or an orbit, not both");
 }
 
 TEST(SceneFile, DanglingReferencesAreRejected) {
