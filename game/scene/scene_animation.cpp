@@ -5,12 +5,15 @@
 #include <glm/gtc/quaternion.hpp>
 #include <memory>
 
+#include "engine/core/math.h"
+
 namespace rtrt {
 namespace {
 
 vec3 NonZero(JsonFields& f, const std::string& key, vec3 fallback) {
-    const vec3 v = f.Vec3(key, fallback);
-    if (glm::length(v) == 0.0f) f.Fail(key, "must not be the zero vector");
+    // Scaled first: the squared length of [1e20, 0, 0] overflows and of [1e-30, 0, 0] underflows.
+    const vec3 v = ScaledForNormalize(f.Vec3(key, fallback));
+    if (v == vec3(0.0f)) f.Fail(key, "must not be the zero vector");
     return glm::normalize(v);
 }
 

@@ -322,6 +322,15 @@ TEST(SceneFile, AnimationsDeformationsAndSpawnsStayWithinTheSceneBounds) {
     EXPECT_NO_THROW(ParseScene(
         animated(R"({"keyframes": {"scale": [[0, 1e-6, 1, 1e6]]}, "orbit": {"radius": 1e7}})"),
         "s.json", ""));
+    // Axes far from unit length keep their direction (one of 1e20 had become +y, one of 1e-30 was
+    // refused as zero).
+    for (const char* axis : {"[1e20, 0, 0]", "[1e-30, 0, 0]"}) {
+        const LoadedScene spun =
+            ParseScene(animated(std::string(R"({"spin": {"axis": )") + axis + R"(, "speed": 1}})"),
+                       "s.json", "");
+        const auto& spin = std::get<physics::Spin>(spun.entities.at(0).animator->motions.at(0));
+        EXPECT_EQ(spin.axis, vec3(1, 0, 0)) << axis;
+    }
     // An orbit sets the position itself: translation keys beside it would do nothing.
     ExpectError(animated(R"({"keyframes": {"translation": [[0, 0, 0, 0], [1, 1, 0, 0]]},
                              "orbit": {"radius": 1}})"),
