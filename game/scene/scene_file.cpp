@@ -38,7 +38,7 @@ class SceneParser {
         out_ = &out;
         RenderScene& scene = out.scene;
         hasCamera_ = top.Has("camera");
-        if (hasCamera_) scene.camera = ParseCamera(top.Get("camera"));
+        if (hasCamera_) scene.camera = ParseCamera(top.Get("camera"), top.Has("camera_path"));
         scene.background = top.Colour("background", scene.background);
         scene.maxDepth = top.Count("max_depth", 1, 16, scene.maxDepth);
         out.output = ParseOutputTransform(top);
@@ -85,7 +85,9 @@ class SceneParser {
         return t;
     }
 
-    Camera ParseCamera(const Json& j) {
+    // With a camera path, which gives every view, a camera that names no view of its own gives
+    // only its up and field of view.
+    Camera ParseCamera(const Json& j, bool path) {
         JsonFields f(j, "camera", file_);
         Camera c;
         c.position = f.Vec3("position", c.position);
@@ -102,8 +104,11 @@ class SceneParser {
             f.Fail(view,
                    "the view direction is beyond float's range (look_at too far from position)");
         if (c.forward == vec3(0.0f)) f.Fail(view, "the view direction has zero length");
-        if (!CameraBasisDefined(c.forward, c.up))
+        const bool ownView = f.Has("look_at") || f.Has("forward") || !path;
+        if (ownView && !CameraBasisDefined(c.forward, c.up))
             f.Fail("up", "up must not be parallel to the view direction (or zero)");
+        if (!ownView && (!IsFinite(c.up) || c.up == vec3(0.0f)))
+            f.Fail("up", "up must be a finite, non-zero direction");
         c.forward = ScaledForNormalize(c.forward);
         c.up = ScaledForNormalize(c.up);
         f.Finish();

@@ -119,6 +119,15 @@ TEST(SceneFile, CameraPathsWhoseViewTurnsParallelToUpAreRejected) {
         {"time": 0, "position": [0, 0, -5.9], "look_at": [0, 0, 0]},
         {"time": 1, "position": [0, 0, 5.2], "look_at": [0, 0, 0]}]})",
                 "camera_path[1].look_at", "on the way from the key before");
+    // A camera that only sets up for a path is not checked against a view it never shows (the
+    // default forward, parallel to this up, had refused the file).
+    EXPECT_NO_THROW(ParseScene(R"({"instances": [], "camera": {"up": [0, 0, 1]}, "camera_path": [
+        {"time": 0, "position": [0, 0, 0], "look_at": [1, 0, 0]},
+        {"time": 1, "position": [0, 0, 0], "look_at": [0, 1, 0]}]})",
+                               "s.json", ""));
+    ExpectError(R"({"instances": [], "camera": {"up": [0, 0, 0]}, "camera_path": [
+        {"time": 0, "position": [0, 0, 0], "look_at": [1, 0, 0]}]})",
+                "camera.up", "a finite, non-zero direction");
     // With another up, the straight-down view is fine; so is a path that turns beside up.
     EXPECT_NO_THROW(ParseScene(
         R"({"instances": [], "camera": {"forward": [0, -1, 0], "up": [0, 0, -1]}, "camera_path": [
