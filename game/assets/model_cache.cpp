@@ -23,8 +23,10 @@ std::string CachePath(const std::string& dir, const std::string& source, BvhBuil
     fs::path absolute = fs::weakly_canonical(fs::absolute(source), ec);
     if (ec) absolute = fs::absolute(source);
     const std::string where = absolute.string();
-    return dir + "/" + absolute.filename().string() + "-" +
-           HexDigest(HashBytes(where.data(), where.size())) + "-" +
+    // The name is for people reading the folder (the hash of the path tells entries apart),
+    // shortened so that the entry's name stays within a file system's 255 bytes.
+    const std::string name = absolute.filename().string().substr(0, 128);
+    return dir + "/" + name + "-" + HexDigest(HashBytes(where.data(), where.size())) + "-" +
            std::string(BuilderName(builder)) + ".rtmodel";
 }
 

@@ -71,7 +71,7 @@ void Convert(const ConvertOptions& o) {
     const uint64_t bytes = std::filesystem::file_size(o.output);
     std::printf("rtrt: wrote %s (%u triangles, %u source vertices, %.1f MB)\n", o.output.c_str(),
                 model.blas.SourcePrimCount(), model.info.sourceVertexCount, double(bytes) / 1e6);
-    std::printf("rtrt: %s SAH builder, SAH cost %.2f\n", o.builder.c_str(), model.info.sahCost);
+    std::printf("rtrt: %s builder, SAH cost %.2f\n", o.builder.c_str(), model.info.sahCost);
     std::printf("rtrt: hash %.1f ms, parse %.1f ms, build %.1f ms, write %.1f ms, total %.1f ms\n",
                 hashMs, model.parseMs, model.buildMs, writeMs, total.Milliseconds());
 }

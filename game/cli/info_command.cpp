@@ -85,8 +85,12 @@ void PrintModel(const std::string& path) {
         std::printf("  format        version %u, revision %u, %s bytes, read in %.1f ms\n",
                     model.info.version, k.revision, Grouped(model.info.fileBytes).c_str(),
                     model.readMs);
-        std::printf("  built by      %s SAH (leaves up to %u, %u bins) from a source of hash %s\n",
-                    std::string(BuilderName(k.builder)).c_str(), k.maxLeafSize, k.binCount,
+        // Only the binned builders (binned, sbvh) use bins; centroid splits at the middle.
+        const bool binned =
+            k.builder == BvhBuilder::kBinnedSah || k.builder == BvhBuilder::kSpatialSah;
+        std::printf("  built by      %s builder (leaves up to %u%s) from a source of hash %s\n",
+                    std::string(BuilderName(k.builder)).c_str(), k.maxLeafSize,
+                    binned ? (", " + std::to_string(k.binCount) + " bins").c_str() : "",
                     HexDigest(k.sourceHash).c_str());
     } else if (model.origin == MeshModel::Origin::kCache) {
         std::printf("  BVH source    cache %s (read in %.1f ms)\n", model.cachePath.c_str(),

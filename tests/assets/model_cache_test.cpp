@@ -85,6 +85,16 @@ TEST_F(ModelCacheTest, BuildsOnceThenReads) {
     EXPECT_EQ(CacheEntries(), 1u);
 }
 
+// A source whose name is as long as a file system allows is cached too (its entry's name had
+// passed 255 bytes, and every run rebuilt it with a warning).
+TEST_F(ModelCacheTest, ASourceOfTheLongestNameIsCached) {
+    const std::string obj = Write(std::string(240, 'q') + ".obj", kQuadObj);
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(LoadMeshModel(obj, {}).origin, MeshModel::Origin::kBuilt);
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+    EXPECT_EQ(LoadMeshModel(obj, {}).origin, MeshModel::Origin::kCache);
+}
+
 TEST_F(ModelCacheTest, AnEditedSourceIsRebuiltInPlace) {
     const std::string obj = Write("quad.obj", kQuadObj);
     const MeshModel before = LoadMeshModel(obj, {});

@@ -306,7 +306,7 @@ if(NOT status EQUAL 0 OR NOT stdout MATCHES "SAH cost [0-9.]+" OR NOT stdout MAT
 endif()
 execute_process(COMMAND ${RTRT} info ${WORK_DIR}/tetra.rtmodel RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
 if(NOT status EQUAL 0 OR NOT stdout MATCHES "triangles +4\n" OR NOT stdout MATCHES "vertices +4 "
-   OR NOT stdout MATCHES "sweep SAH" OR NOT stdout MATCHES "SAH cost")
+   OR NOT stdout MATCHES "built by +sweep builder \\(leaves up to [0-9]+\\) from" OR NOT stdout MATCHES "SAH cost")
     message(FATAL_ERROR "info tetra.rtmodel: status ${status}: ${stdout}${stderr}")
 endif()
 file(WRITE ${WORK_DIR}/tetra_scene.json
