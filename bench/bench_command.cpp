@@ -45,6 +45,13 @@ std::string BenchModelFile(const std::string& name) {
     return ModelDir() + "/dragon_vrip" + suffix + ".ply.gz";
 }
 
+void DropRepeats(std::vector<std::string>* names) {
+    std::vector<std::string> once;
+    for (const std::string& name : *names)
+        if (std::find(once.begin(), once.end(), name) == once.end()) once.push_back(name);
+    *names = std::move(once);
+}
+
 void CheckBenchModels(const std::vector<std::string>& models, const std::string& output) {
     for (const std::string& name : models)
         if (const std::string file = BenchModelFile(name);
@@ -412,6 +419,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
     cpu->add_option("-o,--output", options->output, "Write the results as JSON here")
         ->check(WritableFile());
     cpu->callback([options, exitCode] {
+        DropRepeats(&options->models);
+        DropRepeats(&options->builders);
         CheckBenchModels(options->models, options->output);
         RunBench(*options);
         *exitCode = kExitOk;
@@ -509,6 +518,8 @@ void AddBenchCommand(CLI::App& app, int* exitCode) {
         std::string why;
         if (!CudaBackendAvailable(&why))
             throw InputError("bench gpu", "", why + "; rtrt bench cpu times the CPU back end");
+        DropRepeats(&options->models);
+        DropRepeats(&options->gpuBuilders);
         CheckBenchModels(options->models, options->output);
         RunGpuBench(*options);
         *exitCode = kExitOk;

@@ -159,6 +159,7 @@ void AddConvertBench(CLI::App& bench, int* exitCode, nlohmann::json (*machineInf
     cmd->add_option("-o,--output", options->output, "Write the results as JSON here")
         ->check(WritableFile());
     cmd->callback([options, exitCode, machineInfo] {
+        DropRepeats(&options->models);
         CheckBenchModels(options->models, options->output);
         RunConvertBench(*options, machineInfo());
         *exitCode = kExitOk;

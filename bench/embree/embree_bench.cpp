@@ -148,6 +148,7 @@ void AddEmbreeBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("-o,--output", options->output, "Write the results as JSON here")
         ->check(WritableFile());
     cmd->callback([options, exitCode] {
+        DropRepeats(&options->models);
         CheckBenchModels(options->models, options->output);
         RunEmbreeBench(*options);
         *exitCode = kExitOk;

@@ -100,6 +100,11 @@ expect("bench frame by name", ["bench", "frame", "teapot_shadow", "--backend", "
 expect("traversal on the CPU", image + ["--traversal", "single"], 2,
        "--traversal: single: nested and single are the CUDA back end's traversals")
 expect("one GPU written 01", image + ["--gpus", "01"], 0, "wrote out.ppm")
+# A model or builder named twice is measured once: the report keeps one entry per name.
+r = expect("repeated models", ["bench", "cpu", "--models", "cube,cube", "--builders",
+                               "binned,binned", "--frames", "1"], 0, "cube")
+if r.stdout.count("\ncube ") != 1:
+    failures.append(f"bench cpu --models cube,cube: rows\n{r.stdout}")
 # A report named like a benchmark's model file is refused before the benchmark (after it, the
 # whole run was lost).
 os.makedirs(os.path.join(WORK, "bench_models"))
