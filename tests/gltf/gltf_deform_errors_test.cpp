@@ -31,7 +31,27 @@ void SetAttribute(GltfBuilder& b, const char* name, int accessor) {
     b.doc["meshes"][0]["primitives"][0]["attributes"][name] = accessor;
 }
 
-TEST_F(GltfDeformTest, MalformedSkinsAndMorphsNameTheirField) {
+class GltfDeformErrorTest : public GltfDeformTest {
+  protected:
+    // Each case's edit of a fresh file from MAKE is refused naming PREFIX + its field.
+    template <size_t N, typename Make>
+    void ExpectEachRefused(const BadDeform (&list)[N], Make make, const std::string& prefix) {
+        for (const BadDeform& c : list) {
+            GltfBuilder b = make();
+            c.edit(b);
+            try {
+                LoadSceneFile(Save(std::string(c.name) + ".glb", b.Glb()));
+                ADD_FAILURE() << c.name << ": loaded without an error";
+            } catch (const InputError& e) {
+                EXPECT_EQ(e.Field(), prefix + c.field) << c.name << ": " << e.what();
+                EXPECT_NE(e.Reason().find(c.reason), std::string::npos)
+                    << c.name << ": " << e.what();
+            }
+        }
+    }
+};
+
+TEST_F(GltfDeformErrorTest, MalformedSkinsAndMorphsNameTheirField) {
     const std::string prim = "meshes[0].primitives[0]";
     const BadDeform cases[] = {
         {"joint_out_of_range",
@@ -65,17 +85,8 @@ TEST_F(GltfDeformTest, MalformedSkinsAndMorphsNameTheirField) {
          },
          ".attributes.JOINTS_1", "given without WEIGHTS_1"},
     };
-    for (const BadDeform& c : cases) {
-        GltfBuilder b = TwoBoneCylinder(30.0f, false);
-        c.edit(b);
-        try {
-            LoadSceneFile(Save(std::string(c.name) + ".glb", b.Glb()));
-            ADD_FAILURE() << c.name << ": loaded without an error";
-        } catch (const InputError& e) {
-            EXPECT_EQ(e.Field(), prim + c.field) << c.name << ": " << e.what();
-            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
-        }
-    }
+    ExpectEachRefused(
+        cases, [] { return TwoBoneCylinder(30.0f, false); }, prim);
     const BadDeform others[] = {
         {"skin_joint_out_of_range", [](GltfBuilder& b) { b.doc["skins"][0]["joints"][1] = 7; },
          "skins[0].joints[1]", "node 7 out of range"},
@@ -102,17 +113,8 @@ TEST_F(GltfDeformTest, MalformedSkinsAndMorphsNameTheirField) {
         {"no_joints", [](GltfBuilder& b) { b.doc["skins"][0]["joints"] = Json::array(); },
          "skins[0].joints", "a skin needs at least one joint"},
     };
-    for (const BadDeform& c : others) {
-        GltfBuilder b = TwoBoneCylinder(30.0f, false);
-        c.edit(b);
-        try {
-            LoadSceneFile(Save(std::string(c.name) + ".glb", b.Glb()));
-            ADD_FAILURE() << c.name << ": loaded without an error";
-        } catch (const InputError& e) {
-            EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
-            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
-        }
-    }
+    ExpectEachRefused(
+        others, [] { return TwoBoneCylinder(30.0f, false); }, "");
     const BadDeform morphs[] = {
         {"mesh_weights_count",
          [](GltfBuilder& b) {
@@ -146,17 +148,8 @@ TEST_F(GltfDeformTest, MalformedSkinsAndMorphsNameTheirField) {
          [](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0].erase("targets"); },
          "meshes[0].weights", "2 weights for 0 morph targets"},
     };
-    for (const BadDeform& c : morphs) {
-        GltfBuilder b = MorphTriangle(true);
-        c.edit(b);
-        try {
-            LoadSceneFile(Save(std::string(c.name) + ".glb", b.Glb()));
-            ADD_FAILURE() << c.name << ": loaded without an error";
-        } catch (const InputError& e) {
-            EXPECT_EQ(e.Field(), c.field) << c.name << ": " << e.what();
-            EXPECT_NE(e.Reason().find(c.reason), std::string::npos) << c.name << ": " << e.what();
-        }
-    }
+    ExpectEachRefused(
+        morphs, [] { return MorphTriangle(true); }, "");
 }
 
 }  // namespace
