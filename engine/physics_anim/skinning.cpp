@@ -24,9 +24,9 @@ glm::mat4 SkinnedMeshFrame(const glm::mat4& meshWorld) {
     return frame;
 }
 
-glm::mat4 JointMatrix(const glm::mat4& meshWorld, const glm::mat4& jointWorld,
+glm::mat4 JointMatrix(const glm::mat4& toMeshFrame, const glm::mat4& jointWorld,
                       const glm::mat4& inverseBind) {
-    return glm::affineInverse(SkinnedMeshFrame(meshWorld)) * jointWorld * inverseBind;
+    return toMeshFrame * jointWorld * inverseBind;
 }
 
 vec3 SkinnedPosition(vec3 rest, std::span<const uint32_t> joints, std::span<const float> weights,
@@ -76,10 +76,11 @@ uint32_t UpdateSkins(ecs::Registry& registry) {
             moved = reader.IsChanged<WorldTransform>(skin.joints[j]);
         if (!moved) return;
         skin.jointMatrices.resize(skin.joints.size(), glm::mat4(1.0f));
+        const glm::mat4 toMeshFrame = glm::affineInverse(SkinnedMeshFrame(c.mesh->objectToWorld));
         for (size_t j = 0; j < skin.joints.size(); ++j)
             if (const WorldTransform* joint = reader.Get<WorldTransform>(skin.joints[j]))
                 skin.jointMatrices[j] =
-                    JointMatrix(c.mesh->objectToWorld, joint->objectToWorld, skin.inverseBind[j]);
+                    JointMatrix(toMeshFrame, joint->objectToWorld, skin.inverseBind[j]);
         c.moved = true;
     });
     uint32_t updated = 0;

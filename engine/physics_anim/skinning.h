@@ -14,7 +14,7 @@ namespace rtrt::physics {
 
 // A skinned mesh entity's joints (entities of the hierarchy, posed like any other) and their
 // inverse bind matrices. jointMatrices is derived (UpdateSkins): one per joint, from the mesh's
-// rest space to its deformed space, JointMatrix(mesh world, joint world, inverse bind).
+// rest space to its deformed space (JointMatrix).
 struct Skin {
     std::vector<ecs::Entity> joints;
     std::vector<glm::mat4> inverseBind;  // one per joint
@@ -36,11 +36,11 @@ struct MorphWeights {
 // glTF allows, since it ignores a skinned mesh node's transform (the joints alone pose the mesh).
 glm::mat4 SkinnedMeshFrame(const glm::mat4& meshWorld);
 
-// glTF 2.0 skinning: inverse(SkinnedMeshFrame(meshWorld)) * jointWorld * inverseBind. Applied to
-// a rest position it gives the skinned position in the mesh's frame, which the instance
-// transform (that frame) then places: together jointWorld * inverseBind, the spec's world
-// position.
-glm::mat4 JointMatrix(const glm::mat4& meshWorld, const glm::mat4& jointWorld,
+// glTF 2.0 skinning: toMeshFrame * jointWorld * inverseBind, toMeshFrame being
+// inverse(SkinnedMeshFrame(meshWorld)) (the same for every joint of a skin). Applied to a rest
+// position it gives the skinned position in the mesh's frame, which the instance transform (that
+// frame) then places: together jointWorld * inverseBind, the spec's world position.
+glm::mat4 JointMatrix(const glm::mat4& toMeshFrame, const glm::mat4& jointWorld,
                       const glm::mat4& inverseBind);
 
 // Linear blend skinning of one vertex: sum over its influences of weight * (joint matrix * p).
