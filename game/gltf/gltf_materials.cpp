@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <vector>
 
@@ -10,6 +11,17 @@
 namespace rtrt {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// A bound or a value as a message shows it: 1, not 1.000000.
+std::string Shortest(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", v);
+    return text;
+}
+
+}  // namespace
 
 // Larger indices are kept at this one: its reflectance differs from 1 by under 4e-6, and the
 // refraction's eta^2 stays finite in float.
@@ -34,15 +46,17 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
     auto number = [&](double v, const std::string& name, double lo, double hi) {
         if (!(v >= lo && v <= hi))
-            doc_.Fail(at + "." + name,
-                      "must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+            doc_.Fail(at + "." + name, "must be between " + Shortest(lo) + " and " + Shortest(hi) +
+                                           ", got " + Shortest(v));
         return float(v);
     };
+    // glTF bounds both factors' components to [0, 1] (KHR_materials_emissive_strength makes
+    // emission brighter); a base colour's alpha too, though surfaces are opaque.
     auto colour = [&](const std::vector<double>& v, const std::string& name, vec3 fallback) {
         if (v.empty()) return fallback;
         if (v.size() < 3) doc_.Fail(at + "." + name, "expected 3 or 4 numbers");
-        return vec3(number(v[0], name, 0, 1e6), number(v[1], name, 0, 1e6),
-                    number(v[2], name, 0, 1e6));
+        if (v.size() > 3) number(v[3], name, 0, 1);
+        return vec3(number(v[0], name, 0, 1), number(v[1], name, 0, 1), number(v[2], name, 0, 1));
     };
     auto extension = [&](const char* name, const char* key, double fallback) {
         auto it = g.extensions.find(name);
@@ -93,6 +107,14 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
             name != "KHR_materials_specular" && name != "KHR_materials_emissive_strength")
             doc_.Warn("material:" + name,
                       at + ".extensions." + name + ": not supported; the material ignores it");
+    // The extensions' textures are not sampled: their factors stand alone.
+    for (const auto& [name, key] : {std::pair{"KHR_materials_transmission", "transmissionTexture"},
+                                    std::pair{"KHR_materials_specular", "specularTexture"},
+                                    std::pair{"KHR_materials_specular", "specularColorTexture"}})
+        if (auto it = g.extensions.find(name); it != g.extensions.end() && it->second.Has(key))
+            doc_.Warn(std::string("material:") + key,
+                      at + ".extensions." + name + "." + key +
+                          ": not supported; the material uses the factor alone");
     if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
         doc_.Warn("alpha",
                   at + ".alphaMode: " + g.alphaMode + " is not supported; surfaces are opaque");

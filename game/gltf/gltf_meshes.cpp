@@ -72,6 +72,9 @@ std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
         out_.modelNames.push_back(fs::path(doc_.File()).filename().string() + " " + at +
                                   (m.name.empty() ? "" : " (" + m.name + ")"));
         out.material = materials_.Id(prim.material, at + ".material");
+        if (triangles.uvs.empty() && Textured(prim))
+            doc_.Warn("no-texcoord", at + ": its material has textures, but the primitive has "
+                                          "no TEXCOORD_0 (glTF requires it); they are not applied");
         ReadDeformation(prim, at, mesh, skin, triangles, out);
         if (shared)
             staticGeometry_[key] = {out.blas, uint32_t(triangles.positions.size()),
@@ -80,6 +83,15 @@ std::vector<GltfPrimitive> GltfMeshes::Primitives(size_t mesh, int skin) {
     }
     meshPrimitives_[{mesh, skin}] = result;
     return result;
+}
+
+bool GltfMeshes::Textured(const tinygltf::Primitive& prim) const {
+    if (prim.material < 0 || size_t(prim.material) >= model_.materials.size()) return false;
+    const tinygltf::Material& m = model_.materials[size_t(prim.material)];
+    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+    return pbr.baseColorTexture.index >= 0 || pbr.metallicRoughnessTexture.index >= 0 ||
+           m.normalTexture.index >= 0 || m.occlusionTexture.index >= 0 ||
+           m.emissiveTexture.index >= 0;
 }
 
 bool GltfMeshes::NormalMapped(const tinygltf::Primitive& prim) const {

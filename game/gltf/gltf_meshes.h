@@ -33,6 +33,8 @@ class GltfMeshes {
 
   private:
     TriangleMesh ReadPrimitive(const tinygltf::Primitive& prim, const std::string& at);
+    // Whether the primitive's material samples any texture.
+    bool Textured(const tinygltf::Primitive& prim) const;
     // Whether the primitive's material has a normal map (its triangles then carry tangents).
     bool NormalMapped(const tinygltf::Primitive& prim) const;
     // Vertex tangents for a normal-mapped primitive that does not deform: the file's TANGENT,

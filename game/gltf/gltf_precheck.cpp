@@ -8,6 +8,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
+#include "game/gltf/gltf_references.h"
 #include "game/gltf/gltf_required_fields.h"
 #include "game/scene/json_fields.h"
 
@@ -160,6 +161,10 @@ constexpr FieldKind kFieldKinds[] = {
     {"animations", "channels", JsonKind::kObjects},
     {"animations", "samplers", JsonKind::kObjects},
     {"cameras", "type", JsonKind::kString},
+    {"samplers", "magFilter", JsonKind::kInt},
+    {"samplers", "minFilter", JsonKind::kInt},
+    {"samplers", "wrapS", JsonKind::kInt},
+    {"samplers", "wrapT", JsonKind::kInt},
 };
 
 // Lower bounds of integer fields of kFieldKinds (glTF 2.0's schema; byte lengths of 0, below its
@@ -188,6 +193,27 @@ std::vector<bool> UsedImages(const Json& root) {
             if (source >= 0 && size_t(source) < count) used[size_t(source)] = true;
         }
     return used;
+}
+
+// The data URIs tinygltf decodes; it reads any other as a file's name, and the image then was
+// "missing or could not be decoded" though its bytes were there.
+void CheckDataUriType(const std::string& file, const std::string& field, const std::string& uri) {
+    constexpr std::string_view kRead[] = {"application/octet-stream",
+                                          "application/gltf-buffer",
+                                          "image/png",
+                                          "image/jpeg",
+                                          "image/bmp",
+                                          "image/gif",
+                                          "text/plain"};
+    for (std::string_view type : kRead)
+        if (uri.compare(5, type.size(), type) == 0 &&
+            uri.compare(5 + type.size(), 8, ";base64,") == 0)
+            return;
+    const std::string type = uri.substr(5, std::min(uri.find_first_of(";,"), size_t(64)) - 5);
+    throw InputError(file, field + ".uri",
+                     "a data URI of type \"" + type +
+                         "\", which rtrt does not read; it reads base64 data of "
+                         "application/octet-stream, image/png, image/jpeg, image/bmp or image/gif");
 }
 
 // A buffer given as a base64 data URI must hold exactly its byteLength bytes (tinygltf refuses
@@ -394,6 +420,7 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                 continue;
             }
             if (uri.rfind("data:", 0) == 0) {
+                CheckDataUriType(file, field, uri);
                 if (std::strcmp(array, "buffers") == 0) CheckBufferDataUri(file, field, list[i]);
                 continue;
             }
@@ -425,6 +452,7 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                                      " bytes; they must be equal");
         }
     }
+    CheckGltfReferences(file, root);
     return used;
 }
 

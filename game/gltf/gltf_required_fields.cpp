@@ -108,6 +108,8 @@ void CheckRequiredGltfFields(const std::string& file, const Json& root) {
         for (const auto& [primitive, at] : Elements(*mesh, path, "primitives"))
             Require(file, *primitive, at, {"attributes"});
     }
+    for (const auto& [material, path] : Elements(root, "", "materials"))
+        RequireOneOf(file, *material, path, "alphaMode", {"OPAQUE", "MASK", "BLEND"});
     for (const auto& [skin, path] : Elements(root, "", "skins"))
         Require(file, *skin, path, {"joints"});
 }

@@ -57,18 +57,6 @@ TEST_F(GltfTest, ABufferThatIsAFifoIsRefused) {
     }
 }
 
-// Loads PATH expecting one InputError naming FIELD and containing REASON.
-void ExpectGltfError(const std::string& path, const std::string& field, const std::string& reason) {
-    try {
-        LoadSceneFile(path);
-        ADD_FAILURE() << path << ": loaded without an error";
-    } catch (const InputError& e) {
-        EXPECT_EQ(e.File(), path);
-        EXPECT_EQ(e.Field(), field) << e.what();
-        EXPECT_NE(e.Reason().find(reason), std::string::npos) << e.what();
-    }
-}
-
 // Found by probing: material factors and extensions of the wrong JSON type were read as absent
 // ("metallicFactor": "0" rendered as metal, "baseColorFactor": "red" as white), and
 // componentType 5124, no glTF type, read float positions as integers.
