@@ -53,13 +53,28 @@ Temporaries& Registry() {
     return *registry;
 }
 
-sigset_t InterruptSignals() {
-    sigset_t set;
-    sigemptyset(&set);
-    sigaddset(&set, SIGINT);
-    sigaddset(&set, SIGTERM);
-    return set;
+// Each ends rtrt as an interrupt: a closed terminal (SIGHUP) or Ctrl-\ (SIGQUIT) had left
+// half-written temporaries. SIGHUP stays ignored where the starting process ignores it (nohup);
+// the others are handled even so, as a shell ignores SIGINT for a script's background job that
+// its tests then interrupt.
+constexpr int kInterruptSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+
+const char* SignalName(int signo) {
+    switch (signo) {
+        case SIGINT:
+            return "SIGINT";
+        case SIGTERM:
+            return "SIGTERM";
+        case SIGHUP:
+            return "SIGHUP";
+        case SIGQUIT:
+            return "SIGQUIT";
+        default:
+            return "a signal";
+    }
 }
+
+sigset_t handledSignals;  // set by InstallInterruptHandler before the waiting thread starts
 
 [[noreturn]] void CleanUpAndExit(int signo) {
     Temporaries& registry = Registry();
@@ -73,11 +88,10 @@ sigset_t InterruptSignals() {
     }
     // A progress bar on a terminal leaves its line open.
     char line[160];
-    const int size =
-        std::snprintf(line, sizeof(line),
-                      "%srtrt: interrupted (%s): finished outputs are kept, "
-                      "unfinished ones removed\n",
-                      isatty(STDERR_FILENO) ? "\n" : "", signo == SIGINT ? "SIGINT" : "SIGTERM");
+    const int size = std::snprintf(line, sizeof(line),
+                                   "%srtrt: interrupted (%s): finished outputs are kept, "
+                                   "unfinished ones removed\n",
+                                   isatty(STDERR_FILENO) ? "\n" : "", SignalName(signo));
     // write(2), not stdio: a thread stuck in stdio holds its lock, and the exit must not wait.
     [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, line, size_t(size));
     ::_exit(128 + signo);
@@ -94,16 +108,21 @@ void ForwardToInterruptThread(int signo) {
 }
 
 void WaitForInterrupt() {
-    const sigset_t set = InterruptSignals();
     int signo = 0;
-    while (sigwait(&set, &signo) != 0) continue;  // fails only for a bad set
+    while (sigwait(&handledSignals, &signo) != 0) continue;  // fails only for a bad set
     CleanUpAndExit(signo);
 }
 
 }  // namespace
 
 void InstallInterruptHandler() {
-    const sigset_t set = InterruptSignals();
+    sigemptyset(&handledSignals);
+    for (const int signo : kInterruptSignals) {
+        struct sigaction current = {};
+        sigaction(signo, nullptr, &current);
+        if (signo != SIGHUP || current.sa_handler != SIG_IGN) sigaddset(&handledSignals, signo);
+    }
+    const sigset_t set = handledSignals;
     pthread_sigmask(SIG_BLOCK, &set, nullptr);
     std::thread waiter(WaitForInterrupt);
     interruptThread = waiter.native_handle();  // valid for good: the thread never returns
@@ -112,8 +131,8 @@ void InstallInterruptHandler() {
     forward.sa_handler = ForwardToInterruptThread;
     forward.sa_mask = set;
     forward.sa_flags = SA_RESTART;
-    sigaction(SIGINT, &forward, nullptr);
-    sigaction(SIGTERM, &forward, nullptr);
+    for (const int signo : kInterruptSignals)
+        if (sigismember(&set, signo)) sigaction(signo, &forward, nullptr);
 }
 
 TemporariesLock::TemporariesLock() : lock_(Registry().mutex) {}

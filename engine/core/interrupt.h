@@ -1,14 +1,15 @@
 #pragma once
-// SIGINT and SIGTERM stop rtrt at once, at any point of its work: the signal goes on to the
-// child processes running, the registered temporaries are removed, a line says so, and the process
-// exits 128 + the signal's number (130, 143). Outputs take their name only when complete
+// SIGINT, SIGTERM, SIGQUIT and SIGHUP (unless ignored when rtrt starts) stop rtrt at once, at
+// any point of its work: the signal goes on to the child processes running, the registered
+// temporaries are removed, a line says so, and the process exits 128 + the signal's number (130,
+// 143, 129, 131). Outputs take their name only when complete
 // (OutputFile), so what was finished stays whole.
 #include <mutex>
 #include <string>
 
 namespace rtrt {
 
-// Blocks SIGINT and SIGTERM and waits for them on a thread of their own, which does the cleanup
+// Blocks those signals and waits for them on a thread of their own, which does the cleanup
 // with ordinary (not async-signal-safe) calls; a handler hands the signals on from threads that
 // were started before. Call once, first thing in main: rtrt's own threads inherit the mask.
 void InstallInterruptHandler();

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""SIGINT and SIGTERM at random moments under convert, render and play --headless (and a
-benchmark whose report goes to a file: the rows it printed are kept).
+"""SIGINT, SIGTERM, SIGHUP and SIGQUIT at random moments under convert, render and play
+--headless (and a benchmark whose report goes to a file: the rows it printed are kept).
 
 Each command runs once uninterrupted (the reference), then TRIALS times, each in a fresh folder,
-with SIGINT or SIGTERM sent at a random moment of the reference's run time. Every trial must exit
-130 (SIGINT) or 143 (SIGTERM) with rtrt's one line, or 0 if it finished first, promptly, and leave
-in its folder only files byte-identical to the reference's: finished frames and a complete target,
+with one of the four sent at a random moment of the reference's run time. Every trial must exit
+128 + the signal's number (130, 143, 129, 131) with rtrt's one line, or 0 if it finished first,
+promptly, and leave in its folder only files byte-identical to the reference's: finished frames and a complete target,
 or no target; no temporary, no partial frame, no half-written BLAS cache entry.
 
 A moment counts from when rtrt has installed its handler (SigCgt in /proc/PID/status): before
@@ -27,8 +27,8 @@ RTRT, WORK, EXT = sys.argv[1], sys.argv[2], sys.argv[3]
 SEED = int(sys.argv[4] if len(sys.argv) > 4 else os.environ.get("RTRT_TEST_SEED")
            or random.SystemRandom().randrange(1 << 31))
 TRIALS = 9
-EXIT_STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}
-HANDLED = (1 << (signal.SIGINT - 1)) | (1 << (signal.SIGTERM - 1))
+EXIT_STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143, signal.SIGHUP: 129, signal.SIGQUIT: 131}
+HANDLED = sum(1 << (signo - 1) for signo in EXIT_STATUS)
 PROMPT_S = 2.0  # from the signal to the exit, on a loaded two-core machine
 
 
@@ -52,7 +52,7 @@ def write_wavy_grid_ply(path, n):
 
 
 def wait_until_handled(proc):
-    """Waits until rtrt catches SIGINT and SIGTERM; False if it exited first."""
+    """Waits until rtrt catches the four signals; False if it exited first."""
     while proc.poll() is None:
         try:
             with open(f"/proc/{proc.pid}/status") as f:
@@ -65,15 +65,21 @@ def wait_until_handled(proc):
     return False
 
 
+def default_hangup():
+    """rtrt keeps SIGHUP ignored where it starts so (nohup): this test's may run under one."""
+    signal.signal(signal.SIGHUP, signal.SIG_DFL)
+
+
 def run(args, folder, delay=None, signo=None):
     """Runs rtrt with outputs in FOLDER; SIGNO DELAY seconds after it is ready, if given.
     Returns (status, stderr, seconds from ready to exit, seconds from the signal to exit)."""
     os.makedirs(folder)
     env = dict(os.environ, RTRT_CACHE_DIR=os.path.join(folder, "cache"))
     proc = subprocess.Popen([RTRT] + args(folder), stdout=subprocess.DEVNULL,
-                            stderr=subprocess.PIPE, env=env, text=True)
+                            stderr=subprocess.PIPE, env=env, text=True,
+                            preexec_fn=default_hangup)
     if not wait_until_handled(proc):
-        sys.exit(f"{args(folder)}: exited ({proc.wait()}) before it caught SIGINT and SIGTERM")
+        sys.exit(f"{args(folder)}: exited ({proc.wait()}) before it caught the four signals")
     ready = time.monotonic()
     sent = None
     if signo is not None:
