@@ -230,7 +230,9 @@ void RunPlay(PlayOptions o) {
     CheckPattern(o.output);
     RefuseFrameOver(o.output, first, end, "--manifest", o.manifest);
     RefuseFrameOver(o.output, first, end, "the scene file", ScenePathFor(o.scenes[0]));
+    // The last frame's name is the longest; every frame's is checked again as it is written.
     CheckImagePath(FramePath(o.output, first));
+    CheckImagePath(FramePath(o.output, end - 1));
     if (!o.manifest.empty()) CheckManifestPath(o.manifest);
     const LoadedScene loaded = LoadSceneFile(o.scenes[0]);
     CheckSceneChecksum(o.scenes[0], o.sceneChecksum);
@@ -277,18 +279,29 @@ void RunPlay(PlayOptions o) {
             renderer->Update(world.Scene(), world.Changes());
         }
         renderer->Trace(world.Scene(), settings, &frame);
+        bool written = false;
+        auto stopped = [&](const std::string& file, const std::string& reason) {
+            // What is kept, and the command that goes on from the frame that failed.
+            const int last = written ? i : i - 1;
+            std::string kept = "no frame was written";
+            if (last == first) kept = "frame " + std::to_string(first) + " is written and kept";
+            if (last > first)
+                kept = "frames " + std::to_string(first) + " to " + std::to_string(last) +
+                       " are written and kept";
+            if (written) kept += " (frame " + std::to_string(i) + " is not in the manifest)";
+            return OutputError(file, reason + "; " + kept + ", and --frames " + std::to_string(i) +
+                                         ":" + std::to_string(end) + " goes on from here");
+        };
         try {
             WriteImage(FramePath(o.output, i), frame, transform);
+            written = true;
             if (!o.manifest.empty()) AppendToManifest(o.manifest, i, FramePath(o.output, i));
         } catch (const OutputError& e) {
-            // What is kept, and the command that goes on from the frame that failed.
-            const std::string kept = i == first
-                                         ? "no frame was written"
-                                         : "frames " + std::to_string(first) + " to " +
-                                               std::to_string(i - 1) + " are written and kept";
-            throw OutputError(e.File(), e.Reason() + "; " + kept + ", and --frames " +
-                                            std::to_string(i) + ":" + std::to_string(end) +
-                                            " goes on from here");
+            throw stopped(e.File(), e.Reason());
+        } catch (const InputError& e) {
+            // A later frame's path found unusable (a folder of its name, a folder made read-only
+            // since the start): an output failure of this run, not bad input.
+            throw stopped(e.File(), e.Reason());
         }
         total += timer.Milliseconds();
         char what[64];

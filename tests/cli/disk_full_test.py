@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""A full disk under render, play --headless, convert, bench deform and the BLAS cache.
+"""A full disk under render, play --headless, convert, bench deform and the BLAS cache, and
+play's later frames whose paths cannot be written.
 
 Each failed write must exit 1 with "rtrt: error: FILE: No space left on device" (FILE the output
 the user named) and leave nothing behind: no output, no temporary. A failed BLAS cache write must
@@ -92,9 +93,54 @@ def check_all(mechanism, full, env, scratch):
     print(f"{mechanism} BLAS cache: ok ({r.stderr.strip()})")
 
 
-def fill(folder):
-    """Fills FOLDER's filesystem, then frees FREE_BYTES."""
-    filler = os.path.join(folder, "filler")
+def check_manifest_failure(full, scratch):
+    """The manifest on the full disk, frames where there is room: frame 0 is written before its
+    line fails, and the message says so."""
+    frames = os.path.join(scratch, "manifest")
+    os.makedirs(frames)
+    manifest = os.path.join(full, "frames.tsv")
+    fill(full, "filler_all", 0)
+    r = run(["play", os.path.join(WORK, "grid.json"), "--headless", "--frames", "3", "--size",
+             "160x120", "-o", os.path.join(frames, "f_%02d.ppm"), "--manifest", manifest], {})
+    expected = (f"rtrt: error: {manifest}: {REASON}; frame 0 is written and kept (frame 0 is not "
+                "in the manifest), and --frames 0:3 goes on from here")
+    if r.returncode != 1 or expected not in r.stderr or os.listdir(frames) != ["f_00.ppm"]:
+        sys.exit(f"tmpfs manifest: status {r.returncode}, files {os.listdir(frames)}, expected 1 "
+                 f"and \"{expected}\":\n{r.stderr}")
+    shutil.rmtree(frames)
+    print(f"tmpfs manifest: ok ({r.stderr.strip()})")
+
+
+def check_later_frames(scratch):
+    """A later frame's path that cannot be written: the last frame's name is checked before the
+    work (exit 2, nothing written); a folder in a frame's place is found when the frame is due,
+    and the run stops as a failed write does (exit 1, the frames before kept, the command that
+    goes on)."""
+    folder = os.path.join(scratch, "later")
+    os.makedirs(os.path.join(folder, "f_02.ppm"))
+    r = run(["play", os.path.join(WORK, "grid.json"), "--headless", "--frames", "4", "--size",
+             "32x24", "-o", os.path.join(folder, "f_%02d.ppm")], {})
+    expected = "; frames 0 to 1 are written and kept, and --frames 2:4 goes on from here"
+    if r.returncode != 1 or expected not in r.stderr or \
+            sorted(os.listdir(folder)) != ["f_00.ppm", "f_01.ppm", "f_02.ppm"]:
+        sys.exit(f"later folder: status {r.returncode}, files {sorted(os.listdir(folder))}, "
+                 f"expected 1 and \"{expected}\":\n{r.stderr}")
+    print(f"later folder: ok ({r.stderr.strip()})")
+    # Frame 9's name has 255 bytes, frame 10's one more.
+    long = os.path.join(folder, "n" * 250 + "%d.ppm")
+    r = run(["play", os.path.join(WORK, "grid.json"), "--headless", "--frames", "9:11", "--size",
+             "32x24", "-o", long], {})
+    if r.returncode != 2 or "10.ppm" not in r.stderr or \
+            any(name.startswith("n") for name in os.listdir(folder)):
+        sys.exit(f"later long name: status {r.returncode}, expected 2 before any frame:\n"
+                 f"{r.stderr}")
+    print(f"later long name: ok ({r.stderr.strip()[:120]}...)")
+    shutil.rmtree(folder)
+
+
+def fill(folder, name="filler", free=FREE_BYTES):
+    """Fills FOLDER's filesystem, then frees FREE bytes."""
+    filler = os.path.join(folder, name)
     fd = os.open(filler, os.O_WRONLY | os.O_CREAT)
     try:
         while True:
@@ -102,7 +148,7 @@ def fill(folder):
     except OSError:
         pass
     os.close(fd)
-    os.truncate(filler, max(0, os.path.getsize(filler) - FREE_BYTES))
+    os.truncate(filler, max(0, os.path.getsize(filler) - free))
 
 
 def main():
@@ -127,11 +173,13 @@ def main():
         try:
             fill(mount)
             check_all("tmpfs", mount, {}, scratch)
+            check_manifest_failure(mount, scratch)
         finally:
             subprocess.run(["umount", mount])
     else:
         print("a tmpfs cannot be mounted here: the injected failure alone is tested")
 
+    check_later_frames(scratch)
     injected = os.path.join(WORK, "injected")
     os.makedirs(injected)
     check_all("injected", injected, {"RTRT_TEST_FAIL_WRITE_AFTER": str(FREE_BYTES)}, scratch)
