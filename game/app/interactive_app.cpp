@@ -70,6 +70,9 @@ class App {
             dt *= model_.timeScale;
             if (model_.paused) dt = stepOnce_ ? model_.timeScale / o_.fps : 0.0f;
             stepOnce_ = false;
+            // The first frame shows the scene as loaded, as play --headless's frame 0 does: a
+            // recording lacked it, and each of its frames showed the headless frame after.
+            if (frame_ == 0) dt = 0.0f;
             const FrameStats fs = world_->Advance(dt);
             model_.times.simulate = fs.simulateMs;
             model_.times.extract = fs.extractMs;
