@@ -298,7 +298,7 @@ FrameStats World::Advance(float dt) {
     stats.extractMs = timer.Milliseconds();
     topologyChanged_ = topologyPending_;
     topologyPending_ = false;
-    scene_.camera = cameraOverride_ ? *cameraOverride_ : CameraAt(source_, float(time_));
+    scene_.camera = cameraOverride_ ? *cameraOverride_ : CameraAt(source_, time_);
     return stats;
 }
 

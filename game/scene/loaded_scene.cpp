@@ -87,11 +87,11 @@ void FinishLoadedScene(LoadedScene& out, const std::string& file) {
             out.scene.AddInstance(e.blasId, e.materialId, placement);
     }
     out.dynamic |= !out.cameraPath.empty();
-    if (!out.cameraPath.empty()) out.scene.camera = CameraAt(out, 0.0f);
+    if (!out.cameraPath.empty()) out.scene.camera = CameraAt(out, 0.0);
     out.scene.BuildTlas();
 }
 
-Camera CameraAt(const LoadedScene& loaded, float t) {
+Camera CameraAt(const LoadedScene& loaded, double t) {
     Camera camera = loaded.scene.camera;
     const std::vector<CameraKey>& path = loaded.cameraPath;
     if (path.empty()) return camera;
@@ -99,8 +99,9 @@ Camera CameraAt(const LoadedScene& loaded, float t) {
     while (next < path.size() && path[next].time <= t) ++next;
     const CameraKey& a = path[next == 0 ? 0 : next - 1];
     const CameraKey& b = path[next == path.size() ? path.size() - 1 : next];
-    const float span = b.time - a.time;
-    const float w = span > 0.0f ? std::clamp((t - a.time) / span, 0.0f, 1.0f) : 0.0f;
+    // In double: a float clock moves in steps of a frame or more past 131072 s at 60 fps.
+    const double span = double(b.time) - double(a.time);
+    const float w = span > 0.0 ? float(std::clamp((t - a.time) / span, 0.0, 1.0)) : 0.0f;
     camera.position = glm::mix(a.position, b.position, w);
     camera.forward = ScaledForNormalize(glm::mix(a.lookAt, b.lookAt, w) - camera.position);
     return camera;

@@ -92,7 +92,7 @@ struct LoadedScene {
 };
 
 // The camera of a scene at time t (its camera_path if it has one).
-Camera CameraAt(const LoadedScene& scene, float t);
+Camera CameraAt(const LoadedScene& scene, double t);
 
 // The last step of loading: entities ordered by spawn time (parents stay ahead of their
 // children), an instance for every renderable entity of time 0 at its world pose, the TLAS.

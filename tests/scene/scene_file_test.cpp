@@ -34,6 +34,17 @@ void ExpectError(const std::string& json, const std::string& field, const std::s
     }
 }
 
+// The camera between two keys late in a long run: a float clock there moved in steps of 1/64 s
+// (150000 s), so a third of the way between the keys was placed at 0.328 of it.
+TEST(SceneFile, CameraPathIsInterpolatedAtFullPrecisionLateInARun) {
+    const LoadedScene s = ParseScene(R"({"instances": [], "camera_path": [
+        {"time": 150000, "position": [-2, 0, 5], "look_at": [0, 0, 0]},
+        {"time": 150001, "position": [2, 0, 5], "look_at": [0, 0, 0]}]})",
+                                     "late.json", "");
+    EXPECT_NEAR(CameraAt(s, 150000.0 + 1.0 / 3.0).position.x, -2.0f + 4.0f / 3.0f, 1e-5f);
+    EXPECT_NEAR(CameraAt(s, 150000.0 + 1.0 / 60.0).position.x, -2.0f + 4.0f / 60.0f, 1e-5f);
+}
+
 TEST(SceneFile, ParsesAMinimalScene) {
     const LoadedScene s = ParseScene(kMinimal, "ok.json", "");
     ASSERT_EQ(s.scene.instances.size(), 1u);
