@@ -107,14 +107,6 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
             name != "KHR_materials_specular" && name != "KHR_materials_emissive_strength")
             doc_.Warn("material:" + name,
                       at + ".extensions." + name + ": not supported; the material ignores it");
-    // The extensions' textures are not sampled: their factors stand alone.
-    for (const auto& [name, key] : {std::pair{"KHR_materials_transmission", "transmissionTexture"},
-                                    std::pair{"KHR_materials_specular", "specularTexture"},
-                                    std::pair{"KHR_materials_specular", "specularColorTexture"}})
-        if (auto it = g.extensions.find(name); it != g.extensions.end() && it->second.Has(key))
-            doc_.Warn(std::string("material:") + key,
-                      at + ".extensions." + name + "." + key +
-                          ": not supported; the material uses the factor alone");
     if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
         doc_.Warn("alpha",
                   at + ".alphaMode: " + g.alphaMode + " is not supported; surfaces are opaque");
@@ -146,7 +138,7 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     p.metallic = metallic;
     p.roughness = roughness;
     p.emissive = emissive;
-    p.dielectricF0 = glm::min(vec3(f0Dielectric) * specularColour, vec3(1.0f));
+    p.dielectricF0 = vec3(f0Dielectric) * specularColour;  // kept at most 1 where shaded
     p.specularWeight = specularFactor;
     p.transmission = transmission;
     p.ior = ior;
@@ -165,12 +157,35 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     p.emissiveTexture = textures_.Slot(
         {g.emissiveTexture.index, g.emissiveTexture.texCoord, &g.emissiveTexture.extensions},
         at + ".emissiveTexture", true);
+    p.transmissionTexture =
+        ExtensionSlot(g, at, "KHR_materials_transmission", "transmissionTexture", false);
+    p.specularTexture = ExtensionSlot(g, at, "KHR_materials_specular", "specularTexture", false,
+                                      TexelChannels::kAlphaAsGrey);
+    p.specularColorTexture =
+        ExtensionSlot(g, at, "KHR_materials_specular", "specularColorTexture", true);
     m.ambient = GltfApproximationAmbient(p);
     const uint32_t id = out_.scene.AddPbrMaterial(m, p);
     out_.materialNames.push_back(
         g.name.empty() ? fs::path(doc_.File()).filename().string() + " " + at : g.name);
     materialIds_[index] = id;
     return id;
+}
+
+// A textureInfo inside a material extension's object, which tinygltf keeps as a JSON value (its
+// fields' kinds and index were checked before the file was read).
+uint32_t GltfMaterials::ExtensionSlot(const tinygltf::Material& g, const std::string& at,
+                                      const char* extension, const char* key, bool srgb,
+                                      TexelChannels channels) {
+    auto it = g.extensions.find(extension);
+    if (it == g.extensions.end() || !it->second.Has(key)) return kNoTexture;
+    const tinygltf::Value& info = it->second.Get(key);
+    const std::string field = at + ".extensions." + extension + "." + key;
+    if (!info.Has("index")) doc_.Fail(field + ".index", "missing (glTF 2.0 requires it)");
+    tinygltf::ExtensionMap extensions;
+    if (info.Has("extensions")) extensions = info.Get("extensions").Get<tinygltf::Value::Object>();
+    const int texCoord = info.Has("texCoord") ? info.Get("texCoord").GetNumberAsInt() : 0;
+    return textures_.Slot({info.Get("index").GetNumberAsInt(), texCoord, &extensions}, field, srgb,
+                          channels);
 }
 
 }  // namespace rtrt

@@ -26,6 +26,11 @@ class GltfMaterials {
     uint32_t Id(int index, const std::string& field);
 
   private:
+    // The texture record of KEY in material G's EXTENSION (kNoTexture where absent).
+    uint32_t ExtensionSlot(const tinygltf::Material& g, const std::string& at,
+                           const char* extension, const char* key, bool srgb,
+                           TexelChannels channels = TexelChannels::kRgb);
+
     GltfDocument& doc_;
     const tinygltf::Model& model_;
     LoadedScene& out_;

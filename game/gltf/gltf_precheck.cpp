@@ -99,51 +99,8 @@ constexpr FieldKind kFieldKinds[] = {
     {"materials", "pbrMetallicRoughness.baseColorFactor", JsonKind::kNumbers4},
     {"materials", "pbrMetallicRoughness.metallicFactor", JsonKind::kNumber},
     {"materials", "pbrMetallicRoughness.roughnessFactor", JsonKind::kNumber},
-    {"materials", "pbrMetallicRoughness.baseColorTexture", JsonKind::kObject},
-    {"materials", "pbrMetallicRoughness.baseColorTexture.index", JsonKind::kInt},
-    {"materials", "pbrMetallicRoughness.baseColorTexture.texCoord", JsonKind::kInt},
-    {"materials", "pbrMetallicRoughness.baseColorTexture.extensions", JsonKind::kObject},
-    {"materials", "pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform",
-     JsonKind::kObject},
-    {"materials", "pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.rotation",
-     JsonKind::kNumber},
-    {"materials", "pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.texCoord",
-     JsonKind::kInt},
-    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture", JsonKind::kObject},
-    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture.index", JsonKind::kInt},
-    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture.texCoord", JsonKind::kInt},
-    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture.extensions", JsonKind::kObject},
-    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture.extensions.KHR_texture_transform",
-     JsonKind::kObject},
-    {"materials",
-     "pbrMetallicRoughness.metallicRoughnessTexture.extensions.KHR_texture_transform.rotation",
-     JsonKind::kNumber},
-    {"materials",
-     "pbrMetallicRoughness.metallicRoughnessTexture.extensions.KHR_texture_transform.texCoord",
-     JsonKind::kInt},
-    {"materials", "normalTexture", JsonKind::kObject},
-    {"materials", "normalTexture.index", JsonKind::kInt},
-    {"materials", "normalTexture.texCoord", JsonKind::kInt},
-    {"materials", "normalTexture.extensions", JsonKind::kObject},
-    {"materials", "normalTexture.extensions.KHR_texture_transform", JsonKind::kObject},
-    {"materials", "normalTexture.extensions.KHR_texture_transform.rotation", JsonKind::kNumber},
-    {"materials", "normalTexture.extensions.KHR_texture_transform.texCoord", JsonKind::kInt},
     {"materials", "normalTexture.scale", JsonKind::kNumber},
-    {"materials", "occlusionTexture", JsonKind::kObject},
-    {"materials", "occlusionTexture.index", JsonKind::kInt},
-    {"materials", "occlusionTexture.texCoord", JsonKind::kInt},
-    {"materials", "occlusionTexture.extensions", JsonKind::kObject},
-    {"materials", "occlusionTexture.extensions.KHR_texture_transform", JsonKind::kObject},
-    {"materials", "occlusionTexture.extensions.KHR_texture_transform.rotation", JsonKind::kNumber},
-    {"materials", "occlusionTexture.extensions.KHR_texture_transform.texCoord", JsonKind::kInt},
     {"materials", "occlusionTexture.strength", JsonKind::kNumber},
-    {"materials", "emissiveTexture", JsonKind::kObject},
-    {"materials", "emissiveTexture.index", JsonKind::kInt},
-    {"materials", "emissiveTexture.texCoord", JsonKind::kInt},
-    {"materials", "emissiveTexture.extensions", JsonKind::kObject},
-    {"materials", "emissiveTexture.extensions.KHR_texture_transform", JsonKind::kObject},
-    {"materials", "emissiveTexture.extensions.KHR_texture_transform.rotation", JsonKind::kNumber},
-    {"materials", "emissiveTexture.extensions.KHR_texture_transform.texCoord", JsonKind::kInt},
     {"materials", "emissiveFactor", JsonKind::kNumbers3},
     {"materials", "alphaMode", JsonKind::kString},
     {"materials", "alphaCutoff", JsonKind::kNumber},
@@ -165,6 +122,21 @@ constexpr FieldKind kFieldKinds[] = {
     {"samplers", "minFilter", JsonKind::kInt},
     {"samplers", "wrapS", JsonKind::kInt},
     {"samplers", "wrapT", JsonKind::kInt},
+};
+
+// The fields of a textureInfo (each of kGltfTextureSlots), the slot itself first.
+struct SlotFieldKind {
+    const char* field;  // "" for the slot's own object
+    JsonKind kind;
+};
+constexpr SlotFieldKind kTextureInfoKinds[] = {
+    {"", JsonKind::kObject},
+    {".index", JsonKind::kInt},
+    {".texCoord", JsonKind::kInt},
+    {".extensions", JsonKind::kObject},
+    {".extensions.KHR_texture_transform", JsonKind::kObject},
+    {".extensions.KHR_texture_transform.rotation", JsonKind::kNumber},
+    {".extensions.KHR_texture_transform.texCoord", JsonKind::kInt},
 };
 
 // Lower bounds of integer fields of kFieldKinds (glTF 2.0's schema; byte lengths of 0, below its
@@ -326,6 +298,11 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
             for (const FieldKind& f : kFieldKinds)
                 if (std::strcmp(f.array, array) == 0)
                     ExpectNestedKind(file, list[i], JsonIndexed(array, i), f.field, f.kind);
+            if (std::strcmp(array, "materials") == 0)
+                for (const char* slot : kGltfTextureSlots)
+                    for (const SlotFieldKind& f : kTextureInfoKinds)
+                        ExpectNestedKind(file, list[i], JsonIndexed(array, i),
+                                         std::string(slot) + f.field, f.kind);
         }
     }
     CheckRequiredGltfFields(file, root);

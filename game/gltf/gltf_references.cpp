@@ -34,25 +34,6 @@ constexpr Reference kReferences[] = {
     {"images", "bufferView", "bufferViews", "buffer view"},
     {"textures", "source", "images", "image"},
     {"textures", "sampler", "samplers", "sampler"},
-    {"materials", "pbrMetallicRoughness.baseColorTexture.index", "textures", "texture"},
-    {"materials", "pbrMetallicRoughness.metallicRoughnessTexture.index", "textures", "texture"},
-    {"materials", "normalTexture.index", "textures", "texture"},
-    {"materials", "occlusionTexture.index", "textures", "texture"},
-    {"materials", "emissiveTexture.index", "textures", "texture"},
-    {"materials", "extensions.KHR_materials_transmission.transmissionTexture.index", "textures",
-     "texture"},
-    {"materials", "extensions.KHR_materials_specular.specularTexture.index", "textures", "texture"},
-    {"materials", "extensions.KHR_materials_specular.specularColorTexture.index", "textures",
-     "texture"},
-};
-
-// The texture slots whose texCoord (and KHR_texture_transform's override of it) rtrt reads.
-constexpr const char* kTextureSlots[] = {
-    "pbrMetallicRoughness.baseColorTexture",
-    "pbrMetallicRoughness.metallicRoughnessTexture",
-    "normalTexture",
-    "occlusionTexture",
-    "emissiveTexture",
 };
 
 // The value at FIELD's dotted path inside ELEMENT, or null where a part is absent or its parent
@@ -197,10 +178,15 @@ void CheckGltfReferences(const std::string& file, const Json& root) {
             if (const Json* value = At(root[r.array][i], r.field))
                 CheckReference(file, *value, JsonIndexed(r.array, i) + "." + r.field, r.target,
                                r.noun, Count(root, r.target), r.list);
+    for (size_t m = 0; m < Count(root, "materials"); ++m)
+        for (const char* slot : kGltfTextureSlots)
+            if (const Json* value = At(root["materials"][m], std::string(slot) + ".index"))
+                CheckIndex(file, *value, JsonIndexed("materials", m) + "." + slot + ".index",
+                           "textures", "texture", Count(root, "textures"));
     CheckNestedReferences(file, root);
     CheckBufferViews(file, root);
     for (size_t m = 0; m < Count(root, "materials"); ++m)
-        for (const char* slot : kTextureSlots)
+        for (const char* slot : kGltfTextureSlots)
             for (const std::string field :
                  {std::string(slot) + ".texCoord",
                   std::string(slot) + ".extensions.KHR_texture_transform.texCoord"}) {

@@ -9,6 +9,19 @@
 
 namespace rtrt {
 
+// The texture slots (textureInfo objects) of a material that rtrt reads, as dotted paths inside
+// it: the core ones, then the extensions'.
+inline constexpr const char* kGltfTextureSlots[] = {
+    "pbrMetallicRoughness.baseColorTexture",
+    "pbrMetallicRoughness.metallicRoughnessTexture",
+    "normalTexture",
+    "occlusionTexture",
+    "emissiveTexture",
+    "extensions.KHR_materials_transmission.transmissionTexture",
+    "extensions.KHR_materials_specular.specularTexture",
+    "extensions.KHR_materials_specular.specularColorTexture",
+};
+
 // Throws InputError naming FILE and the field ("materials[0].normalTexture.index") for an index
 // that names no object of its array, a buffer view that does not lie inside its buffer, a
 // texCoord below 0, and a sampler's filter or wrap mode outside glTF's enumerations. Fields of

@@ -14,17 +14,18 @@ TextureWrap Wrap(int mode) {
 
 }  // namespace
 
-uint32_t GltfTextures::Slot(const GltfTextureRef& ref, const std::string& at, bool srgb) {
+uint32_t GltfTextures::Slot(const GltfTextureRef& ref, const std::string& at, bool srgb,
+                            TexelChannels channels) {
     if (ref.index < 0) return kNoTexture;
     if (size_t(ref.index) >= model_.textures.size())
         doc_.Fail(at + ".index", "texture " + std::to_string(ref.index) + " out of range");
     Texture texture;
     if (!ReadTransform(ref, at, &texture)) return kNoTexture;
-    const Texture* decoded = Decoded(ref.index, srgb, at);
+    const Texture* decoded = Decoded(ref.index, srgb, channels, at);
     if (!decoded) return kNoTexture;
     const std::vector<float> transform(texture.uvTransform, texture.uvTransform + 6);
-    const auto key =
-        std::make_tuple(ref.index, srgb, texture.transformed ? transform : std::vector<float>{});
+    const auto key = std::make_tuple(ref.index, srgb, channels,
+                                     texture.transformed ? transform : std::vector<float>{});
     auto found = records_.find(key);
     if (found != records_.end()) return found->second;
     Texture record = *decoded;
@@ -79,8 +80,9 @@ bool GltfTextures::ReadTransform(const GltfTextureRef& ref, const std::string& a
     return true;
 }
 
-const Texture* GltfTextures::Decoded(int index, bool srgb, const std::string& at) {
-    const auto key = std::make_pair(index, srgb);
+const Texture* GltfTextures::Decoded(int index, bool srgb, TexelChannels wanted,
+                                     const std::string& at) {
+    const auto key = std::make_tuple(index, srgb, wanted);
     auto found = decoded_.find(key);
     if (found != decoded_.end()) return found->second.width == 0 ? nullptr : &found->second;
     const tinygltf::Texture& t = model_.textures[size_t(index)];
@@ -128,7 +130,7 @@ const Texture* GltfTextures::Decoded(int index, bool srgb, const std::string& at
     // The texels go in once per image, encoding and mip chain, however many textures name the
     // image (64 textures of one 4096^2 image had built 64 chains); each slot's record (Slot)
     // points at them.
-    const auto texelsKey = std::make_tuple(t.source, srgb, texture.levels);
+    const auto texelsKey = std::make_tuple(t.source, srgb, texture.levels, wanted);
     if (auto shared = texels_.find(texelsKey); shared != texels_.end()) {
         texture.texelOffset = shared->second;
         return &(decoded_[key] = texture);
@@ -141,7 +143,9 @@ const Texture* GltfTextures::Decoded(int index, bool srgb, const std::string& at
             c[k] =
                 image.image[(p * size_t(channels) + size_t(k)) * size_t(bytes) + size_t(bytes - 1)];
         }
-        if (channels <= 2) c[1] = c[2] = c[0];  // grey (and alpha)
+        if (channels == 2) c[3] = c[1];         // grey and alpha
+        if (channels <= 2) c[1] = c[2] = c[0];  // grey
+        if (wanted == TexelChannels::kAlphaAsGrey) c[0] = c[1] = c[2] = c[3];
         rgba[p] = c[0] | (c[1] << 8) | (c[2] << 16) | (c[3] << 24);
     }
     const std::vector<uint32_t> chain =

@@ -20,26 +20,33 @@ struct GltfTextureRef {
     const tinygltf::ExtensionMap* extensions = nullptr;
 };
 
+// Which of an image's channels a slot samples: its colour, or its alpha recorded as grey (the
+// renderer samples colour alone; KHR_materials_specular keeps its strength in alpha).
+enum class TexelChannels { kRgb, kAlphaAsGrey };
+
 class GltfTextures {
   public:
     GltfTextures(GltfDocument& doc, LoadedScene& out) : doc_(doc), model_(doc.Model()), out_(out) {}
 
     // The scene's texture record for ref, found at field `at`, or kNoTexture where the slot is
     // empty or rtrt cannot use it (with a warning). srgb: the texels are sRGB-encoded colours.
-    uint32_t Slot(const GltfTextureRef& ref, const std::string& at, bool srgb);
+    uint32_t Slot(const GltfTextureRef& ref, const std::string& at, bool srgb,
+                  TexelChannels channels = TexelChannels::kRgb);
 
   private:
     // The texture's texels in the scene with their mip levels (averaged in linear light where
     // srgb), decoded at its first use: the record without transform.
-    const Texture* Decoded(int index, bool srgb, const std::string& at);
+    const Texture* Decoded(int index, bool srgb, TexelChannels channels, const std::string& at);
     bool ReadTransform(const GltfTextureRef& ref, const std::string& at, Texture* texture);
 
     GltfDocument& doc_;
     const tinygltf::Model& model_;
     LoadedScene& out_;
-    std::map<std::pair<int, bool>, Texture> decoded_;  // by texture index and srgb; 0 x 0: unusable
-    std::map<std::tuple<int, bool, uint32_t>, uint64_t> texels_;  // image, srgb, levels: offset
-    std::map<std::tuple<int, bool, std::vector<float>>, uint32_t> records_;
+    // By texture index, srgb and channels; 0 x 0: unusable.
+    std::map<std::tuple<int, bool, TexelChannels>, Texture> decoded_;
+    // Image, srgb, levels, channels: offset.
+    std::map<std::tuple<int, bool, uint32_t, TexelChannels>, uint64_t> texels_;
+    std::map<std::tuple<int, bool, TexelChannels, std::vector<float>>, uint32_t> records_;
 };
 
 }  // namespace rtrt

@@ -1,6 +1,7 @@
 #pragma once
 // Small glTF 2.0 files written by the tests themselves, with known answers: a JSON document and
 // one binary buffer, saved as .gltf (the buffer as a base64 data URI) or .glb.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -125,6 +126,30 @@ class GltfBuilder {
         return out;
     }
 
+    // An 8-bit RGBA PNG (stored, not compressed: zlib's stored blocks), row 0 the top.
+    static std::string Png(int width, int height, const std::vector<uint8_t>& rgba) {
+        std::string raw;
+        for (int y = 0; y < height; ++y) {
+            raw += '\0';  // filter: none
+            raw.append(reinterpret_cast<const char*>(rgba.data()) + size_t(4 * width * y),
+                       size_t(4 * width));
+        }
+        std::string z = "\x78\x01";
+        for (size_t at = 0; at < raw.size(); at += 65535) {
+            const size_t n = std::min<size_t>(65535, raw.size() - at);
+            z += char(at + n == raw.size() ? 1 : 0);
+            z += {char(n & 0xff), char(n >> 8), char(~n & 0xff), char((~n >> 8) & 0xff)};
+            z += raw.substr(at, n);
+        }
+        uint32_t a = 1, b = 0;
+        for (unsigned char c : raw) a = (a + c) % 65521, b = (b + a) % 65521;
+        z += BigEndian((b << 16) | a);
+        const std::string header = BigEndian(uint32_t(width)) + BigEndian(uint32_t(height)) +
+                                   std::string("\x08\x06\x00\x00\x00", 5);
+        return "\x89PNG\r\n\x1a\n" + PngChunk("IHDR", header) + PngChunk("IDAT", z) +
+               PngChunk("IEND", "");
+    }
+
     static std::string Base64(const std::vector<uint8_t>& bytes) {
         static const char* kDigits =
             "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -145,6 +170,18 @@ class GltfBuilder {
     std::vector<uint8_t> bin;
 
   private:
+    static std::string BigEndian(uint32_t v) {
+        return {char(v >> 24), char((v >> 16) & 0xff), char((v >> 8) & 0xff), char(v & 0xff)};
+    }
+    static std::string PngChunk(const char* type, const std::string& data) {
+        const std::string body = type + data;
+        uint32_t crc = 0xffffffffu;  // CRC-32 of the type and data (PNG's polynomial)
+        for (unsigned char c : body) {
+            crc ^= c;
+            for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+        }
+        return BigEndian(uint32_t(data.size())) + body + BigEndian(~crc);
+    }
     static size_t ComponentBytes(int componentType) {
         switch (componentType) {
             case 5120:
@@ -199,6 +236,40 @@ inline GltfBuilder TexturedQuadScene(int filter, int wrap) {
     // Turned half way about y, the light shines along +z, onto the quad's back.
     const int light = b.Node(
         {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"rotation", {0, 1, 0, 0}}});
+    b.doc["scenes"] = Json::array({{{"nodes", {quad, camera, light}}}});
+    b.doc["scene"] = 0;
+    return b;
+}
+
+// The quad facing a 90-degree camera at z = 1, lit from the camera's side by a sun, with a
+// dielectric material (base colour 0.6, 0.5, 0.4; roughness 0.4) and IMAGE (a PNG, nearest,
+// clamped) as texture 0 in the buffer for the caller's slots.
+inline GltfBuilder LitQuadScene(const std::string& image) {
+    GltfBuilder b;
+    b.doc["samplers"] = Json::array(
+        {{{"magFilter", 9728}, {"minFilter", 9728}, {"wrapS", 33071}, {"wrapT", 33071}}});
+    while (b.bin.size() % 4) b.bin.push_back(0);
+    b.doc["bufferViews"].push_back(
+        {{"buffer", 0}, {"byteOffset", b.bin.size()}, {"byteLength", image.size()}});
+    b.bin.insert(b.bin.end(), image.begin(), image.end());
+    b.doc["images"] =
+        Json::array({{{"bufferView", b.doc["bufferViews"].size() - 1}, {"mimeType", "image/png"}}});
+    b.doc["textures"] = Json::array({{{"source", 0}, {"sampler", 0}}});
+    b.doc["materials"] = Json::array({{{"pbrMetallicRoughness",
+                                        {{"baseColorFactor", {0.6, 0.5, 0.4, 1}},
+                                         {"metallicFactor", 0.0},
+                                         {"roughnessFactor", 0.4}}}}});
+    b.doc["cameras"] = Json::array(
+        {{{"type", "perspective"},
+          {"perspective", {{"yfov", M_PI / 2}, {"aspectRatio", 1.0}, {"znear", 0.01}}}}});
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
+        Json::array({{{"type", "directional"}, {"color", {1, 1, 1}}, {"intensity", 3}}});
+    b.doc["extensionsUsed"] = Json::array({"KHR_lights_punctual"});
+    const int quad = b.Node({{"mesh", QuadMesh(b, 0)}});
+    const int camera = b.Node({{"camera", 0}, {"translation", {0, 0, 1}}});
+    // Pointing along -z from slightly above: onto the quad's front, the highlight off-centre.
+    const int light = b.Node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}},
+                              {"rotation", {0.1305262, 0, 0, 0.9914449}}});
     b.doc["scenes"] = Json::array({{{"nodes", {quad, camera, light}}}});
     b.doc["scene"] = 0;
     return b;

@@ -256,6 +256,25 @@ TEST(GpuVsCpu, PbrShowcaseGltf) {
     ExpectGpuMatchesCpu(loaded.scene, ViewMode::kShaded, std::exp2(loaded.output.exposureEv));
 }
 
+// The textures of KHR_materials_transmission and KHR_materials_specular (strength from the
+// alpha, colour sRGB) on the device: a 2x2 texture of four different texels, bilinear, on the
+// lit quad, each slot reading its own channels.
+TEST(GpuVsCpu, ExtensionTexturesGltf) {
+    test::GltfBuilder b = test::LitQuadScene(test::GltfBuilder::Png(
+        2, 2, {255, 40, 200, 30, 20, 220, 90, 255, 128, 128, 0, 160, 60, 0, 255, 90}));
+    b.doc["samplers"][0]["magFilter"] = 9729;
+    b.doc["materials"][0]["extensions"] = {
+        {"KHR_materials_transmission",
+         {{"transmissionFactor", 0.9}, {"transmissionTexture", {{"index", 0}}}}},
+        {"KHR_materials_specular",
+         {{"specularTexture", {{"index", 0}}}, {"specularColorTexture", {{"index", 0}}}}}};
+    const std::string path = ::testing::TempDir() + "rtrt_gpu_extension_textures.glb";
+    test::GltfBuilder::Save(path, b.Glb());
+    const LoadedScene loaded = LoadSceneFile(path);
+    ASSERT_NE(loaded.scene.pbrMaterials.at(0).specularTexture, kNoTexture);
+    ExpectGpuMatchesCpu(loaded.scene, ViewMode::kShaded, std::exp2(loaded.output.exposureEv));
+}
+
 // The GPU samples texels exactly as the CPU does: an unlit quad filling the image shows each
 // texel of a 4x4 nearest-filtered texture on 2x2 pixels, bit for bit.
 TEST(GpuVsCpu, TexturedQuadTexelsDecoded) {

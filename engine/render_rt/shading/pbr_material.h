@@ -6,14 +6,15 @@
 
 namespace rtrt {
 
-// 96 bytes.
+// 112 bytes.
 struct PbrMaterial {
     vec3 baseColor{1.0f};  // linear; times the base-colour texture (Material::baseColorTexture)
     float metallic = 1.0f;
     vec3 emissive{0.0f};     // linear radiance, emissiveStrength included
     float roughness = 1.0f;  // perceptual; GGX alpha = roughness^2
     // Dielectric reflectance at normal incidence: ((ior - 1) / (ior + 1))^2 times
-    // KHR_materials_specular's colour, at most 1; specularWeight is its specularFactor.
+    // KHR_materials_specular's colour factor, kept at most 1 after its texture is applied;
+    // specularWeight is its specularFactor.
     vec3 dielectricF0{0.04f};
     float specularWeight = 1.0f;
     uint32_t metallicRoughnessTexture = kNoTexture;  // roughness in green, metalness in blue
@@ -25,8 +26,13 @@ struct PbrMaterial {
     float transmission = 0.0f;  // KHR_materials_transmission: the dielectric's diffuse share
     float ior = 1.5f;
     vec3 ambientLight{0.1f};  // the uniform light around the object that stands for indirect light
-    float pad = 0.0f;
+    uint32_t transmissionTexture = kNoTexture;  // red, times transmission
+    // KHR_materials_specular's textures: the strength (the image's alpha, recorded as grey)
+    // times specularWeight, and the colour (sRGB) times dielectricF0.
+    uint32_t specularTexture = kNoTexture;
+    uint32_t specularColorTexture = kNoTexture;
+    uint32_t pad[2] = {0, 0};
 };
-static_assert(sizeof(PbrMaterial) == 96);
+static_assert(sizeof(PbrMaterial) == 112);
 
 }  // namespace rtrt

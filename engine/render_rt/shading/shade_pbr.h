@@ -36,7 +36,7 @@ RT_HD inline PbrInputs PbrInputsAt(const RenderSceneView& scene, const SceneHit&
     PbrInputs in;
     in.sample.baseColor = pm.baseColor;
     in.sample.metallic = pm.metallic;
-    in.sample.dielectricF0 = pm.dielectricF0;
+    vec3 dielectricF0 = pm.dielectricF0;
     in.sample.specularWeight = pm.specularWeight;
     in.sample.transmission = pm.transmission;
     in.roughness = pm.roughness;
@@ -59,6 +59,12 @@ RT_HD inline PbrInputs PbrInputsAt(const RenderSceneView& scene, const SceneHit&
                 in.sample.metallic *= mr.z;
             }
             if (pm.emissiveTexture != kNoTexture) in.emissive *= sample(pm.emissiveTexture);
+            if (pm.transmissionTexture != kNoTexture)
+                in.sample.transmission *= sample(pm.transmissionTexture).x;
+            if (pm.specularTexture != kNoTexture)
+                in.sample.specularWeight *= sample(pm.specularTexture).x;
+            if (pm.specularColorTexture != kNoTexture)
+                dielectricF0 *= sample(pm.specularColorTexture);
             if (pm.occlusionTexture != kNoTexture)
                 in.occlusion = 1.0f + pm.occlusionStrength * (sample(pm.occlusionTexture).x - 1.0f);
             if (pm.normalTexture != kNoTexture) {
@@ -75,6 +81,7 @@ RT_HD inline PbrInputs PbrInputsAt(const RenderSceneView& scene, const SceneHit&
             }
         }
     }
+    in.sample.dielectricF0 = glm::min(dielectricF0, vec3(1.0f));
     in.sample.alpha = GgxAlpha(in.roughness);
     return in;
 }
