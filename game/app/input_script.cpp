@@ -50,24 +50,33 @@ std::string Quoted(const std::string& word) {
 // inf and left the camera NaN for good.
 constexpr float kMaxScriptCoordinate = 1e6f;
 
+// FOLDER as the file system resolves it (links followed, "." and ".." gone, no trailing slash),
+// so that two spellings of one folder compare equal.
+std::filesystem::path ResolvedFolder(const std::string& folder) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(folder.empty() ? "." : folder, ec);
+    fs::path resolved = fs::weakly_canonical(absolute, ec);
+    if (ec) resolved = absolute.lexically_normal();
+    if (!resolved.has_filename()) resolved = resolved.parent_path();  // "DIR/"
+    return resolved;
+}
+
 // Whether a screenshot would be written over by a frame of --record DIR (DIR/frame_NNNNN.png).
 bool IsRecordedFrame(const std::string& shot, const std::string& recordFolder) {
     if (recordFolder.empty()) return false;
     const std::filesystem::path path(shot);
-    std::filesystem::path folder = std::filesystem::path(recordFolder).lexically_normal();
-    if (!folder.has_filename()) folder = folder.parent_path();  // "DIR/"
-    return path.parent_path().lexically_normal() == folder &&
-           IsRecordedFrameName(path.filename().string());
+    return IsRecordedFrameName(path.filename().string()) &&
+           ResolvedFolder(path.parent_path().string()) == ResolvedFolder(recordFolder);
 }
 
 // Whether a screenshot goes into the folder that does not exist yet but will (--record DIR).
 bool IntoPendingFolder(const std::string& shot, const std::string& pendingFolder) {
     if (pendingFolder.empty()) return false;
     std::error_code ec;
-    std::filesystem::path folder = std::filesystem::path(pendingFolder).lexically_normal();
-    if (!folder.has_filename()) folder = folder.parent_path();  // "DIR/"
-    return !std::filesystem::exists(folder, ec) &&
-           std::filesystem::path(shot).parent_path().lexically_normal() == folder;
+    return !std::filesystem::exists(pendingFolder, ec) &&
+           ResolvedFolder(std::filesystem::path(shot).parent_path().string()) ==
+               ResolvedFolder(pendingFolder);
 }
 
 }  // namespace
@@ -114,6 +123,14 @@ InputScript InputScript::Load(const std::string& path, const std::string& pendin
                     throw InputError(path, field,
                                      "screenshot " + Quoted(word) +
                                          " would be written over this script: name another file");
+                // The scenes were loaded before: a screenshot over one of their files (a
+                // texture) had failed only when its frame came, after the window opened.
+                for (const std::string& asset : AssetFilesRead())
+                    if (NameTheSameFile(word, asset))
+                        throw InputError(path, field,
+                                         "screenshot " + Quoted(word) +
+                                             " would be written over a file of the scene (" +
+                                             asset + "): name another file");
                 if (IsRecordedFrame(word, pendingFolder))
                     throw InputError(path, field,
                                      "screenshot " + Quoted(word) +
@@ -157,6 +174,12 @@ InputScript InputScript::Load(const std::string& path, const std::string& pendin
 int InputScript::LastFrame() const {
     int last = 0;
     for (const Event& e : events_) last = std::max(last, e.frame + 2);
+    return last;
+}
+
+int InputScript::LastEvent() const {
+    int last = -1;
+    for (const Event& e : events_) last = std::max(last, e.frame);
     return last;
 }
 

@@ -29,7 +29,10 @@ class InputScript {
     };
     // Feeds the events due at `frame` (and the releases that follow earlier ones) into input.
     Effects Apply(int frame, Input& input);
+    // The frame after the last event's follow-ups (a drag's release), where a scripted run ends.
     int LastFrame() const;
+    // The frame of the last event itself (-1: none).
+    int LastEvent() const;
 
   private:
     struct Event {

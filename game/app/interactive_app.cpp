@@ -56,7 +56,8 @@ class App {
         Stopwatch clock;
         for (frame_ = 0; !window_.ShouldClose(); ++frame_) {
             if (o_.frames > 0 && frame_ >= o_.frames) break;
-            if (script_ && frame_ > script_->LastFrame()) break;
+            // A script ends the window after its last event, unless --frames says when.
+            if (script_ && o_.frames == 0 && frame_ > script_->LastFrame()) break;
             const double wallDt = clock.Milliseconds() * 1e-3;
             clock.Restart();
             Stopwatch frameTimer;
@@ -97,7 +98,10 @@ class App {
                                                                o_.fps);
                     video_->AddFrame(shown);
                 } else if (!o_.record.empty()) {
-                    WriteImage(o_.record + "/" + RecordedFrameName(recorded_++), shown);
+                    // As the video does: every frame the first one's size (F11, a resize).
+                    if (recorded_ == 0) recordSize_ = {shown.width, shown.height};
+                    WriteImage(o_.record + "/" + RecordedFrameName(recorded_++),
+                               CentredOn(shown, recordSize_.x, recordSize_.y));
                 }
             }
             Stopwatch stageTimer;
@@ -110,7 +114,7 @@ class App {
             model_.times.swap = stageTimer.Milliseconds();
             model_.times.display = displayTimer.Milliseconds();
             model_.times.frame = frameTimer.Milliseconds();
-            if (frame_ >= kUntimedFrames && timed_.size() < kTimedFrames)
+            if (frame_ >= untimedUntil_ && timed_.size() < kTimedFrames)
                 timed_.push_back(model_.times);
             model_.frameMs.push_back(float(model_.times.frame));
             if (model_.frameMs.size() > OverlayModel::kHistory) model_.frameMs.pop_front();
@@ -128,6 +132,12 @@ class App {
   private:
     void FinishStage() const {
         if (o_.finishStages) glFinish();
+    }
+
+    // The stage medians printed at the end are of the scene and back end shown last.
+    void RestartTiming() {
+        timed_.clear();
+        untimedUntil_ = frame_ + kUntimedFrames;
     }
 
     // Medians of the timed frames' stages: where a windowed frame's time goes.
@@ -197,6 +207,7 @@ class App {
                                       world_->Scene(), {}, {}, GpusFor(model_.useCuda));
         model_.scene = std::filesystem::path(o_.scenes[index]).filename().string();
         model_.frameMs.clear();  // another scene's frame times would mislead
+        RestartTiming();
         model_.maxDepth = int(loaded_->scene.maxDepth);
         OutputTransform output = loaded_->output;
         if (o_.exposureEv) output.exposureEv = *o_.exposureEv;
@@ -226,6 +237,7 @@ class App {
         renderer_ = MakeFrameRenderer(backend, world_->Scene(), {}, {}, GpusFor(useCuda));
         interop_.Unregister();
         model_.frameMs.clear();  // the other back end's frame times would mislead
+        RestartTiming();
     }
 
     // --gpus applies to the CUDA back end (the window switches back ends with a key).
@@ -407,7 +419,8 @@ class App {
                 model_.maxDepth = std::min(model_.maxDepth + 1, 8);
                 return;
             case Action::kDepthDown:
-                model_.maxDepth = std::max(model_.maxDepth - 1, 1);
+                // A scene's deeper max_depth comes down to the keys' range at once.
+                model_.maxDepth = std::clamp(model_.maxDepth - 1, 1, 8);
                 return;
             case Action::kExposureUp:
                 model_.exposureEv = std::min(model_.exposureEv + 0.5f, 20.0f);
@@ -515,12 +528,14 @@ class App {
     static constexpr int kUntimedFrames = 30;
     static constexpr size_t kTimedFrames = 100000;
     std::vector<StageTimes> timed_;
+    int untimedUntil_ = kUntimedFrames;  // the first frame timed_ takes
     Image raw_, shown_;
     ecs::Entity selected_;
     float grabDistance_ = 0.0f;
     vec3 grabOffset_{0.0f};
     size_t sceneIndex_ = 0;
     int frame_ = 0, recorded_ = 0, screenshotCount_ = 0;
+    glm::uvec2 recordSize_{0, 0};         // of the first frame --record DIR wrote
     std::unique_ptr<VideoWriter> video_;  // --record to a video file
     bool stepOnce_ = false, screenshotKey_ = false;
 };

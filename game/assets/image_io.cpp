@@ -31,6 +31,20 @@ std::string Extension(const std::string& path) {
 
 }  // namespace
 
+Image CentredOn(const Image& frame, uint32_t width, uint32_t height) {
+    if (frame.width == width && frame.height == height) return frame;
+    Image fitted(width, height);
+    const int dx = (int(frame.width) - int(width)) / 2;
+    const int dy = (int(frame.height) - int(height)) / 2;
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const int sx = int(x) + dx, sy = int(y) + dy;
+            if (sx >= 0 && sy >= 0 && sx < int(frame.width) && sy < int(frame.height))
+                fitted.At(x, y) = frame.At(uint32_t(sx), uint32_t(sy));
+        }
+    return fitted;
+}
+
 std::vector<uint8_t> EightBit(const Image& image, const OutputTransform& transform) {
     std::vector<uint8_t> bytes(image.pixels.size() * 3);
     for (size_t i = 0; i < image.pixels.size(); ++i) {

@@ -29,6 +29,10 @@ void WriteImage(const std::string& path, const Image& image,
 std::vector<uint8_t> EightBit(const Image& image,
                               const OutputTransform& transform = kDisplayValues);
 
+// FRAME centred on a WIDTH x HEIGHT image: cropped where it is larger, black around it where it
+// is smaller. Recordings keep their first frame's size when the window is resized.
+Image CentredOn(const Image& frame, uint32_t width, uint32_t height);
+
 // Formats other than PPM and PFM go through the image library (OpenImageIO in the module
 // rtrt_image_oiio, game/image_library), loaded at the first such image: an ImageLibraryError
 // when it cannot be. Reading needs it too, except binary 8-bit .ppm, which every build reads.

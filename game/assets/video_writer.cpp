@@ -102,19 +102,7 @@ VideoWriter::~VideoWriter() {
 }
 
 void VideoWriter::AddFrame(const Image& frame) {
-    Image fitted = frame;
-    if (frame.width != width_ || frame.height != height_) {
-        fitted = Image(width_, height_);
-        const int dx = (int(frame.width) - int(width_)) / 2;
-        const int dy = (int(frame.height) - int(height_)) / 2;
-        for (uint32_t y = 0; y < height_; ++y)
-            for (uint32_t x = 0; x < width_; ++x) {
-                const int sx = int(x) + dx, sy = int(y) + dy;
-                if (sx >= 0 && sy >= 0 && sx < int(frame.width) && sy < int(frame.height))
-                    fitted.At(x, y) = frame.At(uint32_t(sx), uint32_t(sy));
-            }
-    }
-    const std::vector<uint8_t> bytes = EightBit(fitted);
+    const std::vector<uint8_t> bytes = EightBit(CentredOn(frame, width_, height_));
     if (!ffmpeg_->WriteInput(bytes.data(), bytes.size()))
         throw OutputError(path_, "ffmpeg stopped taking frames (exit " +
                                      std::to_string(ffmpeg_->Wait()) + "; its messages are above)");

@@ -545,3 +545,25 @@ execute_process(COMMAND ${RTRT} info demo_glass RESULT_VARIABLE status OUTPUT_VA
 if(NOT status EQUAL 0 OR NOT stdout MATCHES "demo_glass.json: scene file")
     message(FATAL_ERROR "info demo_glass: status ${status}: ${stdout}${stderr}")
 endif()
+
+# The window's --frames and script are checked before a window opens, each with its own reason
+# (every one had been "the window takes a frame count N"; a screenshot after the last frame was
+# dropped silently).
+expect_one_line_failure(window_frames_zero "--frames: 0: N is how many frames: at least 1"
+    play default --frames 0)
+expect_one_line_failure(window_frames_many "--frames: 20000000: frames end at 10,000,000"
+    play default --frames 20000000)
+expect_one_line_failure(window_frames_range
+    "--frames: 2:4: the window takes a frame count N (A:B ranges are for --headless)"
+    play default --frames 2:4)
+file(WRITE ${WORK_DIR}/late.script "20 screenshot ${WORK_DIR}/late${EXT}\n")
+expect_one_line_failure(window_late_event
+    "${WORK_DIR}/late.script: has an event at frame 20, but --frames 10 closes the window after frame 9"
+    play default --script ${WORK_DIR}/late.script --frames 10)
+# A scripted screenshot over a file the scene read is refused before the window opens (it had
+# failed when its frame came, after frames were recorded).
+file(WRITE ${WORK_DIR}/shot_scene.json "{ \"instances\": [] }")
+file(WRITE ${WORK_DIR}/over_scene.script "1 screenshot ${WORK_DIR}/shot_scene.json\n")
+expect_one_line_failure(window_shot_over_scene
+    "${WORK_DIR}/over_scene.script: line 1: screenshot \"${WORK_DIR}/shot_scene.json\" would be written over a file of the scene"
+    play ${WORK_DIR}/shot_scene.json --script ${WORK_DIR}/over_scene.script)

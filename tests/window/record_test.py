@@ -40,6 +40,28 @@ def raw_frames(args):
     return p.stdout
 
 
+def check_fullscreen_keeps_size():
+    """A recording to PNG frames keeps the first frame's size, as the video does, when F11 makes
+    the window fullscreen and back (frames 2 to 4 had been the screen's size)."""
+    script = os.path.join(WORK, "fullscreen.script")
+    with open(script, "w") as f:
+        f.write("2 key F11\n5 key F11\n8 quit\n")
+    folder = os.path.join(WORK, "fullscreen")
+    p = subprocess.run([*LAUNCHER, RTRT, "play", SCENE, "--backend", BACKEND, "--size",
+                        f"{W}x{H}", "--no-vsync", "--script", script, "--record", folder],
+                       capture_output=True, text=True, timeout=300)
+    if p.returncode != 0:
+        fail(f"fullscreen recording: exit {p.returncode}\n{p.stderr}")
+    sizes = set()
+    for name in sorted(os.listdir(folder)):
+        with open(os.path.join(folder, name), "rb") as f:
+            header = f.read(24)
+        sizes.add((int.from_bytes(header[16:20], "big"), int.from_bytes(header[20:24], "big")))
+    if sizes != {(W, H)}:
+        fail(f"fullscreen recording: frame sizes {sorted(sizes)}, expected only {W}x{H}")
+    print(f"ok: F11 in a recording: every frame {W}x{H}")
+
+
 def check_frames_match_headless():
     """A recording's frame k is play --headless's frame k: the scene after k fixed steps, the
     first one as loaded (the window had stepped before its first frame, so every recorded frame
@@ -112,6 +134,7 @@ def main():
     print(f"ok: every decoded frame matches its PNG (worst mean error {worst:.2f}/255)")
 
     check_frames_match_headless()
+    check_fullscreen_keeps_size()
 
     # F12 takes the first free rtrt-screenshot-N.png: an earlier run's file stays.
     shots = os.path.join(WORK, "shots")
