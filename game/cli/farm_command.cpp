@@ -171,8 +171,15 @@ int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
                 ? InputError("--gpu", "the CUDA back end", why + "; leave out --gpu with --local")
                 : InputError("--backend", "cuda", why + "; use --backend cpu with --local");
     }
+    // Kept once its folders are there: a full disk at farm.json removes the folder it made.
+    try {
+        StartJob(job);
+    } catch (const OutputError& e) {
+        throw OutputError(e.File(), e.Reason() +
+                                        "; nothing was started: free some space and "
+                                        "rerun this command");
+    }
     lock.Keep();
-    StartJob(job);
     const std::string manifest =
         ManifestFolder(job.folder) + "/local-" + std::to_string(::getpid()) + ".tsv";
     // A task outlives no farm: killed (even with SIGKILL), the farm takes its task with it, and
@@ -387,6 +394,11 @@ int RunFarm(const FarmOptions& o) {
     if (!o.dryRun)
         for (const std::string& output : {VideoFile(job.folder), ContactSheetFile(job.folder)})
             CheckOutputPath(output);
+    // With --local this machine assembles: without ffmpeg every frame had been rendered first.
+    if (o.local && !o.dryRun && !ProgramOnPath("ffmpeg"))
+        throw InputError("--local", "",
+                         "this machine would assemble the video, and ffmpeg is not installed "
+                         "(Debian: apt-get install ffmpeg); install it, or render on Slurm");
     const std::vector<int> frames = FramesToRender(check);
     if (frames.empty() && Assembled(job)) {
         std::printf("rtrt farm: nothing to do: every frame, %s and %s are there\n",
@@ -418,6 +430,18 @@ int RunFarm(const FarmOptions& o) {
     return SubmitToSlurm(job, tasks, *lock);
 }
 
+// Why a task would refuse the job's scene now (edited since the job was made, or no longer
+// loading), or "".
+std::string SceneProblem(const FarmJob& job) {
+    try {
+        LoadSceneFile(job.frames.scene);
+        CheckSceneChecksum(job.frames.scene, job.frames.sceneChecksum);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
 int RunStatus(const std::string& folder) {
     const FarmJob job = ReadFarmJob(fs::absolute(folder).lexically_normal().string());
     const FarmFrames& f = job.frames;
@@ -439,8 +463,21 @@ int RunStatus(const std::string& folder) {
                 assembled ? (VideoFile(job.folder) + " and " + ContactSheetFile(job.folder)).c_str()
                           : "not made yet");
     if (check.done.size() == size_t(f.frames.Count()) && assembled) return kExitOk;
-    if (queue.known && queue.active.empty())
-        std::printf("rtrt farm: to finish it: %s\n", FarmCommandLine(job, LocalFlag(job)).c_str());
+    if (!queue.known || !queue.active.empty()) return kExitIncomplete;
+    // The next step only where it would go on: another run may work in the folder, and a scene
+    // edited since the job was made is refused by every task and by the command.
+    if (const std::optional<std::string> holder = FarmFolderHolder(job.folder)) {
+        std::printf(
+            "rtrt farm: another rtrt farm%s is working in this folder; run --status "
+            "again once it has ended\n",
+            holder->empty() ? "" : (" (" + *holder + ")").c_str());
+        return kExitIncomplete;
+    }
+    if (const std::string problem = SceneProblem(job); !problem.empty()) {
+        std::printf("rtrt farm: the tasks refuse the scene now: %s\n", problem.c_str());
+        return kExitIncomplete;
+    }
+    std::printf("rtrt farm: to finish it: %s\n", FarmCommandLine(job, LocalFlag(job)).c_str());
     return kExitIncomplete;
 }
 
@@ -455,7 +492,9 @@ int RunAssemble(const std::string& folder) {
     if (check.done.size() != size_t(job.frames.frames.Count())) {
         std::fprintf(stderr,
                      "rtrt: error: %s: frames are missing or corrupt, so no video was made; "
-                     "render them with: %s\n",
+                     "if the job's render tasks are still queued or running, the assembly job "
+                     "runs after them (rtrt farm --status shows them); else render the frames "
+                     "with: %s\n",
                      job.folder.c_str(), FarmCommandLine(job, LocalFlag(job)).c_str());
         return kExitFailure;
     }

@@ -21,6 +21,7 @@
 #include "game/assets/video_writer.h"
 #include "game/cli/commands.h"
 #include "game/cli/progress_bar.h"
+#include "game/farm/farm_job.h"
 #include "game/farm/frame_manifest.h"
 #include "game/runtime/world.h"
 #include "game/scene/scene_file.h"
@@ -157,10 +158,18 @@ void RunWindowed(const PlayOptions& o) {
     if (!o.script.empty())
         w.script = InputScript::Load(o.script, IsVideoPath(o.record) ? "" : o.record);
     int first = 0, end = 0;
-    if (!o.frames.empty() && (!ParseFrames(o.frames, &first, &end) || first != 0))
+    if (!o.frames.empty() && o.frames.find(':') != std::string::npos)
         throw InputError("--frames", o.frames,
                          "the window takes a frame count N (A:B ranges are for --headless)");
+    if (!o.frames.empty() && !ParseFrames(o.frames, &first, &end))
+        throw InputError("--frames", o.frames, FramesProblem(o.frames));
     w.frames = end;
+    // An event the window never reaches (a screenshot after the last frame) would be dropped.
+    if (w.script && end > 0 && w.script->LastEvent() >= end)
+        throw InputError(o.script, "",
+                         "has an event at frame " + std::to_string(w.script->LastEvent()) +
+                             ", but --frames " + o.frames + " closes the window after frame " +
+                             std::to_string(end - 1) + ": give more frames, or leave --frames out");
     w.fps = float(o.fps);
     w.exposureEv = o.display.exposureEv;
     w.toneMap = o.display.toneMap;
@@ -172,24 +181,6 @@ void RunWindowed(const PlayOptions& o) {
                      "libimgui-dev were missing at configure time); add --headless --frames N -o "
                      "DIR/frame_%04d.png");
 #endif
-}
-
-// A farm task plays the scene its job was made from, or nothing: frames of an edited scene
-// would be mixed into the job's video.
-// After the scene is loaded: the checksum of its file and every file it brought in (as rtrt
-// farm takes it) must be the job's. A job made before that holds the scene file's alone.
-void CheckSceneChecksum(const std::string& scene, const std::string& expected) {
-    if (expected.empty()) return;
-    const std::string actual = HexDigest(HashFiles(AssetFilesRead()));
-    std::error_code ec;
-    if (actual == expected ||
-        (std::filesystem::is_regular_file(scene, ec) && HexDigest(HashFile(scene)) == expected))
-        return;
-    throw InputError(scene, "",
-                     "changed since its farm job was made, or a file it brings in did (a model, "
-                     "a texture; checksum " +
-                         actual + ", the job's " + expected +
-                         "); restore it, or render the new scene as a new job (another -o)");
 }
 
 // Options of one mode given to the other would do nothing; they are refused instead.

@@ -136,8 +136,17 @@ std::string RenderScript(const FarmJob& job, const std::vector<std::vector<Frame
          "\" is not on $(hostname); install rtrt at the same path on every node\" >&2; exit 2; }\n";
     s += "manifest=" + ShellQuote(ManifestFolder(job.folder) + "/render-") +
          "\"${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}.tsv\"\n";
-    s += "status=0\nfor range in $ranges; do\n    " + PlayLine(job, rtrt) +
-         " || {\n        status=$?\n        break\n    }\ndone\n";
+    // A requeued element goes on after the frames its manifest lists in whole lines (a frame
+    // is written before its line): they had all been rendered again. Frames of a range are
+    // written in order, so the first one not listed is where the range goes on.
+    s += "status=0\nfor range in $ranges; do\n"
+         "    if [ -s \"$manifest\" ]; then\n"
+         "        first=$(awk -F'\\t' -v f=\"${range%:*}\" 'NF == 4 && length($4) == 16 "
+         "{ done[$1] = 1 } END { while (f in done) f++; print f }' \"$manifest\")\n"
+         "        [ \"$first\" -ge \"${range#*:}\" ] && continue\n"
+         "        range=\"$first:${range#*:}\"\n"
+         "    fi\n    " +
+         PlayLine(job, rtrt) + " || {\n        status=$?\n        break\n    }\ndone\n";
     s += "if [ \"$status\" -ne 0 ] && [ \"$status\" -ne 2 ] && [ \"${SLURM_RESTART_COUNT:-0}\" "
          "-lt " +
          std::to_string(kTaskRequeues) +

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "engine/core/content_hash.h"
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
 #include "engine/core/output_file.h"
@@ -184,6 +185,22 @@ std::string FramesDifference(const FarmFrames& there, const FarmFrames& here) {
     std::string text;
     for (const std::string& d : differences) text += (text.empty() ? "" : "; ") + d;
     return text;
+}
+
+// A farm task plays the scene its job was made from, or nothing: frames of an edited scene
+// would be mixed into the job's video.
+void CheckSceneChecksum(const std::string& scene, const std::string& expected) {
+    if (expected.empty()) return;
+    const std::string actual = HexDigest(HashFiles(AssetFilesRead()));
+    std::error_code ec;
+    if (actual == expected ||
+        (std::filesystem::is_regular_file(scene, ec) && HexDigest(HashFile(scene)) == expected))
+        return;
+    throw InputError(scene, "",
+                     "changed since its farm job was made, or a file it brings in did (a model, "
+                     "a texture; checksum " +
+                         actual + ", the job's " + expected +
+                         "); restore it, or render the new scene as a new job (another -o)");
 }
 
 }  // namespace rtrt

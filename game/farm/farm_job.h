@@ -82,6 +82,11 @@ void CheckSlurmField(const std::string& what, const std::string& value);
 // "" when A and B make the same frames, else what differs, e.g. "size 640x360 there, 320x180 here".
 std::string FramesDifference(const FarmFrames& there, const FarmFrames& here);
 
+// InputError naming SCENE unless the files read so far (AssetFilesRead: the scene just loaded and
+// what it brought in) have the job's checksum EXPECTED (or the scene file alone does, as jobs
+// made before the checksum covered the rest had it); nothing where EXPECTED is empty.
+void CheckSceneChecksum(const std::string& scene, const std::string& expected);
+
 // "A:B".
 std::string RangeText(const FrameRange& range);
 // The frame rate as the command line takes it back exactly ("%.17g": 29.97, 23.976023976023978).

@@ -69,6 +69,19 @@ std::string KindOf(mode_t mode) {
 
 }  // namespace
 
+std::optional<std::string> FarmFolderHolder(const std::string& folder) {
+    const std::string path = folder + "/" + kFarmLockName;
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (fd < 0) return std::nullopt;
+    std::optional<std::string> holder;
+    if (::flock(fd, LOCK_SH | LOCK_NB) == 0)
+        ::flock(fd, LOCK_UN);
+    else if (errno == EWOULDBLOCK)
+        holder = Holder(fd);
+    ::close(fd);
+    return holder;
+}
+
 FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds)
     : folder_(folder), path_(folder + "/" + kFarmLockName) {
     made_ = FirstMissing(folder);

@@ -2,12 +2,17 @@
 // One `rtrt farm` at a time in a job's folder: two runs that start the same (or a new) folder
 // together would each write farm.json and render into the other's frames, and two submissions
 // would each rewrite the list of Slurm jobs and lose one.
+#include <optional>
 #include <string>
 
 namespace rtrt {
 
 // The lock file's name in a job's folder.
 inline constexpr const char* kFarmLockName = ".rtrt-farm.lock";
+
+// Who holds FOLDER's lock ("process N on HOST"; "" where it does not say), or nothing where no
+// run holds it. Only reads, so that it works on a folder this user cannot write.
+std::optional<std::string> FarmFolderHolder(const std::string& folder);
 
 class FarmFolderLock {
   public:

@@ -111,6 +111,18 @@ def check_manifest_failure(full, scratch):
     print(f"tmpfs manifest: ok ({r.stderr.strip()})")
 
 
+def check_farm_start(full):
+    """farm --local whose farm.json cannot be written: nothing started, the folder it made is
+    gone (its lock file had stayed), and the message says what to do."""
+    job = os.path.join(full, "job")
+    r = run(["farm", os.path.join(WORK, "grid.json"), "--frames", "0:2", "--size", "32x24",
+             "--local", "-o", job], {})
+    if r.returncode != 1 or "free some space and rerun" not in r.stderr or os.path.exists(job):
+        sys.exit(f"tmpfs farm start: status {r.returncode}, folder left: {os.path.exists(job)}:"
+                 f"\n{r.stderr}")
+    print(f"tmpfs farm start: ok ({r.stderr.strip()})")
+
+
 def check_later_frames(scratch):
     """A later frame's path that cannot be written: the last frame's name is checked before the
     work (exit 2, nothing written); a folder in a frame's place is found when the frame is due,
@@ -174,6 +186,8 @@ def main():
             fill(mount)
             check_all("tmpfs", mount, {}, scratch)
             check_manifest_failure(mount, scratch)
+            if shutil.which("ffmpeg"):  # farm --local refuses to start without it
+                check_farm_start(mount)
         finally:
             subprocess.run(["umount", mount])
     else:

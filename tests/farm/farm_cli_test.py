@@ -496,6 +496,25 @@ def main():
     out = run("farm", scene, "--frames", "0:2", "--size", SIZE, "--format", FORMAT, "--local",
               "-o", modelled, expect=2)
     check("scene checksum" in out, "a resume after the scene's model was edited is refused")
+    out = run("farm", "--status", modelled, expect=3)
+    check("the tasks refuse the scene now" in out and "changed since its farm job was made" in out
+          and "to finish it" not in out,
+          "--status of a job whose scene was edited says so instead of a rerun that is refused")
+    with open(os.path.join(modelled, ".rtrt-farm.lock"), "r+") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        held.truncate(0)
+        held.write("process 4242 on elsewhere\n")
+        held.flush()
+        out = run("farm", "--status", modelled, expect=3)
+    check("another rtrt farm (process 4242 on elsewhere) is working in this folder" in out and
+          "to finish it" not in out, "--status names a run that works in the folder")
+    # With --local this machine assembles: without ffmpeg nothing is rendered first.
+    no_ffmpeg = os.path.join(WORK, "no_ffmpeg")
+    out = run("farm", scene, "--frames", "0:2", "--size", SIZE, "--format", FORMAT, "--local",
+              "-o", no_ffmpeg, env=dict(os.environ, PATH=os.path.join(WORK, "empty_bin")),
+              expect=2)
+    check("ffmpeg is not installed" in out and not os.path.exists(no_ffmpeg),
+          "--local without ffmpeg is refused before any frame, leaving no folder")
     job_digest = json.load(open(os.path.join(modelled, "farm.json")))["scene_checksum"]
     # The same files under other paths (a node's own copy of the models) have the same
     # checksum, whichever way the paths sort.

@@ -102,6 +102,29 @@ TEST_F(FarmScriptTest, ElementRendersItsRangesWithItsOwnManifest) {
                        expected.substr(expected.find("24:30") + 5));
 }
 
+// A requeued element goes on after the frames its manifest lists in whole lines: frames 80 to
+// 117 of a killed element had been rendered again.
+TEST_F(FarmScriptTest, RequeuedElementGoesOnAfterTheFramesItsManifestLists) {
+    const std::string script =
+        RenderScript(job_, {{{0, 24}}, {{24, 30}, {40, 48}}}, dir_ + "/bin/rtrt");
+    const std::string manifest = job_.folder + "/manifest/render-77_1.tsv";
+    fs::create_directories(job_.folder + "/manifest");
+    {
+        std::ofstream out(manifest);
+        for (int frame = 24; frame < 30; ++frame)  // the first range whole
+            out << frame << "\tframe_0000" << frame << ".png\t100\t00000000000000aa\n";
+        out << "40\tframe_000040.png\t100\t00000000000000aa\n";
+        out << "42\tframe_000042.png\t100\t00000000000000aa\n";  // not in order: 41 is due
+        out << "41\tframe_000041.png\t10";                       // cut short by a crash
+    }
+    int status = -1;
+    const std::string log = RunElement(script, 1, 0, 1, &status);
+    EXPECT_EQ(status, 0);
+    EXPECT_EQ(log.find("24:30"), std::string::npos) << log;
+    EXPECT_NE(log.find("--frames\n41:48\n"), std::string::npos) << log;
+    EXPECT_EQ(log.find("play\n"), log.rfind("play\n")) << "one play command: " << log;
+}
+
 // A job made from a scene file passes its checksum, so that a task refuses an edited scene.
 TEST_F(FarmScriptTest, TasksCarryTheScenesChecksum) {
     std::vector<std::string> command = PlayCommand(job_, "rtrt", {0, 4}, "m.tsv");
