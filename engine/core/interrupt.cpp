@@ -80,7 +80,9 @@ sigset_t handledSignals;  // set by InstallInterruptHandler before the waiting t
     Temporaries& registry = Registry();
     registry.mutex.lock();  // kept: no thread makes or renames a temporary from here on
     // Before the temporaries: a child still running could write one again after its removal.
-    StopChildren(registry.children, signo);
+    // As SIGTERM: a child (ffmpeg with -nostdin) would dump core on SIGQUIT, and SIGHUP is this
+    // process's terminal closing, not theirs.
+    StopChildren(registry.children, signo == SIGINT ? SIGINT : SIGTERM);
     // Newest first, so that a file inside a registered folder goes before the folder.
     for (auto path = registry.paths.rbegin(); path != registry.paths.rend(); ++path) {
         std::error_code ignored;  // nothing more can be done about a failure on the way out

@@ -175,9 +175,8 @@ int RunLocally(FarmJob job, const std::vector<std::vector<FrameRange>>& tasks,
     try {
         StartJob(job);
     } catch (const OutputError& e) {
-        throw OutputError(e.File(), e.Reason() +
-                                        "; nothing was started: free some space and "
-                                        "rerun this command");
+        throw OutputError(
+            e.File(), e.Reason() + "; nothing was started: rerun this command once that is fixed");
     }
     lock.Keep();
     const std::string manifest =
@@ -394,17 +393,18 @@ int RunFarm(const FarmOptions& o) {
     if (!o.dryRun)
         for (const std::string& output : {VideoFile(job.folder), ContactSheetFile(job.folder)})
             CheckOutputPath(output);
-    // With --local this machine assembles: without ffmpeg every frame had been rendered first.
-    if (o.local && !o.dryRun && !ProgramOnPath("ffmpeg"))
-        throw InputError("--local", "",
-                         "this machine would assemble the video, and ffmpeg is not installed "
-                         "(Debian: apt-get install ffmpeg); install it, or render on Slurm");
     const std::vector<int> frames = FramesToRender(check);
     if (frames.empty() && Assembled(job)) {
         std::printf("rtrt farm: nothing to do: every frame, %s and %s are there\n",
                     VideoFile(job.folder).c_str(), ContactSheetFile(job.folder).c_str());
         return kExitOk;
     }
+    // With --local this machine assembles: without ffmpeg every frame had been rendered first.
+    if (o.local && !o.dryRun && !ProgramOnPath("ffmpeg"))
+        throw OutputError(VideoFile(job.folder),
+                          "this machine would assemble it, and ffmpeg is not installed (Debian: "
+                          "apt-get install ffmpeg); nothing was rendered: install it and rerun, "
+                          "or render on Slurm");
     std::vector<std::vector<FrameRange>> tasks = PlanShards(frames, job.scheduling.shards);
     if (!o.local && ProgramOnPath("scontrol"))
         if (const int most = SlurmMaxArraySize(); most > 0 && tasks.size() > size_t(most)) {
@@ -436,7 +436,7 @@ std::string SceneProblem(const FarmJob& job) {
     try {
         LoadSceneFile(job.frames.scene);
         CheckSceneChecksum(job.frames.scene, job.frames.sceneChecksum);
-    } catch (const InputError& e) {
+    } catch (const std::exception& e) {  // InputError, or an image library that failed
         return e.what();
     }
     return "";

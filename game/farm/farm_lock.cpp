@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -87,8 +88,13 @@ FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds)
     made_ = FirstMissing(folder);
     CreateOutputFolder(folder);
     bool created = OpenLockFile();
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(waitSeconds);
+    // Half a second at least: rtrt farm --status takes the lock shared for an instant
+    // (FarmFolderHolder), and a run starting then must not be refused for it.
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::max<std::chrono::milliseconds>(std::chrono::milliseconds(500),
+                                                              std::chrono::seconds(waitSeconds));
     int replaced = 0;
+    bool toldOfWait = false;
     for (;;) {
         if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) {
             if (LockedFileIsCurrent()) break;
@@ -115,6 +121,15 @@ FarmFolderLock::FarmFolderLock(const std::string& folder, int waitSeconds)
                 folder, "cannot lock the job's folder (" + path_ + "): " + std::strerror(error));
         }
         if (std::chrono::steady_clock::now() < deadline) {
+            // A wait of minutes (--assemble's) says what it waits for, once: it looked hung.
+            if (waitSeconds > 1 && !toldOfWait) {
+                const std::string holder = Holder(fd_);
+                std::printf("rtrt farm: waiting up to %d s for another rtrt farm%s to leave %s\n",
+                            waitSeconds, holder.empty() ? "" : (" (" + holder + ")").c_str(),
+                            folder.c_str());
+                std::fflush(stdout);
+                toldOfWait = true;
+            }
             std::this_thread::sleep_for(std::chrono::milliseconds(100));
             continue;
         }

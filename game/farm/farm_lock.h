@@ -18,11 +18,11 @@ class FarmFolderLock {
   public:
     // Creates folder if it is missing and takes its lock (an flock on FOLDER/.rtrt-farm.lock,
     // released when this object goes or the process ends, however it ends), waiting up to
-    // waitSeconds for another holder to let go. OutputError (exit 1: run it again later) when the
-    // lock stays held, naming its holder, or cannot be taken; InputError for a folder that
-    // cannot be made or whose lock file is not a regular file. The folders and the lock file this
-    // call made are removed again if the lock is released before Keep(), so that a refused run
-    // leaves the folder as it found it.
+    // waitSeconds (half a second at least) for another holder to let go. OutputError (exit 1: run
+    // it again later) when the lock stays held, naming its holder, or cannot be taken; InputError
+    // for a folder that cannot be made or whose lock file is not a regular file. The folders and
+    // the lock file this call made are removed again if the lock is released before Keep(), so that
+    // a refused run leaves the folder as it found it.
     explicit FarmFolderLock(const std::string& folder, int waitSeconds = 0);
     FarmFolderLock(const FarmFolderLock&) = delete;
     FarmFolderLock& operator=(const FarmFolderLock&) = delete;

@@ -51,12 +51,23 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
         return float(v);
     };
     // glTF bounds both factors' components to [0, 1] (KHR_materials_emissive_strength makes
-    // emission brighter); a base colour's alpha too, though surfaces are opaque.
+    // emission brighter); a base colour's alpha too, though surfaces are opaque. Exporters have
+    // written larger ones (three.js before r129 put emissive x intensity there), which other
+    // viewers load: those are clamped, with a warning.
+    auto component = [&](double v, const std::string& name) {
+        const float c = number(v, name, 0, 1e6);
+        if (c > 1.0f)
+            doc_.Warn("factor-above-1:" + name, at + "." + name +
+                                                    ": components above 1 (glTF's bound) are "
+                                                    "taken as 1, e.g. " +
+                                                    Shortest(v));
+        return std::min(c, 1.0f);
+    };
     auto colour = [&](const std::vector<double>& v, const std::string& name, vec3 fallback) {
         if (v.empty()) return fallback;
         if (v.size() < 3) doc_.Fail(at + "." + name, "expected 3 or 4 numbers");
-        if (v.size() > 3) number(v[3], name, 0, 1);
-        return vec3(number(v[0], name, 0, 1), number(v[1], name, 0, 1), number(v[2], name, 0, 1));
+        if (v.size() > 3) component(v[3], name);
+        return vec3(component(v[0], name), component(v[1], name), component(v[2], name));
     };
     auto extension = [&](const char* name, const char* key, double fallback) {
         auto it = g.extensions.find(name);

@@ -89,9 +89,16 @@ bool GltfMeshes::Textured(const tinygltf::Primitive& prim) const {
     if (prim.material < 0 || size_t(prim.material) >= model_.materials.size()) return false;
     const tinygltf::Material& m = model_.materials[size_t(prim.material)];
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-    return pbr.baseColorTexture.index >= 0 || pbr.metallicRoughnessTexture.index >= 0 ||
-           m.normalTexture.index >= 0 || m.occlusionTexture.index >= 0 ||
-           m.emissiveTexture.index >= 0;
+    if (pbr.baseColorTexture.index >= 0 || pbr.metallicRoughnessTexture.index >= 0 ||
+        m.normalTexture.index >= 0 || m.occlusionTexture.index >= 0 || m.emissiveTexture.index >= 0)
+        return true;
+    for (const auto& [extension, key] :
+         {std::pair{"KHR_materials_transmission", "transmissionTexture"},
+          std::pair{"KHR_materials_specular", "specularTexture"},
+          std::pair{"KHR_materials_specular", "specularColorTexture"}})
+        if (auto it = m.extensions.find(extension); it != m.extensions.end() && it->second.Has(key))
+            return true;
+    return false;
 }
 
 bool GltfMeshes::NormalMapped(const tinygltf::Primitive& prim) const {

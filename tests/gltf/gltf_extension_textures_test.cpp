@@ -9,6 +9,7 @@
 
 #include "engine/render_rt/renderer.h"
 #include "engine/render_rt/shading/texture.h"
+#include "engine/render_rt/srgb.h"
 #include "game/scene/scene_file.h"
 #include "tests/gltf/gltf_builder.h"
 #include "tests/gltf/gltf_test_dir.h"
@@ -74,14 +75,16 @@ TEST_F(GltfTest, ExtensionTexturesRenderAsTheirValueInTheFactor) {
          [&](Json& m) {
              ext(m, "KHR_materials_specular") = {{"specularFactor", 0.0}};
          }},
-        {"specular colour texture magenta (sRGB)",
-         {255, 0, 255, 255},
+        // 128 is 0.216 in linear light: a texture read as linear would give 0.502.
+        {"specular colour texture (sRGB)",
+         {128, 0, 255, 255},
          [&](Json& m) {
              ext(m, "KHR_materials_specular") = {{"specularColorFactor", {1, 1, 1}},
                                                  {"specularColorTexture", {{"index", 0}}}};
          },
          [&](Json& m) {
-             ext(m, "KHR_materials_specular") = {{"specularColorFactor", {1, 0, 1}}};
+             ext(m, "KHR_materials_specular") = {
+                 {"specularColorFactor", {SrgbDecode(128.0f * (1.0f / 255.0f)), 0, 1}}};
          }},
     };
     for (const Case& c : cases) {

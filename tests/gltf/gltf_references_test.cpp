@@ -1,8 +1,8 @@
 // References between a glTF file's objects and the enumerations of its samplers and materials,
 // checked before tinygltf reads the file (gltf_references.h), and the warning for textures a
-// primitive cannot apply. Found by probing: an image's buffer view 1 GB past its buffer crashed
-// the decoder; an index of 2^32 named object 0 and a negative one read as absent; a wrap mode of
-// 12345 repeated.
+// primitive cannot apply, and colour factors above 1. Found by probing: an image's buffer view 1 GB
+// past its buffer crashed the decoder; an index of 2^32 named object 0 and a negative one read as
+// absent; a wrap mode of 12345 repeated.
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -124,22 +124,32 @@ TEST_F(GltfTest, SamplerAndAlphaModeEnumerationsAreChecked) {
                     "expected one of OPAQUE, MASK, BLEND, got \"FOO\"");
 }
 
-// glTF bounds a base colour's and an emission's factors to [0, 1].
+// glTF bounds a base colour's and an emission's factors to [0, 1]: a negative component is
+// refused; one above 1, which exporters have written (three.js before r129), is taken as 1 with a
+// warning, as other viewers load such files.
 TEST_F(GltfTest, ColourFactorsAreBetweenZeroAndOne) {
     const Json base = Json::parse(QuadWithImageView().GltfText());
     Json d = base;
-    d["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {5, 1, 1, 1};
-    ExpectGltfError(Save("base.gltf", d.dump()),
-                    "materials[0].pbrMetallicRoughness.baseColorFactor",
-                    "must be between 0 and 1, got 5");
     d["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, -7};
     ExpectGltfError(Save("alpha.gltf", d.dump()),
                     "materials[0].pbrMetallicRoughness.baseColorFactor",
-                    "must be between 0 and 1, got -7");
+                    "must be between 0 and 1000000, got -7");
     d = base;
-    d["materials"][0]["emissiveFactor"] = {1, 1.5, 1};
-    ExpectGltfError(Save("emissive.gltf", d.dump()), "materials[0].emissiveFactor",
-                    "must be between 0 and 1, got 1.5");
+    d["materials"][0]["emissiveFactor"] = {1, 1.5, 0.25};
+    d["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {5, 0.5, 1, 1};
+    ::testing::internal::CaptureStderr();
+    const LoadedScene loaded = LoadSceneFile(Save("bright.gltf", d.dump()));
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("materials[0].emissiveFactor: components above 1 (glTF's bound) are taken "
+                       "as 1, e.g. 1.5"),
+              std::string::npos)
+        << err;
+    EXPECT_NE(err.find("materials[0].pbrMetallicRoughness.baseColorFactor: components above 1"),
+              std::string::npos)
+        << err;
+    const PbrMaterial& p = loaded.scene.pbrMaterials.at(0);
+    EXPECT_EQ(p.baseColor, vec3(1.0f, 0.5f, 1.0f));
+    EXPECT_EQ(p.emissive, vec3(1.0f, 1.0f, 0.25f));
 }
 
 // tinygltf reads other data URIs as file names: the image was "missing or could not be
@@ -165,6 +175,16 @@ TEST_F(GltfTest, TexturesWithoutCoordinatesAreWarnedOf) {
                         "has no TEXCOORD_0"),
               std::string::npos)
         << noUv;
+    // The extensions' textures count too: a transmissionTexture alone.
+    b.doc["materials"][0] = {
+        {"extensions",
+         {{"KHR_materials_transmission",
+           {{"transmissionFactor", 1.0}, {"transmissionTexture", {{"index", 0}}}}}}}};
+    ::testing::internal::CaptureStderr();
+    LoadSceneFile(Save("no_uv_transmission.glb", b.Glb()));
+    const std::string transmission = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(transmission.find("but the primitive has no TEXCOORD_0"), std::string::npos)
+        << transmission;
 }
 
 }  // namespace
