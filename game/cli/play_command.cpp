@@ -1,9 +1,12 @@
 // `rtrt play SCENE --headless --frames N [--fps F] -o DIR/frame_%04d.png`: plays a scene on a
 // fixed time step and writes every frame. The window (without --headless) comes with the
 // interactive runtime.
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <regex>
 #include <string>
@@ -207,6 +210,13 @@ void CheckModeOptions(const PlayOptions& o) {
     }
 }
 
+// The file PATH leads to (links followed) as device and inode; {0, 0} where there is none.
+std::pair<uint64_t, uint64_t> FileIdentity(const std::string& path) {
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) return {0, 0};
+    return {uint64_t(info.st_dev), uint64_t(info.st_ino)};
+}
+
 void RunPlay(PlayOptions o) {
     if (o.scenes.empty()) o.scenes = {"default"};
     CheckModeOptions(o);
@@ -263,6 +273,7 @@ void RunPlay(PlayOptions o) {
     }
     Image frame;
     double total = 0.0;
+    std::map<std::pair<uint64_t, uint64_t>, int> writtenFiles;  // device and inode: frame
     for (int i = first; i < end; ++i) {
         Stopwatch timer;
         if (i > 0) {
@@ -284,8 +295,16 @@ void RunPlay(PlayOptions o) {
                                          ":" + std::to_string(end) + " goes on from here");
         };
         try {
+            // A frame's name that leads to a frame this run wrote (a link to it) would replace
+            // that frame: the run had ended with exit 0 and one frame short.
+            if (const auto earlier = writtenFiles.find(FileIdentity(FramePath(o.output, i)));
+                earlier != writtenFiles.end() && earlier->first.second != 0)
+                throw OutputError(FramePath(o.output, i),
+                                  "leads to frame " + std::to_string(earlier->second) +
+                                      ", written by this run (a link?); remove it");
             WriteImage(FramePath(o.output, i), frame, transform);
             written = true;
+            writtenFiles[FileIdentity(FramePath(o.output, i))] = i;
             if (!o.manifest.empty()) AppendToManifest(o.manifest, i, FramePath(o.output, i));
         } catch (const OutputError& e) {
             throw stopped(e.File(), e.Reason());

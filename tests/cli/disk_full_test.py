@@ -138,6 +138,16 @@ def check_later_frames(scratch):
         sys.exit(f"later folder: status {r.returncode}, files {sorted(os.listdir(folder))}, "
                  f"expected 1 and \"{expected}\":\n{r.stderr}")
     print(f"later folder: ok ({r.stderr.strip()})")
+    # A later frame's name that is a link to an earlier frame of the run: it would replace it.
+    linked = os.path.join(scratch, "linked")
+    os.makedirs(linked)
+    os.symlink("f_00.ppm", os.path.join(linked, "f_02.ppm"))
+    r = run(["play", os.path.join(WORK, "grid.json"), "--headless", "--frames", "3", "--size",
+             "32x24", "-o", os.path.join(linked, "f_%02d.ppm")], {})
+    expected = "leads to frame 0, written by this run (a link?); remove it; frames 0 to 1 are"
+    if r.returncode != 1 or expected not in r.stderr:
+        sys.exit(f"later link: status {r.returncode}, expected 1 and \"{expected}\":\n{r.stderr}")
+    print(f"later link: ok ({r.stderr.strip()[-160:]})")
     # Frame 9's name has 255 bytes, frame 10's one more.
     long = os.path.join(folder, "n" * 250 + "%d.ppm")
     r = run(["play", os.path.join(WORK, "grid.json"), "--headless", "--frames", "9:11", "--size",
