@@ -16,9 +16,17 @@ struct TriangleMesh {
     std::vector<vec4> tangents;
     std::vector<glm::uvec3> indices;
 
+    // Of the vertices the triangles use (all of them where there are none): a vertex no triangle
+    // names (PLY and OBJ files have them) is no part of the shape, and had moved `fit`.
     Aabb Bounds() const {
         Aabb b;
-        for (vec3 p : positions) b.Grow(p);
+        if (indices.empty()) {
+            for (vec3 p : positions) b.Grow(p);
+            return b;
+        }
+        for (const glm::uvec3& t : indices)
+            for (int k = 0; k < 3; ++k)
+                if (t[k] < positions.size()) b.Grow(positions[t[k]]);
         return b;
     }
 };

@@ -13,7 +13,7 @@ TriangleMesh MakePlaneMesh(float sizeX, float sizeZ);  // in y = 0, normal +y, c
 // centred on the origin (the paper scene's normalisation).
 void FitMesh(TriangleMesh& mesh, float extent);
 
-// FitMesh done to a mesh's built BLAS: sourceBounds is the box of all the mesh's vertices
+// FitMesh done to a mesh's built BLAS: sourceBounds is the box of the vertices its triangles use
 // (RtModelInfo::sourceBounds), so the vertices land exactly where FitMesh puts them.
 void FitBlas(Blas& blas, const Aabb& sourceBounds, float extent);
 

@@ -259,5 +259,22 @@ TEST_F(ModelCacheTest, SceneMeshesComeThroughTheCache) {
     EXPECT_EQ(MaxComponent(blas.bounds.Extent()), 4.0f);
 }
 
+// A vertex no triangle uses is no part of the shape: `fit` scales and centres what the triangles
+// cover (a stray vertex 100 units off had shrunk the quad to a speck beside the origin), read
+// through the cache or built.
+TEST_F(ModelCacheTest, FitIgnoresVerticesNoTriangleUses) {
+    Write("stray.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 100 100 100\nf 1 2 3\nf 1 3 4\n");
+    const std::string scene = Write("stray.json", R"({
+        "models": { "q": { "type": "mesh", "file": "stray.obj", "fit": 4 } },
+        "instances": [ { "model": "q" } ] })");
+    for (int load = 0; load < 2; ++load) {  // built, then read from the cache
+        const LoadedScene loaded = LoadSceneFile(scene);
+        const Aabb bounds = loaded.scene.blases.at(0)->bounds;
+        EXPECT_EQ(bounds.min, vec3(-2.0f, -2.0f, 0.0f)) << load;
+        EXPECT_EQ(bounds.max, vec3(2.0f, 2.0f, 0.0f)) << load;
+    }
+    EXPECT_EQ(CacheEntries(), 1u);
+}
+
 }  // namespace
 }  // namespace rtrt

@@ -18,8 +18,9 @@ namespace rtrt {
 // normals (three 32-bit octahedral normals per triangle, packed_normal.h).
 inline constexpr uint32_t kRtModelVersion = 3;
 // Bump when a builder or a mesh loader changes its output for the same input: cached files made
-// before then no longer match their key and are rebuilt.
-inline constexpr uint32_t kRtModelRevision = 1;
+// before then no longer match their key and are rebuilt. 2: sourceBounds of the vertices the
+// triangles use.
+inline constexpr uint32_t kRtModelRevision = 2;
 
 // What a BLAS was built from. A cached file is up to date when its key equals the one wanted.
 struct RtModelKey {
@@ -38,7 +39,7 @@ struct RtModelInfo {
     RtModelKey key;
     uint32_t version = kRtModelVersion;
     uint32_t sourceVertexCount = 0;
-    Aabb sourceBounds;  // of every source vertex: what FitMesh would centre and scale
+    Aabb sourceBounds;  // of the source vertices triangles use: what FitMesh centres and scales
     float sahCost = 0.0f;
     uint64_t fileBytes = 0;
 };
