@@ -44,6 +44,16 @@ class GltfBuilder {
         return Accessor(v, 5126, type, n);
     }
 
+    // IMAGE's bytes as the file's only image, in a buffer view of its own (4-byte aligned).
+    void ImageInBuffer(const std::string& image, const char* mimeType) {
+        while (bin.size() % 4) bin.push_back(0);
+        doc["bufferViews"].push_back(
+            {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", image.size()}});
+        bin.insert(bin.end(), image.begin(), image.end());
+        doc["images"] =
+            Json::array({{{"bufferView", doc["bufferViews"].size() - 1}, {"mimeType", mimeType}}});
+    }
+
     // A mesh of one triangle primitive; returns the mesh index.
     int Mesh(int position, int indices = -1, int uv = -1, int material = -1) {
         Json prim = {{"attributes", {{"POSITION", position}}}};
@@ -248,12 +258,7 @@ inline GltfBuilder LitQuadScene(const std::string& image) {
     GltfBuilder b;
     b.doc["samplers"] = Json::array(
         {{{"magFilter", 9728}, {"minFilter", 9728}, {"wrapS", 33071}, {"wrapT", 33071}}});
-    while (b.bin.size() % 4) b.bin.push_back(0);
-    b.doc["bufferViews"].push_back(
-        {{"buffer", 0}, {"byteOffset", b.bin.size()}, {"byteLength", image.size()}});
-    b.bin.insert(b.bin.end(), image.begin(), image.end());
-    b.doc["images"] =
-        Json::array({{{"bufferView", b.doc["bufferViews"].size() - 1}, {"mimeType", "image/png"}}});
+    b.ImageInBuffer(image, "image/png");
     b.doc["textures"] = Json::array({{{"source", 0}, {"sampler", 0}}});
     b.doc["materials"] = Json::array({{{"pbrMetallicRoughness",
                                         {{"baseColorFactor", {0.6, 0.5, 0.4, 1}},

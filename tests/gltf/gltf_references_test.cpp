@@ -23,13 +23,7 @@ constexpr uint64_t k2To32 = uint64_t(1) << 32;
 // The textured quad with a 1x1 BMP image in its buffer, at the view's own bytes.
 GltfBuilder QuadWithImageView() {
     GltfBuilder b = test::TexturedQuadScene(9728, 33071);
-    const std::string bmp = GltfBuilder::Bmp(1, 1, {200, 100, 50});
-    while (b.bin.size() % 4) b.bin.push_back(0);
-    b.doc["bufferViews"].push_back(
-        {{"buffer", 0}, {"byteOffset", b.bin.size()}, {"byteLength", bmp.size()}});
-    b.bin.insert(b.bin.end(), bmp.begin(), bmp.end());
-    b.doc["images"] =
-        Json::array({{{"bufferView", b.doc["bufferViews"].size() - 1}, {"mimeType", "image/bmp"}}});
+    b.ImageInBuffer(GltfBuilder::Bmp(1, 1, {200, 100, 50}), "image/bmp");
     return b;
 }
 
