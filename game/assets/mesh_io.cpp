@@ -25,11 +25,13 @@ std::string ToLower(std::string s) {
 
 }  // namespace
 
-TriangleMesh LoadMesh(const std::string& path) {
+TriangleMesh LoadMesh(const std::string& path, uint64_t* fileVertices) {
     std::string name = ToLower(std::filesystem::path(path).filename().string());
     TriangleMesh mesh;
-    if (EndsWith(name, ".obj")) {
-        mesh = ParseObj(path, ReadPlainFile(path));
+    uint64_t objVertices = 0;
+    const bool obj = EndsWith(name, ".obj");
+    if (obj) {
+        mesh = ParseObj(path, ReadPlainFile(path), &objVertices);
     } else if (EndsWith(name, ".ply.gz")) {
         mesh = ParsePly(path, ReadGzipFile(path));
     } else if (EndsWith(name, ".ply")) {
@@ -38,6 +40,7 @@ TriangleMesh LoadMesh(const std::string& path) {
         throw InputError(path, "", "unknown mesh file extension (expected .obj, .ply or .ply.gz)");
     }
     if (mesh.indices.empty()) throw InputError(path, "", "contains no triangles");
+    if (fileVertices) *fileVertices = obj ? objVertices : mesh.positions.size();
     return mesh;
 }
 

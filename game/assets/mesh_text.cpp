@@ -1,8 +1,11 @@
 #include "game/assets/mesh_text.h"
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "engine/core/error.h"
+#include "engine/geometry/smooth_normals.h"
 
 namespace rtrt::mesh_text {
 
@@ -28,16 +31,45 @@ std::string Quote(std::string_view token) {
 float ParseCoordinate(std::string_view token) {
     double value = 0.0;
     if (!ParseNumber(token, value)) throw RecordError{"expected a number, found " + Quote(token)};
+    if (std::isfinite(value) && std::fabs(value) > std::numeric_limits<float>::max()) {
+        throw RecordError{"number " + Quote(token) + " is beyond the float range (3.4e38)"};
+    }
     return static_cast<float>(value);
 }
 
-bool NormalizeFileNormals(std::vector<vec3>& normals) {
-    for (vec3& n : normals) {
-        float length = glm::length(n);
-        if (!(length > 0.0f) || !std::isfinite(length)) return false;
-        n /= length;
-    }
+bool NormalizeFileNormal(vec3& normal) {
+    const float length = glm::length(normal);
+    if (!(length > 0.0f) || !std::isfinite(length)) return false;
+    normal /= length;
     return true;
+}
+
+void KeepFileNormals(TriangleMesh& mesh) {
+    std::vector<vec3> file = std::move(mesh.normals);
+    std::vector<size_t> undirected;
+    for (size_t v = 0; v < file.size(); ++v)
+        if (!NormalizeFileNormal(file[v])) undirected.push_back(v);
+    if (!undirected.empty()) {
+        ComputeSmoothNormals(mesh);
+        for (size_t v : undirected) file[v] = mesh.normals[v];
+    }
+    mesh.normals = std::move(file);
+}
+
+void WarnOfFannedPolygons(const std::string& file, const PolygonTriangulator& triangulator) {
+    if (triangulator.NoEar() > 0)
+        std::fprintf(stderr,
+                     "rtrt: warning: %s: %llu concave polygons cross or fold over themselves; "
+                     "filled as fans from their first corner\n",
+                     WithoutControlCharacters(file).c_str(),
+                     static_cast<unsigned long long>(triangulator.NoEar()));
+    if (triangulator.OverBudget() > 0)
+        std::fprintf(stderr,
+                     "rtrt: warning: %s: %llu concave polygons past the first 2^28 steps of "
+                     "triangulation filled as fans from their first corner; split them into "
+                     "smaller polygons in the modelling tool\n",
+                     WithoutControlCharacters(file).c_str(),
+                     static_cast<unsigned long long>(triangulator.OverBudget()));
 }
 
 void CheckTriangleCount(uint64_t triangles) {

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "engine/core/math.h"
+#include "engine/geometry/triangle_mesh.h"
+#include "game/assets/polygon_triangulation.h"
 
 namespace rtrt::mesh_text {
 
@@ -50,7 +52,16 @@ bool ParseNumber(std::string_view token, T& value) {
 // TOKEN as a float; RecordError when it is not a number.
 float ParseCoordinate(std::string_view token);
 
-// Normalises normals read from a file; false when one of them has no direction.
-bool NormalizeFileNormals(std::vector<vec3>& normals);
+// A normal read from a file, normalised; false when it has no direction (zero, NaN, infinite).
+bool NormalizeFileNormal(vec3& normal);
+
+// MESH.normals, one per vertex, are a file's: each is normalised, and one without a direction
+// is replaced by the vertex's area-weighted normal (ComputeSmoothNormals), so that a few
+// degenerate normals an exporter wrote do not cost the rest of the file its own.
+void KeepFileNormals(TriangleMesh& mesh);
+
+// Prints one warning on stderr for the polygons of FILE that TRIANGULATOR had to fan although
+// they are concave; nothing when there are none.
+void WarnOfFannedPolygons(const std::string& file, const PolygonTriangulator& triangulator);
 
 }  // namespace rtrt::mesh_text

@@ -90,14 +90,15 @@ MeshModel BuildMeshModel(const std::string& path, const BvhBuildOptions& options
     MeshModel model;
     if (progress) progress("parse");
     Stopwatch timer;
-    const TriangleMesh mesh = LoadMesh(path);
+    uint64_t fileVertices = 0;
+    const TriangleMesh mesh = LoadMesh(path, &fileVertices);
     model.parseMs = timer.Milliseconds();
     if (progress) progress("build");
     timer.Restart();
     model.blas = BuildTriangleBlas(mesh, options);
     model.buildMs = timer.Milliseconds();
     model.info.key = MakeRtModelKey(sourceHash, options);
-    model.info.sourceVertexCount = uint32_t(mesh.positions.size());
+    model.info.sourceVertexCount = uint32_t(fileVertices);
     model.info.sourceBounds = mesh.Bounds();
     model.info.sahCost = SahCost(model.blas.nodes);
     return model;

@@ -13,13 +13,13 @@
 #include "engine/core/error.h"
 #include "engine/geometry/smooth_normals.h"
 #include "game/assets/mesh_text.h"
+#include "game/assets/polygon_triangulation.h"
 
 namespace rtrt {
 namespace {
 
 using mesh_text::kMaxVertices;
 using mesh_text::NextWord;
-using mesh_text::NormalizeFileNormals;
 using mesh_text::ParseCoordinate;
 using mesh_text::ParseNumber;
 using mesh_text::Quote;
@@ -47,7 +47,6 @@ vec3 ParseObjVector(std::string_view rest, const char* what) {
         if (word.empty()) throw RecordError{std::string(what) + " needs three coordinates"};
         v[axis] = ParseCoordinate(word);
     }
-    if (!IsFinite(v)) throw RecordError{std::string(what) + " coordinate is NaN or infinite"};
     return v;
 }
 
@@ -90,25 +89,36 @@ struct ObjData {
     size_t texcoords = 0;
     std::vector<glm::uvec3> triangles;
     std::vector<glm::uvec3> normalTriangles;  // normal indices of the same corners
-    bool everyCornerHasNormal = true;
+    bool anyCornerHasNormal = false;
+    PolygonTriangulator triangulator;
+    // The face being read, its corners' positions and its triangles as indices into it.
+    std::vector<ObjCorner> face;
+    std::vector<vec3> facePositions;
+    std::vector<glm::uvec3> faceTriangles;
 };
 
 void ParseObjFace(std::string_view rest, ObjData& obj) {
-    ObjCorner first{}, previous{};
-    size_t corners = 0;
-    for (std::string_view word = NextWord(rest); !word.empty(); word = NextWord(rest), ++corners) {
-        ObjCorner corner =
-            ParseObjCorner(word, obj.positions.size(), obj.texcoords, obj.normals.size());
-        if (corner.normal == kNoNormal) obj.everyCornerHasNormal = false;
-        if (corners == 0) first = corner;
-        bool distinct = first.vertex != previous.vertex && previous.vertex != corner.vertex &&
-                        first.vertex != corner.vertex;
-        if (corners >= 2 && distinct) {
-            mesh_text::CheckTriangleCount(obj.triangles.size());
-            obj.triangles.emplace_back(first.vertex, previous.vertex, corner.vertex);
-            obj.normalTriangles.emplace_back(first.normal, previous.normal, corner.normal);
-        }
-        previous = corner;
+    obj.face.clear();
+    for (std::string_view word = NextWord(rest); !word.empty(); word = NextWord(rest)) {
+        obj.face.push_back(
+            ParseObjCorner(word, obj.positions.size(), obj.texcoords, obj.normals.size()));
+        obj.anyCornerHasNormal |= obj.face.back().normal != kNoNormal;
+    }
+    obj.faceTriangles.clear();
+    if (obj.face.size() == 3) {
+        obj.faceTriangles.emplace_back(0, 1, 2);
+    } else if (obj.face.size() > 3) {
+        obj.facePositions.clear();
+        for (const ObjCorner& corner : obj.face)
+            obj.facePositions.push_back(obj.positions[corner.vertex]);
+        obj.triangulator.Triangulate(obj.facePositions, obj.faceTriangles);
+    }
+    for (const glm::uvec3& local : obj.faceTriangles) {
+        const ObjCorner a = obj.face[local.x], b = obj.face[local.y], c = obj.face[local.z];
+        if (a.vertex == b.vertex || b.vertex == c.vertex || a.vertex == c.vertex) continue;
+        mesh_text::CheckTriangleCount(obj.triangles.size());
+        obj.triangles.emplace_back(a.vertex, b.vertex, c.vertex);
+        obj.normalTriangles.emplace_back(a.normal, b.normal, c.normal);
     }
 }
 
@@ -118,6 +128,9 @@ void ParseObjLine(std::string_view line, ObjData& obj) {
     if (keyword.empty()) return;
     if (keyword == "v") {
         obj.positions.push_back(ParseObjVector(line, "vertex"));
+        if (!IsFinite(obj.positions.back())) {
+            throw RecordError{"vertex coordinate is NaN or infinite"};
+        }
         if (obj.positions.size() > kMaxVertices) throw RecordError{"too many vertices"};
     } else if (keyword == "vn") {
         obj.normals.push_back(ParseObjVector(line, "normal"));
@@ -131,8 +144,26 @@ void ParseObjLine(std::string_view line, ObjData& obj) {
     }
 }
 
-// Gives each distinct (vertex, normal) pair of the faces its own vertex.
-TriangleMesh SplitByNormals(const ObjData& obj) {
+// Gives each distinct (vertex, normal) pair of the faces its own vertex. A corner without a
+// normal, or whose normal has no direction, takes its vertex's area-weighted normal over every
+// face around it.
+TriangleMesh SplitByNormals(ObjData& obj) {
+    bool everyCornerUsable = true;
+    std::vector<bool> usable(obj.normals.size());
+    for (size_t n = 0; n < obj.normals.size(); ++n)
+        usable[n] = mesh_text::NormalizeFileNormal(obj.normals[n]);
+    for (glm::uvec3& corners : obj.normalTriangles)
+        for (int corner = 0; corner < 3; ++corner) {
+            if (corners[corner] != kNoNormal && !usable[corners[corner]])
+                corners[corner] = kNoNormal;
+            everyCornerUsable &= corners[corner] != kNoNormal;
+        }
+    TriangleMesh smooth;
+    if (!everyCornerUsable) {
+        smooth.positions = obj.positions;
+        smooth.indices = obj.triangles;
+        ComputeSmoothNormals(smooth);
+    }
     TriangleMesh mesh;
     std::unordered_map<uint64_t, uint32_t> vertexOf;
     vertexOf.reserve(obj.positions.size());
@@ -145,7 +176,7 @@ TriangleMesh SplitByNormals(const ObjData& obj) {
                 vertexOf.try_emplace(key, static_cast<uint32_t>(mesh.positions.size()));
             if (inserted) {
                 mesh.positions.push_back(obj.positions[v]);
-                mesh.normals.push_back(obj.normals[n]);
+                mesh.normals.push_back(n == kNoNormal ? smooth.normals[v] : obj.normals[n]);
             }
             mesh.indices[t][corner] = it->second;
         }
@@ -153,13 +184,21 @@ TriangleMesh SplitByNormals(const ObjData& obj) {
     return mesh;
 }
 
+// Whether LINE, comments aside, ends in a backslash: the OBJ statement goes on on the next line.
+bool ContinuesOnNextLine(std::string_view line) {
+    line = line.substr(0, line.find('#'));
+    const size_t last = line.find_last_not_of(" \t");
+    return last != std::string_view::npos && line[last] == '\\';
+}
+
 }  // namespace
 
-TriangleMesh ParseObj(const std::string& path, std::string_view text) {
+TriangleMesh ParseObj(const std::string& path, std::string_view text, uint64_t* fileVertices) {
     ObjData obj;
     // A UTF-8 byte order mark, which some editors write first, is no part of the first line.
     if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
-    size_t lineNumber = 0;
+    size_t lineNumber = 0, statementLine = 0;
+    std::string continued;  // a statement whose lines end in a backslash, joined so far
     while (!text.empty()) {
         ++lineNumber;
         // LF, CRLF, and a lone CR (old Mac files, whose lines were otherwise one).
@@ -170,16 +209,27 @@ TriangleMesh ParseObj(const std::string& path, std::string_view text) {
             text[next] == '\n')
             ++next;
         text.remove_prefix(next);
+        if (continued.empty()) statementLine = lineNumber;
+        if (ContinuesOnNextLine(line)) {
+            line = line.substr(0, line.find('#'));
+            continued.append(line.substr(0, line.find_last_of('\\'))).push_back(' ');
+            if (!text.empty()) continue;
+            line = {};
+        }
+        if (!continued.empty()) {
+            continued.append(line);
+            line = continued;
+        }
         try {
             ParseObjLine(line, obj);
         } catch (const RecordError& error) {
-            throw InputError(path, "line " + std::to_string(lineNumber), error.reason);
+            throw InputError(path, "line " + std::to_string(statementLine), error.reason);
         }
+        continued.clear();
     }
-    if (obj.everyCornerHasNormal && !obj.triangles.empty()) {
-        TriangleMesh mesh = SplitByNormals(obj);
-        if (NormalizeFileNormals(mesh.normals)) return mesh;
-    }
+    mesh_text::WarnOfFannedPolygons(path, obj.triangulator);
+    if (fileVertices) *fileVertices = obj.positions.size();
+    if (obj.anyCornerHasNormal && !obj.triangles.empty()) return SplitByNormals(obj);
     TriangleMesh mesh;
     mesh.positions = std::move(obj.positions);
     mesh.indices = std::move(obj.triangles);

@@ -14,268 +14,16 @@
 #include "engine/core/error.h"
 #include "engine/geometry/smooth_normals.h"
 #include "game/assets/mesh_text.h"
+#include "game/assets/ply_header.h"
+#include "game/assets/polygon_triangulation.h"
 
 namespace rtrt {
 namespace {
 
 using mesh_text::IsSpace;
-using mesh_text::kMaxVertices;
-using mesh_text::NextWord;
-using mesh_text::NormalizeFileNormals;
 using mesh_text::ParseNumber;
 using mesh_text::Quote;
 using mesh_text::RecordError;
-
-enum class PlyFormat { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
-enum class ScalarType { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
-
-struct PlyProperty {
-    std::string name;
-    ScalarType type;  // of the value, or of a list's items
-    bool isList = false;
-    ScalarType countType = ScalarType::kUint8;
-};
-
-struct PlyElement {
-    std::string name;
-    uint64_t count = 0;
-    std::vector<PlyProperty> properties;
-};
-
-struct PlyHeader {
-    PlyFormat format = PlyFormat::kAscii;
-    std::vector<PlyElement> elements;
-    size_t dataOffset = 0;
-};
-
-bool ParseScalarType(std::string_view name, ScalarType& type) {
-    struct Named {
-        std::string_view name;
-        ScalarType type;
-    };
-    static constexpr std::array<Named, 16> kTypes = {{
-        {"char", ScalarType::kInt8},
-        {"int8", ScalarType::kInt8},
-        {"uchar", ScalarType::kUint8},
-        {"uint8", ScalarType::kUint8},
-        {"short", ScalarType::kInt16},
-        {"int16", ScalarType::kInt16},
-        {"ushort", ScalarType::kUint16},
-        {"uint16", ScalarType::kUint16},
-        {"int", ScalarType::kInt32},
-        {"int32", ScalarType::kInt32},
-        {"uint", ScalarType::kUint32},
-        {"uint32", ScalarType::kUint32},
-        {"float", ScalarType::kFloat32},
-        {"float32", ScalarType::kFloat32},
-        {"double", ScalarType::kFloat64},
-        {"float64", ScalarType::kFloat64},
-    }};
-    for (const Named& named : kTypes) {
-        if (named.name == name) {
-            type = named.type;
-            return true;
-        }
-    }
-    return false;
-}
-
-size_t SizeOf(ScalarType type) {
-    switch (type) {
-        case ScalarType::kInt8:
-        case ScalarType::kUint8:
-            return 1;
-        case ScalarType::kInt16:
-        case ScalarType::kUint16:
-            return 2;
-        case ScalarType::kInt32:
-        case ScalarType::kUint32:
-        case ScalarType::kFloat32:
-            return 4;
-        case ScalarType::kFloat64:
-            return 8;
-    }
-    return 8;
-}
-
-bool IsInteger(ScalarType type) {
-    return type != ScalarType::kFloat32 && type != ScalarType::kFloat64;
-}
-
-std::vector<std::string_view> SplitWords(std::string_view line) {
-    std::vector<std::string_view> words;
-    for (std::string_view word = NextWord(line); !word.empty(); word = NextWord(line)) {
-        words.push_back(word);
-    }
-    return words;
-}
-
-PlyFormat ParsePlyFormat(const std::string& path, const std::string& field,
-                         const std::vector<std::string_view>& words) {
-    double version = 0.0;
-    if (words.size() != 3 || !ParseNumber(words[2], version) || version != 1.0) {
-        throw InputError(path, field, "expected 'format <type> 1.0'");
-    }
-    if (words[1] == "ascii") return PlyFormat::kAscii;
-    if (words[1] == "binary_little_endian") return PlyFormat::kBinaryLittleEndian;
-    if (words[1] == "binary_big_endian") return PlyFormat::kBinaryBigEndian;
-    throw InputError(path, field, "unknown format " + Quote(words[1]));
-}
-
-// Parses "property <type> <name>" or "property list <count type> <item type> <name>".
-PlyProperty ParsePlyProperty(const std::string& path, const std::string& field,
-                             const std::vector<std::string_view>& words) {
-    PlyProperty property;
-    property.name = words.back();
-    if (words.size() == 3 && ParseScalarType(words[1], property.type)) return property;
-    property.isList = true;
-    if (words.size() != 5 || words[1] != "list" || !ParseScalarType(words[2], property.countType) ||
-        !ParseScalarType(words[3], property.type)) {
-        throw InputError(path, field,
-                         "expected 'property <type> <name>' or 'property list <count type> "
-                         "<item type> <name>' with known types");
-    }
-    if (!IsInteger(property.countType)) {
-        throw InputError(path, field, "list count type must be an integer type");
-    }
-    return property;
-}
-
-// Reads the header up to end_header; throws on anything it does not understand.
-PlyHeader ParsePlyHeaderLines(const std::string& path, std::string_view data) {
-    if (data.substr(0, 3) != "ply" || data.size() < 4 || (data[3] != '\n' && data[3] != '\r')) {
-        throw InputError(path, "header", "bad magic (not a PLY file)");
-    }
-    // Lines end as the first one does. Old Mac tools end them with a lone CR; a CR-LF header's CR
-    // is trimmed with the words. Deciding once keeps a binary body whose first byte is 0x0A
-    // after an "end_header\r" from being taken for the rest of a line end.
-    const char lineEnd = data[3] == '\r' && (data.size() < 5 || data[4] != '\n') ? '\r' : '\n';
-    PlyHeader header;
-    bool haveFormat = false;
-    size_t offset = 0;
-    for (size_t lineNumber = 1;; ++lineNumber) {
-        size_t newline = data.find(lineEnd, offset);
-        std::string field = "header line " + std::to_string(lineNumber);
-        if (newline == std::string_view::npos) {
-            throw InputError(path, field, "no end_header (truncated header)");
-        }
-        std::vector<std::string_view> words = SplitWords(data.substr(offset, newline - offset));
-        offset = newline + 1;
-        if (lineNumber == 1 || words.empty()) continue;
-        std::string_view keyword = words[0];
-        if (keyword == "comment" || keyword == "obj_info") continue;
-        if (keyword == "end_header") {
-            if (!haveFormat) throw InputError(path, field, "end_header before the format line");
-            header.dataOffset = offset;
-            return header;
-        }
-        if (keyword == "format") {
-            header.format = ParsePlyFormat(path, field, words);
-            haveFormat = true;
-        } else if (keyword == "element") {
-            PlyElement element;
-            if (words.size() != 3 || !ParseNumber(words[2], element.count)) {
-                throw InputError(path, field, "expected 'element <name> <count>'");
-            }
-            element.name = words[1];
-            header.elements.push_back(std::move(element));
-        } else if (keyword == "property") {
-            if (header.elements.empty()) throw InputError(path, field, "property before element");
-            header.elements.back().properties.push_back(ParsePlyProperty(path, field, words));
-        } else {
-            throw InputError(path, field, "unknown keyword " + Quote(keyword));
-        }
-    }
-}
-
-// Where the vertex and face data sit among the elements and their properties.
-struct PlyLayout {
-    const PlyElement* vertices = nullptr;
-    const PlyElement* faces = nullptr;
-    std::array<int, 6> vertexProperty{-1, -1, -1, -1, -1, -1};  // x y z nx ny nz
-    int faceIndexProperty = -1;
-    bool hasNormals = false;
-};
-
-int FindProperty(const PlyElement& element, std::string_view name) {
-    for (size_t i = 0; i < element.properties.size(); ++i) {
-        if (element.properties[i].name == name) return static_cast<int>(i);
-    }
-    return -1;
-}
-
-// Rejects element counts that the data could not hold, before anything is allocated for them.
-// A record takes at least its binary values' sizes (a list its count's), or in ASCII one character
-// and one separator per value; the final newline of an ASCII file is optional.
-void CheckPlyCounts(const std::string& path, const PlyHeader& header, size_t dataBytes) {
-    bool ascii = header.format == PlyFormat::kAscii;
-    uint64_t available = dataBytes + (ascii ? 1 : 0), needed = 0;
-    for (const PlyElement& element : header.elements) {
-        uint64_t recordBytes = 0;
-        for (const PlyProperty& p : element.properties) {
-            recordBytes += ascii ? 2 : SizeOf(p.isList ? p.countType : p.type);
-        }
-        if (element.count == 0) continue;
-        if (recordBytes == 0) {
-            throw InputError(path, "header",
-                             "element " + Quote(element.name) + " has no properties");
-        }
-        if (element.count > (available - needed) / recordBytes) {
-            throw InputError(path, "header",
-                             "element " + Quote(element.name) + " declares " +
-                                 std::to_string(element.count) + " records, more than the " +
-                                 std::to_string(dataBytes) + " bytes of data can hold");
-        }
-        needed += element.count * recordBytes;
-    }
-}
-
-const PlyElement* FindElement(const std::string& path, const PlyHeader& header,
-                              std::string_view name) {
-    const PlyElement* found = nullptr;
-    for (const PlyElement& element : header.elements) {
-        if (element.name != name) continue;
-        if (found) throw InputError(path, "header", "more than one element " + Quote(name));
-        found = &element;
-    }
-    return found;
-}
-
-PlyLayout FindPlyLayout(const std::string& path, const PlyHeader& header) {
-    PlyLayout layout;
-    layout.vertices = FindElement(path, header, "vertex");
-    layout.faces = FindElement(path, header, "face");
-    if (!layout.vertices) throw InputError(path, "header", "no vertex element");
-    if (layout.vertices->count > kMaxVertices) {
-        throw InputError(path, "header", "more than 2^32 - 1 vertices");
-    }
-    static constexpr std::array<std::string_view, 6> kNames = {"x", "y", "z", "nx", "ny", "nz"};
-    for (size_t i = 0; i < kNames.size(); ++i) {
-        int index = FindProperty(*layout.vertices, kNames[i]);
-        if (index >= 0 && layout.vertices->properties[index].isList) {
-            throw InputError(path, "header", "vertex property " + Quote(kNames[i]) + " is a list");
-        }
-        if (index < 0 && i < 3) {
-            throw InputError(path, "header", "vertex element has no property " + Quote(kNames[i]));
-        }
-        layout.vertexProperty[i] = index;
-    }
-    layout.hasNormals = layout.vertexProperty[3] >= 0 && layout.vertexProperty[4] >= 0 &&
-                        layout.vertexProperty[5] >= 0;
-    if (!layout.faces) return layout;
-    layout.faceIndexProperty = FindProperty(*layout.faces, "vertex_indices");
-    if (layout.faceIndexProperty < 0) {
-        layout.faceIndexProperty = FindProperty(*layout.faces, "vertex_index");
-    }
-    if (layout.faceIndexProperty < 0) {
-        throw InputError(path, "header", "face element has no vertex_indices list");
-    }
-    const PlyProperty& indices = layout.faces->properties[layout.faceIndexProperty];
-    if (!indices.isList || !IsInteger(indices.type)) {
-        throw InputError(path, "header", "face vertex_indices must be a list of integers");
-    }
-    return layout;
-}
 
 const RecordError kTruncated{"unexpected end of data (file truncated)"};
 
@@ -430,41 +178,130 @@ void ReadPlyVertices(Reader& reader, const PlyLayout& layout, uint64_t& record,
     }
 }
 
-template <class Reader>
-void ReadPlyFaces(Reader& reader, const PlyLayout& layout, uint64_t& record, TriangleMesh& mesh) {
-    const std::vector<PlyProperty>& properties = layout.faces->properties;
-    const PlyProperty& indexProperty = properties[layout.faceIndexProperty];
-    int64_t vertexCount = static_cast<int64_t>(layout.vertices->count);
-    for (; record < layout.faces->count; ++record) {
-        for (size_t i = 0; i < properties.size(); ++i) {
-            if (static_cast<int>(i) != layout.faceIndexProperty) {
-                SkipProperty(reader, properties[i]);
+// Faces of four or more corners, triangulated once every vertex is known (the face element may
+// come first), and put in the file's order among the triangles.
+struct PlyPolygons {
+    struct Polygon {
+        uint64_t record;       // its face, for messages
+        uint64_t firstCorner;  // in corners
+        uint64_t cornerCount;
+        uint64_t beforeTriangle;  // the number of triangles read before it
+    };
+    std::vector<Polygon> polygons;
+    std::vector<uint32_t> corners;
+};
+
+// Reads the index list of each record of ELEMENT (its other properties skipped) and hands it to
+// onList, checked against the vertex count; -1 passes where allowMinusOne (strip ends).
+template <class Reader, class OnList>
+void ReadPlyIndexLists(Reader& reader, const PlyElement& element, int listProperty,
+                       int64_t vertexCount, bool allowMinusOne, uint64_t& record, OnList&& onList) {
+    const PlyProperty& indexProperty = element.properties[listProperty];
+    std::vector<int64_t> list;
+    for (; record < element.count; ++record) {
+        for (size_t i = 0; i < element.properties.size(); ++i) {
+            if (static_cast<int>(i) != listProperty) {
+                SkipProperty(reader, element.properties[i]);
                 continue;
             }
-            int64_t corners = reader.ReadInteger(indexProperty.countType);
-            if (corners < 0) throw RecordError{"negative vertex count " + std::to_string(corners)};
-            uint32_t first = 0, previous = 0;
-            for (int64_t corner = 0; corner < corners; ++corner) {
+            int64_t count = reader.ReadInteger(indexProperty.countType);
+            if (count < 0) throw RecordError{"negative vertex count " + std::to_string(count)};
+            list.clear();
+            for (int64_t item = 0; item < count; ++item) {
                 int64_t index = reader.ReadInteger(indexProperty.type);
-                if (index < 0 || index >= vertexCount) {
+                if ((index < 0 || index >= vertexCount) && !(allowMinusOne && index == -1)) {
                     throw RecordError{"vertex index " + std::to_string(index) + " out of range (" +
                                       std::to_string(vertexCount) + " vertices)"};
                 }
-                uint32_t current = static_cast<uint32_t>(index);
-                if (corner == 0) first = current;
-                if (corner >= 2 && first != previous && previous != current && first != current) {
-                    mesh_text::CheckTriangleCount(mesh.indices.size());
-                    mesh.indices.emplace_back(first, previous, current);
-                }
-                previous = current;
+                list.push_back(index);
             }
+            onList(list);
         }
     }
+}
+
+void AddTriangle(uint32_t a, uint32_t b, uint32_t c, TriangleMesh& mesh) {
+    if (a == b || b == c || a == c) return;
+    mesh_text::CheckTriangleCount(mesh.indices.size());
+    mesh.indices.emplace_back(a, b, c);
+}
+
+template <class Reader>
+void ReadPlyFaces(Reader& reader, const PlyLayout& layout, uint64_t& record, TriangleMesh& mesh,
+                  PlyPolygons& pending) {
+    ReadPlyIndexLists(
+        reader, *layout.faces, layout.faceIndexProperty, int64_t(layout.vertices->count), false,
+        record, [&](const std::vector<int64_t>& corners) {
+            if (corners.size() == 3) {
+                AddTriangle(uint32_t(corners[0]), uint32_t(corners[1]), uint32_t(corners[2]), mesh);
+            } else if (corners.size() > 3) {
+                pending.polygons.push_back(
+                    {record, pending.corners.size(), corners.size(), mesh.indices.size()});
+                for (int64_t corner : corners) pending.corners.push_back(uint32_t(corner));
+            }
+        });
+}
+
+// Triangle strips: each triangle is the last three indices, every other one with its first two
+// swapped so that all keep the strip's winding; -1 starts a new strip.
+template <class Reader>
+void ReadPlyStrips(Reader& reader, const PlyLayout& layout, uint64_t& record, TriangleMesh& mesh) {
+    ReadPlyIndexLists(reader, *layout.strips, layout.stripIndexProperty,
+                      int64_t(layout.vertices->count), true, record,
+                      [&](const std::vector<int64_t>& indices) {
+                          size_t start = 0;
+                          for (size_t i = 0; i < indices.size(); ++i) {
+                              if (indices[i] < 0) {
+                                  start = i + 1;
+                                  continue;
+                              }
+                              if (i < start + 2) continue;
+                              const auto a = uint32_t(indices[i - 2]), b = uint32_t(indices[i - 1]),
+                                         c = uint32_t(indices[i]);
+                              if ((i - start) % 2 == 0) {
+                                  AddTriangle(a, b, c, mesh);
+                              } else {
+                                  AddTriangle(b, a, c, mesh);
+                              }
+                          }
+                      });
+}
+
+// Puts the pending polygons' triangles among the others, in the file's order.
+void TriangulatePolygons(const std::string& path, const PlyPolygons& pending, TriangleMesh& mesh) {
+    if (pending.polygons.empty()) return;
+    PolygonTriangulator triangulator;
+    TriangleMesh merged;
+    merged.positions = std::move(mesh.positions);
+    merged.normals = std::move(mesh.normals);
+    merged.indices.reserve(mesh.indices.size() + pending.corners.size());
+    std::vector<vec3> positions;
+    std::vector<glm::uvec3> local;
+    size_t next = 0;
+    for (const PlyPolygons::Polygon& polygon : pending.polygons) {
+        while (next < polygon.beforeTriangle) merged.indices.push_back(mesh.indices[next++]);
+        const uint32_t* corners = pending.corners.data() + polygon.firstCorner;
+        positions.clear();
+        for (uint64_t i = 0; i < polygon.cornerCount; ++i)
+            positions.push_back(merged.positions[corners[i]]);
+        local.clear();
+        triangulator.Triangulate(positions, local);
+        try {
+            for (const glm::uvec3& t : local)
+                AddTriangle(corners[t.x], corners[t.y], corners[t.z], merged);
+        } catch (const RecordError& error) {
+            throw InputError(path, "face " + std::to_string(polygon.record), error.reason);
+        }
+    }
+    while (next < mesh.indices.size()) merged.indices.push_back(mesh.indices[next++]);
+    mesh = std::move(merged);
+    mesh_text::WarnOfFannedPolygons(path, triangulator);
 }
 
 template <class Reader>
 void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayout& layout,
                  size_t bodyBytes, Reader& reader, TriangleMesh& mesh) {
+    PlyPolygons pending;
     mesh.positions.reserve(layout.vertices->count);
     if (layout.hasNormals) mesh.normals.reserve(layout.vertices->count);
     // A face count is bounded by the body only at a byte a face (an empty list), so the
@@ -479,7 +316,9 @@ void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayo
             if (&element == layout.vertices) {
                 ReadPlyVertices(reader, layout, record, mesh);
             } else if (&element == layout.faces) {
-                ReadPlyFaces(reader, layout, record, mesh);
+                ReadPlyFaces(reader, layout, record, mesh, pending);
+            } else if (&element == layout.strips) {
+                ReadPlyStrips(reader, layout, record, mesh);
             } else {
                 for (; record < element.count; ++record) {
                     for (const PlyProperty& property : element.properties) {
@@ -491,6 +330,7 @@ void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayo
             throw InputError(path, element.name + " " + std::to_string(record), error.reason);
         }
     }
+    TriangulatePolygons(path, pending, mesh);
 }
 
 }  // namespace
@@ -509,7 +349,11 @@ TriangleMesh ParsePly(const std::string& path, std::string_view data) {
         BinaryReader reader(data, bigEndianData != (std::endian::native == std::endian::big));
         ReadPlyBody(path, header, layout, data.size(), reader, mesh);
     }
-    if (!layout.hasNormals || !NormalizeFileNormals(mesh.normals)) ComputeSmoothNormals(mesh);
+    if (layout.hasNormals) {
+        mesh_text::KeepFileNormals(mesh);
+    } else {
+        ComputeSmoothNormals(mesh);
+    }
     return mesh;
 }
 

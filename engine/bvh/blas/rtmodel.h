@@ -19,8 +19,9 @@ namespace rtrt {
 inline constexpr uint32_t kRtModelVersion = 3;
 // Bump when a builder or a mesh loader changes its output for the same input: cached files made
 // before then no longer match their key and are rebuilt. 2: sourceBounds of the vertices the
-// triangles use.
-inline constexpr uint32_t kRtModelRevision = 2;
+// triangles use. 3: concave polygons ear-clipped, PLY triangle strips, file normals kept per
+// corner, an OBJ's source vertices its `v` statements.
+inline constexpr uint32_t kRtModelRevision = 3;
 
 // What a BLAS was built from. A cached file is up to date when its key equals the one wanted.
 struct RtModelKey {

@@ -1,0 +1,43 @@
+#pragma once
+// The triangles of a polygon face of four or more corners (OBJ and PLY faces).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/core/math.h"
+
+namespace rtrt {
+
+// Splits the polygons of one file. A convex polygon is a fan from its first corner; a concave
+// one is ear-clipped in the plane of its Newell normal, so that no triangle covers one of its
+// notches. Ear clipping tests candidate ears against the polygon's reflex corners, quadratic in
+// its corners at worst: a file's polygons share a budget of such tests, after which the rest are
+// fanned too (counted in OverBudget), so that a crafted file of huge concave polygons still loads
+// in seconds.
+class PolygonTriangulator {
+  public:
+    // BUDGET: ear-in-corner tests for the whole file, about a second's worth by default.
+    explicit PolygonTriangulator(uint64_t budget = uint64_t{1} << 28) : budget_(budget) {}
+
+    // Appends the triangles of the polygon whose corners lie at CORNERS, in order, as indices
+    // into CORNERS in the polygon's winding. Consecutive corners at the same position count as
+    // one; triangles of zero area may result, as from a fan.
+    void Triangulate(std::span<const vec3> corners, std::vector<glm::uvec3>& triangles);
+
+    // Concave polygons that had to be fanned: ones with no ear left to clip (self-intersecting
+    // or folded), and ones past the budget.
+    uint64_t NoEar() const { return noEar_; }
+    uint64_t OverBudget() const { return overBudget_; }
+
+  private:
+    bool ClipEars(std::vector<glm::uvec3>& triangles);
+
+    uint64_t budget_;
+    uint64_t noEar_ = 0, overBudget_ = 0;
+    // The polygon being clipped: its distinct corners projected on its plane, oriented so that
+    // its convex corners turn left, and the ring of corners not clipped yet.
+    std::vector<glm::dvec2> points_;
+    std::vector<uint32_t> source_, prev_, next_;
+};
+
+}  // namespace rtrt

@@ -1,0 +1,263 @@
+// Stanford PLY files loaded by LoadMesh (ply_reader.h): ASCII and binary, gzip, strips, errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "game/assets/mesh_io.h"
+#include "tests/assets/mesh_test_files.h"
+
+namespace rtrt {
+namespace {
+
+using namespace mesh_test;  // NOLINT(build/namespaces): the shared test helpers
+
+TEST_F(MeshIoTest, AsciiPlySkipsOtherPropertiesAndElements) {
+    TriangleMesh mesh = LoadMesh(Write("mesh.ply", kAsciiPly));
+    ASSERT_EQ(mesh.positions.size(), 5u);
+    EXPECT_EQ(mesh.positions[1], vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(mesh.positions[4], vec3(0.25f, -0.5f, 15.0f));
+    ASSERT_EQ(mesh.indices.size(), 3u);
+    EXPECT_EQ(mesh.indices[0], glm::uvec3(0, 1, 2));
+    EXPECT_EQ(mesh.indices[1], glm::uvec3(0, 2, 3));
+    EXPECT_EQ(mesh.indices[2], glm::uvec3(4, 1, 0));
+    ExpectUnitNormals(mesh);
+    EXPECT_EQ(mesh.normals[2], vec3(0.0f, 0.0f, 1.0f));
+}
+
+TEST_F(MeshIoTest, GzippedAsciiPlyMatchesPlainOne) {
+    TriangleMesh plain = LoadMesh(Write("mesh.ply", kAsciiPly));
+    TriangleMesh packed = LoadMesh(Write("mesh.PLY.GZ", Gzip(kAsciiPly)));
+    EXPECT_EQ(packed.positions, plain.positions);
+    EXPECT_EQ(packed.indices, plain.indices);
+    EXPECT_EQ(packed.normals, plain.normals);
+}
+
+TEST_F(MeshIoTest, AsciiPlyUsesFileNormalsAndVertexIndexName) {
+    std::string path = Write("normals.ply",
+                             "ply\r\n"
+                             "format ascii 1.0\r\n"
+                             "element vertex 3\r\n"
+                             "property double x\r\nproperty double y\r\nproperty double z\r\n"
+                             "property float nx\r\nproperty float ny\r\nproperty float nz\r\n"
+                             "element face 1\r\n"
+                             "property list ushort uint vertex_index\r\n"
+                             "end_header\r\n"
+                             "0 0 0 0 2 0\r\n"
+                             "1 0 0 0 1 0\r\n"
+                             "0 0 1 3 4 0\r\n"
+                             "3 0 1 2\r\n");
+    TriangleMesh mesh = LoadMesh(path);
+    ASSERT_EQ(mesh.indices.size(), 1u);
+    EXPECT_EQ(mesh.normals[0], vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_EQ(mesh.normals[1], vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_NEAR(glm::distance(mesh.normals[2], vec3(0.6f, 0.8f, 0.0f)), 0.0f, 1e-6f);
+}
+
+TEST_F(MeshIoTest, PlyNormalsWithoutDirectionFallBackPerVertex) {
+    // Vertex 3's normal is zero: it takes the computed one (+z), the others keep the file's.
+    std::string path = Write("zero_normal.ply",
+                             "ply\nformat ascii 1.0\nelement vertex 4\n"
+                             "property float x\nproperty float y\nproperty float z\n"
+                             "property float nx\nproperty float ny\nproperty float nz\n"
+                             "element face 1\nproperty list uchar int vertex_indices\n"
+                             "end_header\n"
+                             "0 0 0 0.6 0 0.8\n1 0 0 0.6 0 0.8\n1 1 0 0 0 0\n0 1 0 0 0 2\n"
+                             "4 0 1 2 3\n");
+    TriangleMesh mesh = LoadMesh(path);
+    ExpectUnitNormals(mesh);
+    EXPECT_NEAR(glm::distance(mesh.normals[0], vec3(0.6f, 0.0f, 0.8f)), 0.0f, 1e-6f);
+    EXPECT_EQ(mesh.normals[2], vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(mesh.normals[3], vec3(0.0f, 0.0f, 1.0f));
+}
+
+TEST_F(MeshIoTest, PlyTriangleStripsKeepTheirWinding) {
+    // A face, two strips of two triangles in one list (-1 ends the first), and the same joined
+    // by repeated indices.
+    std::string path = Write("strips.ply",
+                             "ply\nformat ascii 1.0\nelement vertex 8\n"
+                             "property float x\nproperty float y\nproperty float z\n"
+                             "element face 1\nproperty list uchar int vertex_indices\n"
+                             "element tristrips 2\nproperty list int int vertex_indices\n"
+                             "end_header\n"
+                             "0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n3 0 0\n3 1 0\n2 1 0\n"
+                             "3 0 1 2\n"
+                             "9 0 1 3 2 -1 4 5 7 6\n"
+                             "10 0 1 3 2 2 4 4 5 7 6\n");
+    TriangleMesh mesh = LoadMesh(path);
+    ASSERT_EQ(mesh.indices.size(), 9u);
+    EXPECT_EQ(mesh.indices[0], glm::uvec3(0, 1, 2));
+    EXPECT_EQ(mesh.indices[1], glm::uvec3(0, 1, 3));
+    EXPECT_EQ(mesh.indices[2], glm::uvec3(3, 1, 2));
+    EXPECT_EQ(mesh.indices[3], glm::uvec3(4, 5, 7));
+    EXPECT_EQ(mesh.indices[4], glm::uvec3(7, 5, 6));
+    // The same strips joined by repeated indices: the four degenerate triangles dropped, the
+    // alternation kept.
+    for (size_t i = 0; i < 4; ++i) EXPECT_EQ(mesh.indices[5 + i], mesh.indices[1 + i]);
+    for (glm::uvec3 t : mesh.indices) {
+        const vec3 n = glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                  mesh.positions[t.z] - mesh.positions[t.x]);
+        EXPECT_GT(n.z, 0.0f);
+    }
+    ExpectInputError(Write("strip_range.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 3\n"
+                           "property float x\nproperty float y\nproperty float z\n"
+                           "element tristrips 1\nproperty list int int vertex_indices\n"
+                           "end_header\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2 -2\n"),
+                     "tristrips 0", "vertex index -2 out of range");
+}
+
+TEST_F(MeshIoTest, BinaryPlyBothByteOrders) {
+    for (bool bigEndian : {false, true}) {
+        SCOPED_TRACE(bigEndian ? "big endian" : "little endian");
+        std::string ply = BinaryPly(bigEndian);
+        for (const std::string& path : {Write("mesh.ply", ply), Write("mesh.ply.gz", Gzip(ply))}) {
+            TriangleMesh mesh = LoadMesh(path);
+            ASSERT_EQ(mesh.positions.size(), 4u);
+            EXPECT_EQ(mesh.positions[2], vec3(1.5f, 0.1f, -2.0f));
+            ASSERT_EQ(mesh.indices.size(), 2u);
+            EXPECT_EQ(mesh.indices[0], glm::uvec3(0, 1, 2));
+            EXPECT_EQ(mesh.indices[1], glm::uvec3(0, 2, 3));
+            ExpectUnitNormals(mesh);
+            EXPECT_NEAR(glm::distance(mesh.normals[3], glm::normalize(vec3(0, 2, 0.1f))), 0.0f,
+                        1e-6f);
+        }
+    }
+}
+
+std::string PlyHeader(const std::string& format, int vertices, int faces,
+                      const std::string& countType = "uchar") {
+    return "ply\nformat " + format + " 1.0\nelement vertex " + std::to_string(vertices) +
+           "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+           std::to_string(faces) + "\nproperty list " + countType +
+           " int vertex_indices\nend_header\n";
+}
+
+TEST_F(MeshIoTest, PlyHeaderErrors) {
+    ExpectInputError(Write("magic.ply", "plx\nformat ascii 1.0\nend_header\n"), "header",
+                     "bad magic");
+    ExpectInputError(Write("obj.ply", "v 0 0 0\n"), "header", "bad magic");
+    ExpectInputError(Write("format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n"),
+                     "header line 2", "unknown format");
+    ExpectInputError(Write("version.ply", "ply\nformat ascii 2.0\nend_header\n"), "header line 2",
+                     "format");
+    ExpectInputError(Write("end.ply", "ply\nformat ascii 1.0\nelement vertex 0\n"), "header line 4",
+                     "no end_header");
+    ExpectInputError(Write("type.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 1\n"
+                           "property float128 x\nend_header\n0\n"),
+                     "header line 4", "known types");
+    ExpectInputError(Write("orphan.ply", "ply\nformat ascii 1.0\nproperty float x\n"),
+                     "header line 3", "property before element");
+    ExpectInputError(Write("keyword.ply", "ply\nformat ascii 1.0\nelephant 3\nend_header\n"),
+                     "header line 3", "unknown keyword");
+    ExpectInputError(Write("noformat.ply", "ply\nend_header\n"), "header line 2",
+                     "before the format line");
+    ExpectInputError(Write("count.ply", "ply\nformat ascii 1.0\nelement vertex -3\n"),
+                     "header line 3", "element <name> <count>");
+    ExpectInputError(Write("nox.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 1\n"
+                           "property float y\nproperty float z\nend_header\n0 0\n"),
+                     "header", "no property 'x'");
+    ExpectInputError(Write("noindices.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 1\n"
+                           "property float x\nproperty float y\n"
+                           "property float z\nelement face 1\n"
+                           "property list uchar int corners\nend_header\n"
+                           "0 0 0\n3 0 0 0\n"),
+                     "header", "no vertex_indices list");
+    ExpectInputError(Write("floatcount.ply",
+                           "ply\nformat ascii 1.0\nelement face 1\n"
+                           "property list float int vertex_indices\n"
+                           "end_header\n3 0 0 0\n"),
+                     "header line 4", "count type must be an integer");
+    ExpectInputError(Write("novertex.ply", "ply\nformat ascii 1.0\nend_header\n"), "header",
+                     "no vertex element");
+    ExpectInputError(
+        Write("twice.ply", PlyHeader("ascii", 0, 0)
+                               .replace(std::string_view("ply\nformat ascii 1.0\n").size(), 0,
+                                        "element vertex 0\nproperty float x\n")),
+        "header", "more than one element 'vertex'");
+    ExpectInputError(Write("empty_element.ply",
+                           "ply\nformat ascii 1.0\nelement nothing 5\n"
+                           "end_header\n"),
+                     "header", "element 'nothing' has no properties");
+}
+
+TEST_F(MeshIoTest, PlyCountsBeyondTheFileSizeAreRejectedBeforeAllocating) {
+    ExpectInputError(Write("huge.ply", PlyHeader("binary_little_endian", 2000000000, 1)), "header",
+                     "more than the 0 bytes of data can hold");
+    ExpectInputError(
+        Write("huge_faces.ply", PlyHeader("ascii", 3, 1000000) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+        "header", "element 'face' declares 1000000 records");
+    ExpectInputError(Write("overflow.ply",
+                           "ply\nformat ascii 1.0\n"
+                           "element vertex 99999999999999999999999\n"),
+                     "header line 3", "element <name> <count>");
+    Bytes list(false);
+    list.Put<uint32_t>(0xFFFFFFFFu);
+    ExpectInputError(Write("list.ply",
+                           "ply\nformat binary_little_endian 1.0\n"
+                           "element vertex 0\nproperty float x\nproperty float y\n"
+                           "property float z\nproperty list uint uint junk\n"
+                           "element face 1\nproperty list uint uint vertex_indices\n"
+                           "end_header\n" +
+                               list.Data()),
+                     "face 0", "truncated");
+}
+
+TEST_F(MeshIoTest, PlyDataErrors) {
+    const std::string ascii = PlyHeader("ascii", 3, 1);
+    ExpectInputError(Write("nan.ply", ascii + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n"), "vertex 1",
+                     "NaN or infinite");
+    ExpectInputError(Write("inf.ply", ascii + "0 0 0\n1 0 0\n0 1 -inf\n3 0 1 2\n"), "vertex 2",
+                     "NaN or infinite");
+    ExpectInputError(Write("word.ply", ascii + "0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n"), "vertex 1",
+                     "expected a number, found 'x'");
+    ExpectInputError(Write("index.ply", ascii + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"), "face 0",
+                     "vertex index 3 out of range (3 vertices)");
+    ExpectInputError(Write("negative.ply", ascii + "0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"), "face 0",
+                     "vertex index -1 out of range");
+    ExpectInputError(Write("fraction.ply", ascii + "0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n"), "face 0",
+                     "expected an integer");
+    ExpectInputError(Write("truncated.ply", ascii + "0.000000000001 0.000000000002 0\n"
+                                                    "1.000000000001 0.000000000002 0\n"),
+                     "vertex 2", "truncated");
+    ExpectInputError(Write("shortface.ply", ascii + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n"), "face 0",
+                     "truncated");
+    ExpectInputError(Write("noface.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 1\n"
+                           "property float x\nproperty float y\n"
+                           "property float z\nend_header\n0 0 0\n"),
+                     "", "contains no triangles");
+    ExpectInputError(Write("degenerate.ply", ascii + "0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n"), "",
+                     "contains no triangles");
+
+    const std::string binary = PlyHeader("binary_little_endian", 3, 1);
+    Bytes vertices(false);
+    for (float v : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f}) vertices.Put(v);
+    vertices.Put(0.0f).Put(std::numeric_limits<float>::infinity()).Put(0.0f);
+    ExpectInputError(Write("inf_binary.ply", binary + vertices.Data() + "\x03"), "vertex 2",
+                     "NaN or infinite");
+    Bytes good(false);
+    for (float v : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f}) good.Put(v);
+    Bytes face = good;
+    face.Put<uint8_t>(3).Put<int32_t>(0).Put<int32_t>(1);
+    ExpectInputError(Write("cut.ply", binary + face.Data() + std::string("\x02\x00", 2)), "face 0",
+                     "truncated");
+    Bytes big = good;
+    big.Put<uint8_t>(3).Put<int32_t>(0).Put<int32_t>(1).Put<int32_t>(1 << 30);
+    ExpectInputError(Write("big_index.ply", binary + big.Data()), "face 0",
+                     "vertex index 1073741824 out of range");
+    Bytes negative = good;
+    negative.Put<int8_t>(-2);
+    ExpectInputError(Write("negative_count.ply",
+                           PlyHeader("binary_little_endian", 3, 1, "char") + negative.Data()),
+                     "face 0", "negative vertex count");
+}
+
+}  // namespace
+}  // namespace rtrt

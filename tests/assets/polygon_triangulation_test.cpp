@@ -1,0 +1,166 @@
+// Polygon faces split into triangles (polygon_triangulation.h): fans where convex, ear clipping
+// where concave, checked by area and by where the triangles lie.
+#include "game/assets/polygon_triangulation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace rtrt {
+namespace {
+
+struct Split {
+    std::vector<glm::uvec3> triangles;
+    double area = 0.0;           // the sum of the triangles' areas
+    vec3 normal{0.0f};           // of the first triangle
+    bool allAlongNormal = true;  // every triangle faces the first one's way
+};
+
+Split Triangulate(const std::vector<vec3>& corners, PolygonTriangulator& triangulator) {
+    Split split;
+    triangulator.Triangulate(corners, split.triangles);
+    for (const glm::uvec3& t : split.triangles) {
+        const glm::dvec3 n = glm::cross(glm::dvec3(corners[t.y] - corners[t.x]),
+                                        glm::dvec3(corners[t.z] - corners[t.x]));
+        split.area += 0.5 * glm::length(n);
+        if (split.normal == vec3(0.0f)) split.normal = vec3(glm::normalize(n));
+        split.allAlongNormal &= glm::dot(glm::dvec3(split.normal), n) >= 0.0;
+    }
+    return split;
+}
+
+Split Triangulate(const std::vector<vec3>& corners) {
+    PolygonTriangulator triangulator;
+    return Triangulate(corners, triangulator);
+}
+
+// Whether any triangle's centroid lies inside the axis-aligned rectangle (x0, y0)-(x1, y1).
+bool AnyCentroidIn(const std::vector<vec3>& corners, const std::vector<glm::uvec3>& triangles,
+                   float x0, float y0, float x1, float y1) {
+    for (const glm::uvec3& t : triangles) {
+        const vec3 c = (corners[t.x] + corners[t.y] + corners[t.z]) / 3.0f;
+        if (c.x > x0 && c.x < x1 && c.y > y0 && c.y < y1) return true;
+    }
+    return false;
+}
+
+// A U of 3 x 3 with a notch of 1 x 2 between its arms: area 7.
+const std::vector<vec3> kU = {{0, 0, 0}, {3, 0, 0}, {3, 3, 0}, {2, 3, 0},
+                              {2, 1, 0}, {1, 1, 0}, {1, 3, 0}, {0, 3, 0}};
+
+TEST(PolygonTriangulation, ConvexPolygonsAreFansFromTheFirstCorner) {
+    const std::vector<vec3> pentagon = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0.5f, 2, 0}, {0, 1, 0}};
+    const Split split = Triangulate(pentagon);
+    ASSERT_EQ(split.triangles.size(), 3u);
+    EXPECT_EQ(split.triangles[0], glm::uvec3(0, 1, 2));
+    EXPECT_EQ(split.triangles[1], glm::uvec3(0, 2, 3));
+    EXPECT_EQ(split.triangles[2], glm::uvec3(0, 3, 4));
+}
+
+TEST(PolygonTriangulation, ConcavePolygonsCoverExactlyTheirArea) {
+    const Split split = Triangulate(kU);
+    ASSERT_EQ(split.triangles.size(), 6u);
+    EXPECT_NEAR(split.area, 7.0, 1e-9);
+    EXPECT_FALSE(AnyCentroidIn(kU, split.triangles, 1.0f, 1.0f, 2.0f, 3.0f));
+    EXPECT_EQ(split.normal, vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_TRUE(split.allAlongNormal);
+    EXPECT_TRUE(Triangulate(kU).triangles == split.triangles);  // the same every time
+}
+
+TEST(PolygonTriangulation, EveryStartingCornerAndBothWindings) {
+    for (size_t start = 0; start < kU.size(); ++start) {
+        std::vector<vec3> rotated, reversed;
+        for (size_t i = 0; i < kU.size(); ++i) {
+            rotated.push_back(kU[(start + i) % kU.size()]);
+            reversed.push_back(kU[(start + kU.size() - i) % kU.size()]);
+        }
+        const Split forward = Triangulate(rotated), backward = Triangulate(reversed);
+        EXPECT_NEAR(forward.area, 7.0, 1e-9) << start;
+        EXPECT_NEAR(backward.area, 7.0, 1e-9) << start;
+        EXPECT_EQ(forward.normal, vec3(0.0f, 0.0f, 1.0f)) << start;
+        EXPECT_EQ(backward.normal, vec3(0.0f, 0.0f, -1.0f)) << start;
+        EXPECT_TRUE(forward.allAlongNormal && backward.allAlongNormal) << start;
+        EXPECT_FALSE(AnyCentroidIn(rotated, forward.triangles, 1.0f, 1.0f, 2.0f, 3.0f));
+        EXPECT_FALSE(AnyCentroidIn(reversed, backward.triangles, 1.0f, 1.0f, 2.0f, 3.0f));
+    }
+}
+
+TEST(PolygonTriangulation, ArrowheadFromItsReflexCornerOrNot) {
+    // The notch of the arrowhead is its reflex corner (0, 0); area 4.
+    const std::vector<vec3> fromTip = {{0, 2, 0}, {-2, -2, 0}, {0, 0, 0}, {2, -2, 0}};
+    const std::vector<vec3> fromNotch = {{0, 0, 0}, {2, -2, 0}, {0, 2, 0}, {-2, -2, 0}};
+    EXPECT_NEAR(Triangulate(fromTip).area, 4.0, 1e-9);
+    EXPECT_NEAR(Triangulate(fromNotch).area, 4.0, 1e-9);
+}
+
+TEST(PolygonTriangulation, TiltedPlanesAndLargeCoordinates) {
+    // The U turned 60 degrees about x and moved far away: the same area and notch.
+    const float c = 0.5f, s = std::sqrt(3.0f) / 2.0f;
+    std::vector<vec3> tilted;
+    for (vec3 p : kU)
+        tilted.push_back(vec3(p.x, c * p.y, s * p.y) + vec3(1000.0f, -500.0f, 250.0f));
+    const Split split = Triangulate(tilted);
+    EXPECT_NEAR(split.area, 7.0, 1e-3);
+    EXPECT_TRUE(split.allAlongNormal);
+    EXPECT_NEAR(glm::distance(split.normal, vec3(0.0f, -s, c)), 0.0f, 1e-4f);
+}
+
+TEST(PolygonTriangulation, RepeatedCornersCountOnce) {
+    std::vector<vec3> doubled;
+    for (vec3 p : kU) doubled.insert(doubled.end(), {p, p});
+    const Split split = Triangulate(doubled);
+    ASSERT_EQ(split.triangles.size(), 6u);
+    EXPECT_NEAR(split.area, 7.0, 1e-9);
+    for (const glm::uvec3& t : split.triangles) {
+        EXPECT_EQ(t.x % 2, 0u);  // the first of each pair stands for both
+        EXPECT_EQ(t.y % 2, 0u);
+        EXPECT_EQ(t.z % 2, 0u);
+    }
+    EXPECT_TRUE(Triangulate({{0, 0, 0}, {0, 0, 0}, {1, 0, 0}, {1, 0, 0}}).triangles.empty());
+}
+
+TEST(PolygonTriangulation, ABowTieHasNoEarAndIsFanned) {
+    // Crossing itself, the polygon has no inside to clip ears from: it is fanned and counted.
+    const std::vector<vec3> bowTie = {{0, 0, 0}, {2, 2, 0}, {2, 0, 0}, {1, 1.5f, 0}, {0, 2, 0}};
+    PolygonTriangulator triangulator;
+    const Split split = Triangulate(bowTie, triangulator);
+    ASSERT_EQ(split.triangles.size(), 3u);
+    if (triangulator.NoEar() == 1) EXPECT_EQ(split.triangles[0], glm::uvec3(0, 1, 2));
+    EXPECT_EQ(triangulator.OverBudget(), 0u);
+}
+
+TEST(PolygonTriangulation, PastTheBudgetConcavePolygonsAreFanned) {
+    PolygonTriangulator triangulator(20);
+    const Split first = Triangulate(kU, triangulator);
+    EXPECT_EQ(triangulator.OverBudget(), 1u);
+    ASSERT_EQ(first.triangles.size(), 6u);
+    for (size_t i = 0; i < 6; ++i) EXPECT_EQ(first.triangles[i], glm::uvec3(0, i + 1, i + 2));
+    // A convex polygon needs no budget.
+    EXPECT_EQ(
+        Triangulate({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, triangulator).triangles.size(),
+        2u);
+    EXPECT_EQ(triangulator.OverBudget(), 1u);
+}
+
+TEST(PolygonTriangulation, AConcaveCombOfManyTeeth) {
+    // A spine 399 x 1 with 200 teeth 1 wide and 5 tall at x = 2k: area 399 + 1000, and the 199
+    // gaps between the teeth stay open.
+    std::vector<vec3> comb = {{0, 0, 0}, {399, 0, 0}};
+    for (int k = 199; k >= 0; --k) {
+        const float x = 2.0f * float(k);
+        comb.insert(comb.end(), {{x + 1, 6, 0}, {x, 6, 0}});
+        if (k > 0) comb.insert(comb.end(), {{x, 1, 0}, {x - 1, 1, 0}});
+    }
+    const Split split = Triangulate(comb);
+    EXPECT_EQ(split.triangles.size(), comb.size() - 2);
+    EXPECT_NEAR(split.area, 1399.0, 1e-6);
+    EXPECT_TRUE(split.allAlongNormal);
+    for (int gap = 0; gap < 199; ++gap) {
+        const float x = 2.0f * float(gap) + 1.0f;
+        EXPECT_FALSE(AnyCentroidIn(comb, split.triangles, x, 1.0f, x + 1.0f, 6.0f)) << gap;
+    }
+}
+
+}  // namespace
+}  // namespace rtrt
