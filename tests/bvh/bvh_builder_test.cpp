@@ -56,6 +56,27 @@ TEST(BvhBuilder, SahCostOfASingleLeafIsItsPrimitiveCount) {
     EXPECT_FLOAT_EQ(SahCost(blas.nodes), 1.0f);
 }
 
+// The cost is the sum over every node of its area relative to the root's (times its primitive
+// count for a leaf), summed in double: in float, a few hundred thousand terms lose the third digit.
+TEST(BvhBuilder, SahCostIsTheSumOverEveryNode) {
+    const Blas blas = BuildTriangleBlas(test::RandomTriangles(200000, 6));
+    const double rootArea = blas.nodes[0].Bounds().Area();
+    double expected = 0.0;
+    std::vector<uint32_t> stack = {0};
+    while (!stack.empty()) {
+        const BvhNode& node = blas.nodes[stack.back()];
+        stack.pop_back();
+        const double relArea = node.Bounds().Area() / rootArea;
+        if (node.IsLeaf()) {
+            expected += node.primCount * relArea;
+        } else {
+            expected += relArea;
+            stack.insert(stack.end(), {node.leftFirst, node.leftFirst + 1});
+        }
+    }
+    EXPECT_NEAR(SahCost(blas.nodes), expected, 1e-6 * expected);
+}
+
 TEST(BvhBuilder, IdenticalPrimitivesStillSplitIntoBoundedLeaves) {
     // 1000 copies of one triangle: no plane separates their centroids.
     TriangleMesh mesh;

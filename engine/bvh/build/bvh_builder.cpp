@@ -244,7 +244,7 @@ class Builder {
 };
 
 void AccumulateStats(std::span<const BvhNode> nodes, uint32_t index, uint32_t depth, float rootArea,
-                     BvhStats* stats, uint64_t* leafPrims) {
+                     BvhStats* stats, uint64_t* leafPrims, double* sahCost) {
     const BvhNode& node = nodes[index];
     ++stats->nodeCount;
     stats->maxDepth = std::max(stats->maxDepth, depth);
@@ -257,12 +257,12 @@ void AccumulateStats(std::span<const BvhNode> nodes, uint32_t index, uint32_t de
             stats->leafSizeHistogram.resize(node.primCount + 1, 0);
         ++stats->leafSizeHistogram[node.primCount];
         *leafPrims += node.primCount;
-        stats->sahCost += kSahIntersectionCost * float(node.primCount) * relArea;
+        *sahCost += double(kSahIntersectionCost) * node.primCount * relArea;
         return;
     }
-    stats->sahCost += kSahTraversalCost * relArea;
-    AccumulateStats(nodes, node.leftFirst, depth + 1, rootArea, stats, leafPrims);
-    AccumulateStats(nodes, node.leftFirst + 1, depth + 1, rootArea, stats, leafPrims);
+    *sahCost += double(kSahTraversalCost) * relArea;
+    AccumulateStats(nodes, node.leftFirst, depth + 1, rootArea, stats, leafPrims, sahCost);
+    AccumulateStats(nodes, node.leftFirst + 1, depth + 1, rootArea, stats, leafPrims, sahCost);
 }
 
 }  // namespace
@@ -310,8 +310,11 @@ BvhStats ComputeStats(std::span<const BvhNode> nodes) {
     // children are itself and the unused position), holds nothing.
     if (nodes.empty() || nodes[0].Bounds().IsEmpty()) return stats;
     uint64_t leafPrims = 0;
+    // Summed in double: a million nodes' terms in float lose the sum's third digit.
+    double sahCost = 0.0;
     stats.minLeafSize = UINT32_MAX;
-    AccumulateStats(nodes, 0, 0, nodes[0].Bounds().Area(), &stats, &leafPrims);
+    AccumulateStats(nodes, 0, 0, nodes[0].Bounds().Area(), &stats, &leafPrims, &sahCost);
+    stats.sahCost = float(sahCost);
     stats.meanLeafSize = stats.leafCount ? double(leafPrims) / stats.leafCount : 0.0;
     stats.bytes = nodes.size_bytes();
     return stats;
