@@ -1,6 +1,7 @@
 #include "game/runtime/world.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/core/timer.h"
 #include "engine/physics_anim/physics_anim_systems.h"
@@ -8,6 +9,22 @@
 #include "engine/physics_anim/transform_system.h"
 
 namespace rtrt {
+
+namespace {
+
+// A procedural deformation's clock at T seconds, reduced in double to one period of its motion
+// (a wave's wavelength / speed, a twist's 2 pi / speed): the deformers evaluate it in float, in
+// which a clock past 1e5 s moves only every few frames and a wave's argument loses its shape.
+float DeformClock(const ProceduralDeform& p, double t) {
+    constexpr double kTwoPi = 6.283185307179586;
+    const double speed = std::fabs(double(p.speed));
+    const double period =
+        p.kind == ProceduralDeformKind::kWave ? double(p.wavelength) / speed : kTwoPi / speed;
+    if (!(period > 0.0) || !std::isfinite(period)) return float(t);  // still: any clock will do
+    return float(t - period * std::floor(t / period));
+}
+
+}  // namespace
 
 World::World(const LoadedScene& scene) : source_(scene) {
     scene_.blases = scene.scene.blases;
@@ -97,7 +114,9 @@ ecs::Entity World::Create(const EntityDesc& d) {
     registry_.Add(e, d.local);
     if (d.renderable && d.deformableMesh >= 0) {
         const uint32_t deformation = AcquireDeformation(d);
-        scene_.deformations[deformation].procedural = d.procedural;
+        ProceduralDeform& procedural = scene_.deformations[deformation].procedural;
+        procedural = d.procedural;
+        procedural.time = DeformClock(procedural, double(d.procedural.time));
         registry_.Add(e, Renderable{scene_.deformations[deformation].blasId, d.materialId});
         registry_.Add(e, DeformationLink{deformation, d.procedural.time, time_});
         deformPending_.push_back(deformation);
@@ -137,7 +156,7 @@ void World::AdvanceDeformations() {
     registry_.View<DeformationLink>().Each([&](ecs::Entity, DeformationLink& link) {
         ProceduralDeform& p = scene_.deformations[link.deformation].procedural;
         if (p.kind == ProceduralDeformKind::kNone) return;
-        const float t = link.phase + float(time_ - link.born);
+        const float t = DeformClock(p, double(link.phase) + (time_ - link.born));
         if (p.time == t) return;
         p.time = t;
         deformChanged_.push_back(link.deformation);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "engine/core/error.h"
@@ -191,6 +192,34 @@ TEST(World, AnimatedEntitiesArePosedAtTimeZero) {
     EXPECT_NEAR(world.Scene().instances[0].Position()[0], 4.0f, 1e-5f);
 }
 
+// A deformation's clock is reduced to one period of its motion before the float deformers see
+// it: at a phase of 1e6 s a float clock moved in steps of 1/16 s (the wave stood still for
+// frames) and the wave's argument lost its shape.
+TEST(World, DeformationsKeepMovingAtLargePhases) {
+    const LoadedScene scene = ParseScene(R"({
+      "models": { "box": { "type": "box" } },
+      "instances": [
+        { "model": "box", "deform": { "wave": { "amplitude": 0.25, "wavelength": 0.5, "speed": 2,
+                                                "phase": 1000000 } } },
+        { "model": "box", "deform": { "twist": { "angle": 1, "speed": 3, "phase": -999999 } } } ]
+    })",
+                                         "deform.json", "");
+    World world(scene);
+    const double wavePeriod = 0.25, twistPeriod = 2.0 * 3.141592653589793 / 3.0;
+    auto reduced = [](double t, double period) { return t - period * std::floor(t / period); };
+    for (int frame = 0; frame < 5; ++frame) {
+        if (frame > 0) world.Advance(1.0f / 60.0f);
+        const double t = frame / 60.0;
+        ASSERT_EQ(world.Scene().deformations.size(), 2u);
+        EXPECT_NEAR(world.Scene().deformations[0].procedural.time, reduced(1e6 + t, wavePeriod),
+                    1e-6)
+            << frame;
+        EXPECT_NEAR(world.Scene().deformations[1].procedural.time,
+                    reduced(-999999.0 + t, twistPeriod), 1e-6)
+            << frame;
+    }
+}
+
 TEST(World, BadDynamicFieldsAreRejected) {
     auto expectError = [](const std::string& json, const std::string& field) {
         try {
@@ -200,7 +229,8 @@ TEST(World, BadDynamicFieldsAreRejected) {
             EXPECT_EQ(e.Field(), field) << e.what();
         }
     };
-    expectError(R"({"models": {"m": {"type": "teapot", "file": "x"}}, "instances": []})", "");
+    expectError(R"({"models": {"m": {"type": "teapot", "file": "x"}}, "instances": []})",
+                "models.m.file");
     expectError(
         R"({"models": {"b": {"type": "sphere"}}, "instances": [{"model": "b", "animate": {"spin": {}}, "rigid_body": {}}]})",
         "instances[0].rigid_body");
