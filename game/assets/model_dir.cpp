@@ -37,12 +37,19 @@ std::string FetchModelsScript() {
                              : installed + "/tools/fetch_models.sh";
 }
 
-std::string MissingModelReason(const std::string& spec) {
+std::string MissingModelReason(const std::string& spec, const std::string& sceneDir) {
     if (spec.empty()) return "is empty; name a model file";  // it read as the scene's folder
     constexpr std::string_view kPrefix = "@models/";
-    if (!spec.starts_with(kPrefix)) return {};
-    const std::string dir = ModelDir();
     std::error_code error;
+    if (!spec.starts_with(kPrefix)) {
+        // Only a file known to be absent: one that cannot be looked at is the loader's to name.
+        const std::string path = ResolveModelPath(spec, sceneDir);
+        if (std::filesystem::exists(path, error) || error) return {};
+        const bool relative = std::filesystem::path(spec).is_relative() && !sceneDir.empty();
+        return "no file " + path +
+               (relative ? " (a relative path starts at the scene file's folder)" : "");
+    }
+    const std::string dir = ModelDir();
     if (std::filesystem::exists(dir + "/" + spec.substr(kPrefix.size()), error)) return {};
     return spec + " not found in " + dir + " (run rtrt fetch-models, or set RTRT_MODEL_DIR)";
 }

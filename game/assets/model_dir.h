@@ -15,9 +15,10 @@ std::string InstalledShareDir();
 // The script that fetches the models (installed in share/rtrt/tools, or the tree's tools/).
 std::string FetchModelsScript();
 
-// Why SPEC cannot be used when it is empty or names a fetched model that is not there
-// ("@models/X not found in DIR (run rtrt fetch-models, or set RTRT_MODEL_DIR)"), else empty.
-std::string MissingModelReason(const std::string& spec);
+// Why SPEC, from a scene file in SCENEDIR, cannot be used when it is empty, names a fetched model
+// that is not there ("@models/X not found in DIR (run rtrt fetch-models, or set RTRT_MODEL_DIR)")
+// or a file that does not exist, else empty.
+std::string MissingModelReason(const std::string& spec, const std::string& sceneDir);
 
 // Where the project's own scenes and models are (scenes/, models/): $RTRT_ASSET_DIR, else the
 // installed share/rtrt beside the running program's bin/, else the source tree's assets/.

@@ -73,6 +73,8 @@ LoadedScene MakeDefaultLoadedScene() {
     }
     for (const auto& blas : out.scene.blases)
         out.modelNames.push_back(blas->kind == GeometryKind::kSpheres ? "sphere" : "mesh");
+    // In MakeDefaultScene's order.
+    out.materialNames = {"floor", "mirror", "glass", "blue", "red"};
     out.scene.instances.clear();
     FinishLoadedScene(out, "default");
     return out;

@@ -97,6 +97,9 @@ std::string ParseErrorReason(const std::string& text, const Json::parse_error& e
     for (const char* nonNumber : {"NaN", "Infinity", "inf", "nan"})
         if (word.rfind(nonNumber, 0) == 0)
             return std::string(nonNumber) + " is not a JSON number; give a finite number";
+    // Text after a whole JSON value: nlohmann "expected end of input" there.
+    if (std::string(e.what()).find("; expected end of input") != std::string::npos)
+        return "text after the end of the JSON (a file holds one JSON value)";
     // Where the text ends nlohmann says so; a last character that is wrong is named as it is.
     if (e.byte > text.size() || std::string(e.what()).find("end of input") != std::string::npos)
         return "the text ends before the JSON does (truncated?)";

@@ -41,7 +41,7 @@ std::vector<CameraKey> ParseCameraPath(const Json& j, vec3 up, const std::string
         JsonFields f(j[i], JsonIndexed("camera_path", i), file);
         CameraKey key;
         key.time = f.InRange("time", 0.0f, 1e6f, 0.0f);
-        key.position = f.Vec3("position");
+        key.position = f.Position("position");
         key.lookAt = f.Vec3("look_at");
         f.Finish();
         if (!path.empty() && key.time <= path.back().time)

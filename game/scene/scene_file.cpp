@@ -90,7 +90,7 @@ class SceneParser {
     Camera ParseCamera(const Json& j, bool path) {
         JsonFields f(j, "camera", file_);
         Camera c;
-        c.position = f.Vec3("position", c.position);
+        c.position = f.Position("position", c.position);
         if (f.Has("look_at") && f.Has("forward"))
             f.Fail("look_at", "give either look_at or forward, not both");
         if (f.Has("look_at"))
@@ -166,7 +166,7 @@ class SceneParser {
                 light.vector = glm::normalize(ScaledForNormalize(d));
             } else if (type == "point" || type == "spot") {
                 light.type = type == "point" ? LightType::kPoint : LightType::kSpot;
-                light.vector = f.Vec3("position");
+                light.vector = f.Position("position");
                 ParseFalloff(f, &light);
                 if (type == "spot") {
                     const vec3 d = f.Vec3("direction");
@@ -201,7 +201,8 @@ class SceneParser {
                 // instance places its node hierarchy again.
                 f.String("type");
                 const std::string spec = f.String("file");
-                if (const std::string missing = MissingModelReason(spec); !missing.empty())
+                if (const std::string missing = MissingModelReason(spec, baseDir_);
+                    !missing.empty())
                     f.Fail("file", missing);
                 const std::string path = ResolveModelPath(spec, baseDir_);
                 f.Finish();

@@ -55,7 +55,7 @@ std::vector<Sphere> ParseSphereList(JsonFields& f) {
 std::string ModelFile(JsonFields& f, std::optional<std::string> fallback,
                       const std::string& baseDir) {
     const std::string spec = f.String("file", fallback);
-    if (const std::string missing = MissingModelReason(spec); !missing.empty())
+    if (const std::string missing = MissingModelReason(spec, baseDir); !missing.empty())
         f.Fail("file", missing);
     return ResolveModelPath(spec, baseDir);
 }

@@ -45,6 +45,13 @@ TEST(JsonParseTest, MalformedTextIsReportedBeforeAnyKeyCheck) {
     EXPECT_EQ(DuplicateError(R"({"k": 1, "k": )"),
               "s.json: line 1, column 15: malformed JSON: the text ends before the JSON does "
               "(truncated?)");
+    // Text after a whole value is the opposite of a truncated file.
+    EXPECT_EQ(DuplicateError("{\"models\": {}}\n{\"models\": {}}\n"),
+              "s.json: line 2, column 1: malformed JSON: text after the end of the JSON (a file "
+              "holds one JSON value)");
+    EXPECT_EQ(DuplicateError("{}}"),
+              "s.json: line 1, column 3: malformed JSON: text after the end of the JSON (a file "
+              "holds one JSON value)");
 }
 
 }  // namespace

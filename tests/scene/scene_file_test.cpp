@@ -11,6 +11,7 @@
 
 #include "engine/core/error.h"
 #include "engine/render_rt/camera.h"
+#include "game/scene/default_scene.h"
 #include "tests/test_util.h"
 
 namespace rtrt {
@@ -92,9 +93,12 @@ TEST(SceneFile, ImpossibleValuesAreRejected) {
 // direction keeps its meaning.
 TEST(SceneFile, CamerasWithoutABasisAreRejected) {
     ExpectError(R"({"instances": [], "camera": {"up": [0, 0, 0]}})", "camera.up", "parallel");
-    ExpectError(
-        R"({"instances": [], "camera": {"position": [-3e38, 0, 0], "look_at": [3e38, 0, 0]}})",
-        "camera.look_at", "beyond float's range");
+    // A camera (or a light) is a place in the scene, as an instance's position is: a view from
+    // -3e38 to 3e38 is refused at its position (its length was beyond float's range).
+    ExpectError(R"({"instances": [], "camera": {"position": [-3e38, 0, 0]}})", "camera.position",
+                "at most 1e7");
+    ExpectError(R"({"instances": [], "lights": [{"type": "point", "position": [0, 1e20, 0]}]})",
+                "lights[0].position", "at most 1e7");
     ExpectError(R"({"instances": [], "camera": {"look_at": [0, 0, 10]}})", "camera.look_at",
                 "zero length");
     // A direction or up of any finite size keeps its meaning.
@@ -420,7 +424,11 @@ TEST(SceneFile, MissingFilesAreReported) {
                    "scene.json", "/nonexistent");
         FAIL();
     } catch (const InputError& e) {
-        EXPECT_EQ(e.File(), "/nonexistent/missing.obj") << e.what();
+        EXPECT_EQ(e.File(), "scene.json") << e.what();
+        EXPECT_EQ(e.Field(), "models.m.file") << e.what();
+        EXPECT_EQ(e.Reason(),
+                  "no file /nonexistent/missing.obj (a relative path starts at the scene file's "
+                  "folder)");
     }
 }
 
@@ -488,6 +496,18 @@ TEST(SceneFile, EveryShippedSceneParses) {
     EXPECT_EQ(parsed, scenes);
 }
 
+// The built-in scene names its materials as a scene file would (rtrt info lists them).
+TEST(SceneFile, DefaultSceneNamesItsMaterials) {
+    const LoadedScene scene = MakeDefaultLoadedScene();
+    ASSERT_EQ(scene.materialNames.size(), scene.scene.materials.size());
+    EXPECT_EQ(scene.materialNames[1], "mirror");
+    EXPECT_GT(scene.scene.materials[1].reflectivity, 0.5f);
+    EXPECT_EQ(scene.materialNames[2], "glass");
+    EXPECT_GT(scene.scene.materials[2].transmissivity, 0.5f);
+    EXPECT_EQ(scene.materialNames[4], "red");
+    EXPECT_GT(scene.scene.materials[4].diffuse.x, scene.scene.materials[4].diffuse.y);
+}
+
 // The committed hostile scene files (tests/data/hostile_scene/, seeds of the scene-file fuzz
 // target): each gives one InputError naming its file and field.
 TEST(SceneFile, HostileSceneFiles) {
@@ -504,7 +524,8 @@ TEST(SceneFile, HostileSceneFiles) {
         {"zero_scale.json", "zero_scale.json", "instances[0].scale", "greater than 0"},
         {"unknown_model.json", "unknown_model.json", "instances[0].model", "no model named"},
         {"unknown_field.json", "unknown_field.json", "instances[0].colour", "unknown field"},
-        {"missing_mesh.json", "no_such_mesh.obj", "", "cannot open file"},
+        {"missing_mesh.json", "missing_mesh.json", "models.m.file",
+         "no_such_mesh.obj (a relative path starts at the scene file's folder)"},
         {"hostile_gltf_model.json", "../hostile_gltf/cyclic_nodes.gltf", "nodes[2].children[0]",
          "two parents"},
         {"gltf_with_material.json", "gltf_with_material.json", "instances[0].material",
