@@ -122,7 +122,12 @@ void RunDeformBench(const DeformBenchOptions& o) {
             csv << "," << r.name << "_deform_ms," << r.name << "_blas_ms," << r.name << "_trace_ms";
         csv << ",adaptive_rebuilt\n";
     }
-    const int every = std::max(1, o.frames / std::max(1, o.samples - 1));
+    // --samples poses spread evenly from frame 0 to the last (fewer where there are fewer frames).
+    std::vector<int> sampleFrames;
+    for (int i = 0; i < o.samples; ++i) {
+        const int f = int((int64_t(i) * o.frames + (o.samples - 1) / 2) / (o.samples - 1));
+        if (sampleFrames.empty() || f != sampleFrames.back()) sampleFrames.push_back(f);
+    }
     for (int f = 0; f <= o.frames; ++f) {
         if (writeCsv) csv << f;
         for (PolicyRun& r : runs) {
@@ -151,7 +156,7 @@ void RunDeformBench(const DeformBenchOptions& o) {
         refitOnHost.Update(now,
                            f > 0 ? std::span<const uint32_t>(all) : std::span<const uint32_t>(),
                            views, bounds);
-        if (f % every != 0 && f != o.frames) continue;
+        if (!std::binary_search(sampleFrames.begin(), sampleFrames.end(), f)) continue;
         const Blas refit = refitOnHost.Snapshot(0);
         const double refitMs = TraceMs(now, blasId, refit, settings, gpu);
         TriangleMesh triangles = RestMeshOfBlas(refit).rest;
@@ -232,7 +237,9 @@ void AddDeformBench(CLI::App& bench, int* exitCode) {
     cmd->add_option("--frames", o->frames, "Frames to play at 60 fps")
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();
-    cmd->add_option("--samples", o->samples, "Poses at which the drift is measured")
+    cmd->add_option("--samples", o->samples,
+                    "Poses at which the drift is measured, from frame 0 to the last (at most one "
+                    "a frame)")
         ->check(CLI::Range(2, 1000))
         ->capture_default_str();
     cmd->add_option("-o,--output", o->output, "Write the results as JSON here")
