@@ -28,10 +28,11 @@ std::string Quote(std::string_view token) {
     return quoted;
 }
 
-float ParseCoordinate(std::string_view token) {
+float ParseCoordinate(std::string_view token, bool refuseBeyondFloat) {
     double value = 0.0;
     if (!ParseNumber(token, value)) throw RecordError{"expected a number, found " + Quote(token)};
-    if (std::isfinite(value) && std::fabs(value) > std::numeric_limits<float>::max()) {
+    if (refuseBeyondFloat && std::isfinite(value) &&
+        std::fabs(value) > std::numeric_limits<float>::max()) {
         throw RecordError{"number " + Quote(token) + " is beyond the float range (3.4e38)"};
     }
     return static_cast<float>(value);
@@ -65,9 +66,9 @@ void WarnOfFannedPolygons(const std::string& file, const PolygonTriangulator& tr
                      static_cast<unsigned long long>(triangulator.NoEar()));
     if (triangulator.OverBudget() > 0)
         std::fprintf(stderr,
-                     "rtrt: warning: %s: %llu concave polygons past the first 2^28 steps of "
-                     "triangulation filled as fans from their first corner; split them into "
-                     "smaller polygons in the modelling tool\n",
+                     "rtrt: warning: %s: %llu concave polygons past the file's budget of ear "
+                     "tests filled as fans from their first corner; split them into smaller "
+                     "polygons in the modelling tool\n",
                      WithoutControlCharacters(file).c_str(),
                      static_cast<unsigned long long>(triangulator.OverBudget()));
 }

@@ -49,8 +49,9 @@ bool ParseNumber(std::string_view token, T& value) {
     return ec == std::errc() && next == end;
 }
 
-// TOKEN as a float; RecordError when it is not a number.
-float ParseCoordinate(std::string_view token);
+// TOKEN as a float; RecordError when it is not a number, or (refuseBeyondFloat) a finite one
+// beyond float's range, which would read as infinite.
+float ParseCoordinate(std::string_view token, bool refuseBeyondFloat = true);
 
 // A normal read from a file, normalised; false when it has no direction (zero, NaN, infinite).
 bool NormalizeFileNormal(vec3& normal);

@@ -40,12 +40,13 @@ struct ObjCorner {
     uint32_t normal;  // kNoNormal when the corner has none
 };
 
-vec3 ParseObjVector(std::string_view rest, const char* what) {
+// A normal beyond float's range reads as infinite and, like a NaN one, takes the computed normal.
+vec3 ParseObjVector(std::string_view rest, const char* what, bool normal) {
     vec3 v;
     for (int axis = 0; axis < 3; ++axis) {
         std::string_view word = NextWord(rest);
         if (word.empty()) throw RecordError{std::string(what) + " needs three coordinates"};
-        v[axis] = ParseCoordinate(word);
+        v[axis] = ParseCoordinate(word, !normal);
     }
     return v;
 }
@@ -127,13 +128,13 @@ void ParseObjLine(std::string_view line, ObjData& obj) {
     std::string_view keyword = NextWord(line);
     if (keyword.empty()) return;
     if (keyword == "v") {
-        obj.positions.push_back(ParseObjVector(line, "vertex"));
+        obj.positions.push_back(ParseObjVector(line, "vertex", false));
         if (!IsFinite(obj.positions.back())) {
             throw RecordError{"vertex coordinate is NaN or infinite"};
         }
         if (obj.positions.size() > kMaxVertices) throw RecordError{"too many vertices"};
     } else if (keyword == "vn") {
-        obj.normals.push_back(ParseObjVector(line, "normal"));
+        obj.normals.push_back(ParseObjVector(line, "normal", true));
     } else if (keyword == "f") {
         ParseObjFace(line, obj);
     } else if (keyword == "vt") {

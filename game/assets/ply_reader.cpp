@@ -189,6 +189,7 @@ struct PlyPolygons {
     };
     std::vector<Polygon> polygons;
     std::vector<uint32_t> corners;
+    uint64_t triangles = 0;  // at most, corners - 2 each: counted against the bound as read
 };
 
 // Reads the index list of each record of ELEMENT (its other properties skipped) and hands it to
@@ -220,9 +221,10 @@ void ReadPlyIndexLists(Reader& reader, const PlyElement& element, int listProper
     }
 }
 
-void AddTriangle(uint32_t a, uint32_t b, uint32_t c, TriangleMesh& mesh) {
+// PENDING: the triangles of polygons still to be split, which count against the bound too.
+void AddTriangle(uint32_t a, uint32_t b, uint32_t c, TriangleMesh& mesh, uint64_t pending) {
     if (a == b || b == c || a == c) return;
-    mesh_text::CheckTriangleCount(mesh.indices.size());
+    mesh_text::CheckTriangleCount(mesh.indices.size() + pending);
     mesh.indices.emplace_back(a, b, c);
 }
 
@@ -233,19 +235,35 @@ void ReadPlyFaces(Reader& reader, const PlyLayout& layout, uint64_t& record, Tri
         reader, *layout.faces, layout.faceIndexProperty, int64_t(layout.vertices->count), false,
         record, [&](const std::vector<int64_t>& corners) {
             if (corners.size() == 3) {
-                AddTriangle(uint32_t(corners[0]), uint32_t(corners[1]), uint32_t(corners[2]), mesh);
-            } else if (corners.size() > 3) {
-                pending.polygons.push_back(
-                    {record, pending.corners.size(), corners.size(), mesh.indices.size()});
-                for (int64_t corner : corners) pending.corners.push_back(uint32_t(corner));
+                AddTriangle(uint32_t(corners[0]), uint32_t(corners[1]), uint32_t(corners[2]), mesh,
+                            pending.triangles);
+                return;
             }
+            // Kept without repeats in a row, which add nothing (a face of 255 copies of one
+            // vertex is none): a polygon buffered costs what its distinct corners do.
+            const uint64_t first = pending.corners.size();
+            for (int64_t corner : corners)
+                if (pending.corners.size() == first || pending.corners.back() != uint32_t(corner))
+                    pending.corners.push_back(uint32_t(corner));
+            while (pending.corners.size() - first > 1 &&
+                   pending.corners.back() == pending.corners[first])
+                pending.corners.pop_back();
+            const uint64_t count = pending.corners.size() - first;
+            if (count < 3) {
+                pending.corners.resize(first);
+                return;
+            }
+            pending.triangles += count - 2;
+            mesh_text::CheckTriangleCount(mesh.indices.size() + pending.triangles - 1);
+            pending.polygons.push_back({record, first, count, mesh.indices.size()});
         });
 }
 
 // Triangle strips: each triangle is the last three indices, every other one with its first two
 // swapped so that all keep the strip's winding; -1 starts a new strip.
 template <class Reader>
-void ReadPlyStrips(Reader& reader, const PlyLayout& layout, uint64_t& record, TriangleMesh& mesh) {
+void ReadPlyStrips(Reader& reader, const PlyLayout& layout, uint64_t& record, TriangleMesh& mesh,
+                   const PlyPolygons& pending) {
     ReadPlyIndexLists(reader, *layout.strips, layout.stripIndexProperty,
                       int64_t(layout.vertices->count), true, record,
                       [&](const std::vector<int64_t>& indices) {
@@ -259,9 +277,9 @@ void ReadPlyStrips(Reader& reader, const PlyLayout& layout, uint64_t& record, Tr
                               const auto a = uint32_t(indices[i - 2]), b = uint32_t(indices[i - 1]),
                                          c = uint32_t(indices[i]);
                               if ((i - start) % 2 == 0) {
-                                  AddTriangle(a, b, c, mesh);
+                                  AddTriangle(a, b, c, mesh, pending.triangles);
                               } else {
-                                  AddTriangle(b, a, c, mesh);
+                                  AddTriangle(b, a, c, mesh, pending.triangles);
                               }
                           }
                       });
@@ -274,7 +292,7 @@ void TriangulatePolygons(const std::string& path, const PlyPolygons& pending, Tr
     TriangleMesh merged;
     merged.positions = std::move(mesh.positions);
     merged.normals = std::move(mesh.normals);
-    merged.indices.reserve(mesh.indices.size() + pending.corners.size());
+    merged.indices.reserve(mesh.indices.size() + pending.triangles);
     std::vector<vec3> positions;
     std::vector<glm::uvec3> local;
     size_t next = 0;
@@ -288,7 +306,7 @@ void TriangulatePolygons(const std::string& path, const PlyPolygons& pending, Tr
         triangulator.Triangulate(positions, local);
         try {
             for (const glm::uvec3& t : local)
-                AddTriangle(corners[t.x], corners[t.y], corners[t.z], merged);
+                AddTriangle(corners[t.x], corners[t.y], corners[t.z], merged, 0);
         } catch (const RecordError& error) {
             throw InputError(path, "face " + std::to_string(polygon.record), error.reason);
         }
@@ -318,7 +336,7 @@ void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayo
             } else if (&element == layout.faces) {
                 ReadPlyFaces(reader, layout, record, mesh, pending);
             } else if (&element == layout.strips) {
-                ReadPlyStrips(reader, layout, record, mesh);
+                ReadPlyStrips(reader, layout, record, mesh, pending);
             } else {
                 for (; record < element.count; ++record) {
                     for (const PlyProperty& property : element.properties) {

@@ -1,6 +1,8 @@
 #include "game/assets/polygon_triangulation.h"
 
 #include <cmath>
+#include <map>
+#include <utility>
 
 namespace rtrt {
 namespace {
@@ -19,11 +21,30 @@ bool InTriangle(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
 
 void PolygonTriangulator::Triangulate(std::span<const vec3> corners,
                                       std::vector<glm::uvec3>& triangles) {
+    // Corners at one place in a row count once, and a zero-width spike (out to a tip and back
+    // along the same line: a corner whose neighbours coincide) covers nothing and is dropped with
+    // its way back: either would leave no ear to clip.
+    const auto at = [&](size_t k) { return corners[source_[k]]; };
     source_.clear();
-    for (uint32_t i = 0; i < corners.size(); ++i)
-        if (source_.empty() || corners[i] != corners[source_.back()]) source_.push_back(i);
-    while (source_.size() > 1 && corners[source_.back()] == corners[source_.front()])
-        source_.pop_back();
+    for (uint32_t i = 0; i < corners.size(); ++i) {
+        if (!source_.empty() && corners[i] == at(source_.size() - 1)) continue;
+        source_.push_back(i);
+        while (source_.size() >= 3 && at(source_.size() - 1) == at(source_.size() - 3))
+            source_.resize(source_.size() - 2);
+    }
+    for (bool dropped = true; dropped && source_.size() >= 3;) {
+        const size_t last = source_.size() - 1;
+        dropped = true;
+        if (at(last) == at(0)) {
+            source_.pop_back();
+        } else if (at(last - 1) == at(0)) {  // the last corner is a tip
+            source_.resize(last - 1);
+        } else if (at(last) == at(1)) {  // the first corner is a tip
+            source_.erase(source_.begin(), source_.begin() + 2);
+        } else {
+            dropped = false;
+        }
+    }
     const size_t n = source_.size();
     if (n < 3) return;
 
@@ -48,53 +69,124 @@ void PolygonTriangulator::Triangulate(std::span<const vec3> corners,
         points_[i] = glm::dvec2(p[(axis + 1) % 3], flip * p[(axis + 2) % 3]);
     }
 
-    bool convex = normal[axis] != 0.0 && std::isfinite(normal[axis]);
+    // A polygon with no area (its corners on a line) covers nothing: its fan is as good as any.
+    bool convex = true;
     for (size_t i = 0; convex && i < n; ++i)
         convex = Turn(points_[(i + n - 1) % n], points_[i], points_[(i + 1) % n]) >= 0.0;
-    if (convex || !ClipEars(triangles)) {
+    if (convex || !(normal[axis] != 0.0 && std::isfinite(normal[axis]))) {
         for (size_t i = 2; i < n; ++i)
             triangles.emplace_back(source_[0], source_[i - 1], source_[i]);
+        return;
     }
+    const size_t firstTriangle = triangles.size();
+    loops_.assign(1, {});
+    for (uint32_t i = 0; i < n; ++i) loops_[0].push_back(i);
+    if (!SplitAtTouchingCorners()) return FanAfterGivingUp(triangles, firstTriangle, overBudget_);
+    for (size_t loop = 0; loop < loops_.size(); ++loop) {
+        const Outcome outcome = ClipEars(loops_[loop], triangles);
+        if (outcome == Outcome::kNoEar) return FanAfterGivingUp(triangles, firstTriangle, noEar_);
+        if (outcome == Outcome::kOverBudget)
+            return FanAfterGivingUp(triangles, firstTriangle, overBudget_);
+    }
+}
+
+void PolygonTriangulator::FanAfterGivingUp(std::vector<glm::uvec3>& triangles, size_t firstTriangle,
+                                           uint64_t& counter) {
+    triangles.resize(firstTriangle);
+    ++counter;
+    for (size_t i = 2; i < source_.size(); ++i)
+        triangles.emplace_back(source_[0], source_[i - 1], source_[i]);
+}
+
+bool PolygonTriangulator::Spend(uint64_t work) {
+    if (budget_ < work) {
+        budget_ = 0;
+        return false;
+    }
+    budget_ -= work;
+    return true;
+}
+
+// Twice the signed area of a loop of projected corners (the shoelace formula).
+double PolygonTriangulator::LoopArea(std::span<const uint32_t> loop) const {
+    double area = 0.0;
+    for (size_t i = 0; i < loop.size(); ++i) {
+        const glm::dvec2 a = points_[loop[i]], b = points_[loop[(i + 1) % loop.size()]];
+        area += a.x * b.y - a.y * b.x;
+    }
+    return area;
+}
+
+// A polygon that touches itself at a corner (two lobes joined at one point, as exporters write
+// a face with a pinch) is two loops, each counter-clockwise: they are clipped apart, since no
+// ear test can tell which side of the shared point a triangle belongs to. A loop of the other
+// winding at a repeated corner is a hole reached through a slit of zero width, and stays.
+bool PolygonTriangulator::SplitAtTouchingCorners() {
+    std::map<std::pair<double, double>, size_t> seen;  // a position's first place in the loop
+    for (size_t loop = 0; loop < loops_.size(); ++loop) {
+        bool split = true;
+        while (split) {
+            split = false;
+            std::vector<uint32_t>& ring = loops_[loop];
+            if (!Spend(ring.size())) return false;
+            seen.clear();
+            for (size_t j = 0; !split && j < ring.size(); ++j) {
+                const glm::dvec2 p = points_[ring[j]];
+                const auto [at, inserted] = seen.try_emplace({p.x, p.y}, j);
+                if (inserted) continue;
+                const size_t i = at->second;
+                std::vector<uint32_t> inner(ring.begin() + i, ring.begin() + j);
+                std::vector<uint32_t> outer(ring.begin() + j, ring.end());
+                outer.insert(outer.end(), ring.begin(), ring.begin() + i);
+                if (!(LoopArea(inner) > 0.0 && LoopArea(outer) > 0.0)) {
+                    at->second = j;  // the later copy pairs with any that follows
+                    continue;
+                }
+                ring = std::move(outer);
+                loops_.push_back(std::move(inner));
+                split = true;
+            }
+        }
+    }
+    return true;
 }
 
 // Ear clipping (Meisters 1975, "Polygons have ears"): a corner whose triangle with its two
 // neighbours turns left and holds no other corner is cut off, until three remain. Only corners
-// that do not turn left can lie in such a triangle of a simple polygon, so only they are tested.
-// False, with nothing appended, when the polygon has to be fanned instead.
-bool PolygonTriangulator::ClipEars(std::vector<glm::uvec3>& triangles) {
-    const uint32_t n = uint32_t(points_.size());
+// that do not turn left can lie in such a triangle of a simple polygon, so only they are tested;
+// a corner at the same place as one of the triangle's is a slit's other side, and does not count.
+PolygonTriangulator::Outcome PolygonTriangulator::ClipEars(std::span<const uint32_t> loop,
+                                                           std::vector<glm::uvec3>& triangles) {
+    const auto n = uint32_t(loop.size());
+    if (n < 3) return Outcome::kDone;
     prev_.resize(n);
     next_.resize(n);
     for (uint32_t i = 0; i < n; ++i) {
         prev_[i] = (i + n - 1) % n;
         next_[i] = (i + 1) % n;
     }
-    const size_t firstTriangle = triangles.size();
-    auto giveUp = [&](uint64_t& counter) {
-        triangles.resize(firstTriangle);
-        ++counter;
-        return false;
-    };
+    const auto at = [&](uint32_t i) { return points_[loop[i]]; };
     // Corners are reflex (or straight) by the current ring: clipping a neighbour can change it.
-    auto notConvex = [&](uint32_t i) {
-        return Turn(points_[prev_[i]], points_[i], points_[next_[i]]) <= 0.0;
+    const auto notConvex = [&](uint32_t i) {
+        return Turn(at(prev_[i]), at(i), at(next_[i])) <= 0.0;
     };
-    uint32_t remaining = n, cursor = 1, failures = 0;
+    const auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
+        triangles.emplace_back(source_[loop[a]], source_[loop[b]], source_[loop[c]]);
+    };
+    uint32_t remaining = n, cursor = 1 % n, failures = 0;
     while (remaining > 3) {
-        if (budget_ == 0) return giveUp(overBudget_);
-        --budget_;
+        if (!Spend(1)) return Outcome::kOverBudget;
         const uint32_t a = prev_[cursor], c = next_[cursor];
-        const glm::dvec2 pa = points_[a], pb = points_[cursor], pc = points_[c];
+        const glm::dvec2 pa = at(a), pb = at(cursor), pc = at(c);
         bool ear = Turn(pa, pb, pc) > 0.0;
         for (uint32_t p = next_[c]; ear && p != a; p = next_[p]) {
-            if (budget_ == 0) return giveUp(overBudget_);
-            --budget_;
-            const glm::dvec2 pp = points_[p];
+            if (!Spend(1)) return Outcome::kOverBudget;
+            const glm::dvec2 pp = at(p);
             if (pp == pa || pp == pb || pp == pc || !notConvex(p)) continue;
             ear = !InTriangle(pp, pa, pb, pc);
         }
         if (ear) {
-            triangles.emplace_back(source_[a], source_[cursor], source_[c]);
+            emit(a, cursor, c);
             next_[a] = c;
             prev_[c] = a;
             --remaining;
@@ -102,11 +194,13 @@ bool PolygonTriangulator::ClipEars(std::vector<glm::uvec3>& triangles) {
             failures = 0;
         } else {
             cursor = next_[cursor];
-            if (++failures > remaining) return giveUp(noEar_);
+            if (++failures > remaining) return Outcome::kNoEar;
         }
     }
-    triangles.emplace_back(source_[prev_[cursor]], source_[cursor], source_[next_[cursor]]);
-    return true;
+    // The last three turn left, or the loop had folded onto itself: no area is left to fill.
+    if (Turn(at(prev_[cursor]), at(cursor), at(next_[cursor])) < 0.0) return Outcome::kNoEar;
+    emit(prev_[cursor], cursor, next_[cursor]);
+    return Outcome::kDone;
 }
 
 }  // namespace rtrt

@@ -10,10 +10,10 @@ namespace rtrt {
 
 // Splits the polygons of one file. A convex polygon is a fan from its first corner; a concave
 // one is ear-clipped in the plane of its Newell normal, so that no triangle covers one of its
-// notches. Ear clipping tests candidate ears against the polygon's reflex corners, quadratic in
-// its corners at worst: a file's polygons share a budget of such tests, after which the rest are
-// fanned too (counted in OverBudget), so that a crafted file of huge concave polygons still loads
-// in seconds.
+// notches, after it is cut into loops where it touches itself at a corner. Ear clipping tests
+// candidate ears against the polygon's reflex corners, quadratic in its corners at worst: a file's
+// polygons share a budget of such tests, after which the rest are fanned too (counted in
+// OverBudget), so that a crafted file of huge concave polygons still loads in seconds.
 class PolygonTriangulator {
   public:
     // BUDGET: ear-in-corner tests for the whole file, about a second's worth by default.
@@ -30,14 +30,22 @@ class PolygonTriangulator {
     uint64_t OverBudget() const { return overBudget_; }
 
   private:
-    bool ClipEars(std::vector<glm::uvec3>& triangles);
+    enum class Outcome { kDone, kNoEar, kOverBudget };
+    bool SplitAtTouchingCorners();
+    Outcome ClipEars(std::span<const uint32_t> loop, std::vector<glm::uvec3>& triangles);
+    void FanAfterGivingUp(std::vector<glm::uvec3>& triangles, size_t firstTriangle,
+                          uint64_t& counter);
+    double LoopArea(std::span<const uint32_t> loop) const;
+    bool Spend(uint64_t work);  // false, and nothing left, when the budget cannot pay
 
     uint64_t budget_;
     uint64_t noEar_ = 0, overBudget_ = 0;
-    // The polygon being clipped: its distinct corners projected on its plane, oriented so that
-    // its convex corners turn left, and the ring of corners not clipped yet.
+    // The polygon being split: its distinct corners projected on its plane, oriented so that it
+    // winds counter-clockwise, its loops (split where it touches itself) and the ring of a
+    // loop's corners not clipped yet.
     std::vector<glm::dvec2> points_;
     std::vector<uint32_t> source_, prev_, next_;
+    std::vector<std::vector<uint32_t>> loops_;
 };
 
 }  // namespace rtrt

@@ -74,6 +74,24 @@ TEST_F(MeshIoTest, PlyNormalsWithoutDirectionFallBackPerVertex) {
     EXPECT_EQ(mesh.normals[3], vec3(0.0f, 0.0f, 1.0f));
 }
 
+// A polygon is buffered until the vertices are read, without the corners that repeat the one
+// before (a face of 255 copies of a vertex cost 1 KB of buffer and made nothing).
+TEST_F(MeshIoTest, PlyPolygonsOfRepeatedCornersMakeNothing) {
+    std::string faces;
+    for (int face = 0; face < 1000; ++face) {
+        faces += "255";
+        for (int corner = 0; corner < 255; ++corner) faces += " 0";
+        faces += "\n";
+    }
+    const std::string header =
+        "ply\nformat ascii 1.0\nelement face 1001\nproperty list uchar int vertex_indices\n"
+        "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+    const TriangleMesh mesh =
+        LoadMesh(Write("repeated.ply", header + faces + "5 0 0 1 1 2\n0 0 0\n1 0 0\n0 1 0\n"));
+    ASSERT_EQ(mesh.indices.size(), 1u);
+    EXPECT_EQ(mesh.indices[0], glm::uvec3(0, 1, 2));
+}
+
 TEST_F(MeshIoTest, PlyTriangleStripsKeepTheirWinding) {
     // A face, two strips of two triangles in one list (-1 ends the first), and the same joined
     // by repeated indices.
