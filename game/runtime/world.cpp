@@ -20,7 +20,9 @@ float DeformClock(const ProceduralDeform& p, double t) {
     const double speed = std::fabs(double(p.speed));
     const double period =
         p.kind == ProceduralDeformKind::kWave ? double(p.wavelength) / speed : kTwoPi / speed;
-    if (!(period > 0.0) || !std::isfinite(period)) return float(t);  // still: any clock will do
+    // A clock within one period needs no reduction (a still deformation's period is infinite; a
+    // nearly still one's beyond float, where the reduced clock of a negative phase overflowed).
+    if (!(period <= std::fabs(t))) return float(t);
     return float(t - period * std::floor(t / period));
 }
 
@@ -38,7 +40,7 @@ World::World(const LoadedScene& scene) : source_(scene) {
     scene_.maxDepth = scene.scene.maxDepth;
     scene_.deformableMeshes = scene.scene.deformableMeshes;
     physics::AddPhysicsAnimSystems(scheduler_, physics_, transforms_);
-    SpawnDue(0.0);
+    SpawnDue(0.0, 0.0);
     transforms_.Update(registry_);
     physics::UpdateSkins(registry_);
     Extract();
@@ -47,11 +49,12 @@ World::World(const LoadedScene& scene) : source_(scene) {
     topologyPending_ = false;
 }
 
-void World::SpawnDue(double pendingDt) {
+void World::SpawnDue(double pendingDt, double bodiesDueBy) {
     const std::vector<EntityDesc>& entities = source_.entities;
     const size_t first = nextSpawn_;
     for (; nextSpawn_ < entities.size() && entities[nextSpawn_].spawnTime <= time_; ++nextSpawn_) {
         const EntityDesc& d = entities[nextSpawn_];
+        if (d.body && double(d.spawnTime) > bodiesDueBy) break;
         created_.push_back(Create(d));
         // Its animation and deformation run from the time it is due, not from the frame that
         // finds it due, so that its pose at a given time does not depend on the frame rate.
@@ -300,12 +303,29 @@ FrameStats World::Advance(float dt) {
     FrameStats stats;
     changed_.clear();
     deformChanged_.clear();
-    time_ += dt;
     const size_t before = nextSpawn_;
-    SpawnDue(dt);
-    stats.spawned = uint32_t(nextSpawn_ - before);
     Stopwatch timer;
-    scheduler_.RunFrame(registry_, dt);
+    // A rigid body due inside the frame joins the simulation at its time, not at the frame's
+    // start: the frame is simulated in parts split at those times, so that a body's path does
+    // not depend on the frame rate (animations are shifted instead, in SpawnDue).
+    const double frameEnd = time_ + double(dt);
+    for (double start = time_;;) {
+        double end = frameEnd;
+        for (size_t k = nextSpawn_; k < source_.entities.size(); ++k) {
+            const double due = source_.entities[k].spawnTime;
+            if (due >= frameEnd) break;
+            if (source_.entities[k].body && due > start) {
+                end = due;
+                break;
+            }
+        }
+        time_ = end;
+        SpawnDue(end - start, start);
+        scheduler_.RunFrame(registry_, float(end - start));
+        if (end >= frameEnd) break;
+        start = end;
+    }
+    stats.spawned = uint32_t(nextSpawn_ - before);
     stats.simulateMs = timer.Milliseconds();
     timer.Restart();
     stats.extracted = Extract();

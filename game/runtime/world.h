@@ -96,9 +96,10 @@ class World {
     void PlayAtFixedFrames(float frameDt) { physics_.KeepUpWithFrames(frameDt); }
 
   private:
-    // Creates the entities whose time has come; PENDINGDT is the step this frame's systems are
-    // still to advance them by (0 when nothing runs before the first image).
-    void SpawnDue(double pendingDt);
+    // Creates the entities whose time has come (time_); PENDINGDT is the step the systems are
+    // still to advance them by (0 when nothing runs before the first image). Rigid bodies only
+    // up to BODIESDUEBY, where the simulation is now: a body cannot be shifted in time.
+    void SpawnDue(double pendingDt, double bodiesDueBy);
     ecs::Entity Create(const EntityDesc& desc);
     uint32_t Extract();
     // A Deformation for a new deforming entity: a released one of the same mesh and rest tree

@@ -192,6 +192,51 @@ TEST(World, AnimatedEntitiesArePosedAtTimeZero) {
     EXPECT_NEAR(world.Scene().instances[0].Position()[0], 4.0f, 1e-5f);
 }
 
+// A rotated plane in a scene file is a wall: its collider was turned by the rotation twice, so a
+// wall at 90 degrees collided as a ceiling's half-space and drove a falling ball through the floor.
+TEST(World, RotatedStaticPlanesCollideWhereTheyAreDrawn) {
+    const LoadedScene scene = ParseScene(R"({
+      "models": { "floor": { "type": "plane" }, "ball": { "type": "sphere", "radius": 0.5 } },
+      "instances": [
+        { "model": "floor", "rigid_body": { "static": true } },
+        { "model": "floor", "position": [3, 0, 0], "rotation": [0, 0, 90],
+          "rigid_body": { "static": true } },
+        { "model": "ball", "position": [0, 3, 0], "rigid_body": {} },
+        { "model": "ball", "position": [1, 0.5, 1], "rigid_body": { "velocity": [8, 0, 0] } } ]
+    })",
+                                         "walls.json", "");
+    World world(scene);
+    float maxX = 0.0f;
+    for (int frame = 0; frame < 180; ++frame) {
+        world.Advance(1.0f / 60.0f);
+        maxX = std::max(maxX, world.Scene().instances[3].Position()[0]);
+    }
+    EXPECT_NEAR(world.Scene().instances[2].Position()[1], 0.5f, 0.02f);
+    EXPECT_LT(maxX, 2.55f);
+    EXPECT_GT(maxX, 2.4f);
+}
+
+// A rigid body spawned at a time inside a frame joins the simulation at that time: it had been
+// stepped through the whole frame that found it due, so at 7 fps a ball due at 1.5 s had fallen
+// 0.36 m further by 2 s than at 120 fps, and at 1 fps it had landed.
+TEST(World, SpawnedBodiesFallFromTheirOwnTimeAtAnyFrameRate) {
+    const LoadedScene scene = ParseScene(R"({
+      "models": { "ball": { "type": "sphere", "radius": 0.5 } }, "instances": [],
+      "spawners": [ { "model": "ball", "position": [2, 5, 0], "time": 1.5,
+                      "grid": { "count": [1, 1, 1] }, "rigid_body": {} } ]
+    })",
+                                         "late_ball.json", "");
+    const float fallen = 5.0f - 0.5f * 9.81f * 0.25f;  // 0.5 s after it appeared
+    for (int fps : {1, 7, 60, 120}) {
+        World world(scene);
+        world.PlayAtFixedFrames(1.0f / float(fps));
+        for (int frame = 0; frame < 2 * fps; ++frame) world.Advance(1.0f / float(fps));
+        ASSERT_EQ(world.Scene().instances.size(), 1u) << fps;
+        // The rendered pose lags the simulation by less than one 1/120 s step.
+        EXPECT_NEAR(world.Scene().instances[0].Position()[1], fallen, 0.05f) << fps << " fps";
+    }
+}
+
 // A deformation's clock is reduced to one period of its motion before the float deformers see
 // it: at a phase of 1e6 s a float clock moved in steps of 1/16 s (the wave stood still for
 // frames) and the wave's argument lost its shape.
