@@ -77,6 +77,16 @@ void PhysicsWorld::Gather(Registry& registry, bool stepFollows) {
                 s.invInertiaLocal = 1.0f / inertia;
             }
         } else {
+            // A static body placed among sleepers (spawned later, or moved by an edit) must wake
+            // them, or they would stay inside it: one that no step has seen where it is now
+            // counts as having moved.
+            s.fresh = !rb.state.initialized || rb.state.position != local.translation ||
+                      rb.state.orientation != local.rotation;
+            if (stepFollows) {
+                rb.state.initialized = true;
+                rb.state.position = local.translation;
+                rb.state.orientation = local.rotation;
+            }
             s.position = s.previousPosition = local.translation;
             s.orientation = s.previousOrientation = glm::normalize(local.rotation);
         }

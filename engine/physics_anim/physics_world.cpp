@@ -38,9 +38,9 @@ constexpr size_t kBodyGrain = 1024;
 constexpr size_t kPairGrain = 128;
 
 uint8_t MotionOf(const SimBody& s) {
-    return static_cast<uint8_t>((s.dynamic ? PhysicsWorld::kDynamic : 0) |
-                                (s.awake ? PhysicsWorld::kAwake : 0) |
-                                (s.restingTime > 0.0f ? PhysicsWorld::kResting : 0));
+    return static_cast<uint8_t>(
+        (s.dynamic ? PhysicsWorld::kDynamic : 0) | (s.awake ? PhysicsWorld::kAwake : 0) |
+        (s.restingTime > 0.0f ? PhysicsWorld::kResting : 0) | (s.fresh ? PhysicsWorld::kFresh : 0));
 }
 
 void ClampLength(vec3& v, float maxLength) {
@@ -119,6 +119,7 @@ void PhysicsWorld::OnThreadsFor(size_t bodies, const Work& work) {
 void PhysicsWorld::StartStep(size_t i) {
     SimBody& s = bodies_[i];
     motion_[i] = MotionOf(s);
+    s.fresh = false;  // for its first step only
     s.previousPosition = s.position;
     s.previousOrientation = s.orientation;
     s.rotation = glm::mat3_cast(s.orientation);
@@ -198,7 +199,8 @@ void PhysicsWorld::WakeTouched() {
     };
     auto wake = [&](uint32_t sleeper, uint32_t other) {
         const uint8_t o = motion_[other];
-        if (!isSleeper(sleeper) || (o & (kAwake | kResting)) != kAwake) return;
+        const bool moved = (o & (kAwake | kResting)) == kAwake || (o & kFresh) != 0;
+        if (!isSleeper(sleeper) || !moved) return;
         motion_[sleeper] = kDynamic | kAwake;
         SimBody& body = bodies_[sleeper];
         body.awake = true;

@@ -125,6 +125,7 @@ class PhysicsWorld {
     static constexpr uint8_t kDynamic = 1;
     static constexpr uint8_t kAwake = 2;
     static constexpr uint8_t kResting = 4;  // restingTime > 0
+    static constexpr uint8_t kFresh = 8;    // a static body just placed or moved (SimBody::fresh)
 
     // Solves the contacts on the first CUDA device from the next step on (the rest of the step
     // stays on the CPU). Throws std::runtime_error saying why when there is none.

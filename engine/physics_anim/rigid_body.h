@@ -27,6 +27,7 @@ struct RigidBody {
     float rollingResistance = 0.02f;
     bool fixedRotation = false;  // ignore torques: the body keeps its angular velocity
 
+    // A dynamic body's simulated pose; a static body's is where the last step saw it.
     struct State {
         vec3 position{0.0f};
         glm::quat orientation = glm::identity<glm::quat>();

@@ -19,6 +19,7 @@ struct SimBody {
     bool hasCollider = false;
     bool dynamic = false;  // mass > 0 and not a plane
     bool awake = false;    // dynamic and not sleeping: only awake bodies move
+    bool fresh = false;    // static and placed or moved since the last step: it wakes sleepers
 
     vec3 position{0.0f};
     glm::quat orientation = glm::identity<glm::quat>();

@@ -327,7 +327,9 @@ class SceneParser {
             if (grid == rain) f.Fail("", "give exactly one of grid or rain");
             const std::vector<vec3> places =
                 grid ? GridPlaces(f, proto.local.translation, file_)
-                     : RainPlaces(f, BodyRadius(proto, out.scene), file_);
+                     // Rains that give no seed each get their own: with one default, two rains
+                     // over one region put every body of one inside a body of the other.
+                     : RainPlaces(f, BodyRadius(proto, out.scene), uint32_t(i) + 1, file_);
             Reserve(f, grid ? "grid.count" : "rain.count", places.size());
             if (proto.body) CheckRigidBodyPlaces(f, grid ? "grid" : "rain", places);
             proto.sourceArray = "spawners";

@@ -38,7 +38,14 @@ void ParseRigidBody(const Json& j, const std::string& path, const std::string& f
         f.Fail("mass", "a moving body weighs at least 1e-6 kg (0 makes it static)");
     if (f.Has("static")) {
         f.ExpectKind("static", JsonKind::kBool);
-        if (f.Get("static").get<bool>()) body.mass = 0.0f;
+        const bool isStatic = f.Get("static").get<bool>();
+        if (isStatic && f.Has("mass"))
+            f.Fail("mass", "a static body has no mass: leave mass out, or static");
+        if (!isStatic && shape.kind == ModelShape::kPlane)
+            f.Fail("static", "a plane is always static: leave static out");
+        if (!isStatic && f.Has("mass") && body.mass == 0.0f)
+            f.Fail("static", "a body of mass 0 is static: give it a mass, or leave static out");
+        if (isStatic) body.mass = 0.0f;
     }
     body.restitution = f.InRange("restitution", 0.0f, 1.0f, body.restitution);
     body.friction = f.InRange("friction", 0.0f, 10.0f, body.friction);
@@ -83,7 +90,9 @@ void ParseRigidBody(const Json& j, const std::string& path, const std::string& f
             checkSize(e.collider.halfExtents, "box half sides");
             break;
         case ModelShape::kPlane:
-            e.collider = physics::Collider::Plane(e.local.rotation * vec3(0, 1, 0));
+            // In the body's frame, as every collider: the world turns it by the body's rotation
+            // (turned here as well, a plane at 90 degrees collided as one at 180).
+            e.collider = physics::Collider::Plane(vec3(0, 1, 0));
             body.mass = 0.0f;  // planes do not move
             break;
         default:

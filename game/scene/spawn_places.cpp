@@ -27,11 +27,12 @@ std::vector<vec3> GridPlaces(JsonFields& f, vec3 centre, const std::string& file
     return places;
 }
 
-std::vector<vec3> RainPlaces(JsonFields& f, float bodyRadius, const std::string& file) {
+std::vector<vec3> RainPlaces(JsonFields& f, float bodyRadius, uint32_t defaultSeed,
+                             const std::string& file) {
     JsonFields r(f.Get("rain"), f.Path("rain"), file);
     const uint32_t count = r.Count("count", 1, 1000000, 100);
     const vec3 lo = r.Position("min"), hi = r.Position("max");
-    const uint32_t seed = r.Count("seed", 0, UINT32_MAX - 1, 1);
+    const uint32_t seed = r.Count("seed", 0, UINT32_MAX - 1, defaultSeed);
     r.Finish();
     const float cell = 2.2f * bodyRadius;
     // Counted in doubles: tiny bodies in a large region make more cells than an int holds

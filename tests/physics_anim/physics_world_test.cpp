@@ -389,6 +389,55 @@ TEST(PhysicsWorldTest, SleepingBodyWakesWhenHitOrPushed) {
     EXPECT_GT(Position(registry, sleeper).y, 0.5f);
 }
 
+// A static body placed into a sleeper (spawned later), or moved into one, wakes it, and the
+// sleeper is pushed out: static bodies never count as awake, so it had stayed inside for good.
+TEST(PhysicsWorldTest, StaticBodyPlacedOrMovedIntoASleeperWakesIt) {
+    Registry registry;
+    AddPlane(registry, vec3(0.0f), vec3(0.0f, 1.0f, 0.0f));
+    const Entity sleeper = AddBody(registry, vec3(0.0f, 0.5f, 0.0f), Collider::Sphere(0.5f), 1.0f);
+    PhysicsWorld world;
+    world.Step(registry, 240);
+    ASSERT_TRUE(registry.Get<RigidBody>(sleeper)->state.sleeping);
+    const Entity block = AddBody(registry, vec3(0.0f, 0.3f, 0.0f), Collider::Box(vec3(0.5f)), 0.0f);
+    world.Step(registry, 240);
+    EXPECT_GT(Position(registry, sleeper).y, 1.3f - 0.05f);  // on top of the block (top 0.8)
+    // Asleep on the block, it is pushed out again when the block is moved into it.
+    world.Step(registry, 20 * 120);
+    ASSERT_TRUE(registry.Get<RigidBody>(sleeper)->state.sleeping);
+    const float before = Position(registry, sleeper).y;
+    registry.Get<LocalTransform>(block)->translation = vec3(0.0f, 0.8f, 0.0f);
+    world.Step(registry, 240);
+    EXPECT_GT(Position(registry, sleeper).y, before + 0.45f);
+}
+
+// A plane's normal is in its body's frame, turned by the body's rotation like every collider.
+TEST(PhysicsWorldTest, RotatedPlanesAreWallsAndRamps) {
+    Registry registry;
+    AddPlane(registry, vec3(0.0f), vec3(0.0f, 1.0f, 0.0f));
+    // A wall at x = 3 facing -x: the floor's plane turned 90 degrees about z.
+    const Entity wall = registry.Create();
+    LocalTransform wallPose;
+    wallPose.translation = vec3(3.0f, 0.0f, 0.0f);
+    wallPose.rotation = glm::angleAxis(glm::radians(90.0f), vec3(0.0f, 0.0f, 1.0f));
+    registry.Add(wall, wallPose);
+    RigidBody wallBody;
+    wallBody.mass = 0.0f;
+    registry.Add(wall, wallBody);
+    registry.Add(wall, Collider::Plane(vec3(0.0f, 1.0f, 0.0f)));
+    const Entity faller = AddBody(registry, vec3(0.0f, 3.0f, 0.0f), Collider::Sphere(0.5f), 1.0f);
+    const Entity thrown =
+        AddBody(registry, vec3(1.0f, 0.5f, 1.0f), Collider::Sphere(0.5f), 1.0f, vec3(8.0f, 0, 0));
+    PhysicsWorld world;
+    float maxX = 0.0f;
+    for (int step = 0; step < 360; ++step) {
+        world.Step(registry);
+        maxX = std::max(maxX, Position(registry, thrown).x);
+    }
+    EXPECT_NEAR(Position(registry, faller).y, 0.5f, 0.02f);  // on the floor, not under it
+    EXPECT_LT(maxX, 2.5f + 0.05f);                           // stopped by the wall
+    EXPECT_GT(maxX, 2.4f);
+}
+
 TEST(PhysicsWorldTest, OnlyMovingBodiesMarkTheirTransformsChanged) {
     Registry registry;
     AddPlane(registry, vec3(0.0f), vec3(0.0f, 1.0f, 0.0f));

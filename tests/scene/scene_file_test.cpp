@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -221,6 +222,14 @@ TEST(SceneFile, RigidBodiesBeyondWhatTheSimulationHandlesAreRejected) {
                 "instances[0].rigid_body.mass", "got 1000000100");
     ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"static": "true"}})"),
                 "instances[0].rigid_body.static", "expected true or false, got string");
+    // Contradictions were settled silently: a static body's mass dropped, "static": false with
+    // mass 0 made the body static, and a plane took "static": false.
+    ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"static": true, "mass": 5}})"),
+                "instances[0].rigid_body.mass", "a static body has no mass");
+    ExpectError(scene(ball, R"({"model": "b", "rigid_body": {"static": false, "mass": 0}})"),
+                "instances[0].rigid_body.static", "a body of mass 0 is static");
+    ExpectError(scene(R"({"type": "plane"})", R"({"model": "b", "rigid_body": {"static": false}})"),
+                "instances[0].rigid_body.static", "a plane is always static");
     ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
                     "spawners": [{"model": "b", "rigid_body": {},
                                   "grid": {"count": [10, 10, 10], "spacing": 1e-6}}]})",
@@ -494,6 +503,33 @@ TEST(SceneFile, EveryShippedSceneParses) {
     EXPECT_GE(scenes, 13);
     if (!unfetched.empty()) GTEST_SKIP() << "models not fetched for" << unfetched;
     EXPECT_EQ(parsed, scenes);
+}
+
+// Rains that give no seed each get their own (1 + the spawner's index): with one default seed
+// for all, two rains over one region put every body of one inside a body of the other.
+TEST(SceneFile, RainsWithoutASeedFallAtDifferentPlaces) {
+    const std::string rain = R"({"model": "b", "rain": {"count": 20, "min": [-4, 1, -4],
+                                                       "max": [4, 6, 4]SEED}})";
+    auto places = [&](const std::string& first, const std::string& second) {
+        std::string text = R"({"models": {"b": {"type": "sphere", "radius": 0.5}},
+                               "instances": [], "spawners": [)";
+        for (int i = 0; i < 2; ++i) {
+            std::string one = rain;
+            one.replace(one.find("SEED"), 4, i == 0 ? first : second);
+            text += one + (i == 0 ? "," : "]}");
+        }
+        std::vector<std::vector<vec3>> out(2);
+        for (const EntityDesc& e : ParseScene(text, "rain.json", "").entities)
+            out[e.sourceIndex].push_back(e.local.translation);
+        return out;
+    };
+    const auto unseeded = places("", "");
+    ASSERT_EQ(unseeded[0].size(), 20u);
+    ASSERT_EQ(unseeded[1].size(), 20u);
+    for (const vec3& p : unseeded[1])
+        EXPECT_EQ(std::count(unseeded[0].begin(), unseeded[0].end(), p), 0);
+    const auto seeded = places(R"(, "seed": 1)", R"(, "seed": 2)");
+    EXPECT_EQ(seeded, unseeded);  // the first keeps seed 1, as before
 }
 
 // The built-in scene names its materials as a scene file would (rtrt info lists them).
