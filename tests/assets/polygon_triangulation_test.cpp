@@ -46,6 +46,14 @@ bool AnyCentroidIn(const std::vector<vec3>& corners, const std::vector<glm::uvec
     return false;
 }
 
+// POLYGON's corners from corner START on: the same polygon, listed from another corner.
+std::vector<vec3> FromCorner(const std::vector<vec3>& polygon, size_t start) {
+    std::vector<vec3> out;
+    for (size_t i = 0; i < polygon.size(); ++i)
+        out.push_back(polygon[(start + i) % polygon.size()]);
+    return out;
+}
+
 // A U of 3 x 3 with a notch of 1 x 2 between its arms: area 7.
 const std::vector<vec3> kU = {{0, 0, 0}, {3, 0, 0}, {3, 3, 0}, {2, 3, 0},
                               {2, 1, 0}, {1, 1, 0}, {1, 3, 0}, {0, 3, 0}};
@@ -92,8 +100,7 @@ TEST(PolygonTriangulation, ArrowheadFromEveryCorner) {
     // covered 12.
     const std::vector<vec3> arrow = {{0, 2, 0}, {-2, -2, 0}, {0, 0, 0}, {2, -2, 0}};
     for (size_t start = 0; start < arrow.size(); ++start) {
-        std::vector<vec3> rotated;
-        for (size_t i = 0; i < arrow.size(); ++i) rotated.push_back(arrow[(start + i) % 4]);
+        const std::vector<vec3> rotated = FromCorner(arrow, start);
         const Split split = Triangulate(rotated);
         EXPECT_NEAR(split.area, 4.0, 1e-9) << start;
         EXPECT_TRUE(split.allAlongNormal) << start;
@@ -135,9 +142,7 @@ TEST(PolygonTriangulation, PolygonsTouchingThemselvesAtACornerFromEveryStart) {
                                      {0, 0, 0}, {6, -1, 0}, {2, 2, 0}};
     for (const auto& [polygon, area] : {std::pair{hourglass, 4.0}, std::pair{lobes, 12.0}}) {
         for (size_t start = 0; start < polygon.size(); ++start) {
-            std::vector<vec3> rotated;
-            for (size_t i = 0; i < polygon.size(); ++i)
-                rotated.push_back(polygon[(start + i) % polygon.size()]);
+            const std::vector<vec3> rotated = FromCorner(polygon, start);
             PolygonTriangulator triangulator;
             const Split split = Triangulate(rotated, triangulator);
             EXPECT_NEAR(split.area, area, 1e-9) << start;
@@ -167,9 +172,7 @@ TEST(PolygonTriangulation, ZeroWidthSpikesAreDropped) {
     const std::vector<vec3> spike = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {1, 2, 0},
                                      {1, 4, 0}, {1, 2, 0}, {0, 2, 0}};
     for (size_t start = 0; start < spike.size(); ++start) {
-        std::vector<vec3> rotated;
-        for (size_t i = 0; i < spike.size(); ++i)
-            rotated.push_back(spike[(start + i) % spike.size()]);
+        const std::vector<vec3> rotated = FromCorner(spike, start);
         PolygonTriangulator triangulator;
         const Split split = Triangulate(rotated, triangulator);
         EXPECT_NEAR(split.area, 4.0, 1e-9) << start;
