@@ -287,6 +287,20 @@ void ApplyPhysicsSolver(const std::string& solver, World& world) {
 }
 
 OutputTransform ResolveOutput(OutputTransform scene, const OutputOptions& options) {
+    // A scene of display colours is written clamped: an exposure or a tone map of its display
+    // values was neither that image nor the linear pipeline's (the scene file refuses them too).
+    if (scene.srgbEncode == 0) {
+        const std::string linear =
+            "applies to linear colours, and this scene's are display values: add \"colours\": "
+            "\"linear\" to the scene file (its colours are then light, tone mapped and "
+            "sRGB-encoded)";
+        if (options.exposureEv) {
+            char ev[32];
+            std::snprintf(ev, sizeof(ev), "%g", double(*options.exposureEv));
+            throw InputError("--exposure", ev, linear);
+        }
+        if (!options.toneMap.empty()) throw InputError("--tone-map", options.toneMap, linear);
+    }
     if (options.exposureEv) scene.exposureEv = *options.exposureEv;
     if (!options.toneMap.empty()) ParseToneMap(options.toneMap.c_str(), &scene.toneMap);
     return scene;

@@ -68,6 +68,16 @@ void CheckPattern(const std::string& pattern) {
     const auto fields = std::distance(std::sregex_iterator(pattern.begin(), pattern.end(), kField),
                                       std::sregex_iterator());
     const auto percents = std::count(pattern.begin(), pattern.end(), '%');
+    if (pattern.find("%%") != std::string::npos)
+        throw InputError("--output", pattern,
+                         "a % of its own (%%) cannot be in the pattern: its only % is the frame "
+                         "number field's, e.g. out/frame_%04d.png");
+    // A manifest lists frames one a line, their fields split by tabs.
+    if (std::any_of(pattern.begin(), pattern.end(),
+                    [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+        throw InputError("--output", "",
+                         "the pattern has a control character (a tab or a line end): name the "
+                         "frames without one");
     if (fields != 1 || percents != 1 || pattern.size() > 2000)
         throw InputError("--output", "",
                          "expected a pattern with one frame number field of at most two "

@@ -69,6 +69,10 @@ void RunRender(const RenderOptions& o) {
         throw InputError("--backend", "cuda", why + "; use --backend cpu");
     const GpuSplit gpus = ResolveGpus(o.gpus, backend);
     CheckTraversalBackend(o.traversal, backend);
+    // Only the shaded view is radiance; normals, depth and heatmaps are display values.
+    const OutputTransform transform = settings.view == ViewMode::kShaded
+                                          ? ResolveOutput(loaded.output, o.display)
+                                          : kDisplayValues;
 
     Stopwatch renderTimer;
     RenderStats stats;
@@ -88,10 +92,6 @@ void RunRender(const RenderOptions& o) {
     }
     const double renderMs = renderTimer.Milliseconds();
     HeatmapScale heat;
-    // Only the shaded view is radiance; normals, depth and heatmaps are display values.
-    const OutputTransform transform = settings.view == ViewMode::kShaded
-                                          ? ResolveOutput(loaded.output, o.display)
-                                          : kDisplayValues;
     WriteImage(o.output, FinishView(raw, settings.view, &heat), transform);
     std::printf(
         "rtrt: wrote %s (%ux%u, %s back end, %s view): scene %.1f ms, render %.1f ms, %.2f M "

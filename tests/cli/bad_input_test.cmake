@@ -366,13 +366,26 @@ endforeach()
 expect_one_line_failure(wide_frame_field
     "--output: expected a pattern with one frame number field of at most two digits' width"
     play default --headless --frames 1 -o ${WORK_DIR}/g_%300d.png)
+# A literal % and a tab (which would split the manifest's lines) in the pattern.
+expect_one_line_failure(percent_in_pattern "--output: ${WORK_DIR}/percent_%%_%d.png: a % of its own (%%)"
+    play default --headless --frames 1 -o ${WORK_DIR}/percent_%%_%d.png)
+expect_one_line_failure(tab_in_pattern "--output: the pattern has a control character"
+    play default --headless --frames 1 -o "${WORK_DIR}/tabbed\t_%d.png")
+# Exposure and tone map apply to linear colours; the default scene's are display values.
+expect_one_line_failure(display_exposure
+    "--exposure: 1: applies to linear colours, and this scene's are display values"
+    render default --exposure 1 -o ${WORK_DIR}/display_exposure${EXT})
+expect_one_line_failure(display_tone_map
+    "--tone-map: aces: applies to linear colours, and this scene's are display values"
+    play default --headless --frames 1 --tone-map aces -o ${WORK_DIR}/dt_%d.png)
 # Options of the window given headless, or the other way round, would do nothing: refused.
 expect_one_line_failure(headless_record "--record: records the window"
     play default --headless --frames 1 --record ${WORK_DIR}/r.mp4 -o ${WORK_DIR}/hr_%d.png)
 expect_one_line_failure(window_manifest "--manifest: is for --headless frames"
     play default --manifest ${WORK_DIR}/m.txt)
 # Their outputs are patterns and other files, not the NAME.EXT expect_one_line_failure looks for.
-file(GLOB left ${WORK_DIR}/g_* ${WORK_DIR}/hr_* ${WORK_DIR}/r.mp4 ${WORK_DIR}/m.txt)
+file(GLOB left ${WORK_DIR}/g_* ${WORK_DIR}/hr_* ${WORK_DIR}/r.mp4 ${WORK_DIR}/m.txt
+    ${WORK_DIR}/percent_* ${WORK_DIR}/tabbed* ${WORK_DIR}/dt_*)
 if(left)
     message(FATAL_ERROR "refused play options wrote ${left}")
 endif()
