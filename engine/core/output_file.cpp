@@ -136,6 +136,12 @@ void CheckOutputPath(const std::string& path) {
         throw InputError(path, "", "is a folder" + where + "; name a file in it");
     if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
         throw InputError(path, "", "is not a regular file (a device, FIFO or socket)" + where);
+    // A write-protected file would be replaced all the same (the rename needs only the folder),
+    // and become the writer's: refused, as cp refuses it.
+    if (std::filesystem::exists(status) && access(file.c_str(), W_OK) != 0)
+        throw InputError(path, "",
+                         "is write-protected" + where +
+                             ": make it writable (chmod u+w) or remove it to write over it");
     const std::filesystem::path folder = std::filesystem::path(file).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
         throw InputError(path, "", "the folder " + folder.string() + " does not exist");

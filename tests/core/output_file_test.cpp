@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -248,6 +249,34 @@ TEST_F(OutputPathTest, NameTheSameFileSeesThroughSpellingsAndLinks) {
     EXPECT_TRUE(NameTheSameFile((dir_ / "new.csv").string(), (dir_ / "sub/../new.csv").string()));
     EXPECT_FALSE(NameTheSameFile(scene.string(), (dir_ / "other.json").string()));
     EXPECT_FALSE(NameTheSameFile((dir_ / "a.csv").string(), (dir_ / "b.csv").string()));
+}
+
+// A write-protected file is not replaced (the rename into place needed only the folder, and the
+// file became the writer's). Root may write anything: the check runs as another user there.
+TEST_F(OutputPathTest, AWriteProtectedFileIsRefused) {
+    const fs::path target = dir_ / "protected.png";
+    WriteWholeFile(target.string(), "old", false);
+    ASSERT_EQ(::chmod(target.c_str(), 0444), 0);
+    ASSERT_EQ(::chmod(dir_.c_str(), 0777), 0);
+    const auto refused = [&] {
+        try {
+            CheckOutputPath(target.string());
+        } catch (const InputError& e) {
+            return std::string(e.Reason()).find("is write-protected") != std::string::npos;
+        }
+        return false;
+    };
+    if (::geteuid() != 0) {
+        EXPECT_TRUE(refused());
+    } else {
+        const pid_t child = ::fork();
+        ASSERT_GE(child, 0);
+        if (child == 0) _exit(::setgid(65534) == 0 && ::setuid(65534) == 0 && refused() ? 0 : 1);
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    }
+    EXPECT_EQ(ReadAll(target), "old");
 }
 
 // A file replaced keeps its permissions (a private file stays private) and, as root, its owner.
