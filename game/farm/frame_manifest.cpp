@@ -31,6 +31,7 @@ void AppendToManifest(const std::string& manifest, int frame, const std::string&
     line += '\t';
     line += HexDigest(HashFile(path));
     line += '\n';
+    const bool existed = ::access(manifest.c_str(), F_OK) == 0;
     const int fd = ::open(manifest.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0) throw OutputError(manifest, std::strerror(errno));
     // A line cut short by a crash of an earlier run (a requeued task appends to its file again)
@@ -44,8 +45,13 @@ void AppendToManifest(const std::string& manifest, int frame, const std::string&
         const ssize_t put = ::write(fd, line.data() + done, line.size() - done);
         if (put < 0 && errno == EINTR) continue;
         if (put <= 0) {
+            // What was there stays as it was: the cut line is taken back (where that fails too,
+            // readers skip a cut line), and a manifest this line was to begin is not left
+            // behind empty.
             const int error = put < 0 ? errno : ENOSPC;
+            [[maybe_unused]] const bool takenBack = ::ftruncate(fd, size) == 0;
             ::close(fd);
+            if (!existed && size == 0) ::unlink(manifest.c_str());
             throw OutputError(manifest, std::strerror(error));
         }
         done += size_t(put);

@@ -107,6 +107,9 @@ def check_manifest_failure(full, scratch):
     if r.returncode != 1 or expected not in r.stderr or os.listdir(frames) != ["f_00.ppm"]:
         sys.exit(f"tmpfs manifest: status {r.returncode}, files {os.listdir(frames)}, expected 1 "
                  f"and \"{expected}\":\n{r.stderr}")
+    # The manifest its first line was to begin is not left behind empty.
+    if os.path.exists(manifest):
+        sys.exit(f"tmpfs manifest: {manifest} left behind ({os.path.getsize(manifest)} bytes)")
     shutil.rmtree(frames)
     print(f"tmpfs manifest: ok ({r.stderr.strip()})")
 
