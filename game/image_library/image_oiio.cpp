@@ -56,8 +56,11 @@ std::vector<unsigned char> EncodeToMemory(const char* path, int32_t width, int32
         *why = "OpenImageIO cannot encode this format into memory";
         return {};
     }
-    if (!out->open(path, OIIO::ImageSpec(width, height, 3, type)) || !out->write_image(type, rgb) ||
-        !out->close()) {
+    // No time in the file (OpenImageIO writes the present one into EXR and TIFF where none is
+    // given): the same image is the same bytes whenever it is written.
+    OIIO::ImageSpec spec(width, height, 3, type);
+    spec.attribute("DateTime", "");
+    if (!out->open(path, spec) || !out->write_image(type, rgb) || !out->close()) {
         *why = "cannot encode: " + OneLine(out->geterror(), "OpenImageIO failed");
         return {};
     }
