@@ -220,6 +220,18 @@ void PhysicsWorld::WakeTouched() {
         wake(a, b);
         wake(b, a);
     }
+    // Planes are outside the broad phase: one just placed or moved wakes the sleepers within
+    // reach of its half-space (rare, so a pass over the bodies is enough).
+    for (const uint32_t plane : planes_) {
+        if ((motion_[plane] & kFresh) == 0) continue;
+        const SimBody& p = bodies_[plane];
+        const vec3 normal = glm::normalize(p.orientation * p.collider.normal);
+        for (uint32_t i = 0; i < bodies_.size(); ++i)
+            if (isSleeper(i) && bodies_[i].hasCollider &&
+                glm::dot(normal, bodies_[i].position - p.position) <
+                    bodies_[i].boundingRadius + settings_.contactMargin)
+                wake(i, plane);
+    }
 }
 
 void PhysicsWorld::IntegrateVelocities() {

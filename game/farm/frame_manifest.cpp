@@ -31,8 +31,11 @@ void AppendToManifest(const std::string& manifest, int frame, const std::string&
     line += '\t';
     line += HexDigest(HashFile(path));
     line += '\n';
-    const bool existed = ::access(manifest.c_str(), F_OK) == 0;
-    const int fd = ::open(manifest.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    // Made by this call (O_EXCL), or another's to append to: only one made here is removed when
+    // its first line fails.
+    int fd = ::open(manifest.c_str(), O_RDWR | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    const bool created = fd >= 0;
+    if (!created && errno == EEXIST) fd = ::open(manifest.c_str(), O_RDWR | O_APPEND | O_CLOEXEC);
     if (fd < 0) throw OutputError(manifest, std::strerror(errno));
     // A line cut short by a crash of an earlier run (a requeued task appends to its file again)
     // is ended first, so that it does not swallow this one.
@@ -48,10 +51,15 @@ void AppendToManifest(const std::string& manifest, int frame, const std::string&
             // What was there stays as it was: the cut line is taken back (where that fails too,
             // readers skip a cut line), and a manifest this line was to begin is not left
             // behind empty.
+            // Only while nothing else was appended after this line's start.
             const int error = put < 0 ? errno : ENOSPC;
-            [[maybe_unused]] const bool takenBack = ::ftruncate(fd, size) == 0;
+            struct stat now {};
+            const bool oursAtTheEnd = ::fstat(fd, &now) == 0 && now.st_size == size + off_t(done);
+            if (oursAtTheEnd && done > 0) {
+                [[maybe_unused]] const bool takenBack = ::ftruncate(fd, size) == 0;
+            }
             ::close(fd);
-            if (!existed && size == 0) ::unlink(manifest.c_str());
+            if (created && oursAtTheEnd && size == 0) ::unlink(manifest.c_str());
             throw OutputError(manifest, std::strerror(error));
         }
         done += size_t(put);

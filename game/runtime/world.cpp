@@ -207,7 +207,13 @@ bool World::SetPose(ecs::Entity e, vec3 position, glm::quat rotation) {
     local->translation = position;
     local->rotation = rotation;
     registry_.MarkChanged<physics::LocalTransform>(e);
-    if (physics::RigidBody* body = registry_.Get<physics::RigidBody>(e)) {
+    // A dynamic body is moved at once; a static one keeps the pose the last step saw, so that
+    // the world finds it moved and wakes the sleepers it is moved into.
+    physics::RigidBody* body = registry_.Get<physics::RigidBody>(e);
+    const physics::Collider* collider = registry_.Get<physics::Collider>(e);
+    const bool dynamic = body && body->mass > 0.0f &&
+                         !(collider && collider->shape == physics::ColliderShape::kPlane);
+    if (dynamic) {
         physics::Teleport(*body, position, rotation);
         body->velocity = body->angularVelocity = vec3(0.0f);
     }
@@ -324,6 +330,14 @@ FrameStats World::Advance(float dt) {
         scheduler_.RunFrame(registry_, float(end - start));
         if (end >= frameEnd) break;
         start = end;
+    }
+    // Bodies due at the frame's very end appear in it, where they are due, posed as the
+    // constructor poses the first frame's.
+    const size_t beforeEnd = nextSpawn_;
+    SpawnDue(0.0, frameEnd);
+    if (nextSpawn_ != beforeEnd) {
+        transforms_.Update(registry_);
+        physics::UpdateSkins(registry_);
     }
     stats.spawned = uint32_t(nextSpawn_ - before);
     stats.simulateMs = timer.Milliseconds();

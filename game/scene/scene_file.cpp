@@ -314,6 +314,7 @@ class SceneParser {
         if (!j.is_array())
             throw InputError(file_, "spawners",
                              std::string("expected an array, got ") + j.type_name());
+        uint32_t rains = 0;
         for (size_t i = 0; i < j.size(); ++i) {
             JsonFields f(j[i], JsonIndexed("spawners", i), file_);
             EntityDesc proto = ParseEntity(f, out.scene);
@@ -327,9 +328,9 @@ class SceneParser {
             if (grid == rain) f.Fail("", "give exactly one of grid or rain");
             const std::vector<vec3> places =
                 grid ? GridPlaces(f, proto.local.translation, file_)
-                     // Rains that give no seed each get their own: with one default, two rains
-                     // over one region put every body of one inside a body of the other.
-                     : RainPlaces(f, BodyRadius(proto, out.scene), uint32_t(i) + 1, file_);
+                     // Rains that give no seed each get their own (the first keeps 1): with one
+                     // default, two rains over one region put every body of one inside another.
+                     : RainPlaces(f, BodyRadius(proto, out.scene), ++rains, file_);
             Reserve(f, grid ? "grid.count" : "rain.count", places.size());
             if (proto.body) CheckRigidBodyPlaces(f, grid ? "grid" : "rain", places);
             proto.sourceArray = "spawners";

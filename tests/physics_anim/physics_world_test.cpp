@@ -408,6 +408,13 @@ TEST(PhysicsWorldTest, StaticBodyPlacedOrMovedIntoASleeperWakesIt) {
     registry.Get<LocalTransform>(block)->translation = vec3(0.0f, 0.8f, 0.0f);
     world.Step(registry, 240);
     EXPECT_GT(Position(registry, sleeper).y, before + 0.45f);
+    // A plane placed under it later (outside the broad phase) wakes it too.
+    world.Step(registry, 20 * 120);
+    ASSERT_TRUE(registry.Get<RigidBody>(sleeper)->state.sleeping);
+    const float onBlock = Position(registry, sleeper).y;
+    AddPlane(registry, vec3(0.0f, onBlock, 0.0f), vec3(0.0f, 1.0f, 0.0f));
+    world.Step(registry, 240);
+    EXPECT_GT(Position(registry, sleeper).y, onBlock + 0.4f);
 }
 
 // A plane's normal is in its body's frame, turned by the body's rotation like every collider.

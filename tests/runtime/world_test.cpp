@@ -235,6 +235,12 @@ TEST(World, SpawnedBodiesFallFromTheirOwnTimeAtAnyFrameRate) {
         // The rendered pose lags the simulation by less than one 1/120 s step.
         EXPECT_NEAR(world.Scene().instances[0].Position()[1], fallen, 0.05f) << fps << " fps";
     }
+    // A body due exactly at a frame's end is in that frame (at 2 fps, frame 3 at 1.5 s).
+    World world(scene);
+    world.PlayAtFixedFrames(0.5f);
+    for (int frame = 0; frame < 3; ++frame) world.Advance(0.5f);
+    ASSERT_EQ(world.Scene().instances.size(), 1u);
+    EXPECT_NEAR(world.Scene().instances[0].Position()[1], 5.0f, 1e-4f);
 }
 
 // A deformation's clock is reduced to one period of its motion before the float deformers see

@@ -505,7 +505,7 @@ TEST(SceneFile, EveryShippedSceneParses) {
     EXPECT_EQ(parsed, scenes);
 }
 
-// Rains that give no seed each get their own (1 + the spawner's index): with one default seed
+// Rains that give no seed each get their own (n for the n-th rain): with one default seed
 // for all, two rains over one region put every body of one inside a body of the other.
 TEST(SceneFile, RainsWithoutASeedFallAtDifferentPlaces) {
     const std::string rain = R"({"model": "b", "rain": {"count": 20, "min": [-4, 1, -4],
