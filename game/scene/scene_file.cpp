@@ -239,7 +239,7 @@ class SceneParser {
             Reserve(f, "model", GltfEntityCount(*gltf_));
             const std::optional<Camera> camera =
                 InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
-                                physics::ToMatrix(out.entities.back().local), phase);
+                                StartWorld(out.entities.back()), phase);
             if (camera && !hasCamera_) {
                 out.scene.camera = *camera;
                 hasCamera_ = true;
@@ -336,16 +336,8 @@ class SceneParser {
             proto.sourceArray = "spawners";
             proto.sourceIndex = uint32_t(i);
             for (const vec3& p : places) {
-                EntityDesc e = proto;
-                e.local.translation = p;
-                if (e.animator) {
-                    e.animator->base.translation = p;
-                    e.animator->keyOffset = p - proto.local.translation;
-                    for (physics::ProceduralMotion& m : e.animator->motions)
-                        if (auto* orbit = std::get_if<physics::Orbit>(&m))
-                            orbit->centre += p - proto.local.translation;
-                }
-                out.entities.push_back(e);
+                out.entities.push_back(proto);
+                PlaceCopy(out.entities.back(), p);
             }
             f.Finish();
         }
@@ -369,16 +361,39 @@ class SceneParser {
             EntityDesc root = proto;
             root.sourceArray = "spawners";
             root.sourceIndex = index;
-            root.local.translation = places[k];
-            if (root.animator) root.animator->base.translation = places[k];
+            PlaceCopy(root, places[k]);
             out.entities.push_back(root);
             const double golden = 0.6180339887498949;
             const double fraction = std::fmod(double(k) * golden, 1.0);
-            InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1),
-                            physics::ToMatrix(root.local),
-                            double(phase) + double(spread) * fraction);
+            const std::optional<Camera> camera =
+                InstantiateGltf(*gltf_, out, int32_t(out.entities.size() - 1), StartWorld(root),
+                                double(phase) + double(spread) * fraction);
+            // The first place's camera, as an instance of the file would give it.
+            if (camera && !hasCamera_) {
+                out.scene.camera = *camera;
+                hasCamera_ = true;
+            }
             perPlace = out.entities.size() - before;
         }
+    }
+
+    // A spawner's copy moved from the spawner's position to place p: its pose, and its animation
+    // with it (translation keys and an orbit's centre are authored about the spawner's position).
+    static void PlaceCopy(EntityDesc& e, vec3 p) {
+        const vec3 offset = p - e.local.translation;
+        e.local.translation = p;
+        if (!e.animator) return;
+        e.animator->base.translation = p;
+        e.animator->keyOffset += offset;
+        for (physics::ProceduralMotion& m : e.animator->motions)
+            if (auto* orbit = std::get_if<physics::Orbit>(&m)) orbit->centre += offset;
+    }
+
+    // Where an entity's world starts: its animation's first pose where it has one (the pose
+    // FinishLoadedScene gives it), else its position. A glTF file's lights and cameras are
+    // placed from it.
+    static glm::mat4 StartWorld(const EntityDesc& e) {
+        return physics::ToMatrix(e.animator ? physics::EvaluateAnimator(*e.animator) : e.local);
     }
 
     // The radius of a ball about the entity's model that a rain keeps apart: the sphere's own for a
