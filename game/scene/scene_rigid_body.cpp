@@ -111,6 +111,16 @@ void CheckRigidBodyPlaces(const JsonFields& f, const std::string& field,
     }
 }
 
+// The instance or spawner that brings the most of these bodies: the one to give room first.
+static std::string PackedSource(const std::vector<const EntityDesc*>& bodies) {
+    std::map<std::pair<std::string, uint32_t>, size_t> counts;
+    for (const EntityDesc* e : bodies) ++counts[{e->sourceArray, e->sourceIndex}];
+    const auto most =
+        std::max_element(counts.begin(), counts.end(),
+                         [](const auto& a, const auto& b) { return a.second < b.second; });
+    return most->first.first + "[" + std::to_string(most->first.second) + "]";
+}
+
 void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file) {
     // The bodies that may appear together. A frame spawns every body whose time has come, and a
     // frame of play is at most 1 s of scene time (its --fps is at least 1), so bodies of times
@@ -118,17 +128,23 @@ void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file)
     // the next, which covers every such pair (and some up to 2 s apart), the ones of time 0
     // (the static scenery) first.
     std::map<int64_t, std::vector<physics::BroadPhaseBox>> bySecond;
+    std::map<int64_t, std::vector<const EntityDesc*>> sources;  // each box's entity
     for (const EntityDesc& e : scene.entities) {
         if (!e.body || e.collider.shape == physics::ColliderShape::kPlane) continue;
         const vec3 half = physics::WorldHalfExtent(e.collider, glm::mat3_cast(e.local.rotation));
-        bySecond[int64_t(std::ceil(double(e.spawnTime)))].push_back(
+        const int64_t second = int64_t(std::ceil(double(e.spawnTime)));
+        bySecond[second].push_back(
             {e.local.translation - half, e.local.translation + half, e.body->mass == 0});
+        sources[second].push_back(&e);
     }
     for (auto second = bySecond.begin(); second != bySecond.end(); ++second) {
         std::vector<physics::BroadPhaseBox> boxes = second->second;
+        std::vector<const EntityDesc*> from = sources[second->first];
         if (const auto next = std::next(second);
-            next != bySecond.end() && next->first == second->first + 1)
+            next != bySecond.end() && next->first == second->first + 1) {
             boxes.insert(boxes.end(), next->second.begin(), next->second.end());
+            from.insert(from.end(), sources[next->first].begin(), sources[next->first].end());
+        }
         // A few touching neighbours each, as in any pile, and room to spare; bodies packed into
         // one place touch every other (1,000 balls in one spot took 830 MB a step, 4,000 more
         // than 8 GB), and the simulation holds every touching pair.
@@ -137,10 +153,10 @@ void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file)
         sweep.SetPairLimit(limit);
         std::vector<std::pair<uint32_t, uint32_t>> pairs;
         if (sweep.FindPairs(boxes, pairs)) continue;
-        const int64_t from = std::max<int64_t>(second->first - 1, 0);
-        throw InputError(file, "rigid_body",
+        const int64_t start = std::max<int64_t>(second->first - 1, 0);
+        throw InputError(file, PackedSource(from) + ".rigid_body",
                          std::to_string(boxes.size()) + " rigid bodies that start between " +
-                             std::to_string(from) + " and " + std::to_string(second->first + 1) +
+                             std::to_string(start) + " and " + std::to_string(second->first + 1) +
                              " s (so maybe in one frame) overlap in more than " +
                              std::to_string(limit) +
                              " pairs (packed into one place), each of which the simulation "

@@ -233,7 +233,7 @@ TEST(SceneFile, RigidBodiesBeyondWhatTheSimulationHandlesAreRejected) {
     ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
                     "spawners": [{"model": "b", "rigid_body": {},
                                   "grid": {"count": [10, 10, 10], "spacing": 1e-6}}]})",
-                "rigid_body",
+                "spawners[0].rigid_body",
                 "1000 rigid bodies that start between 0 and 1 s (so maybe in one frame) overlap "
                 "in more than");
     // Bodies of different times that one frame spawns together count together (two packed
@@ -243,7 +243,7 @@ TEST(SceneFile, RigidBodiesBeyondWhatTheSimulationHandlesAreRejected) {
     ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
                     "spawners": [{"model": "b", "time": 1.5, )" +
                     packed480 + R"(, {"model": "b", "time": 2.2, )" + packed480 + "]}",
-                "rigid_body", "960 rigid bodies that start between 1 and 3 s");
+                "spawners[0].rigid_body", "960 rigid bodies that start between 1 and 3 s");
     // Many bodies apart are not packed, however many meet on one axis (a 40^3 lattice of
     // touching balls, 64,000); nor are bodies of one place that appear at different times, or
     // static ones, which never pair with each other.
