@@ -153,11 +153,16 @@ RT_HD inline PixelResult TraceRay(const RenderSceneView& scene, const Ray& prima
         vec3 refracted(0.0f);
         if constexpr ((kFeatures & kFeatureRefraction) != 0) {
             if (m.transmissivity > 0.0f) {
-                // Relative index across the boundary in the direction of travel.
-                const float eta = s.frontFace ? m.ior : 1.0f / m.ior;
-                const float cosI = glm::dot(toViewer, s.shadingNormal);
+                // Relative index across the boundary in the direction of travel; a thin wall is
+                // entered and left at once, unbent.
+                const bool thin = m.thinWalled != 0;
+                const float eta = s.frontFace || thin ? m.ior : 1.0f / m.ior;
+                const float cosI = thin ? fabsf(glm::dot(toViewer, s.shadingNormal))
+                                        : glm::dot(toViewer, s.shadingNormal);
                 const float fresnel = FresnelDielectric(cosI, eta);
-                if (fresnel < 1.0f && Refract(toViewer, s.shadingNormal, eta, &refracted)) {
+                if (thin) refracted = -toViewer;
+                if (fresnel < 1.0f &&
+                    (thin || Refract(toViewer, s.shadingNormal, eta, &refracted))) {
                     refractWeight = m.transmissivity * (1.0f - fresnel);
                     reflectWeight += m.transmissivity * fresnel;
                 } else {

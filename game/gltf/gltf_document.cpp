@@ -1,15 +1,18 @@
 #include "game/gltf/gltf_document.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
 #include "game/gltf/gltf_draco.h"
+#include "game/gltf/gltf_glb.h"
 #include "game/gltf/gltf_image_loader.h"
 #include "game/gltf/gltf_precheck.h"
 #include "game/scene/json_fields.h"
@@ -51,6 +54,61 @@ std::string WithoutOptionalFieldErrors(const std::string& err, int* skippedChann
     return out;
 }
 
+// Whether tinygltf 2.7, which decodes a uri as an HTML form does ('+' a space; '%' and the two
+// characters after it one byte, hex digits or not), would read another path from URI than RFC
+// 3986's, which glTF uses and DecodeGltfUri reads.
+bool TinygltfMisreads(const std::string& uri) {
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '+') return true;
+        if (uri[i] == '%' && !(i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
+                               std::isxdigit(uint8_t(uri[i + 2]))))
+            return true;
+    }
+    return false;
+}
+
+std::string PercentEncoded(const std::string& path) {
+    static const char kHex[] = "0123456789ABCDEF";
+    std::string out;
+    for (const char c : path) {
+        const uint8_t u = uint8_t(c);
+        if (std::isalnum(u) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
+            out += c;
+        } else {
+            out += '%';
+            out += kHex[u >> 4];
+            out += kHex[u & 15];
+        }
+    }
+    return out;
+}
+
+// The file (BYTES, a GLB when BINARY) with every external buffer and image uri that tinygltf
+// would misread ("a+b.bin", "50%.png") percent-encoded, so that it opens the file the uri names
+// (a '+' is a plus in a uri, not a space); nullopt when no uri needs it.
+std::optional<std::string> WithUrisTinygltfReads(const std::string& file, const std::string& bytes,
+                                                 bool binary) {
+    std::optional<GlbChunks> glb;
+    if (binary) glb = SplitGlb(bytes);
+    const std::string& json = binary ? glb->json : bytes;
+    if (json.find_first_of("+%") == std::string::npos) return std::nullopt;
+    Json root = ParseJson(json, file, DuplicateKeys::kLastWins);
+    bool changed = false;
+    for (const char* array : {"buffers", "images"}) {
+        if (!root.contains(array) || !root[array].is_array()) continue;
+        for (Json& element : root[array]) {
+            if (!element.is_object() || !element.contains("uri") || !element["uri"].is_string())
+                continue;
+            const std::string uri = element["uri"].get<std::string>();
+            if (uri.rfind("data:", 0) == 0 || !TinygltfMisreads(uri)) continue;
+            element["uri"] = PercentEncoded(DecodeGltfUri(uri));
+            changed = true;
+        }
+    }
+    if (!changed) return std::nullopt;
+    return binary ? MakeGlb(root.dump(), glb->bin, glb->hasBin) : root.dump();
+}
+
 // tinygltf's reader of external buffers and images: rtrt's, so that a uri naming a device or a
 // FIFO is refused instead of read for ever or waited on, and one over 2 GiB before it is read.
 bool ReadExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
@@ -80,8 +138,10 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
     const std::string dir = std::filesystem::path(file_).parent_path().string();
     const std::optional<DracoDecoded> draco =
         DecodeDracoPrimitives(file_, checked.bytes, checked.binary, dir);
-    const std::string& bytes = draco ? draco->glb : checked.bytes;
     const bool binary = draco ? true : checked.binary;
+    const std::optional<std::string> withUris =
+        WithUrisTinygltfReads(file_, draco ? draco->glb : checked.bytes, binary);
+    const std::string& bytes = withUris ? *withUris : draco ? draco->glb : checked.bytes;
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({&IsRegularFile, &tinygltf::ExpandFilePath, &ReadExternalFile,
                            &tinygltf::WriteWholeFile, nullptr});

@@ -10,6 +10,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
+#include "game/gltf/gltf_glb.h"
 #include "game/gltf/gltf_precheck.h"
 #include "game/scene/json_fields.h"
 
@@ -23,50 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
-constexpr uint32_t kChunkJson = 0x4E4F534Au;
-constexpr uint32_t kChunkBin = 0x004E4942u;
-
-uint32_t ReadU32(const std::string& bytes, size_t at) {
-    uint32_t v;
-    std::memcpy(&v, bytes.data() + at, 4);
-    return v;
-}
-
-// A GLB's JSON text and BIN data (ReadCheckedGltf has checked the container).
-struct GlbChunks {
-    std::string json, bin;
-    bool hasBin = false;
-};
-
-GlbChunks SplitGlb(const std::string& bytes) {
-    GlbChunks out;
-    const uint32_t jsonLength = ReadU32(bytes, 12);
-    out.json = bytes.substr(20, jsonLength);
-    const size_t at = 20 + size_t(jsonLength);
-    if (bytes.size() - at >= 8 && ReadU32(bytes, at + 4) == kChunkBin) {
-        out.bin = bytes.substr(at + 8, ReadU32(bytes, at));
-        out.hasBin = true;
-    }
-    return out;
-}
-
-std::string MakeGlb(std::string json, std::string bin) {
-    while (json.size() % 4) json += ' ';
-    while (bin.size() % 4) bin += '\0';
-    std::string out;
-    auto u32 = [&](uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
-    out += "glTF";
-    u32(2);
-    u32(uint32_t(12 + 8 + json.size() + 8 + bin.size()));
-    u32(uint32_t(json.size()));
-    u32(kChunkJson);
-    out += json;
-    u32(uint32_t(bin.size()));
-    u32(kChunkBin);
-    out += bin;
-    return out;
-}
-
 // RFC 4648 base64 (a data URI's payload); nullopt for a character outside the alphabet.
 std::optional<std::string> DecodeBase64(const std::string& text) {
     std::string out;
@@ -377,7 +334,7 @@ bool DracoAvailable() { return RTRT_WITH_DRACO != 0; }
 std::optional<DracoDecoded> DecodeDracoPrimitives(const std::string& file, const std::string& bytes,
                                                   bool binary, const std::string& dir) {
     const std::string_view json =
-        binary ? std::string_view(bytes).substr(20, ReadU32(bytes, 12)) : std::string_view(bytes);
+        binary ? std::string_view(bytes).substr(20, GlbWord(bytes, 12)) : std::string_view(bytes);
     if (json.find(kDraco) == std::string_view::npos) return std::nullopt;
     DracoDecoded out;
     std::optional<GlbChunks> glb;

@@ -22,9 +22,9 @@ namespace fs = std::filesystem;
 
 void CheckExtensions(GltfDocument& doc) {
     static const std::set<std::string> kUsed = {
-        "KHR_lights_punctual",        "KHR_materials_transmission",         "KHR_materials_ior",
-        "KHR_materials_specular",     "KHR_materials_emissive_strength",    "KHR_texture_transform",
-        "KHR_draco_mesh_compression", "KHR_materials_pbrSpecularGlossiness"};
+        "KHR_lights_punctual",        "KHR_materials_transmission",      "KHR_materials_ior",
+        "KHR_materials_specular",     "KHR_materials_emissive_strength", "KHR_texture_transform",
+        "KHR_draco_mesh_compression", "KHR_mesh_quantization",           "KHR_materials_volume"};
     for (const std::string& ext : doc.Model().extensionsRequired)
         if (!kUsed.count(ext))
             doc.Warn("ext:" + ext, "extensionsRequired: " + ext +

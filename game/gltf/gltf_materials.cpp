@@ -91,6 +91,16 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
         number(extension("KHR_materials_transmission", "transmissionFactor", 0.0),
                "extensions.KHR_materials_transmission.transmissionFactor", 0, 1);
     const float transmission = infiniteIor ? 0.0f : transmissionFactor;
+    // KHR_materials_transmission alone describes a thin wall (a window pane, a leaf): refraction
+    // needs KHR_materials_volume with a thickness above 0 (its default is 0, thin).
+    const float thickness = number(extension("KHR_materials_volume", "thicknessFactor", 0.0),
+                                   "extensions.KHR_materials_volume.thicknessFactor", 0, 1e30);
+    const bool thinWalled = thickness == 0.0f;
+    if (g.extensions.count("KHR_materials_volume") &&
+        (g.extensions.at("KHR_materials_volume").Has("attenuationColor") ||
+         g.extensions.at("KHR_materials_volume").Has("attenuationDistance")))
+        doc_.Warn("volume-attenuation", at + ".extensions.KHR_materials_volume: attenuation "
+                                             "inside the volume is not applied");
     const float specularFactor = number(extension("KHR_materials_specular", "specularFactor", 1.0),
                                         "extensions.KHR_materials_specular.specularFactor", 0, 1);
     vec3 specularColour(1.0f);
@@ -115,7 +125,8 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     const vec3 emissive = colour(g.emissiveFactor, "emissiveFactor", vec3(0.0f)) * strength;
     for (const auto& [name, value] : g.extensions)
         if (name != "KHR_materials_transmission" && name != "KHR_materials_ior" &&
-            name != "KHR_materials_specular" && name != "KHR_materials_emissive_strength")
+            name != "KHR_materials_specular" && name != "KHR_materials_emissive_strength" &&
+            name != "KHR_materials_volume")
             doc_.Warn("material:" + name,
                       at + ".extensions." + name + ": not supported; the material ignores it");
     if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
@@ -140,6 +151,7 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     m.reflectivity =
         std::min(std::max(std::max(f0.x, f0.y), f0.z) * smooth, 1.0f - m.transmissivity);
     m.ior = ior;
+    m.thinWalled = thinWalled ? 1u : 0u;
     m.baseColorTexture = textures_.Slot({pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
                                          &pbr.baseColorTexture.extensions},
                                         at + ".pbrMetallicRoughness.baseColorTexture", true);
@@ -153,6 +165,7 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     p.specularWeight = specularFactor;
     p.transmission = transmission;
     p.ior = ior;
+    p.thinWalled = thinWalled ? 1u : 0u;
     p.normalScale = number(g.normalTexture.scale, "normalTexture.scale", -1e3, 1e3);
     p.occlusionStrength = number(g.occlusionTexture.strength, "occlusionTexture.strength", 0, 1);
     p.metallicRoughnessTexture =

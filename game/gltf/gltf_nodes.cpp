@@ -255,10 +255,16 @@ void ReadGltfCamerasAndLights(GltfDocument& doc, GltfAsset& asset) {
         const tinygltf::Camera& c = model.cameras[i];
         GltfCamera camera;
         if (c.type == "perspective") {
-            const double fov = c.perspective.yfov * 180.0 / 3.14159265358979323846;
-            if (!(fov >= 1.0 && fov <= 179.0))
+            // glTF allows any angle above 0 (and below pi); a telephoto's is under a degree.
+            const double pi = 3.14159265358979323846;
+            const double fov = c.perspective.yfov * 180.0 / pi;
+            if (!(c.perspective.yfov > 0.0 && c.perspective.yfov < pi))
                 doc.Fail(JsonIndexed("cameras", i) + ".perspective.yfov",
-                         "must be between 1 and 179 degrees (in radians), got " +
+                         "must be above 0 and below pi (radians), got " +
+                             std::to_string(c.perspective.yfov));
+            if (c.perspective.yfov < 1e-6)
+                doc.Fail(JsonIndexed("cameras", i) + ".perspective.yfov",
+                         "is below 1e-6 radians, narrower than rtrt traces, got " +
                              std::to_string(c.perspective.yfov));
             camera.fovYDegrees = float(fov);
             if (FiniteFloat(c.perspective.aspectRatio) && c.perspective.aspectRatio > 0.0)

@@ -285,7 +285,6 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
     CheckJsonDepth(file, json);
     const Json root = ParseJson(json, file, DuplicateKeys::kLastWins);
     if (!root.is_object()) throw InputError(file, "", "expected a JSON object (a glTF document)");
-    *channels = ChannelsWithNodes(root);
     for (const char* array :
          {"nodes", "scenes", "meshes", "accessors", "bufferViews", "buffers", "images", "textures",
           "materials", "animations", "cameras", "skins", "samplers"}) {
@@ -305,6 +304,7 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
                                          std::string(slot) + f.field, f.kind);
         }
     }
+    *channels = ChannelsWithNodes(root);  // animations is an array of objects by now
     CheckRequiredGltfFields(file, root);
     // tinygltf reads 5124 (a 32-bit signed integer, which glTF does not have) as an integer
     // type, and float positions stored so were read as integers.

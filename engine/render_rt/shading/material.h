@@ -26,7 +26,9 @@ struct Material {
     // kNoPbrMaterial: Blinn-Phong as above; else an index into the scene's PbrMaterial table, and
     // the hit is shaded by the glTF metallic-roughness BRDF instead (pbr_material.h).
     uint32_t pbrMaterial = kNoPbrMaterial;
-    float pad = 0.0f;
+    // 1: a thin wall (a glTF transmission without KHR_materials_volume): what is transmitted goes
+    // on unbent, with F at the wall's face; 0: the surface of a volume of index ior.
+    uint32_t thinWalled = 0;
 };
 static_assert(sizeof(Material) == 64);
 

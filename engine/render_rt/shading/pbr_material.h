@@ -31,7 +31,10 @@ struct PbrMaterial {
     // times specularWeight, and the colour (sRGB) times dielectricF0.
     uint32_t specularTexture = kNoTexture;
     uint32_t specularColorTexture = kNoTexture;
-    uint32_t pad[2] = {0, 0};
+    // 1 without KHR_materials_volume (or with thickness 0): a thin wall, which what it transmits
+    // passes through unbent; 0: the surface of a refracting volume.
+    uint32_t thinWalled = 0;
+    uint32_t pad = 0;
 };
 static_assert(sizeof(PbrMaterial) == 112);
 

@@ -113,7 +113,12 @@ RT_HD inline HitShading ShadePbr(const RenderSceneView& scene, const SceneHit& h
     out.local = in.emissive + ambient + direct;
     if constexpr ((kFeatures & kFeatureRefraction) != 0) {
         const float transmitted = p.transmission * (1.0f - p.metallic);
-        if (transmitted > 0.0f) {
+        if (transmitted > 0.0f && pm.thinWalled != 0) {
+            // A thin wall: what passes its two faces goes on in the ray's own direction.
+            const float fresnel = FresnelDielectric(fabsf(glm::dot(toViewer, n)), pm.ior);
+            out.refracted = -toViewer;
+            out.refractWeight = transmitted * (1.0f - fresnel) * p.baseColor;
+        } else if (transmitted > 0.0f) {
             const float eta = s.frontFace ? pm.ior : 1.0f / pm.ior;
             const float fresnel = FresnelDielectric(glm::dot(toViewer, n), eta);
             if (fresnel < 1.0f && Refract(toViewer, n, eta, &out.refracted))
