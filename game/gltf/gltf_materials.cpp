@@ -96,7 +96,7 @@ uint32_t GltfMaterials::Id(int index, const std::string& field) {
     const float thickness = number(extension("KHR_materials_volume", "thicknessFactor", 0.0),
                                    "extensions.KHR_materials_volume.thicknessFactor", 0, 1e30);
     const bool thinWalled = thickness == 0.0f;
-    if (g.extensions.count("KHR_materials_volume") &&
+    if (!thinWalled && g.extensions.count("KHR_materials_volume") &&
         (g.extensions.at("KHR_materials_volume").Has("attenuationColor") ||
          g.extensions.at("KHR_materials_volume").Has("attenuationDistance")))
         doc_.Warn("volume-attenuation", at + ".extensions.KHR_materials_volume: attenuation "

@@ -262,9 +262,12 @@ void ReadGltfCamerasAndLights(GltfDocument& doc, GltfAsset& asset) {
                 doc.Fail(JsonIndexed("cameras", i) + ".perspective.yfov",
                          "must be above 0 and below pi (radians), got " +
                              std::to_string(c.perspective.yfov));
-            if (c.perspective.yfov < 1e-6)
+            // Float ray directions resolve about 1e-7 of the view's width: below 1e-3 radians an
+            // image thousands of pixels high would repeat rows.
+            if (c.perspective.yfov < 1e-3)
                 doc.Fail(JsonIndexed("cameras", i) + ".perspective.yfov",
-                         "is below 1e-6 radians, narrower than rtrt traces, got " +
+                         "is below 1e-3 radians (0.06 degrees), narrower than float rays resolve, "
+                         "got " +
                              std::to_string(c.perspective.yfov));
             camera.fovYDegrees = float(fov);
             if (FiniteFloat(c.perspective.aspectRatio) && c.perspective.aspectRatio > 0.0)

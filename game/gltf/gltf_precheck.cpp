@@ -108,6 +108,8 @@ constexpr FieldKind kFieldKinds[] = {
     {"materials", "extensions", JsonKind::kObject},
     {"materials", "extensions.KHR_materials_transmission", JsonKind::kObject},
     {"materials", "extensions.KHR_materials_transmission.transmissionFactor", JsonKind::kNumber},
+    {"materials", "extensions.KHR_materials_volume", JsonKind::kObject},
+    {"materials", "extensions.KHR_materials_volume.thicknessFactor", JsonKind::kNumber},
     {"materials", "extensions.KHR_materials_ior", JsonKind::kObject},
     {"materials", "extensions.KHR_materials_ior.ior", JsonKind::kNumber},
     {"materials", "extensions.KHR_materials_specular", JsonKind::kObject},

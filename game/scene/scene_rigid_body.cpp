@@ -111,14 +111,31 @@ void CheckRigidBodyPlaces(const JsonFields& f, const std::string& field,
     }
 }
 
-// The instance or spawner that brings the most of these bodies: the one to give room first.
-static std::string PackedSource(const std::vector<const EntityDesc*>& bodies) {
-    std::map<std::pair<std::string, uint32_t>, size_t> counts;
-    for (const EntityDesc* e : bodies) ++counts[{e->sourceArray, e->sourceIndex}];
-    const auto most =
-        std::max_element(counts.begin(), counts.end(),
-                         [](const auto& a, const auto& b) { return a.second < b.second; });
-    return most->first.first + "[" + std::to_string(most->first.second) + "]";
+// The instance or spawner to give room first among BODIES (BOXES, one each) that overlap in too
+// many pairs: one whose bodies alone do, else the one that brings the most moving bodies (static
+// ones never pair with each other).
+static std::string PackedSource(const std::vector<const EntityDesc*>& bodies,
+                                const std::vector<physics::BroadPhaseBox>& boxes) {
+    std::map<std::pair<std::string, uint32_t>, std::vector<physics::BroadPhaseBox>> bySource;
+    std::map<std::pair<std::string, uint32_t>, size_t> moving;
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        const std::pair<std::string, uint32_t> source{bodies[i]->sourceArray,
+                                                      bodies[i]->sourceIndex};
+        bySource[source].push_back(boxes[i]);
+        moving[source] += boxes[i].isStatic ? 0 : 1;
+    }
+    auto name = [](const std::pair<std::string, uint32_t>& s) {
+        return s.first + "[" + std::to_string(s.second) + "]";
+    };
+    for (const auto& [source, own] : bySource) {
+        physics::SweepAndPrune sweep;
+        sweep.SetPairLimit(32 * own.size() + 100000);
+        std::vector<std::pair<uint32_t, uint32_t>> pairs;
+        if (!sweep.FindPairs(own, pairs)) return name(source);
+    }
+    return name(std::max_element(moving.begin(), moving.end(), [](const auto& a, const auto& b) {
+                    return a.second < b.second;
+                })->first);
 }
 
 void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file) {
@@ -154,7 +171,7 @@ void CheckRigidBodiesHaveRoom(const LoadedScene& scene, const std::string& file)
         std::vector<std::pair<uint32_t, uint32_t>> pairs;
         if (sweep.FindPairs(boxes, pairs)) continue;
         const int64_t start = std::max<int64_t>(second->first - 1, 0);
-        throw InputError(file, PackedSource(from) + ".rigid_body",
+        throw InputError(file, PackedSource(from, boxes) + ".rigid_body",
                          std::to_string(boxes.size()) + " rigid bodies that start between " +
                              std::to_string(start) + " and " + std::to_string(second->first + 1) +
                              " s (so maybe in one frame) overlap in more than " +

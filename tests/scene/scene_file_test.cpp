@@ -236,6 +236,12 @@ TEST(SceneFile, RigidBodiesBeyondWhatTheSimulationHandlesAreRejected) {
                 "spawners[0].rigid_body",
                 "1000 rigid bodies that start between 0 and 1 s (so maybe in one frame) overlap "
                 "in more than");
+    ExpectError(R"({"models": {"b": {"type": "sphere", "radius": 0.5}}, "instances": [],
+                    "spawners": [{"model": "b", "rigid_body": {"static": true},
+                                  "grid": {"count": [50, 1, 50], "spacing": 2}},
+                                 {"model": "b", "rigid_body": {}, "position": [0, 9, 0],
+                                  "grid": {"count": [10, 10, 10], "spacing": 1e-6}}]})",
+                "spawners[1].rigid_body", "3500 rigid bodies");  // the packed one, not the most
     // Bodies of different times that one frame spawns together count together (two packed
     // spawners 1 ms apart, each within the limit alone, took 763 MB in three frames).
     const std::string packed480 =
