@@ -473,6 +473,12 @@ int RunStatus(const std::string& folder) {
             holder->empty() ? "" : (" (" + *holder + ")").c_str());
         return kExitIncomplete;
     }
+    // Every frame done: only the assembly is left, which needs no scene.
+    if (check.done.size() == size_t(f.frames.Count())) {
+        std::printf("rtrt farm: to finish it: rtrt farm --assemble %s\n",
+                    ShellQuote(job.folder).c_str());
+        return kExitIncomplete;
+    }
     if (const std::string problem = SceneProblem(job); !problem.empty()) {
         std::printf("rtrt farm: the tasks refuse the scene now: %s\n", problem.c_str());
         return kExitIncomplete;

@@ -50,6 +50,7 @@ struct PlayOptions {
     bool finishStages = false;
     std::string frames;  // N, or A:B (headless)
     uint32_t spp = 1;
+    bool sppGiven = false;  // --spp on the command line, its default value included
     double fps = 60.0;
     OutputOptions display;  // exposure and tone map
 };
@@ -209,7 +210,7 @@ void CheckModeOptions(const PlayOptions& o) {
         if (o.finishStages)
             throw InputError("--finish-stages", "", "is for the window; it is not headless");
     } else {
-        if (o.spp != 1)
+        if (o.sppGiven)
             throw InputError("--spp", "", "is for --headless frames; the window traces one sample");
         if (!o.manifest.empty()) throw InputError("--manifest", "", "is for --headless frames");
         if (!o.sceneChecksum.empty())
@@ -349,10 +350,11 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
     cmd->add_option("--frames", options->frames,
                     "Headless: frames to write, N (0 to N-1) or A:B (A to B-1, each exactly as a "
                     "run from frame 0 writes it); window: frames to show before closing");
-    cmd->add_option("--spp", options->spp,
-                    "Samples per pixel, n x n stratified (1, 4, 9, 16...), for offline quality")
-        ->check(CLI::IsMember({1u, 4u, 9u, 16u, 25u, 36u, 49u, 64u}))
-        ->capture_default_str();
+    CLI::Option* spp =
+        cmd->add_option("--spp", options->spp,
+                        "Samples per pixel, n x n stratified (1, 4, 9, 16...), for offline quality")
+            ->check(CLI::IsMember({1u, 4u, 9u, 16u, 25u, 36u, 49u, 64u}))
+            ->capture_default_str();
     cmd->add_option("--manifest", options->manifest,
                     "Headless: append a line per finished frame to this file (frame, file, "
                     "bytes, XXH3-64 checksum), as rtrt farm's tasks do");
@@ -381,7 +383,8 @@ void AddPlayCommand(CLI::App& app, int* exitCode) {
     AddGpusOption(cmd, &options->gpus);
     AddPhysicsSolverOption(cmd, &options->physicsSolver);
     AddOutputOptions(cmd, &options->display);
-    cmd->callback([options, exitCode] {
+    cmd->callback([options, exitCode, spp] {
+        options->sppGiven = spp->count() > 0;
         EndWithParent();  // a farm's task ends with its farm (rtrt farm --local)
         RunPlay(*options);
         *exitCode = kExitOk;

@@ -94,12 +94,12 @@ void AssembleVideo(const FarmJob& job) {
     const std::string listFile = job.folder + "/contact_sheet.ffconcat";
     OutputFile list(listFile);  // never committed: removed after
     std::string text = "ffconcat version 1.0\n";
-    for (int frame : sheet.frames)
-        text += "file 'frames/" + std::filesystem::path(FrameFile(job, frame)).filename().string() +
-                "'\n";
+    // Absolute file: entries: ffmpeg resolves a relative one against the list's path as a URL,
+    // where a '?' in the job's folder starts a query (and the frames were looked up elsewhere).
+    // The folder holds no quote or backslash (JobFromOptions), so it needs no escaping here.
+    for (int frame : sheet.frames) text += "file 'file:" + FrameFile(job, frame) + "'\n";
     list.Write(text.data(), text.size());
     list.Finish(/*durable=*/false);
-    // The list lies in the job's folder: ffmpeg takes its entries as relative to it.
     RunFfmpeg({"-f", "concat", "-safe", "0", "-i", "file:" + list.TemporaryPath(), "-vf",
                "scale=" + std::to_string(sheet.thumbWidth) + ":" +
                    std::to_string(sheet.thumbHeight) + ",tile=" + std::to_string(sheet.columns) +

@@ -83,15 +83,17 @@ std::string PercentEncoded(const std::string& path) {
     return out;
 }
 
-// The file (BYTES, a GLB when BINARY) with every external buffer and image uri that tinygltf
-// would misread ("a+b.bin", "50%.png") percent-encoded, so that it opens the file the uri names
-// (a '+' is a plus in a uri, not a space); nullopt when no uri needs it.
-std::optional<std::string> WithUrisTinygltfReads(const std::string& file, const std::string& bytes,
-                                                 bool binary) {
+// The file (BYTES, a GLB when BINARY) as tinygltf 2.7 reads it as glTF means it: every external
+// buffer and image uri that it would misread ("a+b.bin", "50%.png") percent-encoded, so that it
+// opens the file the uri names (a '+' is a plus in a uri, not a space), and a GLB without the
+// chunk of unknown type that follows its JSON; nullopt when nothing needs it.
+std::optional<std::string> AsTinygltfReadsIt(const std::string& file, const std::string& bytes,
+                                             bool binary) {
     std::optional<GlbChunks> glb;
     if (binary) glb = SplitGlb(bytes);
     const std::string& json = binary ? glb->json : bytes;
-    if (json.find_first_of("+%") == std::string::npos) return std::nullopt;
+    const bool dropChunk = binary && glb->unknownAfterJson;
+    if (!dropChunk && json.find_first_of("+%") == std::string::npos) return std::nullopt;
     Json root = ParseJson(json, file, DuplicateKeys::kLastWins);
     bool changed = false;
     for (const char* array : {"buffers", "images"}) {
@@ -105,7 +107,7 @@ std::optional<std::string> WithUrisTinygltfReads(const std::string& file, const 
             changed = true;
         }
     }
-    if (!changed) return std::nullopt;
+    if (!changed && !dropChunk) return std::nullopt;
     return binary ? MakeGlb(root.dump(), glb->bin, glb->hasBin) : root.dump();
 }
 
@@ -140,7 +142,7 @@ GltfDocument::GltfDocument(std::string file) : file_(std::move(file)) {
         DecodeDracoPrimitives(file_, checked.bytes, checked.binary, dir);
     const bool binary = draco ? true : checked.binary;
     const std::optional<std::string> withUris =
-        WithUrisTinygltfReads(file_, draco ? draco->glb : checked.bytes, binary);
+        AsTinygltfReadsIt(file_, draco ? draco->glb : checked.bytes, binary);
     const std::string& bytes = withUris ? *withUris : draco ? draco->glb : checked.bytes;
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({&IsRegularFile, &tinygltf::ExpandFilePath, &ReadExternalFile,

@@ -24,6 +24,8 @@ GlbChunks SplitGlb(const std::string& bytes) {
     if (bytes.size() - at >= 8 && GlbWord(bytes, at + 4) == kChunkBin) {
         out.bin = bytes.substr(at + 8, GlbWord(bytes, at));
         out.hasBin = true;
+    } else if (bytes.size() - at >= 8) {
+        out.unknownAfterJson = true;
     }
     return out;
 }

@@ -9,6 +9,9 @@ namespace rtrt {
 struct GlbChunks {
     std::string json, bin;
     bool hasBin = false;
+    // The chunk after the JSON is of a type glTF does not define (which readers must ignore, and
+    // tinygltf 2.7 refuses there).
+    bool unknownAfterJson = false;
 };
 
 // The little-endian 32-bit word at byte AT.

@@ -383,6 +383,9 @@ expect_one_line_failure(headless_record "--record: records the window"
     play default --headless --frames 1 --record ${WORK_DIR}/r.mp4 -o ${WORK_DIR}/hr_%d.png)
 expect_one_line_failure(window_manifest "--manifest: is for --headless frames"
     play default --manifest ${WORK_DIR}/m.txt)
+# --spp 1 too: given, it is refused as any other value (it was let through as the default).
+expect_one_line_failure(window_spp "--spp: is for --headless frames"
+    play default --spp 1)
 # Their outputs are patterns and other files, not the NAME.EXT expect_one_line_failure looks for.
 file(GLOB left ${WORK_DIR}/g_* ${WORK_DIR}/hr_* ${WORK_DIR}/r.mp4 ${WORK_DIR}/m.txt
     ${WORK_DIR}/percent_* ${WORK_DIR}/tabbed* ${WORK_DIR}/dt_*)

@@ -510,6 +510,26 @@ def main():
         out = run("farm", "--status", modelled, expect=3)
     check("another rtrt farm (process 4242 on elsewhere) is working in this folder" in out and
           "to finish it" not in out, "--status names a run that works in the folder")
+    # Every frame done and only the video missing: --status points at --assemble, which needs no
+    # scene, even one edited since (it had pointed at the refused rerun).
+    whole = os.path.join(WORK, "whole")
+    run("farm", scene, "--frames", "0:2", "--size", SIZE, "--format", FORMAT, "--local", "-o",
+        whole)
+    os.remove(os.path.join(whole, "video.mp4"))
+    with open(os.path.join(WORK, "tri.obj"), "a") as f:
+        f.write("v 0 0 2\n")
+    out = run("farm", "--status", whole, expect=3)
+    check(f"to finish it: rtrt farm --assemble {whole}" in out and "refuse the scene" not in out,
+          "--status of a job whose frames are all done points at --assemble")
+    run("farm", "--assemble", whole)
+    check(os.path.exists(os.path.join(whole, "video.mp4")), "--assemble then makes the video")
+    # A '?' in the job's folder: ffmpeg took the contact sheet's relative entries as URLs whose
+    # query began there, and looked for the frames elsewhere (here: nowhere, so the run failed).
+    queried = os.path.join(WORK, "par?ent", "job")
+    run("farm", scene, "--frames", "0:2", "--size", SIZE, "--format", FORMAT, "--local", "-o",
+        queried)
+    check(os.path.exists(os.path.join(queried, "contact_sheet.png")),
+          "a job folder with '?' in its path gets its contact sheet")
     # With --local this machine assembles: without ffmpeg nothing is rendered first.
     no_ffmpeg = os.path.join(WORK, "no_ffmpeg")
     out = run("farm", scene, "--frames", "0:2", "--size", SIZE, "--format", FORMAT, "--local",

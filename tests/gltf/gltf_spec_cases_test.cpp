@@ -60,6 +60,24 @@ TEST_F(GltfSpecTest, APlusInAUriIsAPlus) {
     EXPECT_EQ(textured.scene.textures.size(), 1u);
 }
 
+// A GLB whose JSON chunk is followed by a chunk of a type glTF does not define (its buffer a data
+// URI): readers must ignore the chunk (tinygltf 2.7 refused the file).
+TEST_F(GltfSpecTest, AChunkOfUnknownTypeAfterTheJsonIsIgnored) {
+    std::string json = OneTriangle().GltfText();
+    while (json.size() % 4) json += ' ';
+    std::string glb = "glTF";
+    auto u32 = [&](uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
+    u32(2);
+    u32(uint32_t(12 + 8 + json.size() + 8 + 4));
+    u32(uint32_t(json.size()));
+    u32(0x4E4F534Au);
+    glb += json;
+    u32(4);
+    u32(0x12345678u);
+    glb += "abcd";
+    EXPECT_EQ(LoadSceneFile(Save("unknown_chunk.glb", glb)).scene.blases.size(), 1u);
+}
+
 TEST_F(GltfSpecTest, AnimationsOfTheWrongKindAreNamed) {
     for (const Json& animations : {Json(5), Json("walk"), Json::object()}) {
         GltfBuilder b = OneTriangle();
@@ -88,7 +106,7 @@ TEST_F(GltfSpecTest, CamerasTakeAnyAngleAboveZeroAndBelowPi) {
 // is a thin wall, and every pixel shows the bar or the gap it shows without the sheet; as the
 // face of a volume (thickness 1) it bends the rays and moves the bars.
 TEST_F(GltfSpecTest, TransmissionWithoutAVolumeIsAThinWall) {
-    auto render = [&](const char* volume) {
+    auto render = [&](const char* volume, uint32_t features = kAllFeatures) {
         GltfBuilder b;
         b.Mesh(
             b.Floats({-1.5f, -2, 1.5f, 1.5f, -2, -1.5f, 1.5f, 2, -1.5f, -1.5f, 2, 1.5f}, "VEC3", 3),
@@ -118,6 +136,7 @@ TEST_F(GltfSpecTest, TransmissionWithoutAVolumeIsAThinWall) {
         RenderSettings settings;
         settings.width = settings.height = 64;
         settings.maxDepth = 2;
+        settings.enabledFeatures = features;
         const Image with = RenderRaw(LoadSceneFile((dir_ / "with.json").string()).scene, settings);
         const Image without =
             RenderRaw(LoadSceneFile((dir_ / "without.json").string()).scene, settings);
@@ -135,6 +154,11 @@ TEST_F(GltfSpecTest, TransmissionWithoutAVolumeIsAThinWall) {
     EXPECT_GT(thinCovered, 500);  // the sheet covers about a fifth of the image
     EXPECT_EQ(render(R"({"thicknessFactor": 0})").first, 0);  // thickness 0 is thin too
     EXPECT_GT(render(R"({"thicknessFactor": 1})").first, 50);
+    // The Blinn-Phong approximation (kernels without the PBR BRDF) passes it unbent too.
+    const uint32_t blinnPhong = kAllFeatures & ~kFeaturePbr;
+    EXPECT_EQ(render(nullptr, blinnPhong).first, 0);
+    EXPECT_GT(render(nullptr, blinnPhong).second, 500);
+    EXPECT_GT(render(R"({"thicknessFactor": 1})", blinnPhong).first, 50);
 }
 
 }  // namespace
