@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "engine/core/media_file_check.h"
 #include "engine/core/output_file.h"
+#include "game/farm/frame_size.h"
 
 namespace rtrt {
 namespace {
@@ -57,12 +58,44 @@ ContactSheetLayout PlanContactSheet(const FarmJob& job) {
     return sheet;
 }
 
+namespace {
+
+// A frame of another size (one a task elsewhere rendered with other settings) would be scaled
+// into the video without a word: refused, naming the frame, before ffmpeg runs.
+void CheckFrameSizes(const FarmJob& job) {
+    const FrameSize want{job.frames.width, job.frames.height};
+    for (int frame = job.frames.frames.first; frame < job.frames.frames.end; ++frame) {
+        const std::string file = FrameFile(job, frame);
+        FrameSize size;
+        if (ReadFrameSize(file, &size) && size == want) continue;
+        throw InputError(file, "",
+                         "is not a " + std::to_string(want.width) + "x" +
+                             std::to_string(want.height) +
+                             " image, as the job renders: rendered with other settings? remove "
+                             "it and rerun the job's command to render it again");
+    }
+}
+
+// An ffconcat list's quoted file name: a quote closes the string, is escaped, and opens it again.
+std::string ConcatQuoted(const std::string& path) {
+    std::string out = "'";
+    for (const char c : path) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+}  // namespace
+
 void AssembleVideo(const FarmJob& job) {
     const std::string video = VideoFile(job.folder), sheetFile = ContactSheetFile(job.folder);
     if (!ProgramOnPath("ffmpeg"))
         throw OutputError(video,
                           "ffmpeg is not installed (Debian: apt-get install ffmpeg); the frames "
                           "are kept, and rtrt farm --assemble makes the video once it is");
+    if (job.folder.find_first_of("\n\r") != std::string::npos)
+        throw InputError(job.folder, "",
+                         "ffmpeg's lists cannot name a folder with a line break; move the job "
+                         "to another folder");
+    CheckFrameSizes(job);
     const FrameRange range = job.frames.frames;
     // H.264 in yuv420p (what players take) wants even sizes: odd ones get a row or column of
     // padding.
@@ -96,8 +129,8 @@ void AssembleVideo(const FarmJob& job) {
     std::string text = "ffconcat version 1.0\n";
     // Absolute file: entries: ffmpeg resolves a relative one against the list's path as a URL,
     // where a '?' in the job's folder starts a query (and the frames were looked up elsewhere).
-    // The folder holds no quote or backslash (JobFromOptions), so it needs no escaping here.
-    for (int frame : sheet.frames) text += "file 'file:" + FrameFile(job, frame) + "'\n";
+    for (int frame : sheet.frames)
+        text += "file " + ConcatQuoted("file:" + FrameFile(job, frame)) + "\n";
     list.Write(text.data(), text.size());
     list.Finish(/*durable=*/false);
     RunFfmpeg({"-f", "concat", "-safe", "0", "-i", "file:" + list.TemporaryPath(), "-vf",

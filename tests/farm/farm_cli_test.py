@@ -530,6 +530,26 @@ def main():
         queried)
     check(os.path.exists(os.path.join(queried, "contact_sheet.png")),
           "a job folder with '?' in its path gets its contact sheet")
+    # Moved into a folder with a quote (which --output refuses, but a move can make), the job
+    # still assembles: the list's entries escape it.
+    quoted = os.path.join(WORK, "it's")
+    shutil.copytree(whole, quoted)
+    for made in ("video.mp4", "contact_sheet.png"):
+        os.remove(os.path.join(quoted, made))
+    run("farm", "--assemble", quoted)
+    check(os.path.exists(os.path.join(quoted, "contact_sheet.png")),
+          "a job moved under a folder with a quote assembles")
+    # A frame of another size (a retried task elsewhere with other settings) is refused, not
+    # scaled into the video.
+    os.remove(frame(quoted, 1))
+    run("play", scene, "--headless", "--frames", "1:2", "--size", "48x24", "-o",
+        os.path.join(quoted, "frames", f"frame_%06d.{FORMAT}"), "--manifest",
+        os.path.join(quoted, "manifest", "elsewhere.tsv"))
+    os.remove(os.path.join(quoted, "video.mp4"))
+    out = run("farm", "--assemble", quoted, expect=2)
+    check("frame_000001" in out and "rendered with other settings" in out and
+          not os.path.exists(os.path.join(quoted, "video.mp4")),
+          "--assemble refuses a frame of another size")
     # With --local this machine assembles: without ffmpeg nothing is rendered first.
     no_ffmpeg = os.path.join(WORK, "no_ffmpeg")
     out = run("farm", scene, "--frames", "0:2", "--size", SIZE, "--format", FORMAT, "--local",
