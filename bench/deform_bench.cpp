@@ -87,8 +87,8 @@ void RunDeformBench(const DeformBenchOptions& o) {
     const bool gpu = o.backend == "cuda";
     const LoadedScene loaded = LoadSceneFile(o.scene);
     RenderSettings settings;
-    settings.width = loaded.width.value_or(1920);
-    settings.height = loaded.height.value_or(1080);
+    settings.width = loaded.width.value_or(1280);  // as render and play
+    settings.height = loaded.height.value_or(720);
     if (!o.size.empty()) ParseSize(o.size, &settings.width, &settings.height);
     settings.maxDepth = loaded.scene.maxDepth;
     const Backend backend = gpu ? Backend::kCuda : Backend::kCpu;
@@ -101,11 +101,13 @@ void RunDeformBench(const DeformBenchOptions& o) {
     }
     const RenderScene& scene0 = runs[0].world->Scene();
     if (scene0.deformations.empty())
-        throw InputError(o.scene, "instances", "no instance deforms (give one a \"deform\")");
+        throw InputError(o.scene, "instances",
+                         "no instance deforms at the start (give one a \"deform\" and no later "
+                         "\"time\")");
     const uint32_t blasId = scene0.deformations[0].blasId;
     uint64_t triangles = 0;
     for (const Deformation& d : scene0.deformations)
-        triangles += scene0.blases[d.blasId]->PrimCount();
+        triangles += scene0.blases[d.blasId]->SourcePrimCount();
     // The refit tree again on the host, for the drift samples (the same steps as the device's).
     CpuDeformer refitOnHost(Mode(BlasRebuildPolicy::Mode::kAlwaysRefit));
     std::vector<BlasView> views(scene0.blases.size());
@@ -152,7 +154,10 @@ void RunDeformBench(const DeformBenchOptions& o) {
         const RenderScene& now = runs[0].world->Scene();
         std::vector<uint32_t> all(now.deformations.size());
         for (uint32_t d = 0; d < all.size(); ++d) all[d] = d;
-        // The first update takes the deformations in (and deforms them) by itself.
+        // The first update takes the deformations in (and deforms them) by itself. Each
+        // deformation spawned since has added a BLAS.
+        views.resize(now.blases.size());
+        bounds.resize(now.blases.size());
         refitOnHost.Update(now,
                            f > 0 ? std::span<const uint32_t>(all) : std::span<const uint32_t>(),
                            views, bounds);

@@ -106,7 +106,8 @@ TEST_F(GltfSpecTest, CamerasTakeAnyAngleAboveZeroAndBelowPi) {
 // is a thin wall, and every pixel shows the bar or the gap it shows without the sheet; as the
 // face of a volume (thickness 1) it bends the rays and moves the bars.
 TEST_F(GltfSpecTest, TransmissionWithoutAVolumeIsAThinWall) {
-    auto render = [&](const char* volume, uint32_t features = kAllFeatures) {
+    auto render = [&](const char* volume, uint32_t features = kAllFeatures,
+                      double specularFactor = 1.0) {
         GltfBuilder b;
         b.Mesh(
             b.Floats({-1.5f, -2, 1.5f, 1.5f, -2, -1.5f, 1.5f, 2, -1.5f, -1.5f, 2, 1.5f}, "VEC3", 3),
@@ -117,6 +118,7 @@ TEST_F(GltfSpecTest, TransmissionWithoutAVolumeIsAThinWall) {
                       {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1}}}}},
                       {"doubleSided", true}};
         if (volume) glass["extensions"]["KHR_materials_volume"] = Json::parse(volume);
+        glass["extensions"]["KHR_materials_specular"] = {{"specularFactor", specularFactor}};
         b.doc["materials"] = Json::array({glass});
         Save("sheet.gltf", b.GltfText());
         Json scene = Json::parse(R"({
@@ -154,6 +156,9 @@ TEST_F(GltfSpecTest, TransmissionWithoutAVolumeIsAThinWall) {
     EXPECT_GT(thinCovered, 500);  // the sheet covers about a fifth of the image
     EXPECT_EQ(render(R"({"thicknessFactor": 0})").first, 0);  // thickness 0 is thin too
     EXPECT_GT(render(R"({"thicknessFactor": 1})").first, 50);
+    // Without a Fresnel layer (KHR_materials_specular's factor 0) a thin wall of white glass is
+    // not there at all: it reflects nothing and transmits everything (fresnel_mix).
+    EXPECT_EQ(render(nullptr, kAllFeatures, 0.0).second, 0);
     // The Blinn-Phong approximation (kernels without the PBR BRDF) passes it unbent too.
     const uint32_t blinnPhong = kAllFeatures & ~kFeaturePbr;
     EXPECT_EQ(render(nullptr, blinnPhong).first, 0);

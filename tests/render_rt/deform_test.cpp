@@ -128,6 +128,22 @@ TEST(DeformVertex, TwistTurnsEachVertexAboutTheAxis) {
     }
 }
 
+// A twist about a far centre (1e7 away) at angle 0 leaves every vertex exactly where it is (it
+// was rebuilt from the centre, rounding at the centre's magnitude: the mesh came apart in slabs).
+TEST(DeformVertex, NoTwistAboutAFarCentreIsNoChange) {
+    DeformableMesh mesh;
+    mesh.rest = UvSphere(8, 16);
+    const DeformMeshView view = ViewOf(mesh);
+    ProceduralDeform twist = Twist(1.2f);
+    twist.time = 0.0f;  // sin(speed * time) = 0
+    twist.centre = vec3(0.0f, 1e7f, 0.0f);
+    const DeformPose pose{twist, nullptr, nullptr};
+    for (uint32_t v = 0; v < mesh.VertexCount(); ++v) {
+        vec3 n;
+        EXPECT_EQ(DeformVertex(view, pose, v, &n), mesh.rest.positions[v]) << v;
+    }
+}
+
 // The deformed normal is perpendicular to every deformed tangent (the Jacobian's image of a
 // tangent, measured by a central difference), for both formulas at many points.
 TEST(DeformVertex, NormalsStayPerpendicularToTheDeformedSurface) {

@@ -1,6 +1,7 @@
 #include "engine/render_rt/deform/deform_plan.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -112,9 +113,12 @@ void DeformPlan::PlanFrame(const RenderScene& scene, std::span<const uint32_t> c
                 "deformation " + std::to_string(d) +
                 ": fewer joint matrices or morph weights than its mesh has");
         const uint32_t job = uint32_t(jobs_.size());
+        // A cost that is infinite or not a number (a mesh blown up past float's areas) rebuilds
+        // rather than stop every later rebuild (no cost compares above it).
         const bool rebuild = policy_.mode == BlasRebuildPolicy::Mode::kAlwaysRebuild ||
                              (policy_.mode == BlasRebuildPolicy::Mode::kAdaptive &&
-                              slot.lastCost > (1.0f + policy_.maxSahGrowth) * slot.rebuiltCost);
+                              (!std::isfinite(slot.rebuiltCost) || !std::isfinite(slot.lastCost) ||
+                               slot.lastCost > (1.0f + policy_.maxSahGrowth) * slot.rebuiltCost));
         if (rebuild) rebuildJobs_.push_back(job);
         DeformJob j = slot.place;
         j.pose.procedural = def.procedural;

@@ -54,7 +54,9 @@ RT_HD inline void ApplyProcedural(const ProceduralDeform& f, vec3& p, vec3& n) {
         const float c = cosf(angle), s = sinf(angle);
         // J = R + R (e x d) rate e^T, so J^-T n = R (n - e rate ((e x d) . n)).
         n = RotateAbout(n - e * (rate * glm::dot(glm::cross(e, d), n)), e, c, s);
-        p = f.centre + RotateAbout(d, e, c, s);
+        // Moved by the rotation's offset rather than rebuilt from the centre, which rounds at
+        // the centre's magnitude: no twist is exactly no change, however far the centre.
+        p += RotateAbout(d, e, c, s) - d;
     }
 }
 

@@ -114,8 +114,10 @@ RT_HD inline HitShading ShadePbr(const RenderSceneView& scene, const SceneHit& h
     if constexpr ((kFeatures & kFeatureRefraction) != 0) {
         const float transmitted = p.transmission * (1.0f - p.metallic);
         if (transmitted > 0.0f && pm.thinWalled != 0) {
-            // A thin wall: what passes its two faces goes on in the ray's own direction.
-            const float fresnel = FresnelDielectric(fabsf(glm::dot(toViewer, n)), pm.ior);
+            // A thin wall: what passes its two faces goes on in the ray's own direction, less what
+            // the BRDF's Fresnel layer reflects (the specification's fresnel_mix, so that
+            // KHR_materials_specular's weight and colour apply as they do to the diffuse layer).
+            const float fresnel = MaxComponent(DielectricFresnel(p, fabsf(glm::dot(toViewer, n))));
             out.refracted = -toViewer;
             out.refractWeight = transmitted * (1.0f - fresnel) * p.baseColor;
         } else if (transmitted > 0.0f) {
