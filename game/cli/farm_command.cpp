@@ -387,7 +387,10 @@ int RunFarm(const FarmOptions& o) {
     std::error_code ec;
     const bool resumed = fs::is_directory(ManifestFolder(job.folder), ec);
     const FrameCheck check = resumed ? CheckAndReport(job) : CheckFrames(job);
-    if (takenUp) CheckTakenUpFrames(job, check.done);
+    if (takenUp)
+        CheckFrameSizes(job, check.done,
+                        "the frames in this folder were made with other settings; give the "
+                        "options they were rendered with, or another -o");
     // The assembly's outputs are checked before any frame is rendered for them (a FIFO under the
     // video's name had failed the job only at its end).
     if (!o.dryRun)

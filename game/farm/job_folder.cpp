@@ -73,7 +73,7 @@ FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
     if (fs::exists(job.folder, ec) && !fs::is_directory(job.folder, ec))
         throw InputError("--output", job.folder, "is a file, not a folder");
     // The farm writes farm.json before its folders (StartJob), so frames/ and manifest/ without
-    // it are the tasks' of elsewhere, checked against this job (CheckTakenUpFrames). The lock and
+    // it are the tasks' of elsewhere, checked against this job (CheckFrameSizes). The lock and
     // rtrt's temporaries are the farm's own; anything else is refused.
     for (const auto& entry : fs::directory_iterator(job.folder, ec)) {
         const std::string name = entry.path().filename().string();
@@ -92,9 +92,10 @@ FarmJob ResumeOrStart(FarmJob job, bool* takenUp) {
     return job;
 }
 
-void CheckTakenUpFrames(const FarmJob& job, const std::vector<int>& done) {
+void CheckFrameSizes(const FarmJob& job, const std::vector<int>& frames,
+                     const std::string& advice) {
     const FrameSize want{job.frames.width, job.frames.height};
-    for (int frame : done) {
+    for (int frame : frames) {
         const std::string file = FrameFile(job, frame);
         FrameSize size;
         const bool readable = ReadFrameSize(file, &size);
@@ -104,9 +105,7 @@ void CheckTakenUpFrames(const FarmJob& job, const std::vector<int>& done) {
                      : "is no " + job.frames.format + " image";
         throw InputError(file, "",
                          what + ", but the job renders " + std::to_string(want.width) + "x" +
-                             std::to_string(want.height) +
-                             ": the frames in this folder were made with other settings; give "
-                             "the options they were rendered with, or another -o");
+                             std::to_string(want.height) + ": " + advice);
     }
 }
 

@@ -16,10 +16,10 @@ namespace rtrt {
 // takes up.
 FarmJob ResumeOrStart(FarmJob job, bool* takenUp);
 
-// Frames taken up from tasks that ran elsewhere carry no record of their settings: each must at
-// least have this job's size (one made at another would be scaled into the video), else
-// InputError before anything is written.
-void CheckTakenUpFrames(const FarmJob& job, const std::vector<int>& done);
+// Frames carry no record of their settings (those taken up from tasks that ran elsewhere, or
+// written there since): each of FRAMES must at least have this job's size, as one made at another
+// would be scaled into the video; else InputError naming the first that has not, ending in ADVICE.
+void CheckFrameSizes(const FarmJob& job, const std::vector<int>& frames, const std::string& advice);
 
 // What StartJob changed in a job's folder, for UndoStart.
 struct StartedJob {

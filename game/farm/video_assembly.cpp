@@ -5,12 +5,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "engine/core/child_process.h"
 #include "engine/core/error.h"
 #include "engine/core/media_file_check.h"
 #include "engine/core/output_file.h"
-#include "game/farm/frame_size.h"
+#include "game/farm/job_folder.h"
 
 namespace rtrt {
 namespace {
@@ -40,6 +41,13 @@ void RunFfmpeg(std::vector<std::string> arguments, const std::string& target) {
     output.Commit();
 }
 
+// An ffconcat list's quoted file name: a quote closes the string, is escaped, and opens it again.
+std::string ConcatQuoted(const std::string& path) {
+    std::string out = "'";
+    for (const char c : path) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
 }  // namespace
 
 ContactSheetLayout PlanContactSheet(const FarmJob& job) {
@@ -58,33 +66,6 @@ ContactSheetLayout PlanContactSheet(const FarmJob& job) {
     return sheet;
 }
 
-namespace {
-
-// A frame of another size (one a task elsewhere rendered with other settings) would be scaled
-// into the video without a word: refused, naming the frame, before ffmpeg runs.
-void CheckFrameSizes(const FarmJob& job) {
-    const FrameSize want{job.frames.width, job.frames.height};
-    for (int frame = job.frames.frames.first; frame < job.frames.frames.end; ++frame) {
-        const std::string file = FrameFile(job, frame);
-        FrameSize size;
-        if (ReadFrameSize(file, &size) && size == want) continue;
-        throw InputError(file, "",
-                         "is not a " + std::to_string(want.width) + "x" +
-                             std::to_string(want.height) +
-                             " image, as the job renders: rendered with other settings? remove "
-                             "it and rerun the job's command to render it again");
-    }
-}
-
-// An ffconcat list's quoted file name: a quote closes the string, is escaped, and opens it again.
-std::string ConcatQuoted(const std::string& path) {
-    std::string out = "'";
-    for (const char c : path) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-}  // namespace
-
 void AssembleVideo(const FarmJob& job) {
     const std::string video = VideoFile(job.folder), sheetFile = ContactSheetFile(job.folder);
     if (!ProgramOnPath("ffmpeg"))
@@ -95,7 +76,14 @@ void AssembleVideo(const FarmJob& job) {
         throw InputError(job.folder, "",
                          "ffmpeg's lists cannot name a folder with a line break; move the job "
                          "to another folder");
-    CheckFrameSizes(job);
+    // A frame of another size (a task elsewhere of other settings) would be scaled into the video
+    // without a word.
+    std::vector<int> frames;
+    for (int frame = job.frames.frames.first; frame < job.frames.frames.end; ++frame)
+        frames.push_back(frame);
+    CheckFrameSizes(job, frames,
+                    "rendered with other settings? remove it and rerun the job's command to render "
+                    "it again");
     const FrameRange range = job.frames.frames;
     // H.264 in yuv420p (what players take) wants even sizes: odd ones get a row or column of
     // padding.
