@@ -82,13 +82,18 @@ void PhysicsWorld::Gather(Registry& registry, bool stepFollows) {
             // counts as having moved.
             s.fresh = !rb.state.initialized || rb.state.position != local.translation ||
                       rb.state.orientation != local.rotation;
+            s.position = local.translation;
+            s.orientation = glm::normalize(local.rotation);
+            // One moved away from sleepers must wake them too, or they would float where it was:
+            // its first step's broad phase spans both places (StartStep keeps the old one).
+            const bool moved = s.fresh && rb.state.initialized;
+            s.previousPosition = moved ? rb.state.position : s.position;
+            s.previousOrientation = moved ? glm::normalize(rb.state.orientation) : s.orientation;
             if (stepFollows) {
                 rb.state.initialized = true;
                 rb.state.position = local.translation;
                 rb.state.orientation = local.rotation;
             }
-            s.position = s.previousPosition = local.translation;
-            s.orientation = s.previousOrientation = glm::normalize(local.rotation);
         }
         places_[i] = isPlane ? kPlane : s.hasCollider ? kBroadPhase : kOutside;
         if (stepFollows) StartStep(i);

@@ -119,9 +119,12 @@ void PhysicsWorld::OnThreadsFor(size_t bodies, const Work& work) {
 void PhysicsWorld::StartStep(size_t i) {
     SimBody& s = bodies_[i];
     motion_[i] = MotionOf(s);
+    // A static body just placed or moved keeps where it was through its first step (Gather).
+    if (!s.fresh) {
+        s.previousPosition = s.position;
+        s.previousOrientation = s.orientation;
+    }
     s.fresh = false;  // for its first step only
-    s.previousPosition = s.position;
-    s.previousOrientation = s.orientation;
     s.rotation = glm::mat3_cast(s.orientation);
     s.startVelocity = s.velocity;
     s.startAngularVelocity = s.angularVelocity;
@@ -176,7 +179,15 @@ void PhysicsWorld::FindPairs() {
     ParallelFor(0, broadBodies_.size(), kBodyGrain, boxAffinity_, [&](size_t k) {
         const SimBody& s = bodies_[broadBodies_[k]];
         const vec3 extent = WorldHalfExtent(s.collider, s.rotation) + vec3(Margin(s));
-        boxes_[k] = {s.position - extent, s.position + extent, !s.dynamic};
+        BroadPhaseBox box{s.position - extent, s.position + extent, !s.dynamic};
+        if (motion_[broadBodies_[k]] & kFresh) {
+            // A static body just moved spans where it was too, so that sleepers there wake.
+            const vec3 was = WorldHalfExtent(s.collider, glm::mat3_cast(s.previousOrientation)) +
+                             vec3(Margin(s));
+            box.min = glm::min(box.min, s.previousPosition - was);
+            box.max = glm::max(box.max, s.previousPosition + was);
+        }
+        boxes_[k] = box;
     });
     sweep_.FindPairs(boxes_, pairs_, broadBodies_);
     // Solver slots in sweep order, then the bodies outside the broad phase (planes, bodies
@@ -221,16 +232,19 @@ void PhysicsWorld::WakeTouched() {
         wake(b, a);
     }
     // Planes are outside the broad phase: one just placed or moved wakes the sleepers within
-    // reach of its half-space (rare, so a pass over the bodies is enough).
+    // reach of its half-space, where it is or was (rare, so a pass over the bodies is enough).
     for (const uint32_t plane : planes_) {
         if ((motion_[plane] & kFresh) == 0) continue;
         const SimBody& p = bodies_[plane];
         const vec3 normal = glm::normalize(p.orientation * p.collider.normal);
-        for (uint32_t i = 0; i < bodies_.size(); ++i)
-            if (isSleeper(i) && bodies_[i].hasCollider &&
-                glm::dot(normal, bodies_[i].position - p.position) <
-                    bodies_[i].boundingRadius + settings_.contactMargin)
+        const vec3 normalWas = glm::normalize(p.previousOrientation * p.collider.normal);
+        for (uint32_t i = 0; i < bodies_.size(); ++i) {
+            if (!isSleeper(i) || !bodies_[i].hasCollider) continue;
+            const float reach = bodies_[i].boundingRadius + settings_.contactMargin;
+            if (glm::dot(normal, bodies_[i].position - p.position) < reach ||
+                glm::dot(normalWas, bodies_[i].position - p.previousPosition) < reach)
                 wake(i, plane);
+        }
     }
 }
 

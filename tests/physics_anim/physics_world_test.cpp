@@ -417,6 +417,29 @@ TEST(PhysicsWorldTest, StaticBodyPlacedOrMovedIntoASleeperWakesIt) {
     EXPECT_GT(Position(registry, sleeper).y, onBlock + 0.4f);
 }
 
+// A static body or plane moved away from under sleepers wakes them, and they fall: they had stayed
+// asleep in the air where it was, since only bodies near where it now is were woken.
+TEST(PhysicsWorldTest, StaticBodyOrPlaneMovedAwayFromSleepersWakesThem) {
+    Registry registry;
+    const Entity floor = AddPlane(registry, vec3(0.0f), vec3(0.0f, 1.0f, 0.0f));
+    const Entity block = AddBody(registry, vec3(0.0f, 0.5f, 0.0f), Collider::Box(vec3(0.5f)), 0.0f);
+    const Entity sleeper = AddBody(registry, vec3(0.0f, 1.5f, 0.0f), Collider::Sphere(0.5f), 1.0f);
+    PhysicsWorld world;
+    world.Step(registry, 20 * 120);
+    ASSERT_TRUE(registry.Get<RigidBody>(sleeper)->state.sleeping);
+    ASSERT_NEAR(Position(registry, sleeper).y, 1.5f, 0.05f);
+    registry.Get<LocalTransform>(block)->translation = vec3(5.0f, 0.5f, 0.0f);
+    world.Step(registry, 240);
+    EXPECT_NEAR(Position(registry, sleeper).y, 0.5f, 0.05f);  // on the floor
+    EXPECT_NEAR(Position(registry, sleeper).x, 0.0f, 0.05f);  // straight down
+
+    world.Step(registry, 20 * 120);
+    ASSERT_TRUE(registry.Get<RigidBody>(sleeper)->state.sleeping);
+    registry.Get<LocalTransform>(floor)->translation = vec3(0.0f, -2.0f, 0.0f);
+    world.Step(registry, 240);
+    EXPECT_NEAR(Position(registry, sleeper).y, -1.5f, 0.05f);  // on the lowered floor
+}
+
 // A plane's normal is in its body's frame, turned by the body's rotation like every collider.
 TEST(PhysicsWorldTest, RotatedPlanesAreWallsAndRamps) {
     Registry registry;
