@@ -29,8 +29,16 @@ namespace rtrt::ecs {
 class Registry {
   public:
     Registry() = default;
-    Registry(Registry&&) = default;
-    Registry& operator=(Registry&&) = default;
+    // A moved-from registry is empty, as a new one.
+    Registry(Registry&& other) noexcept { *this = std::move(other); }
+    Registry& operator=(Registry&& other) noexcept {
+        if (this == &other) return *this;
+        entities_ = std::exchange(other.entities_, EntityAllocator());
+        pools_ = std::exchange(other.pools_, {});
+        commands_ = std::exchange(other.commands_, CommandBuffer());
+        deferDepth_ = std::exchange(other.deferDepth_, 0);
+        return *this;
+    }
 
     Entity Create();
     bool Destroy(Entity e);
@@ -81,7 +89,9 @@ class Registry {
     // e's T changed (ignored if e has no T); adding or replacing a T marks it too. EachChanged
     // calls fn(Entity, T&) once per entity marked since ClearChanged<T>, in marking order; an
     // entity that lost its T meanwhile is not listed. Marks made during EachChanged are kept
-    // for the next pass but not visited by this one.
+    // for the next pass but not visited by this one; structural changes fn makes are deferred
+    // until it has visited them all (an immediate Remove would reorder the list it walks), and a
+    // ClearChanged<T> made by fn ends the walk.
     template <typename T>
     void MarkChanged(Entity e) {
         if (ComponentPool<T>* pool = FindPool<T>()) pool->MarkChanged(e);
@@ -94,7 +104,14 @@ class Registry {
     }
     template <typename T, typename Fn>
     void EachChanged(Fn&& fn) {
-        if (ComponentPool<T>* pool = FindPool<T>()) EachChangedIn(*pool, fn);
+        ComponentPool<T>* pool = FindPool<T>();
+        if (pool == nullptr) return;
+        BeginDeferred();
+        struct EndsDeferral {
+            Registry& registry;
+            ~EndsDeferral() { registry.EndDeferred(); }
+        } endsDeferral{*this};
+        EachChangedIn(*pool, fn);
     }
     template <typename T, typename Fn>
     void EachChanged(Fn&& fn) const {
@@ -143,7 +160,7 @@ class Registry {
     template <typename Pool, typename Fn>
     static void EachChangedIn(Pool& pool, Fn& fn) {
         const size_t count = pool.ChangedEntities().size();
-        for (size_t i = 0; i < count; ++i) {
+        for (size_t i = 0; i < count && i < pool.ChangedEntities().size(); ++i) {
             // Re-read the span: a mark made by fn may grow (and move) the changed list.
             const Entity e = pool.ChangedEntities()[i];
             fn(e, pool.At(pool.Find(e)));

@@ -353,6 +353,59 @@ TEST(RegistryTest, MarksMadeDuringEachChangedWaitForTheNextPass) {
     EXPECT_EQ(registry.ChangedCount<Health>(), 3u);
 }
 
+// Removing a T, destroying an entity or clearing the marks from inside EachChanged: the walk
+// had read past the end of the changed list it shrank (and skipped the entry moved into place).
+TEST(RegistryTest, StructuralChangesDuringEachChangedWaitUntilItEnds) {
+    Registry registry;
+    std::vector<Entity> entities;
+    for (int i = 0; i < 4; ++i) {
+        entities.push_back(registry.Create());
+        registry.Add(entities.back(), Health{i});
+    }
+    std::vector<int> visited;
+    registry.EachChanged<Health>([&](Entity e, Health& h) {
+        visited.push_back(h.hp);
+        if (e != entities[0]) return;
+        EXPECT_TRUE(registry.Remove<Health>(entities[1]));
+        EXPECT_TRUE(registry.Destroy(entities[2]));
+        EXPECT_TRUE(registry.Remove<Health>(entities[0]));
+    });
+    EXPECT_EQ(visited, (std::vector<int>{0, 1, 2, 3}));
+    EXPECT_FALSE(registry.Has<Health>(entities[0]));
+    EXPECT_FALSE(registry.Has<Health>(entities[1]));
+    EXPECT_FALSE(registry.Valid(entities[2]));
+    EXPECT_EQ(ChangedHealth(registry), (std::vector<int>{3}));
+
+    int visits = 0;
+    registry.MarkChanged<Health>(entities[3]);
+    registry.Add(entities[0], Health{7});
+    registry.EachChanged<Health>([&](Entity, Health&) {
+        ++visits;
+        registry.ClearChanged<Health>();
+    });
+    EXPECT_EQ(visits, 1);
+    EXPECT_EQ(registry.ChangedCount<Health>(), 0u);
+}
+
+TEST(RegistryTest, AMovedFromRegistryIsEmpty) {
+    Registry from;
+    const Entity a = from.Create();
+    from.Add(a, Health{1});
+    from.BeginDeferred();
+    Registry to = std::move(from);
+    EXPECT_EQ(from.AliveCount(), 0u);
+    EXPECT_FALSE(from.Deferring());
+    const Entity fresh = from.Create();
+    EXPECT_TRUE(from.Valid(fresh));
+    EXPECT_EQ(from.AliveCount(), 1u);
+    EXPECT_FALSE(from.Has<Health>(fresh));
+    EXPECT_TRUE(to.Deferring());
+    to.EndDeferred();
+    EXPECT_TRUE(to.Valid(a));
+    EXPECT_EQ(to.Get<Health>(a)->hp, 1);
+    EXPECT_EQ(to.AliveCount(), 1u);
+}
+
 TEST(RegistryTest, DeferredAddMarksChangedAtTheFlush) {
     Registry registry;
     const Entity e = registry.Create();
