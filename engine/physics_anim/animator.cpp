@@ -1,12 +1,15 @@
 #include "engine/physics_anim/animator.h"
 
+#include <cstdint>
 #include <vector>
 
 #include "engine/core/parallel_for.h"
 
 namespace rtrt::physics {
 
-LocalTransform EvaluateAnimator(const Animator& animator) {
+namespace {
+
+LocalTransform Animated(const Animator& animator) {
     LocalTransform pose = animator.base;
     if (animator.clip) {
         SampleClip(*animator.clip, animator.time, pose);
@@ -15,6 +18,26 @@ LocalTransform EvaluateAnimator(const Animator& animator) {
     for (const ProceduralMotion& motion : animator.motions)
         ApplyMotion(motion, animator.time, pose);
     return pose;
+}
+
+bool SamePose(const LocalTransform& a, const LocalTransform& b) {
+    return a.translation == b.translation && a.rotation == b.rotation && a.scale == b.scale;
+}
+
+}  // namespace
+
+LocalTransform EvaluateAnimator(const Animator& animator) {
+    LocalTransform pose = Animated(animator);
+    if (animator.moved != vec3(0.0f)) pose.translation += animator.moved;
+    if (animator.turned != glm::identity<glm::quat>())
+        pose.rotation = animator.turned * pose.rotation;
+    return pose;
+}
+
+void PlaceAnimated(Animator& animator, vec3 position, glm::quat rotation) {
+    const LocalTransform animated = Animated(animator);
+    animator.moved = position - animated.translation;
+    animator.turned = glm::normalize(rotation * glm::inverse(animated.rotation));
 }
 
 uint32_t AnimateEntities(ecs::Registry& registry, float dt) {
@@ -29,12 +52,16 @@ uint32_t AnimateEntities(ecs::Registry& registry, float dt) {
         [&](ecs::Entity e, Animator& animator, LocalTransform& local) {
             if (animator.playing) posed.push_back({e, &animator, &local});
         });
+    std::vector<uint8_t> moved(posed.size(), 0);
     ParallelFor(0, posed.size(), 64, [&](size_t i) {
         Animator& animator = *posed[i].animator;
         animator.time += static_cast<double>(animator.speed) * dt;
-        *posed[i].local = EvaluateAnimator(animator);
+        const LocalTransform pose = EvaluateAnimator(animator);
+        moved[i] = !SamePose(pose, *posed[i].local);
+        *posed[i].local = pose;
     });
-    for (const Posed& p : posed) registry.MarkChanged<LocalTransform>(p.entity);
+    for (size_t i = 0; i < posed.size(); ++i)
+        if (moved[i]) registry.MarkChanged<LocalTransform>(posed[i].entity);
     return uint32_t(posed.size());
 }
 

@@ -41,4 +41,13 @@ struct SimBody {
     float restingTime = 0.0f;
 };
 
+// The inverse inertia tensor in world axes: R diag(invInertiaLocal) R^T.
+inline glm::mat3 WorldInverseInertia(const glm::mat3& rotation, vec3 invInertiaLocal) {
+    glm::mat3 scaled = rotation;
+    scaled[0] *= invInertiaLocal.x;
+    scaled[1] *= invInertiaLocal.y;
+    scaled[2] *= invInertiaLocal.z;
+    return scaled * glm::transpose(rotation);
+}
+
 }  // namespace rtrt::physics

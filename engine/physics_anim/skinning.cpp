@@ -116,7 +116,7 @@ void AddMorphWeightsSystem(ecs::Scheduler& scheduler) {
 }
 
 void AddSkinSystem(ecs::Scheduler& scheduler) {
-    scheduler.AddSystem("animation", "skins",
+    scheduler.AddSystem("extraction", "skins",
                         [](ecs::Registry& registry, float) { UpdateSkins(registry); });
 }
 

@@ -65,7 +65,8 @@ uint32_t AnimateMorphWeights(ecs::Registry& registry);
 // Adds AnimateMorphWeights ("morph weights") to phase "animation"; call after the animation
 // system, which advances the animators' time.
 void AddMorphWeightsSystem(ecs::Scheduler& scheduler);
-// Adds UpdateSkins ("skins") to phase "animation"; call after the transform system.
+// Adds UpdateSkins ("skins") to phase "extraction", after the transform system's phase, whose
+// WorldTransforms of new entities are added when it ends.
 void AddSkinSystem(ecs::Scheduler& scheduler);
 
 }  // namespace rtrt::physics

@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
 
 #include "engine/core/timer.h"
+#include "engine/physics_anim/animator.h"
 #include "engine/physics_anim/physics_anim_systems.h"
 #include "engine/physics_anim/skinning.h"
 #include "engine/physics_anim/transform_system.h"
@@ -207,6 +211,10 @@ bool World::SetPose(ecs::Entity e, vec3 position, glm::quat rotation) {
     local->translation = position;
     local->rotation = rotation;
     registry_.MarkChanged<physics::LocalTransform>(e);
+    // An animated one keeps the edit as its animator's placement, or the next frame's pose would
+    // put it back.
+    if (physics::Animator* animator = registry_.Get<physics::Animator>(e))
+        physics::PlaceAnimated(*animator, position, rotation);
     // A dynamic body is moved at once; a static one keeps the pose the last step saw, so that
     // the world finds it moved and wakes the sleepers it is moved into.
     physics::RigidBody* body = registry_.Get<physics::RigidBody>(e);
@@ -229,12 +237,22 @@ bool World::RemoveObject(ecs::Entity e) {
         if (!up || !registry_.Valid(up->entity)) break;
         root = up->entity;
     }
+    // Breadth first over the parent links, each entity once: two SetParent calls in one
+    // deferred phase can close a cycle (the transform system tolerates it), which had made this
+    // walk grow without end.
+    std::unordered_map<uint32_t, std::vector<ecs::Entity>> children;  // by the parent's index
+    registry_.View<const physics::Parent>().Each(
+        [&](ecs::Entity child, const physics::Parent& link) {
+            if (registry_.Valid(link.entity)) children[link.entity.index].push_back(child);
+        });
+    std::unordered_set<uint32_t> seen{root.index};
     std::vector<ecs::Entity> doomed{root};
-    for (size_t i = 0; i < doomed.size(); ++i)  // breadth first over the parent links
-        registry_.View<const physics::Parent>().Each(
-            [&](ecs::Entity child, const physics::Parent& link) {
-                if (link.entity == doomed[i]) doomed.push_back(child);
-            });
+    for (size_t i = 0; i < doomed.size(); ++i) {
+        const auto found = children.find(doomed[i].index);
+        if (found == children.end()) continue;
+        for (const ecs::Entity child : found->second)
+            if (seen.insert(child.index).second) doomed.push_back(child);
+    }
     for (const ecs::Entity d : doomed) {
         if (!Remove(d) && registry_.Valid(d)) {
             registry_.Destroy(d);

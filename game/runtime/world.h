@@ -69,7 +69,8 @@ class World {
     ecs::Entity SpawnGroup(std::span<const EntityDesc> group);
     uint32_t AddDeformableMesh(std::shared_ptr<const DeformableMesh> mesh);
     uint32_t AddTexture(const Texture& texture, const uint32_t* rgba);
-    // Moves an entity; a rigid body is teleported there and stops.
+    // Moves an entity; a rigid body is teleported there and stops; an animated one keeps playing
+    // its animation from there (PlaceAnimated).
     bool SetPose(ecs::Entity e, vec3 position, glm::quat rotation);
     // Destroys an entity and drops its instance: the last instance record moves into its slot.
     bool Remove(ecs::Entity e);

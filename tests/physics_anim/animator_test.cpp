@@ -79,6 +79,52 @@ TEST(AnimatorTest, ClipThenMotionsInOrder) {
     ExpectNear(pose.rotation * vec3(1.0f, 0.0f, 0.0f), vec3(-1.0f, 0.0f, 0.0f));
 }
 
+// A clip that has ended and a spin of speed 0 pose their entities where they were: nothing is
+// marked changed, so nothing is handed on to extraction (they had been marked every frame).
+TEST(AnimatorTest, APoseThatDoesNotChangeIsNotMarked) {
+    Registry registry;
+    const Entity ended = registry.Create();
+    registry.Add(ended, LocalTransform{});
+    Animator once;
+    auto clip = std::make_shared<KeyframeClip>(*SlideClip());
+    clip->wrap = WrapMode::kClamp;
+    once.clip = clip;
+    registry.Add(ended, once);
+    const Entity still = registry.Create();
+    registry.Add(still, LocalTransform{});
+    Animator spin;
+    spin.motions.push_back(Spin{vec3(0.0f, 1.0f, 0.0f), 0.0f});
+    registry.Add(still, spin);
+    AnimateEntities(registry, 3.0f);                         // past the clip's end
+    EXPECT_EQ(registry.ChangedCount<LocalTransform>(), 2u);  // added, then moved
+    registry.ClearChanged<LocalTransform>();
+    EXPECT_EQ(AnimateEntities(registry, 1.0f / 60.0f), 2u);
+    EXPECT_EQ(registry.ChangedCount<LocalTransform>(), 0u);
+    ExpectNear(registry.Get<LocalTransform>(ended)->translation, vec3(4.0f, 0.0f, 0.0f));
+}
+
+// A user's move and turn of an animated entity (the window's drag, World::SetPose) lasts: the
+// animation plays on from there instead of putting it back.
+TEST(AnimatorTest, APlacedAnimatorPlaysOnFromWhereItWasPut) {
+    Animator animator;
+    animator.clip = SlideClip();
+    animator.motions.push_back(Spin{vec3(0.0f, 1.0f, 0.0f), kPi});
+    animator.time = 0.5;  // x = 1, a quarter turn
+    const glm::quat turn = glm::angleAxis(kPi / 2.0f, vec3(0.0f, 0.0f, 1.0f));
+    const LocalTransform before = EvaluateAnimator(animator);
+    PlaceAnimated(animator, vec3(1.0f, 3.0f, -2.0f), turn * before.rotation);
+    const LocalTransform placed = EvaluateAnimator(animator);
+    ExpectNear(placed.translation, vec3(1.0f, 3.0f, -2.0f));
+    ExpectNear(placed.rotation * vec3(1.0f, 0.0f, 0.0f),
+               turn * (before.rotation * vec3(1.0f, 0.0f, 0.0f)));
+    animator.time = 1.0;  // the slide goes on by 1 along x, the spin by another quarter turn
+    const LocalTransform later = EvaluateAnimator(animator);
+    ExpectNear(later.translation, vec3(2.0f, 3.0f, -2.0f));
+    const glm::quat quarter = glm::angleAxis(kPi / 2.0f, vec3(0.0f, 1.0f, 0.0f));
+    ExpectNear(later.rotation * vec3(1.0f, 0.0f, 0.0f),
+               turn * (before.rotation * (quarter * vec3(1.0f, 0.0f, 0.0f))));
+}
+
 // The scheduler runs animators and then the transform system in "animation", so a child of an
 // animated parent has its world transform by extraction.
 TEST(AnimatorTest, AnimatedParentMovesItsChildWithinTheFrame) {

@@ -11,6 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/physics_anim/animator.h"
+#include "engine/physics_anim/physics_anim_systems.h"
+#include "engine/physics_anim/physics_world.h"
 #include "engine/physics_anim/transform_system.h"
 
 namespace rtrt::physics {
@@ -187,6 +189,30 @@ TEST(SkinningTest, OnlyTheMovedJointsSkinIsRecomputedAndMarked) {
     rig.transforms.Update(rig.registry);
     EXPECT_EQ(UpdateSkins(rig.registry), 1u);
     EXPECT_EQ(rig.registry.ChangedCount<Skin>(), 1u);
+}
+
+// A skinned mesh created between frames (a spawn) has its joint matrices after the first frame the
+// scheduler runs: the skins had run in the transforms' phase, before the WorldTransforms of new
+// entities were added, and the mesh kept its rest pose for a frame.
+TEST(SkinningTest, ASkinCreatedBetweenFramesIsPosedInTheNextFrame) {
+    Registry registry;
+    PhysicsWorld physics;
+    TransformSystem transforms;
+    ecs::Scheduler scheduler;
+    AddPhysicsAnimSystems(scheduler, physics, transforms);
+    const Entity joint = registry.Create();
+    registry.Add(joint, LocalTransform{vec3(0.0f, 2.0f, 0.0f)});
+    const Entity mesh = registry.Create();
+    registry.Add(mesh, LocalTransform{});
+    Skin skin;
+    skin.joints = {joint};
+    skin.inverseBind = {glm::mat4(1.0f)};
+    registry.Add(mesh, skin);
+    scheduler.RunFrame(registry, 1.0f / 60.0f);
+    const std::vector<glm::mat4>& matrices = registry.Get<Skin>(mesh)->jointMatrices;
+    ASSERT_EQ(matrices.size(), 1u);
+    ExpectNear(vec3(matrices[0][3]), vec3(0.0f, 2.0f, 0.0f), "joint matrix's translation");
+    EXPECT_TRUE(registry.IsChanged<Skin>(mesh));
 }
 
 TEST(MorphTest, MorphAtKnownWeightsAddsTheWeightedDeltas) {

@@ -9,6 +9,8 @@
 #include <cstring>
 
 #include "engine/core/error.h"
+#include "engine/physics_anim/animator.h"
+#include "engine/physics_anim/transform_system.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
 #include "game/scene/scene_file.h"
@@ -368,6 +370,44 @@ TEST(WorldEdits, SpawnMoveAndRemoveKeepRecordsInStep) {
     ASSERT_TRUE(renderer->Pick(ray, &hit));
     EXPECT_TRUE(hit.instance == 3 ||
                 world.Scene().instances[hit.instance].Position()[2] > centre.z);
+}
+
+// The window's drag of an animated object lasts: it spins on where it was put (it had snapped
+// back to its animation's place the next frame).
+TEST(WorldEdits, AnAnimatedObjectMovedByHandStaysWhereItWasPut) {
+    const LoadedScene loaded = ParseScene(kAnimated, "animated.json", "");
+    World world(loaded);
+    world.Advance(1.0f / 60.0f);
+    const ecs::Entity ball = world.EntityOfInstance(1);
+    ASSERT_NE(world.Registry().Get<physics::Animator>(ball), nullptr);
+    const glm::quat turned = world.Registry().Get<physics::LocalTransform>(ball)->rotation;
+    ASSERT_TRUE(world.SetPose(ball, vec3(40.0f, 1.0f, 2.0f), turned));
+    for (int i = 0; i < 3; ++i) world.Advance(1.0f / 60.0f);
+    const auto* local = world.Registry().Get<physics::LocalTransform>(ball);
+    EXPECT_EQ(local->translation, vec3(40.0f, 1.0f, 2.0f));
+    EXPECT_GT(std::fabs(glm::dot(local->rotation, turned)), 0.99f);  // three frames of spin on
+    EXPECT_LT(std::fabs(glm::dot(local->rotation, turned)), 1.0f - 1e-6f);
+    ExpectRecordsMatchEntities(world);
+}
+
+// Two parent links closed into a cycle in one deferred phase (which SetParent cannot see) no
+// longer make RemoveObject walk them for ever: both entities go.
+TEST(WorldEdits, RemovingAnObjectWhoseParentsFormACycleEnds) {
+    const LoadedScene loaded = ParseScene(kAnimated, "animated.json", "");
+    World world(loaded);
+    const size_t before = world.Scene().instances.size();
+    const ecs::Entity a = world.EntityOfInstance(1), b = world.EntityOfInstance(2);
+    {
+        const ecs::ScopedDeferral deferral(world.Registry());
+        ASSERT_TRUE(physics::SetParent(world.Registry(), a, b));
+        ASSERT_TRUE(physics::SetParent(world.Registry(), b, a));
+    }
+    ASSERT_TRUE(world.RemoveObject(a));
+    EXPECT_FALSE(world.Registry().Valid(a));
+    EXPECT_FALSE(world.Registry().Valid(b));
+    EXPECT_EQ(world.Scene().instances.size(), before - 2);
+    world.Advance(1.0f / 60.0f);
+    ExpectRecordsMatchEntities(world);
 }
 
 }  // namespace
