@@ -139,7 +139,14 @@ void CheckImagePath(const std::string& path) {
 }
 
 void WriteImage(const std::string& path, const Image& image, const OutputTransform& transform) {
-    CheckImagePath(path);
+    CheckImageFormat(path);
+    // The commands check their outputs before their work: a path that fails now (its folder
+    // removed or made read-only meanwhile) is a failed write (exit 1), not bad input (2).
+    try {
+        CheckOutputPath(path);
+    } catch (const InputError& e) {
+        throw OutputError(e.File(), e.Reason());
+    }
     const std::string ext = Extension(path);
     OutputFile file(path);
     if (ext == ".ppm" || ext == ".pfm") {

@@ -124,6 +124,24 @@ CLI::Validator NonEmptyText() {
 
 }  // namespace
 
+void AddExitStatusHelp(CLI::App& app) {
+    static const std::string kInterrupted =
+        "130, 143, 129, 131: stopped by SIGINT, SIGTERM, SIGHUP, SIGQUIT (finished outputs are "
+        "kept, unfinished ones removed).";
+    static const std::string kStatuses =
+        "Exit status: 0 success; 1 the work failed (a GPU, I/O or memory error, a failed write); "
+        "2 bad input (an option, a scene, a model, an output path); " +
+        kInterrupted;
+    const std::string own = app.get_footer();
+    // A command that lists its own statuses (farm's 3) keeps them and gets the signals' only.
+    if (own.find("Exit status") != std::string::npos)
+        app.footer(own + " " + kInterrupted);
+    else
+        app.footer(own.empty() ? kStatuses : own + "\n" + kStatuses);
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        AddExitStatusHelp(*sub);
+}
+
 void CheckOptionValues(CLI::App& app) {
     for (CLI::Option* option : app.get_options()) {
         if (option->get_type_size() == 0) continue;  // a flag

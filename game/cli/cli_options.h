@@ -21,6 +21,10 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   // the work itself failed (GPU error, I/O error)
 inline constexpr int kExitBadInput = 2;  // bad command line, scene, model or output path
 
+// Puts the exit statuses at the end of the --help of APP and of every command under it (after a
+// command's own footer, where it has one).
+void AddExitStatusHelp(CLI::App& app);
+
 // A number option's check: finite and within [min, max]. CLI::Range lets NaN through, as both of
 // its comparisons are false for it.
 CLI::Validator FiniteRange(double min, double max);

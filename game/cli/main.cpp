@@ -103,6 +103,7 @@ int RunCommandLine(int argc, char** argv) {
     rtrt::AddFarmCommand(app, &exitCode);
     rtrt::AddBenchCommand(app, &exitCode);
     rtrt::CheckOptionValues(app);
+    rtrt::AddExitStatusHelp(app);
     app.parse_complete_callback([&app] { rtrt::RefuseOutputsOverInputs(app); });
     if (ReportUnknownCommand(app, argc, argv)) return rtrt::kExitBadInput;
     try {
