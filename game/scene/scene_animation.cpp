@@ -49,6 +49,11 @@ std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std:
             for (const Json& v : key)
                 if (!v.is_number() || !(std::fabs(v.get<double>()) <= 3.4e38))
                     f.Fail(at, "expected numbers within float's range (at most 3.4e38)");
+            // A clip is sampled in float: beyond 1e6 s its keys are seconds apart in a float.
+            if (!(std::fabs(key[0].get<double>()) <= 1e6))
+                f.Fail(at,
+                       "key times must be at most 1e6 seconds in magnitude, as the scene's "
+                       "other times");
             add(at, key[0].get<float>(),
                 vec3(key[1].get<float>(), key[2].get<float>(), key[3].get<float>()));
         }

@@ -296,6 +296,10 @@ TEST(World, BadDynamicFieldsAreRejected) {
     expectError(
         R"({"models": {"b": {"type": "sphere"}}, "instances": [{"model": "b", "animate": {"spin": {"axis": [0, 0, 0]}}}]})",
         "instances[0].animate.spin.axis");
+    // Key times beyond 1e6 s, where a float clip's keys are a second apart.
+    expectError(
+        R"({"models": {"b": {"type": "sphere"}}, "instances": [{"model": "b", "animate": {"keyframes": {"translation": [[1e7, 0, 0, 0], [10000002, 2, 0, 0]]}}}]})",
+        "instances[0].animate.keyframes.translation[0]");
     expectError(
         R"({"instances": [], "camera_path": [{"time": 1, "position": [0, 0, 1], "look_at": [0, 0, 0]}, {"time": 0.5, "position": [0, 0, 1], "look_at": [0, 0, 0]}]})",
         "camera_path[1].time");
