@@ -68,6 +68,8 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const ChildOpti
     if (options.pipeStdout) posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
     if (options.quietStderr)
         posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+    if (options.ownProcessGroup && !options.pipeStdin)
+        posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     posix_spawnattr_t attributes;
     posix_spawnattr_init(&attributes);
     sigset_t none, interrupts;
@@ -78,7 +80,12 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const ChildOpti
     sigaddset(&interrupts, SIGPIPE);  // rtrt blocks it around its own writes to a pipe
     posix_spawnattr_setsigmask(&attributes, &none);
     posix_spawnattr_setsigdefault(&attributes, &interrupts);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+    short flags = POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF;
+    if (options.ownProcessGroup) {
+        posix_spawnattr_setpgroup(&attributes, 0);  // a group named by the child's own id
+        flags |= POSIX_SPAWN_SETPGROUP;
+    }
+    posix_spawnattr_setflags(&attributes, flags);
 
     std::vector<std::string> args = argv;
     std::vector<std::string> env = Environment(options);

@@ -19,6 +19,11 @@ struct ChildOptions {
     // it ends (SIGKILL too), instead of going on as an orphan. Linux sends it when the thread
     // that started the child ends, so that thread must outlive the child.
     bool endWithParent = false;
+    // The child leads a process group of its own, which an interrupt rtrt hands on reaches
+    // whole: a script's own programs stop with it (a signal to the script alone waits until its
+    // program ends, and that program runs on). Its standard input is /dev/null unless piped, as
+    // a group other than the terminal's must not read the terminal.
+    bool ownProcessGroup = false;
 };
 
 class ChildProcess {

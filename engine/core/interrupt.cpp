@@ -31,14 +31,22 @@ constexpr int kChildKillMilliseconds = 2000;
 // Hands signo on to every registered child and waits until each has ended (reaped here, or by
 // the thread that waits for it), killing those still running after kChildStopMilliseconds and
 // going on without those that outlive the kill.
+// A child that leads its own process group (ChildOptions::ownProcessGroup) gets it as a group.
+void SignalChild(pid_t child, int signo) {
+    if (::getpgid(child) == child)
+        ::kill(-child, signo);
+    else
+        ::kill(child, signo);
+}
+
 void StopChildren(const std::vector<pid_t>& children, int signo) {
-    for (const pid_t child : children) ::kill(child, signo);
+    for (const pid_t child : children) SignalChild(child, signo);
     std::vector<pid_t> running = children;
     for (int waited = 0;
          !running.empty() && waited < kChildStopMilliseconds + kChildKillMilliseconds;
          waited += 10) {
         if (waited == kChildStopMilliseconds)
-            for (const pid_t child : running) ::kill(child, SIGKILL);
+            for (const pid_t child : running) SignalChild(child, SIGKILL);
         std::erase_if(running, [](pid_t child) {
             int status;
             return ::waitpid(child, &status, WNOHANG) != 0;  // ended, or reaped elsewhere

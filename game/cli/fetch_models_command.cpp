@@ -24,6 +24,7 @@ struct FetchOptions {
 int RunScript(const std::string& script, const std::string& dir) {
     ChildOptions o;
     o.environment = {{"RTRT_MODEL_DIR", dir}};
+    o.ownProcessGroup = true;  // an interrupt stops npm and apt-get too, and the script cleans up
     return RunProgram({"/bin/bash", script}, nullptr, o);
 }
 

@@ -183,6 +183,7 @@ def main():
                               os.path.join(d, "f_%04d" + EXT)],
                    [f"f_{i:04d}{EXT}" for i in range(frames)])
     interrupt_farm_task()
+    interrupt_fetch_models()
     interrupt_report()
     shutil.rmtree(WORK)
 
@@ -257,6 +258,50 @@ def interrupt_farm_task():
     if sorted(os.listdir(frames)) != done or any(name.startswith(".") for name in done):
         sys.exit(f"FAIL: frames still change, or a temporary is left: {done[-3:]}")
     print(f"ok: farm --local stopped by SIGTERM stops its task too ({len(done)} frames kept)")
+
+
+def interrupt_fetch_models():
+    """SIGTERM to `rtrt fetch-models` alone while its script waits on npm (a stand-in that
+    sleeps): npm is stopped too and the script removes its temporaries. The script had waited for
+    npm to end before running its trap, rtrt had killed it after 5 s, and npm and the script's
+    temporary folder were left behind."""
+    folder = os.path.join(WORK, "fetch")
+    tools, tmp = os.path.join(folder, "bin"), os.path.join(folder, "tmp")
+    os.makedirs(tools)
+    os.makedirs(tmp)
+    marker = os.path.join(folder, "npm.pid")
+    with open(os.path.join(tools, "npm"), "w") as f:
+        f.write(f"#!/bin/sh\necho $$ > '{marker}'\nexec sleep 60\n")
+    os.chmod(os.path.join(tools, "npm"), 0o755)
+    env = dict(os.environ, PATH=tools + os.pathsep + os.environ["PATH"], TMPDIR=tmp)
+    proc = subprocess.Popen([RTRT, "fetch-models", "--dir", os.path.join(folder, "models")],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
+    deadline = time.monotonic() + 60
+    while not (os.path.exists(marker) and os.path.getsize(marker) > 0):
+        if proc.poll() is not None or time.monotonic() > deadline:
+            proc.kill()
+            sys.exit(f"FAIL: fetch-models never ran npm ({proc.wait()}): {proc.stderr.read()}")
+        time.sleep(0.01)
+    with open(marker) as f:
+        npm = int(f.read())
+    proc.send_signal(signal.SIGTERM)
+    sent = time.monotonic()
+    try:
+        _, stderr = proc.communicate(timeout=30)
+    except subprocess.TimeoutExpired:  # npm, left running, holds rtrt's stderr open
+        proc.kill()
+        os.kill(npm, signal.SIGKILL)
+        sys.exit("FAIL: fetch-models's npm still runs 30 s after fetch-models was stopped")
+    took = time.monotonic() - sent
+    if proc.returncode != 143 or took > PROMPT_S:
+        sys.exit(f"FAIL: fetch-models after SIGTERM: exit {proc.returncode} after {took:.1f} s"
+                 f"\n{stderr}")
+    if os.path.exists(f"/proc/{npm}"):
+        os.kill(npm, signal.SIGKILL)
+        sys.exit("FAIL: fetch-models's npm still runs after fetch-models was stopped")
+    if os.listdir(tmp):
+        sys.exit(f"FAIL: fetch-models's script left {os.listdir(tmp)} in its TMPDIR")
+    print(f"ok: fetch-models stopped by SIGTERM stops npm and cleans up ({took:.2f} s)")
 
 
 main()
