@@ -88,8 +88,11 @@ def table(rows, have_gpu):
         line = f"| {r['scene']} | {r['knob']} | {r['name']} | {fmt(cpu and cpu['ms'], 1)} |"
         if have_gpu:
             line += f" {fmt(gpu and gpu['ms'], 2)} |"
-        line += (f" {errors['rmse']:.5f} | {psnr_text(errors)} |"
-                 f" {100 * errors['outlier_rate']:.3f} | {100 * errors['mismatch_rate']:.3f} |")
+        if errors is None:  # the reference row of a CUDA-only run (its CPU column is left out)
+            line += " — | — | — | — |"
+        else:
+            line += (f" {errors['rmse']:.5f} | {psnr_text(errors)} |"
+                     f" {100 * errors['outlier_rate']:.3f} | {100 * errors['mismatch_rate']:.3f} |")
         if have_gpu:
             if gpu:
                 line += (f" {gpu['rmse']:.5f} | {100 * gpu['outlier_rate']:.3f} |"
@@ -334,7 +337,8 @@ default kernels are unchanged.
 ## Measures
 
 Colours are clamped to [0, 1] (as displayed) before they are compared with the reference of
-the same scene and size.
+the same scene and size; a channel that is NaN in either image differs by 1, the most a displayed
+channel can (so a NaN pixel is an outlier, never a match).
 - **RMSE**: root mean square of the differences over every channel of every pixel.
 - **PSNR**: 20 log10(1 / RMSE) dB (peak 1); ∞ for identical images.
 - **outliers**: the share of pixels with some channel more than 0.1 from the reference: acne,

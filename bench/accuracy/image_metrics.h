@@ -1,6 +1,7 @@
 #pragma once
 // How far an image is from the reference (docs/accuracy.md defines each measure). Colours are
-// clamped to [0, 1], as displayed, before they are compared.
+// clamped to [0, 1], as displayed, before they are compared; a channel that is NaN in either
+// image differs by 1, the most a displayed channel can. Images of different sizes are refused.
 #include <vector>
 
 #include "engine/render_rt/image.h"

@@ -38,6 +38,25 @@ TEST(ImageMetrics, ColoursAreClampedAsDisplayedBeforeComparing) {
     EXPECT_EQ(DifferenceImage(a, b).pixels[0], vec3(0.0f));
 }
 
+// A NaN channel (in either image) is as far off as a channel can be: it had made the RMSE NaN,
+// the PSNR infinite (reported as a perfect match) and no outlier.
+TEST(ImageMetrics, ANaNChannelDiffersByOne) {
+    const float nan = std::nanf("");
+    const Image a = Pixels({vec3(0.5f, nan, 0.5f), vec3(0.25f)});
+    const Image b = Pixels({vec3(0.5f), vec3(0.25f)});
+    EXPECT_DOUBLE_EQ(Rmse(a, b), std::sqrt(1.0 / 6.0));
+    EXPECT_DOUBLE_EQ(Rmse(b, a), std::sqrt(1.0 / 6.0));
+    EXPECT_EQ(OutlierRate(a, b, 0.1f), 0.5);
+    EXPECT_EQ(DifferenceImage(a, b).pixels[0], vec3(0.0f, 1.0f, 0.0f));
+    // Infinities are displayed as the clamp shows them.
+    const float inf = HUGE_VALF;
+    EXPECT_EQ(Rmse(Pixels({vec3(inf, -inf, 0.0f)}), Pixels({vec3(1.0f, 0.0f, 0.0f)})), 0.0);
+}
+
+TEST(ImageMetrics, ImagesOfOneCountButAnotherShapeAreRefused) {
+    EXPECT_THROW(Rmse(Image(2, 1), Image(1, 2)), std::invalid_argument);
+}
+
 TEST(ImageMetrics, OutlierRateCountsPixelsWithAnyChannelBeyondTheThreshold) {
     const Image ref = Pixels({vec3(0.5f), vec3(0.5f), vec3(0.5f), vec3(0.5f)});
     const Image img =
