@@ -289,8 +289,9 @@ plots from the benchmark's JSON results (see "Regenerating" below); do not edit 
   strata, one jittered sample each, the same positions on every run and back end), max depth 8,
   binned-SAH BLAS, SAH TLAS built over the instances.
 - **Reference**: the base setting computed in double precision on the CPU
-  (`bench/accuracy/reference_*.h`): camera rays, instance transforms (the inverse
-  taken in double from the float object-to-world transform), triangle and sphere tests,
+  (`bench/accuracy/reference_*.h`): camera rays, instance transforms (the stored float
+  world-to-object matrix, which the renderers apply, taken as exact and inverted in double for
+  the object-to-world one), triangle and sphere tests,
   hit points, error bounds, offsets and shading are doubles; the scene data stays as the float
   renderer sees it (float vertices, spheres, transforms, BVH boxes), over the sweep-SAH BLAS.
   The float boxes are widened by 8 float ulps of their magnitude and the double slab interval by
@@ -347,8 +348,9 @@ channel can (so a NaN pixel is an outlier, never a match).
   a different object than the reference's (a miss counts as object 0; an object is an
   instance). It measures the intersection and traversal knobs only: samples per pixel and depth
   do not change it.
-- **time**: CPU, the wall clock of the whole frame, one warm-up frame, median of 5; GPU, CUDA
-  events around the trace kernel, 5 warm-up launches, median of 20. The reference's CPU time is
+- **time**: CPU, the wall clock of the whole frame, one warm-up frame, median of
+  `--cpu-frames` (5); GPU, CUDA events around the trace kernel, 5 warm-up launches, median of
+  `--gpu-frames` (20; of an even count, the upper of the middle two). The reference's CPU time is
   that of one double-precision frame. The development VM's 2 cores are shared: there, CPU times
   of the same setting varied by up to 2x between runs (base float: 1363 to 2688 ms in five
   runs on 2026-11-29 with the same trace code, the slow ones beside another engineer's builds), while every error measure came out

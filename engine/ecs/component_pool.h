@@ -61,7 +61,12 @@ class PoolBase {
     }
     bool IsChanged(Entity e) const { return changed_.Contains(e); }
     std::span<const Entity> ChangedEntities() const { return changed_.Entities(); }
-    void ClearChanged() { changed_.Clear(); }
+    void ClearChanged() {
+        changed_.Clear();
+        ++clears_;
+    }
+    // How many times ClearChanged ran: a walk of the changed list ends where this moves.
+    uint64_t Clears() const { return clears_; }
 
   protected:
     // Appends e (which must be absent) to the owners, marks it changed, returns its position.
@@ -80,6 +85,7 @@ class PoolBase {
   private:
     SparseSet owners_;
     SparseSet changed_;
+    uint64_t clears_ = 0;
     std::vector<uint32_t> markChunks_;  // the bulk MarkChanged's scratch
 };
 

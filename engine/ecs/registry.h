@@ -160,7 +160,9 @@ class Registry {
     template <typename Pool, typename Fn>
     static void EachChangedIn(Pool& pool, Fn& fn) {
         const size_t count = pool.ChangedEntities().size();
-        for (size_t i = 0; i < count && i < pool.ChangedEntities().size(); ++i) {
+        const uint64_t clears = pool.Clears();
+        for (size_t i = 0;
+             i < count && pool.Clears() == clears && i < pool.ChangedEntities().size(); ++i) {
             // Re-read the span: a mark made by fn may grow (and move) the changed list.
             const Entity e = pool.ChangedEntities()[i];
             fn(e, pool.At(pool.Find(e)));

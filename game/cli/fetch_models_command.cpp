@@ -8,7 +8,6 @@
 
 #include "engine/core/child_process.h"
 #include "engine/core/error.h"
-#include "engine/core/output_file.h"
 #include "game/assets/model_dir.h"
 #include "game/cli/commands.h"
 
@@ -39,9 +38,13 @@ void RunFetchModels(const FetchOptions& o, int* exitCode) {
                          "is not a folder: give a folder to fetch the models into");
     if (!std::filesystem::exists(script, ec))
         throw InputError(script, "", "the model fetching script is missing (reinstall rtrt)");
-    // Made here, so that a folder that cannot be made or written is a bad --dir (exit 2), where
-    // the script's mkdir had failed the fetch (exit 1).
-    CreateOutputFolder(dir);
+    // Made here, so that a folder that cannot be made is a bad --dir (exit 2), where the script's
+    // mkdir had failed the fetch (exit 1). Whether it can be written is the script's to find: a
+    // read-only folder that holds the models already is up to date.
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+        throw InputError(o.dir.empty() ? dir : "--dir", o.dir.empty() ? "" : dir,
+                         "cannot create the folder: " + ec.message());
     std::printf("rtrt: fetching the models into %s (%s)\n", dir.c_str(), script.c_str());
     std::fflush(stdout);
     const int status = RunScript(script, dir);

@@ -11,6 +11,7 @@
 #include "engine/physics_anim/physics_anim_systems.h"
 #include "engine/physics_anim/skinning.h"
 #include "engine/physics_anim/transform_system.h"
+#include "engine/physics_anim/wake_around.h"
 
 namespace rtrt {
 
@@ -255,6 +256,7 @@ bool World::RemoveObject(ecs::Entity e) {
     }
     for (const ecs::Entity d : doomed) {
         if (!Remove(d) && registry_.Valid(d)) {
+            physics::WakeSleepersAround(registry_, d, physics_.Settings().contactMargin);
             registry_.Destroy(d);
             topologyPending_ = true;
         }
@@ -278,6 +280,7 @@ bool World::Remove(ecs::Entity e) {
     }
     if (const DeformationLink* link = registry_.Get<DeformationLink>(e))
         freeDeformations_.push_back(link->deformation);
+    physics::WakeSleepersAround(registry_, e, physics_.Settings().contactMargin);
     registry_.Destroy(e);
     topologyPending_ = true;
     return true;

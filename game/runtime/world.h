@@ -73,6 +73,7 @@ class World {
     // its animation from there (PlaceAnimated).
     bool SetPose(ecs::Entity e, vec3 position, glm::quat rotation);
     // Destroys an entity and drops its instance: the last instance record moves into its slot.
+    // Bodies asleep on it wake (WakeSleepersAround).
     bool Remove(ecs::Entity e);
     // Destroys the whole object e belongs to: the root of its hierarchy and everything under it
     // (a spawned glTF scene's nodes, skeleton and meshes), what the window's Delete means.

@@ -288,7 +288,7 @@ foreach(case "empty|header: truncated"
 endforeach()
 expect_bad_input(info_missing "${WORK_DIR}/none.rtmodel: no such file" info ${WORK_DIR}/none.rtmodel)
 # A --dir that cannot be made is refused before the script runs (it had failed the fetch, exit 1).
-expect_bad_input(fetch_models_dir_under_a_file "${WORK_DIR}/tetra.obj/models: cannot create the folder" fetch-models --dir ${WORK_DIR}/tetra.obj/models)
+expect_bad_input(fetch_models_dir_under_a_file "--dir: ${WORK_DIR}/tetra.obj/models: cannot create the folder" fetch-models --dir ${WORK_DIR}/tetra.obj/models)
 file(WRITE ${WORK_DIR}/hostile_scene.json
     "{ \"models\": { \"m\": { \"type\": \"mesh\", \"file\": \"${HOSTILE}/nan_vertex.rtmodel\" } }, \"instances\": [ { \"model\": \"m\" } ] }")
 expect_failure(render_hostile_rtmodel 2 "nan_vertex.rtmodel: triangles[3]" render ${WORK_DIR}/hostile_scene.json)

@@ -260,6 +260,15 @@ def interrupt_farm_task():
     print(f"ok: farm --local stopped by SIGTERM stops its task too ({len(done)} frames kept)")
 
 
+def running(pid):
+    """Whether process PID exists and has not ended (a zombie has)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
 def interrupt_fetch_models():
     """SIGTERM to `rtrt fetch-models` alone while its script waits on npm (a stand-in that
     sleeps): npm is stopped too and the script removes its temporaries. The script had waited for
@@ -296,7 +305,11 @@ def interrupt_fetch_models():
     if proc.returncode != 143 or took > PROMPT_S:
         sys.exit(f"FAIL: fetch-models after SIGTERM: exit {proc.returncode} after {took:.1f} s"
                  f"\n{stderr}")
-    if os.path.exists(f"/proc/{npm}"):
+    # Its signal is on its way: a moment to end (a zombie waiting for its reaper has ended).
+    deadline = time.monotonic() + PROMPT_S
+    while running(npm) and time.monotonic() < deadline:
+        time.sleep(0.01)
+    if running(npm):
         os.kill(npm, signal.SIGKILL)
         sys.exit("FAIL: fetch-models's npm still runs after fetch-models was stopped")
     if os.listdir(tmp):

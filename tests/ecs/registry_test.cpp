@@ -382,9 +382,11 @@ TEST(RegistryTest, StructuralChangesDuringEachChangedWaitUntilItEnds) {
     registry.EachChanged<Health>([&](Entity, Health&) {
         ++visits;
         registry.ClearChanged<Health>();
+        registry.MarkChanged<Health>(entities[3]);  // for the next pass, as any mark made here
+        registry.MarkChanged<Health>(entities[0]);
     });
     EXPECT_EQ(visits, 1);
-    EXPECT_EQ(registry.ChangedCount<Health>(), 0u);
+    EXPECT_EQ(registry.ChangedCount<Health>(), 2u);
 }
 
 TEST(RegistryTest, AMovedFromRegistryIsEmpty) {

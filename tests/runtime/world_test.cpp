@@ -396,6 +396,29 @@ TEST(WorldEdits, AnAnimatedObjectMovedByHandStaysWhereItWasPut) {
 
 // Two parent links closed into a cycle in one deferred phase (which SetParent cannot see) no
 // longer make RemoveObject walk them for ever: both entities go.
+// Deleting the block a ball sleeps on drops the ball: it had stayed asleep in the air, since a
+// sleeper wakes only when something near it moves.
+TEST(WorldEdits, RemovingWhatASleeperRestsOnWakesIt) {
+    const LoadedScene loaded = ParseScene(R"({
+      "models": { "floor": { "type": "plane", "size": [20, 0, 20] },
+                  "block": { "type": "box", "size": [1, 1, 1] },
+                  "ball": { "type": "sphere", "radius": 0.5 } },
+      "instances": [ { "model": "floor", "rigid_body": { "static": true } },
+                     { "model": "block", "position": [0, 0.5, 0], "rigid_body": { "static": true } },
+                     { "model": "ball", "position": [0, 1.5, 0], "rigid_body": {} } ] })",
+                                          "sleepers.json", "");
+    World world(loaded);
+    for (int i = 0; i < 120; ++i) world.Advance(1.0f / 60.0f);
+    const ecs::Entity block = world.EntityOfInstance(1), ball = world.EntityOfInstance(2);
+    ASSERT_EQ(world.Registry().Get<physics::Collider>(ball)->shape,
+              physics::ColliderShape::kSphere);
+    ASSERT_TRUE(world.Registry().Get<physics::RigidBody>(ball)->state.sleeping);
+    ASSERT_NEAR(world.Registry().Get<physics::LocalTransform>(ball)->translation.y, 1.5f, 0.05f);
+    ASSERT_TRUE(world.Remove(block));
+    for (int i = 0; i < 120; ++i) world.Advance(1.0f / 60.0f);
+    EXPECT_NEAR(world.Registry().Get<physics::LocalTransform>(ball)->translation.y, 0.5f, 0.05f);
+}
+
 TEST(WorldEdits, RemovingAnObjectWhoseParentsFormACycleEnds) {
     const LoadedScene loaded = ParseScene(kAnimated, "animated.json", "");
     World world(loaded);

@@ -1,0 +1,15 @@
+#pragma once
+// Waking what rested on a body that is about to be removed.
+#include <cstdint>
+
+#include "engine/ecs/registry.h"
+
+namespace rtrt::physics {
+
+// Wakes the sleeping bodies that may rest on or lean against body E, which is about to go (the
+// window's Delete, World::Remove): those whose bounding sphere comes within MARGIN of E's, or,
+// for a plane, of its half-space. Asleep, they would have stayed in the air where it was, since a
+// sleeper wakes only when something near it moves. Returns how many were woken.
+uint32_t WakeSleepersAround(ecs::Registry& registry, ecs::Entity e, float margin);
+
+}  // namespace rtrt::physics
