@@ -272,7 +272,10 @@ class App {
         const Ray ray = RayThroughMouse();
         SceneHit hit{};
         const bool found = renderer_->Pick(ray, &hit);
-        selected_ = found ? world_->EntityOfInstance(hit.instance) : ecs::Entity{};
+        // The whole object: a glTF node's mesh moved alone is turned and scaled by its parent's
+        // frame, and a skinned mesh's node does not move its skin at all.
+        selected_ =
+            found ? world_->ObjectRoot(world_->EntityOfInstance(hit.instance)) : ecs::Entity{};
         model_.selected.clear();
         if (selected_.IsNull()) return;
         const auto* local = world_->Registry().Get<physics::LocalTransform>(selected_);
@@ -291,13 +294,33 @@ class App {
                         local->rotation);
     }
 
+    // Where a character spawned now stands: on what lies below the point where the view's centre
+    // meets the scene (half a unit back toward the camera, so a wall hit leaves it in front of
+    // the wall), or below the point kSpawnDistance ahead when the view meets nothing. It had
+    // stood on y = 0 under that point, below the view of most demos' cameras and in the air
+    // above demo_1000_instances's floor.
+    std::optional<vec3> GroundAhead() const {
+        const Camera& camera = world_->Scene().camera;
+        const vec3 forward = glm::normalize(camera.forward);
+        constexpr float kReach = 1000.0f;
+        SceneHit hit{};
+        vec3 above = camera.position + kSpawnDistance * forward;
+        if (renderer_->Pick(Ray{camera.position, kReach, forward, 0.0f}, &hit))
+            above = camera.position + std::max(hit.t - 0.5f, 0.0f) * forward;
+        const Ray down{above, kReach, vec3(0.0f, -1.0f, 0.0f), 0.0f};
+        if (!renderer_->Pick(down, &hit)) return std::nullopt;
+        return down.origin + hit.t * down.dir;
+    }
+
     void Spawn(const char* name) {
         const SpawnKind* kind = palette_->Find(name);
         if (!kind) {
             std::printf("rtrt: no %s to spawn (its model was not fetched)\n", name);
             return;
         }
-        selected_ = palette_->SpawnInFront(*world_, *kind, world_->Scene().camera, kSpawnDistance);
+        const std::optional<vec3> ground = kind->gltf ? GroundAhead() : std::nullopt;
+        selected_ = palette_->SpawnInFront(*world_, *kind, world_->Scene().camera, kSpawnDistance,
+                                           ground ? &*ground : nullptr);
         model_.selected = std::string("a new ") + name;
         // A mirror (mostly reflective) shows its reflection only with a bounce to spare, glass
         // only with two (into the glass and out of it): the depth goes up to what the object

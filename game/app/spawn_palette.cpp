@@ -27,6 +27,12 @@ std::shared_ptr<const Blas> FittedMeshBlas(TriangleMesh mesh) {
     return std::make_shared<const Blas>(BuildTriangleBlas(mesh));
 }
 
+// A box about the model's origin that holds it (FitMesh centres it): a sphere of the largest
+// half extent left a flat model resting above the ground (the teapot 0.2 too high).
+physics::Collider BoxAround(const Blas& blas) {
+    return physics::Collider::Box(glm::max(glm::abs(blas.bounds.min), glm::abs(blas.bounds.max)));
+}
+
 }  // namespace
 
 SpawnPalette::SpawnPalette(World& world, std::vector<std::string>* notes) {
@@ -38,17 +44,18 @@ SpawnPalette::SpawnPalette(World& world, std::vector<std::string>* notes) {
 
     const std::string teapot = ModelDir() + "/teapot.inc";
     if (std::filesystem::exists(teapot)) {
-        kinds_.push_back({"teapot", world.AddBlas(FittedMeshBlas(TessellateTeapot(teapot, 6))),
-                          world.AddMaterial(Colored(vec3(0.9f, 0.7f, 0.2f))),
-                          physics::Collider::Sphere(0.45f)});
+        const std::shared_ptr<const Blas> blas = FittedMeshBlas(TessellateTeapot(teapot, 6));
+        kinds_.push_back({"teapot", world.AddBlas(blas),
+                          world.AddMaterial(Colored(vec3(0.9f, 0.7f, 0.2f))), BoxAround(*blas)});
     } else if (notes) {
         notes->push_back("no teapot to spawn: run tools/fetch_models.sh");
     }
     const std::string dragon = ModelDir() + "/dragon_vrip_res4.ply.gz";
     if (std::filesystem::exists(dragon)) {
-        kinds_.push_back({"dragon", world.AddBlas(FittedMeshBlas(LoadMesh(dragon))),
+        const std::shared_ptr<const Blas> blas = FittedMeshBlas(LoadMesh(dragon));
+        kinds_.push_back({"dragon", world.AddBlas(blas),
                           world.AddMaterial(Colored(vec3(0.2f, 0.7f, 0.3f), 0.2f)),
-                          physics::Collider::Sphere(0.4f)});
+                          BoxAround(*blas)});
     } else if (notes) {
         notes->push_back("no dragon to spawn: run tools/fetch_models.sh");
     }
@@ -110,12 +117,14 @@ const SpawnKind* SpawnPalette::Find(const std::string& name) const {
 }
 
 ecs::Entity SpawnPalette::SpawnInFront(World& world, const SpawnKind& kind, const Camera& camera,
-                                       float distance) const {
+                                       float distance, const vec3* ground) const {
     const vec3 forward = glm::normalize(camera.forward);
     if (kind.gltf) {
-        // Placed on the ground plane under the point ahead (y = 0), turned to face the camera.
+        // Standing on the ground found ahead, else on y = 0 under the point ahead, turned to
+        // face the camera.
         vec3 at = camera.position + distance * forward;
         at.y = 0.0f;
+        if (ground) at = *ground;
         LoadedScene group;
         group.scene.deformableMeshes = world.Scene().deformableMeshes;  // what it places reads
         EntityDesc root;

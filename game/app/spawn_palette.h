@@ -27,9 +27,11 @@ class SpawnPalette {
 
     const std::vector<SpawnKind>& Kinds() const { return kinds_; }
     const SpawnKind* Find(const std::string& name) const;
-    // Spawns `kind` `distance` ahead of the camera; with physics it is thrown along the view.
+    // Spawns `kind` `distance` ahead of the camera; with physics it is thrown along the view. A
+    // glTF kind (a character) stands at `ground` when given (where the view meets the scene:
+    // the window finds it), else on y = 0 under the point ahead.
     ecs::Entity SpawnInFront(World& world, const SpawnKind& kind, const Camera& camera,
-                             float distance) const;
+                             float distance, const vec3* ground = nullptr) const;
 
     static constexpr float kThrowSpeed = 6.0f;  // m/s
 

@@ -209,6 +209,9 @@ uint32_t World::AddTexture(const Texture& texture, const uint32_t* rgba) {
 bool World::SetPose(ecs::Entity e, vec3 position, glm::quat rotation) {
     physics::LocalTransform* local = registry_.Get<physics::LocalTransform>(e);
     if (!local) return false;
+    // What slept on it falls once it is moved away (a static body's next step finds it moved and
+    // does this itself; a teleported dynamic one does not).
+    physics::WakeSleepersAround(registry_, e, physics_.Settings().contactMargin);
     local->translation = position;
     local->rotation = rotation;
     registry_.MarkChanged<physics::LocalTransform>(e);
@@ -229,15 +232,22 @@ bool World::SetPose(ecs::Entity e, vec3 position, glm::quat rotation) {
     return true;
 }
 
-bool World::RemoveObject(ecs::Entity e) {
-    if (!registry_.Valid(e)) return false;
-    // Up to the root of its hierarchy, then everything under it.
+ecs::Entity World::ObjectRoot(ecs::Entity e) const {
+    if (!registry_.Valid(e)) return {};
     ecs::Entity root = e;
+    // At most one hop per parent link: a cycle (see RemoveObject) ends somewhere on it.
     for (size_t hops = 0; hops < registry_.Count<physics::Parent>(); ++hops) {
         const physics::Parent* up = registry_.Get<physics::Parent>(root);
         if (!up || !registry_.Valid(up->entity)) break;
         root = up->entity;
     }
+    return root;
+}
+
+bool World::RemoveObject(ecs::Entity e) {
+    if (!registry_.Valid(e)) return false;
+    // Up to the root of its hierarchy, then everything under it.
+    const ecs::Entity root = ObjectRoot(e);
     // Breadth first over the parent links, each entity once: two SetParent calls in one
     // deferred phase can close a cycle (the transform system tolerates it), which had made this
     // walk grow without end.

@@ -78,6 +78,9 @@ class World {
     // Destroys the whole object e belongs to: the root of its hierarchy and everything under it
     // (a spawned glTF scene's nodes, skeleton and meshes), what the window's Delete means.
     bool RemoveObject(ecs::Entity e);
+    // The root of the hierarchy e belongs to (e itself without a parent; null for a stale e): the
+    // object the window picks, moves, turns and deletes.
+    ecs::Entity ObjectRoot(ecs::Entity e) const;
     // The entity an instance record belongs to (a null entity for none).
     ecs::Entity EntityOfInstance(uint32_t instance) const;
 

@@ -99,6 +99,46 @@ TEST(SpawnPalette, DeletingAPickedWalkerRemovesAllOfIt) {
     EXPECT_EQ(world.Scene().deformations.size(), 1u);
 }
 
+// A pick of a walker's mesh selects the whole walker (its root): moving that moves what is seen,
+// where the mesh node moved alone had left the skinned walker where it was.
+TEST(SpawnPalette, APickedWalkerMovesWhole) {
+    const LoadedScene loaded = ParseScene(kStatic, "static.json", "");
+    World world(loaded);
+    SpawnPalette palette(world, nullptr);
+    const SpawnKind* walker = palette.Find("walker");
+    ASSERT_NE(walker, nullptr);
+    world.Advance(0.0f);
+    const uint32_t instance = uint32_t(world.Scene().instances.size());
+    const vec3 ground(1.0f, -2.0f, 3.0f);  // what the window finds below the view's centre
+    const ecs::Entity spawned =
+        palette.SpawnInFront(world, *walker, world.Scene().camera, 4.0f, &ground);
+    world.Advance(1.0f / 60.0f);
+    const ecs::Entity root = world.ObjectRoot(world.EntityOfInstance(instance));
+    EXPECT_EQ(root, spawned);
+    EXPECT_EQ(world.Registry().Get<physics::LocalTransform>(root)->translation, ground);
+    const vec3 placed = world.Scene().instances[instance].Position();
+    ASSERT_TRUE(world.SetPose(root, ground + vec3(5.0f, 0.0f, 0.0f),
+                              world.Registry().Get<physics::LocalTransform>(root)->rotation));
+    world.Advance(0.0f);
+    EXPECT_NEAR(world.Scene().instances[instance].Position().x, placed.x + 5.0f, 1e-4f);
+}
+
+// A flat model rests on the ground: its collider is a box around it (a sphere of its largest
+// half extent had held the teapot 0.2 above the floor).
+TEST(SpawnPalette, ModelCollidersHoldTheirModels) {
+    const LoadedScene loaded = ParseScene(kPhysics, "physics.json", "");
+    World world(loaded);
+    SpawnPalette palette(world, nullptr);
+    for (const char* name : {"teapot", "dragon"}) {
+        const SpawnKind* kind = palette.Find(name);
+        if (!kind) continue;  // its model was not fetched
+        const Aabb bounds = world.Scene().blases[kind->blasId]->bounds;
+        ASSERT_EQ(kind->collider.shape, physics::ColliderShape::kBox) << name;
+        EXPECT_NEAR(kind->collider.halfExtents.y, 0.5f * bounds.Extent().y, 1e-4f) << name;
+        EXPECT_NEAR(kind->collider.halfExtents.x, 0.5f * bounds.Extent().x, 1e-4f) << name;
+    }
+}
+
 TEST(SpawnPalette, WithPhysicsSpawnsAreThrown) {
     const LoadedScene loaded = ParseScene(kPhysics, "physics.json", "");
     World world(loaded);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "engine/core/error.h"
@@ -417,6 +418,46 @@ TEST(WorldEdits, RemovingWhatASleeperRestsOnWakesIt) {
     ASSERT_TRUE(world.Remove(block));
     for (int i = 0; i < 120; ++i) world.Advance(1.0f / 60.0f);
     EXPECT_NEAR(world.Registry().Get<physics::LocalTransform>(ball)->translation.y, 0.5f, 0.05f);
+}
+
+// A crate dragged out from under a sleeping ball, and a block moved and then deleted before a
+// step (both in one frame of the window): the ball falls. A teleported body had not woken what
+// slept on it, and the deleted block woke only what was near its new place.
+TEST(WorldEdits, DraggingOrMovingThenDeletingWhatASleeperRestsOnWakesIt) {
+    constexpr const char* kStack = R"({
+      "models": { "floor": { "type": "plane", "size": [20, 0, 20] },
+                  "block": { "type": "box", "size": [1, 1, 1] },
+                  "ball": { "type": "sphere", "radius": 0.5 } },
+      "instances": [ { "model": "floor", "rigid_body": { "static": true } },
+                     { "model": "block", "position": [0, 0.5, 0], "rigid_body": { "static": %s } },
+                     { "model": "ball", "position": [0, 1.5, 0], "rigid_body": {} } ] })";
+    for (const bool moveStaticThenDelete : {false, true}) {
+        char json[1024];
+        std::snprintf(json, sizeof json, kStack, moveStaticThenDelete ? "true" : "false");
+        const LoadedScene loaded = ParseScene(json, "stack.json", "");
+        World world(loaded);
+        for (int i = 0; i < 180; ++i) world.Advance(1.0f / 60.0f);
+        const ecs::Entity block = world.EntityOfInstance(1), ball = world.EntityOfInstance(2);
+        ASSERT_TRUE(world.Registry().Get<physics::RigidBody>(ball)->state.sleeping);
+        ASSERT_NEAR(world.Registry().Get<physics::LocalTransform>(ball)->translation.y, 1.5f,
+                    0.05f);
+        ASSERT_TRUE(world.SetPose(block, vec3(6.0f, 0.5f, 0.0f), glm::identity<glm::quat>()));
+        if (moveStaticThenDelete) ASSERT_TRUE(world.Remove(block));
+        for (int i = 0; i < 120; ++i) world.Advance(1.0f / 60.0f);
+        EXPECT_NEAR(world.Registry().Get<physics::LocalTransform>(ball)->translation.y, 0.5f, 0.05f)
+            << (moveStaticThenDelete ? "static block moved, then deleted" : "crate dragged away");
+    }
+}
+
+TEST(WorldEdits, TheObjectRootIsTheTopOfAHierarchy) {
+    const LoadedScene loaded = ParseScene(kAnimated, "animated.json", "");
+    World world(loaded);
+    const ecs::Entity a = world.EntityOfInstance(1), b = world.EntityOfInstance(2);
+    EXPECT_EQ(world.ObjectRoot(a), a);
+    ASSERT_TRUE(physics::SetParent(world.Registry(), b, a));
+    EXPECT_EQ(world.ObjectRoot(b), a);
+    ASSERT_TRUE(world.RemoveObject(a));
+    EXPECT_TRUE(world.ObjectRoot(b).IsNull());
 }
 
 TEST(WorldEdits, RemovingAnObjectWhoseParentsFormACycleEnds) {
