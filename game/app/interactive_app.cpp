@@ -294,22 +294,13 @@ class App {
                         local->rotation);
     }
 
-    // Where a character spawned now stands: on what lies below the point where the view's centre
-    // meets the scene (half a unit back toward the camera, so a wall hit leaves it in front of
-    // the wall), or below the point kSpawnDistance ahead when the view meets nothing. It had
-    // stood on y = 0 under that point, below the view of most demos' cameras and in the air
-    // above demo_1000_instances's floor.
+    // Where a character spawned now stands (SpawnGround). It had stood on y = 0 under the point
+    // ahead, below the view of most demos' cameras and in the air above demo_1000_instances's
+    // floor.
     std::optional<vec3> GroundAhead() const {
-        const Camera& camera = world_->Scene().camera;
-        const vec3 forward = glm::normalize(camera.forward);
-        constexpr float kReach = 1000.0f;
-        SceneHit hit{};
-        vec3 above = camera.position + kSpawnDistance * forward;
-        if (renderer_->Pick(Ray{camera.position, kReach, forward, 0.0f}, &hit))
-            above = camera.position + std::max(hit.t - 0.5f, 0.0f) * forward;
-        const Ray down{above, kReach, vec3(0.0f, -1.0f, 0.0f), 0.0f};
-        if (!renderer_->Pick(down, &hit)) return std::nullopt;
-        return down.origin + hit.t * down.dir;
+        return SpawnGround(
+            *world_, world_->Scene().camera, kSpawnDistance,
+            [&](const Ray& ray, SceneHit* hit) { return renderer_->Pick(ray, hit); });
     }
 
     void Spawn(const char* name) {

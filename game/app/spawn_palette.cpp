@@ -1,8 +1,11 @@
 #include "game/app/spawn_palette.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include "engine/physics_anim/animator.h"
+#include "engine/physics_anim/skinning.h"
 #include "game/assets/mesh_io.h"
 #include "game/assets/model_dir.h"
 #include "game/assets/procedural_shapes.h"
@@ -33,7 +36,57 @@ physics::Collider BoxAround(const Blas& blas) {
     return physics::Collider::Box(glm::max(glm::abs(blas.bounds.min), glm::abs(blas.bounds.max)));
 }
 
+// Whether E's object moves on its own: a dynamic body, a character's skinned mesh, or an object
+// with an animator on it or its root.
+bool Moves(const World& world, ecs::Entity e) {
+    const ecs::Registry& registry = world.Registry();
+    if (const physics::RigidBody* body = registry.Get<physics::RigidBody>(e))
+        if (body->mass > 0.0f) return true;
+    const ecs::Entity root = world.ObjectRoot(e);
+    return registry.Has<physics::Skin>(e) || registry.Has<physics::Animator>(e) ||
+           (!root.IsNull() && registry.Has<physics::Animator>(root));
+}
+
+// The distance along RAY to its nearest hit on something that stays put.
+std::optional<float> PickStill(const World& world, Ray ray, const ScenePick& pick) {
+    float travelled = 0.0f;
+    for (int passed = 0; passed < 64; ++passed) {
+        SceneHit hit{};
+        if (!pick(ray, &hit)) return std::nullopt;
+        if (!Moves(world, world.EntityOfInstance(hit.instance))) return travelled + hit.t;
+        const float step = hit.t + 1e-4f * (1.0f + hit.t);  // on past the moving thing
+        ray.origin += step * ray.dir;
+        ray.tMax -= step;
+        travelled += step;
+        if (!(ray.tMax > 0.0f)) return std::nullopt;
+    }
+    return std::nullopt;
+}
+
 }  // namespace
+
+std::optional<vec3> SpawnGround(const World& world, const Camera& camera, float distance,
+                                const ScenePick& pick) {
+    constexpr float kReach = 1000.0f, kAhead = 2.0f;
+    const vec3 forward = glm::normalize(camera.forward);
+    vec3 above = camera.position + distance * forward;
+    if (const std::optional<float> t =
+            PickStill(world, Ray{camera.position, kReach, forward, 0.0f}, pick))
+        above = camera.position + std::max(*t - 0.5f, 0.0f) * forward;
+    // Across the ground, ahead as the view looks (its up vector when it looks straight down).
+    vec3 across(forward.x, 0.0f, forward.z);
+    if (glm::length(across) < 1e-3f) across = vec3(camera.up.x, 0.0f, camera.up.z);
+    if (glm::length(across) > 1e-6f) {
+        across = glm::normalize(across);
+        const vec3 offset = above - camera.position;
+        if (glm::dot(vec3(offset.x, 0.0f, offset.z), across) < kAhead)
+            above = camera.position + kAhead * across;
+    }
+    const std::optional<float> drop =
+        PickStill(world, Ray{above, kReach, vec3(0.0f, -1.0f, 0.0f), 0.0f}, pick);
+    if (!drop) return std::nullopt;
+    return above - vec3(0.0f, *drop, 0.0f);
+}
 
 SpawnPalette::SpawnPalette(World& world, std::vector<std::string>* notes) {
     const Sphere unitSphere{vec3(0.0f), 0.5f};

@@ -4,9 +4,13 @@
 // animated: each spawned copy walks in a phase of its own). Their models and materials are added to
 // the World once, before a GPU renderer uploads the scene; models whose files are missing are left
 // out with a note.
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/bvh/traversal/two_level_traversal.h"
+#include "engine/core/ray.h"
 #include "game/gltf/gltf_asset.h"
 #include "game/runtime/world.h"
 
@@ -19,6 +23,18 @@ struct SpawnKind {
     float scale = 1.0f;
     std::shared_ptr<const GltfAsset> gltf;  // a glTF scene spawned whole (its nodes, skins)
 };
+
+// Finds the nearest hit of a ray in the scene as the frame renderer sees it (FrameRenderer::Pick).
+using ScenePick = std::function<bool(const Ray& ray, SceneHit* hit)>;
+
+// Where a character spawned now stands: on what lies below the point where the view's centre
+// meets the scene (half a unit back toward the camera, so a wall hit leaves it in front of the
+// wall), or below the point DISTANCE ahead when the view meets nothing; at least 2 units ahead
+// of the camera across the ground, so that a low camera looking down does not stand it in the
+// camera. Things that move (dynamic bodies, characters, animated objects) are looked through: a
+// character stood on a falling ball was left in the air. Empty when nothing lies below.
+std::optional<vec3> SpawnGround(const World& world, const Camera& camera, float distance,
+                                const ScenePick& pick);
 
 class SpawnPalette {
   public:

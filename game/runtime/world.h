@@ -54,6 +54,7 @@ class World {
     SceneChanges Changes() const { return {changed_, topologyChanged_, deformChanged_}; }
     double Time() const { return time_; }
     ecs::Registry& Registry() { return registry_; }
+    const ecs::Registry& Registry() const { return registry_; }
     // Interactive edits (the window's spawn, drag and delete). They take effect at the next
     // Advance, which a paused frame loop calls with dt = 0.
     //

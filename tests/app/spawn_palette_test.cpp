@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/render_rt/frame_renderer.h"
+#include "engine/render_rt/renderer.h"
 #include "game/scene/scene_file.h"
 #include "tests/test_util.h"
 
@@ -137,6 +139,35 @@ TEST(SpawnPalette, ModelCollidersHoldTheirModels) {
         EXPECT_NEAR(kind->collider.halfExtents.y, 0.5f * bounds.Extent().y, 1e-4f) << name;
         EXPECT_NEAR(kind->collider.halfExtents.x, 0.5f * bounds.Extent().x, 1e-4f) << name;
     }
+}
+
+// Where a character stands: on the floor below the point ahead, the view looking through a
+// dynamic ball in its centre (a character put on a falling ball was left in the air); and at
+// least 2 ahead of a low camera looking down, which had stood it in the camera.
+TEST(SpawnPalette, ACharacterStandsOnStillGroundAhead) {
+    const LoadedScene loaded = ParseScene(R"({
+      "camera": { "position": [0, 1, 10], "look_at": [0, 1, 0] },
+      "models": { "floor": { "type": "plane", "size": [40, 0, 40] },
+                  "ball": { "type": "sphere", "radius": 0.5 } },
+      "instances": [ { "model": "floor", "rigid_body": { "static": true } },
+                     { "model": "ball", "position": [0, 1, 0], "rigid_body": {} } ] })",
+                                          "ground.json", "");
+    World world(loaded);
+    const std::unique_ptr<FrameRenderer> renderer = MakeFrameRenderer(Backend::kCpu, world.Scene());
+    const ScenePick pick = [&](const Ray& ray, SceneHit* hit) { return renderer->Pick(ray, hit); };
+    const std::optional<vec3> ahead = SpawnGround(world, world.Scene().camera, 4.0f, pick);
+    ASSERT_TRUE(ahead.has_value());
+    EXPECT_NEAR(ahead->x, 0.0f, 1e-4f);
+    EXPECT_NEAR(ahead->y, 0.0f, 1e-4f);
+    EXPECT_NEAR(ahead->z, 6.0f, 1e-4f);  // 4 ahead, below; the ball is looked through
+
+    Camera low = world.Scene().camera;
+    low.position = vec3(0.0f, 0.4f, 10.0f);
+    low.forward = glm::normalize(vec3(0.0f, -0.4f, -0.2f));
+    const std::optional<vec3> below = SpawnGround(world, low, 4.0f, pick);
+    ASSERT_TRUE(below.has_value());
+    EXPECT_NEAR(below->y, 0.0f, 1e-4f);
+    EXPECT_NEAR(below->z, 8.0f, 1e-4f);  // 2 ahead across the ground
 }
 
 TEST(SpawnPalette, WithPhysicsSpawnsAreThrown) {
