@@ -86,6 +86,8 @@ Blas LbvhOf(const Blas& refit) {
 void RunDeformBench(const DeformBenchOptions& o) {
     const bool gpu = o.backend == "cuda";
     const LoadedScene loaded = LoadSceneFile(o.scene);
+    RefuseOutputOverAsset(o.output);
+    RefuseOutputOverAsset(o.csv);
     RenderSettings settings;
     settings.width = loaded.width.value_or(1280);  // as render and play
     settings.height = loaded.height.value_or(720);

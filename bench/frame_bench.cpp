@@ -20,6 +20,7 @@
 #include "bench/bench_commands.h"
 #include "bench/bench_report.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "game/runtime/world.h"
@@ -147,6 +148,7 @@ void RunFrameBench(const FrameBenchOptions& o) {
     std::vector<LoadedScene> loadedScenes;
     loadedScenes.reserve(o.scenes.size());
     for (const std::string& path : o.scenes) loadedScenes.push_back(LoadSceneFile(path));
+    RefuseOutputOverAsset(o.output);
     const bool gpu = o.backend == "cuda";
     nlohmann::json report;
     report["machine"] = BenchMachine(gpu);

@@ -13,6 +13,7 @@
 #include "bench/bench_commands.h"
 #include "bench/bench_report.h"
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "game/runtime/world.h"
@@ -105,6 +106,7 @@ void AddMaterialsBench(CLI::App& bench, int* exitCode) {
         std::vector<LoadedScene> loaded;
         loaded.reserve(o->scenes.size());
         for (const std::string& path : o->scenes) loaded.push_back(LoadSceneFile(path));
+        RefuseOutputOverAsset(o->output);
         nlohmann::json report;
         report["machine"] = BenchMachine(o->backend == "cuda");
         report["backend"] = o->backend;

@@ -192,6 +192,14 @@ void CreateOutputFolder(const std::string& path) {
     CheckFolderWritable(path, path);
 }
 
+void RefuseOutputOverAsset(const std::string& path) {
+    if (path.empty()) return;
+    if (const std::optional<std::string> asset = AssetFileAt(FollowOutputLinks(path)))
+        throw InputError(path, "",
+                         "is a file of the scene this command read (" + *asset +
+                             "), which would be written over; name another file");
+}
+
 OutputFile::OutputFile(std::string target)
     : target_(std::move(target)),
       file_(FollowOutputLinks(target_)),
@@ -204,11 +212,7 @@ OutputFile::OutputFile(std::string target)
     if (replacing && !S_ISREG(old.st_mode)) {
         throw InputError(target_, "", "is not a regular file (a folder, device, FIFO or socket)");
     }
-    if (replacing)
-        if (const std::optional<std::string> asset = AssetFileAt(file_))
-            throw InputError(target_, "",
-                             "is a file of the scene this command read (" + *asset +
-                                 "), which would be written over; name another file");
+    if (replacing) RefuseOutputOverAsset(target_);
     TemporariesLock lock;
     fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd_ < 0) throw OutputError(target_, std::strerror(errno));

@@ -66,6 +66,11 @@ bool NameTheSameFile(const std::string& a, const std::string& b);
 // a device, a FIFO or a socket (which the rename would replace).
 void CheckOutputPath(const std::string& path);
 
+// InputError(path, "", reason) when PATH names a file of the scene this command read
+// (RememberAssetFile): called once the scene is loaded, before the work whose result would go
+// there, so that the clash fails at once rather than when the output is written.
+void RefuseOutputOverAsset(const std::string& path);
+
 // InputError(path, "", "cannot write into the folder FOLDER: reason") unless this process may
 // create files in FOLDER.
 void CheckFolderWritable(const std::string& path, const std::string& folder);

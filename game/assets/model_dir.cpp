@@ -44,13 +44,19 @@ std::string MissingModelReason(const std::string& spec, const std::string& scene
     if (!spec.starts_with(kPrefix)) {
         // Only a file known to be absent: one that cannot be looked at is the loader's to name.
         const std::string path = ResolveModelPath(spec, sceneDir);
+        // A folder fails here, named as such: its name has no model extension to go by.
+        if (std::filesystem::is_directory(path, error))
+            return path + " is not a regular file (a folder)";
         if (std::filesystem::exists(path, error) || error) return {};
         const bool relative = std::filesystem::path(spec).is_relative() && !sceneDir.empty();
         return "no file " + path +
                (relative ? " (a relative path starts at the scene file's folder)" : "");
     }
     const std::string dir = ModelDir();
-    if (std::filesystem::exists(dir + "/" + spec.substr(kPrefix.size()), error)) return {};
+    const std::string path = dir + "/" + spec.substr(kPrefix.size());
+    if (std::filesystem::is_directory(path, error))
+        return path + " is not a regular file (a folder)";
+    if (std::filesystem::exists(path, error)) return {};
     return spec + " not found in " + dir + " (run rtrt fetch-models, or set RTRT_MODEL_DIR)";
 }
 

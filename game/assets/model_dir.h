@@ -17,7 +17,7 @@ std::string FetchModelsScript();
 
 // Why SPEC, from a scene file in SCENEDIR, cannot be used when it is empty, names a fetched model
 // that is not there ("@models/X not found in DIR (run rtrt fetch-models, or set RTRT_MODEL_DIR)")
-// or a file that does not exist, else empty.
+// or a file that does not exist, or is a folder, else empty.
 std::string MissingModelReason(const std::string& spec, const std::string& sceneDir);
 
 // Where the project's own scenes and models are (scenes/, models/): $RTRT_ASSET_DIR, else the

@@ -247,6 +247,9 @@ void RunPlay(PlayOptions o) {
     CheckImagePath(FramePath(o.output, end - 1));
     if (!o.manifest.empty()) CheckManifestPath(o.manifest);
     const LoadedScene loaded = LoadSceneFile(o.scenes[0]);
+    // The files the scene named (models, a glTF file's buffers and images), known only now.
+    for (const std::string& asset : AssetFilesRead())
+        RefuseFrameOver(o.output, first, end, "a file of the scene", asset);
     CheckSceneChecksum(o.scenes[0], o.sceneChecksum);
     RenderSettings settings;
     settings.width = loaded.width.value_or(1280);

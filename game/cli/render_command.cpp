@@ -2,6 +2,7 @@
 #include <string>
 
 #include "engine/core/error.h"
+#include "engine/core/output_file.h"
 #include "engine/core/timer.h"
 #include "engine/render_rt/frame_renderer.h"
 #include "engine/render_rt/renderer.h"
@@ -54,6 +55,7 @@ void RunRender(const RenderOptions& o) {
         loaded.scene = MakeDefaultScene();
     else
         loaded = LoadSceneFile(o.scene);
+    RefuseOutputOverAsset(o.output);
     const double loadMs = loadTimer.Milliseconds();
     settings.width = loaded.width.value_or(1280);
     settings.height = loaded.height.value_or(720);

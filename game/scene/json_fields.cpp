@@ -159,6 +159,11 @@ class DuplicateKeyFinder : public nlohmann::json_sax<Json> {
 }  // namespace
 
 Json ParseJson(const std::string& text, const std::string& file, DuplicateKeys duplicates) {
+    // nlohmann's parser takes a NUL byte for the end of the text: what followed one was ignored.
+    if (const size_t nul = text.find('\0'); nul != std::string::npos)
+        throw InputError(file, "",
+                         TextPosition(text, nul) +
+                             ": malformed JSON: a NUL byte (a JSON text holds none; binary file?)");
     Json parsed;
     try {
         parsed = Json::parse(text);
@@ -319,7 +324,9 @@ float JsonFields::Number(const std::string& key, std::optional<float> fallback) 
 
 float JsonFields::Positive(const std::string& key, std::optional<float> fallback) {
     const float v = Number(key, fallback);
-    if (!(v > 0.0f)) Fail(key, "must be greater than 0, got " + Format(v));
+    // The value as written: 1e-50 is 0 as a float.
+    if (!(v > 0.0f))
+        Fail(key, "must be greater than 0, got " + (Has(key) ? j_.at(key).dump() : Format(v)));
     return v;
 }
 
@@ -379,7 +386,12 @@ std::string JsonFields::String(const std::string& key, std::optional<std::string
         return *fallback;
     }
     ExpectKind(key, JsonKind::kString);
-    return j_.at(key).get<std::string>();
+    std::string value = j_.at(key).get<std::string>();
+    // Names and paths end at a NUL where the system reads them: "tri.obj\u0000junk" had opened
+    // tri.obj.
+    if (value.find('\0') != std::string::npos)
+        Fail(key, "holds a NUL character (\\u0000), which no name or path can");
+    return value;
 }
 
 void JsonFields::Finish() {

@@ -144,7 +144,11 @@ class SceneParser {
         const std::string falloff = f.String("falloff", std::string("none"));
         if (falloff == "inverse_square") {
             light->falloff = 1;
-            light->range = f.InRange("range", 0.0f, 1e30f, 0.0f);
+            // 0 is the light's own "no range"; given, a range must be one.
+            if (f.Has("range")) {
+                light->range = f.Positive("range");
+                if (!(light->range <= 1e30f)) f.Fail("range", "must be at most 1e30");
+            }
         } else if (falloff != "none") {
             f.Fail("falloff",
                    "unknown falloff \"" + falloff + "\" (expected none or inverse_square)");
@@ -432,6 +436,14 @@ class SceneParser {
             }
             if (!(scale.x > 0 && scale.y > 0 && scale.z > 0))
                 f.Fail("scale", "scale factors must be greater than 0");
+            // Flattened more than 1e-4 of its other sides, a model's error bounds (taken in its
+            // own space, where it is not flat) no longer keep secondary rays off its surface: a
+            // box scaled by 1e-6 in z shadowed its own lit face. A uniform scale is free.
+            if (!(std::min({scale.x, scale.y, scale.z}) >=
+                  1e-4f * std::max({scale.x, scale.y, scale.z})))
+                f.Fail("scale",
+                       "the smallest scale factor must be at least 1e-4 of the largest (size the "
+                       "model instead)");
             // As models' own sizes are bounded (scene_models.cpp): a sphere scaled by 1e15
             // vanished.
             if (!(std::max({scale.x, scale.y, scale.z}) <= 1e6f))

@@ -69,6 +69,8 @@ Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shap
         f.Fail("builder",
                "unknown builder \"" + builder + "\" (expected binned, sweep, centroid or sbvh)");
     const std::string type = f.String("type");
+    if (options.builder == BvhBuilder::kSpatialSah && (type == "sphere" || type == "spheres"))
+        f.Fail("builder", "sbvh splits triangles; sphere models take binned, sweep or centroid");
     if (type == "sphere") {
         const Sphere s{vec3(0.0f), f.Positive("radius", 1.0f)};
         if (!(s.radius <= kMaxModelExtent)) f.Fail("radius", "must be at most 1e6");
@@ -90,6 +92,8 @@ Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shap
         const vec3 size = f.Vec3("size", vec3(10.0f, 0.0f, 10.0f));
         if (!(size.x > 0 && size.z > 0))
             f.Fail("size", "plane size x and z must be greater than 0");
+        // The plane lies in y = 0: a height given would be ignored.
+        if (size.y != 0.0f) f.Fail("size", "a plane's size y must be 0 (it lies in y = 0)");
         if (!(std::max(size.x, size.z) <= kMaxModelExtent))
             f.Fail("size", "plane size x and z must be at most 1e6");
         mesh = MakePlaneMesh(size.x, size.z);

@@ -101,5 +101,18 @@ TEST(BvhBuilder, ParsesBuilderNames) {
     EXPECT_FALSE(ParseBuilder("sah", &b));
 }
 
+// The SAH cost of a model whose boxes' areas overflow a float had been NaN (rtrt info, convert).
+TEST(BvhBuilder, AHugeModelsSahCostIsFinite) {
+    auto triangle = [](float edge) {
+        TriangleMesh mesh;
+        mesh.positions = {vec3(0.0f), vec3(edge, 0.0f, 0.0f), vec3(0.0f, edge, 0.0f)};
+        mesh.indices = {glm::uvec3(0, 1, 2)};
+        return BuildTriangleBlas(mesh);
+    };
+    const float cost = ComputeStats(triangle(1e20f).nodes).sahCost;
+    EXPECT_TRUE(std::isfinite(cost)) << cost;
+    EXPECT_EQ(cost, ComputeStats(triangle(1.0f).nodes).sahCost);
+}
+
 }  // namespace
 }  // namespace rtrt

@@ -54,5 +54,18 @@ TEST(JsonParseTest, MalformedTextIsReportedBeforeAnyKeyCheck) {
               "holds one JSON value)");
 }
 
+// nlohmann's parser takes a NUL byte for the end of the text: what followed one had been ignored.
+TEST(JsonParseTest, ANulByteIsRefusedWhereItIs) {
+    const std::string text = std::string("{ \"instances\": [] }\n") + '\0' + "{\"x\": garbage";
+    EXPECT_EQ(DuplicateError(text),
+              "s.json: line 2, column 1: malformed JSON: a NUL byte (a JSON text holds none; "
+              "binary file?)");
+    // An escaped NUL inside a string is JSON; the fields that read names refuse it.
+    EXPECT_EQ(ParseJson(R"({"k": "a\u0000b"})", "s.json", DuplicateKeys::kError)["k"]
+                  .get<std::string>()
+                  .size(),
+              3u);
+}
+
 }  // namespace
 }  // namespace rtrt

@@ -243,12 +243,20 @@ class Builder {
     std::atomic<uint32_t> nodeCount_{0};
 };
 
-void AccumulateStats(std::span<const BvhNode> nodes, uint32_t index, uint32_t depth, float rootArea,
-                     BvhStats* stats, uint64_t* leafPrims, double* sahCost) {
+// A box's surface area in double: in float, a box of side 1e20 has an infinite area, and the cost's
+// ratios of such areas were NaN.
+double AreaInDouble(const Aabb& box) {
+    if (box.IsEmpty()) return 0.0;
+    const glm::dvec3 e = glm::dvec3(box.max) - glm::dvec3(box.min);
+    return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+}
+
+void AccumulateStats(std::span<const BvhNode> nodes, uint32_t index, uint32_t depth,
+                     double rootArea, BvhStats* stats, uint64_t* leafPrims, double* sahCost) {
     const BvhNode& node = nodes[index];
     ++stats->nodeCount;
     stats->maxDepth = std::max(stats->maxDepth, depth);
-    const float relArea = rootArea > 0.0f ? node.Bounds().Area() / rootArea : 1.0f;
+    const double relArea = rootArea > 0.0 ? AreaInDouble(node.Bounds()) / rootArea : 1.0;
     if (node.IsLeaf()) {
         ++stats->leafCount;
         stats->minLeafSize = std::min(stats->minLeafSize, node.primCount);
@@ -313,7 +321,7 @@ BvhStats ComputeStats(std::span<const BvhNode> nodes) {
     // Summed in double: a million nodes' terms in float lose the sum's third digit.
     double sahCost = 0.0;
     stats.minLeafSize = UINT32_MAX;
-    AccumulateStats(nodes, 0, 0, nodes[0].Bounds().Area(), &stats, &leafPrims, &sahCost);
+    AccumulateStats(nodes, 0, 0, AreaInDouble(nodes[0].Bounds()), &stats, &leafPrims, &sahCost);
     stats.sahCost = float(sahCost);
     stats.meanLeafSize = stats.leafCount ? double(leafPrims) / stats.leafCount : 0.0;
     stats.bytes = nodes.size_bytes();
