@@ -242,6 +242,28 @@ foreach(i RANGE 0 7)
     set(previous ${hash_c})
 endforeach()
 
+# A frame named like a file the scene reads (a glTF file's texture) is refused before any frame
+# is traced, not when that frame is written: play read the scene's files only after its checks.
+# The texture is written by rtrt itself, so only where images are PNG.
+if(EXT STREQUAL .png)
+    execute_process(COMMAND ${RTRT} render default --size 8x8 -o ${WORK_DIR}/tex_0.png
+        RESULT_VARIABLE status ERROR_VARIABLE stderr)
+    file(READ ${SOURCE_DIR}/assets/models/textured_quads.gltf quads)
+    string(REGEX REPLACE "data:image/png;base64,[A-Za-z0-9+/=]+" "tex_0.png" quads "${quads}")
+    file(WRITE ${WORK_DIR}/quads.gltf "${quads}")
+    file(SHA256 ${WORK_DIR}/tex_0.png texture_before)
+    execute_process(COMMAND ${RTRT} play ${WORK_DIR}/quads.gltf --headless --frames 2
+        --size 16x16 --backend cpu -o ${WORK_DIR}/tex_%d.png
+        RESULT_VARIABLE status OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+    file(SHA256 ${WORK_DIR}/tex_0.png texture_after)
+    string(FIND "${stderr}" "frame 0 would be written over a file of the scene" found)
+    if(NOT status EQUAL 2 OR found EQUAL -1 OR EXISTS ${WORK_DIR}/tex_1.png
+       OR NOT texture_before STREQUAL texture_after)
+        message(FATAL_ERROR "play over a scene's texture: status ${status}\n${stdout}${stderr}")
+    endif()
+    message(STATUS "play over a scene's texture: ok (${stderr})")
+endif()
+
 # rtrt convert and rtrt info: bad input exits 2 with one "file: field: reason" line and writes
 # nothing; good input converts, describes and renders.
 set(HOSTILE ${SOURCE_DIR}/tests/data/hostile)
