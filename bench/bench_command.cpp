@@ -45,6 +45,12 @@ std::string BenchModelFile(const std::string& name) {
     return ModelDir() + "/dragon_vrip" + suffix + ".ply.gz";
 }
 
+void SkipMissingModel(nlohmann::json& report, const std::string& name) {
+    const std::string file = BenchModelFile(name);
+    std::printf("%-12s skipped: %s missing (run rtrt fetch-models)\n", name.c_str(), file.c_str());
+    report["skipped"].push_back({{"model", name}, {"reason", file + " missing"}});
+}
+
 void DropRepeats(std::vector<std::string>* names) {
     std::vector<std::string> once;
     for (const std::string& name : *names)
@@ -160,8 +166,7 @@ void RunBench(const BenchOptions& o) {
     for (const BenchModel& model : LoadBenchModels(o.models)) {
         const std::string& name = model.name;
         if (!model.mesh) {
-            std::printf("%-12s skipped: model file missing in %s (run rtrt fetch-models)\n",
-                        name.c_str(), ModelDir().c_str());
+            SkipMissingModel(report, name);
             continue;
         }
         const TriangleMesh& mesh = *model.mesh;
@@ -227,8 +232,7 @@ void RunGpuBench(const BenchOptions& o) {
     for (const BenchModel& model : LoadBenchModels(o.models)) {
         const std::string& name = model.name;
         if (!model.mesh) {
-            std::printf("%-12s skipped: model file missing (run rtrt fetch-models)\n",
-                        name.c_str());
+            SkipMissingModel(report, name);
             continue;
         }
         const TriangleMesh& mesh = *model.mesh;

@@ -30,6 +30,9 @@ std::string BenchModelFile(const std::string& name);
 // (missing ones among others are skipped with a line that says so); and when `output` (the
 // report's file, if any) names one of their files, before any work rather than at the report.
 void CheckBenchModels(const std::vector<std::string>& models, const std::string& output);
+// Says that model NAME is skipped because its file is missing, on stdout and in the report's
+// "skipped" list (so that a report without the model says why).
+void SkipMissingModel(nlohmann::json& report, const std::string& name);
 // Each name once, in the order first given (--models cube,cube measures the cube once: the report
 // holds one entry per name).
 void DropRepeats(std::vector<std::string>* names);

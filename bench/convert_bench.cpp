@@ -94,8 +94,7 @@ void RunConvertBench(const ConvertBenchOptions& o, const nlohmann::json& machine
     for (const std::string& name : o.models) {
         const std::string path = BenchModelFile(name);
         if (!fs::exists(path)) {
-            std::printf("%-12s skipped: %s missing (run rtrt fetch-models)\n", name.c_str(),
-                        path.c_str());
+            SkipMissingModel(report, name);
             continue;
         }
         const std::string out = (dir / (name + ".rtmodel")).string();

@@ -75,8 +75,7 @@ void RunEmbreeBench(const EmbreeBenchOptions& o) {
     for (const BenchModel& model : LoadBenchModels(o.models)) {
         const std::string& name = model.name;
         if (!model.mesh) {
-            std::printf("%-12s skipped: model file missing (run rtrt fetch-models)\n",
-                        name.c_str());
+            SkipMissingModel(report, name);
             continue;
         }
         const TriangleMesh& mesh = *model.mesh;

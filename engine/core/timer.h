@@ -18,12 +18,15 @@ class Stopwatch {
     Clock::time_point start_;
 };
 
-// Median of a sample (copied, since nth_element reorders).
+// Median of a sample (copied, since nth_element reorders): of an even count, the mean of the two
+// middle values (the upper one alone had been reported: of two runs, the slower).
 inline double Median(std::vector<double> samples) {
     if (samples.empty()) return 0.0;
     auto mid = samples.begin() + samples.size() / 2;
     std::nth_element(samples.begin(), mid, samples.end());
-    return *mid;
+    if (samples.size() % 2 != 0) return *mid;
+    const double lower = *std::max_element(samples.begin(), mid);  // the largest below mid
+    return 0.5 * (lower + *mid);
 }
 
 // Mean of a sample: what a stage costs over many frames when some frames cost more than others

@@ -146,8 +146,7 @@ class App {
         auto median = [&](double StageTimes::*stage) {
             std::vector<double> v;
             for (const StageTimes& t : timed_) v.push_back(t.*stage);
-            std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-            return v[v.size() / 2];
+            return Median(std::move(v));
         };
         std::printf(
             "rtrt: medians of %zu frames, ms: frame %.3f | simulate %.3f extract %.3f | render "

@@ -17,6 +17,7 @@ message, and what must (not) be left behind.
 
 usage: option_values_test.py RTRT WORK_DIR
 """
+import json
 import os
 import shutil
 import subprocess
@@ -246,6 +247,28 @@ for command in (headless, farm):
            "N is how many frames: at least 1")
     expect(f"{command[0]} malformed frames", command + ["--frames", "1-4"], 2,
            "expected N (frames 0 to N-1) or A:B (frames A to B-1)")
+
+# A model asked for whose file is missing is skipped, and the report says so (it had only been
+# absent from it); a CPU soak has no GPU spread to report (it had said 0.0).
+os.makedirs(os.path.join(WORK, "no_models"), exist_ok=True)
+skipped = expect("bench with a model missing",
+                 ["bench", "cpu", "--models", "cube,teapot", "--builders", "binned", "--frames",
+                  "1", "-o", "cpu.json"], 0, "teapot       skipped:",
+                 env={"RTRT_MODEL_DIR": os.path.join(WORK, "no_models")})
+if skipped.returncode == 0:
+    with open(os.path.join(WORK, "cpu.json")) as f:
+        report = json.load(f)
+    if [m["model"] for m in report["models"]] != ["cube"] or \
+            [m["model"] for m in report.get("skipped", [])] != ["teapot"]:
+        failures.append(f"bench with a model missing: report {report.get('skipped')}")
+soak = expect("cpu soak", ["bench", "soak", "--backend", "cpu", "--frames", "6", "--every", "2",
+                           "--warmup", "1", "--per-frame", "4", "--alive", "8", "-o", "soak.json"],
+              0, "flat within 5%")
+if soak.returncode == 0:
+    with open(os.path.join(WORK, "soak.json")) as f:
+        report = json.load(f)
+    if report["gpu_spread"] is not None or report["gpu_mib_after_warmup"] != []:
+        failures.append(f"cpu soak: gpu_spread {report['gpu_spread']!r}")
 
 if failures:
     sys.exit("\n\n".join(failures))
