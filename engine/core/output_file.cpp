@@ -143,8 +143,15 @@ void CheckOutputPath(const std::string& path) {
                          "is write-protected" + where +
                              ": make it writable (chmod u+w) or remove it to write over it");
     const std::filesystem::path folder = std::filesystem::path(file).parent_path();
-    if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+    if (!folder.empty() && !std::filesystem::is_directory(folder, ec)) {
+        // A file where a folder of the path should be is named as such, not as a missing folder.
+        std::filesystem::path existing = folder;
+        while (!existing.empty() && !std::filesystem::exists(existing, ec))
+            existing = existing.parent_path();
+        if (!existing.empty() && !std::filesystem::is_directory(existing, ec))
+            throw InputError(path, "", existing.string() + " is a file, not a folder");
         throw InputError(path, "", "the folder " + folder.string() + " does not exist");
+    }
     // Else the rename into place fails, after all the work.
     const std::string name = std::filesystem::path(file).filename().string();
     if (name.size() > kMaxFileNameBytes)

@@ -52,6 +52,11 @@ TEST_F(OutputPathTest, CheckOutputPathNamesWhatIsWrong) {
     EXPECT_EQ(Reason((dir_ / "no" / "r.json").string()),
               "the folder " + (dir_ / "no").string() + " does not exist");
     EXPECT_EQ(Reason(dir_.string()), "is a folder; name a file in it");
+    // A file where a folder of the path should be had been reported as a missing folder.
+    EXPECT_EQ(Reason((dir_ / "old.json" / "r.json").string()),
+              (dir_ / "old.json").string() + " is a file, not a folder");
+    EXPECT_EQ(Reason((dir_ / "old.json" / "sub" / "r.json").string()),
+              (dir_ / "old.json").string() + " is a file, not a folder");
     EXPECT_EQ(Reason(fifo_), "is not a regular file (a device, FIFO or socket)");
     EXPECT_EQ(Reason("/dev/null"), "is not a regular file (a device, FIFO or socket)");
     // A name the file system cannot hold failed only at the rename, after the work.
