@@ -60,7 +60,7 @@ void KeepFileNormals(TriangleMesh& mesh) {
 void WarnOfFannedPolygons(const std::string& file, const PolygonTriangulator& triangulator) {
     if (triangulator.NoEar() > 0)
         std::fprintf(stderr,
-                     "rtrt: warning: %s: %llu concave polygons cross or fold over themselves; "
+                     "rtrt: warning: %s: %llu polygons cross or fold over themselves; "
                      "filled as fans from their first corner\n",
                      WithoutControlCharacters(file).c_str(),
                      static_cast<unsigned long long>(triangulator.NoEar()));

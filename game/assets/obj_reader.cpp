@@ -105,6 +105,11 @@ void ParseObjFace(std::string_view rest, ObjData& obj) {
             ParseObjCorner(word, obj.positions.size(), obj.texcoords, obj.normals.size()));
         obj.anyCornerHasNormal |= obj.face.back().normal != kNoNormal;
     }
+    // A face of fewer corners (a line, or nothing) had been dropped without a word.
+    if (obj.face.size() < 3)
+        throw RecordError{"a face of " + std::to_string(obj.face.size()) +
+                          (obj.face.size() == 1 ? " corner" : " corners") +
+                          " (a face needs at least 3)"};
     obj.faceTriangles.clear();
     if (obj.face.size() == 3) {
         obj.faceTriangles.emplace_back(0, 1, 2);

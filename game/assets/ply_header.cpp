@@ -180,7 +180,15 @@ PlyHeader ParsePlyHeaderLines(const std::string& path, std::string_view data) {
             header.elements.push_back(std::move(element));
         } else if (keyword == "property") {
             if (header.elements.empty()) throw InputError(path, field, "property before element");
-            header.elements.back().properties.push_back(ParsePlyProperty(path, field, words));
+            PlyElement& element = header.elements.back();
+            PlyProperty property = ParsePlyProperty(path, field, words);
+            // Which of two x's is the vertex's own? The first had been taken without a word.
+            for (const PlyProperty& other : element.properties)
+                if (other.name == property.name)
+                    throw InputError(path, field,
+                                     "element " + element.name + " has a property " +
+                                         Quote(property.name) + " already");
+            element.properties.push_back(std::move(property));
         } else {
             throw InputError(path, field, "unknown keyword " + Quote(keyword));
         }

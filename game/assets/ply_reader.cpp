@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -43,30 +44,78 @@ class AsciiReader {
         }
         return value;
     }
-    int64_t ReadInteger(ScalarType) {
+    int64_t ReadInteger(ScalarType type) {
         std::string_view token = Token();
         int64_t value = 0;
         if (!ParseNumber(token, value)) {
             throw RecordError{"expected an integer, found " + Quote(token)};
         }
+        // As the binary forms hold it: a uchar count of 300 had read 300 items.
+        if (const auto [lo, hi] = IntegerRange(type); value < lo || value > hi)
+            throw RecordError{"value " + std::string(token) +
+                              " does not fit the property's type (" + std::to_string(lo) + " to " +
+                              std::to_string(hi) + ")"};
         return value;
     }
     void Skip(ScalarType) { Token(); }
     void SkipItems(ScalarType type, uint64_t count) {
         for (uint64_t i = 0; i < count; ++i) Skip(type);
     }
+    // Each record is one line: values left on it, or a record that goes on past it, mean the
+    // data does not follow the header (a shifted file had loaded as another mesh).
+    void EndRecord() {
+        while (p_ != end_ && !IsLineEnd(*p_) && IsSpace(*p_)) ++p_;
+        if (p_ != end_ && !IsLineEnd(*p_))
+            throw RecordError{"more values on the line than the header's properties (" +
+                              Quote(Token()) + ")"};
+        valuesInRecord_ = 0;
+    }
+    // Whitespace alone may follow the last record.
+    std::optional<std::string> Leftover() {
+        while (p_ != end_ && IsSpace(*p_)) ++p_;
+        if (p_ == end_) return std::nullopt;
+        return "text after the last record the header announces (" + Quote(Token()) + ")";
+    }
 
   private:
     std::string_view Token() {
-        while (p_ != end_ && IsSpace(*p_)) ++p_;
+        while (p_ != end_ && IsSpace(*p_)) {
+            if (IsLineEnd(*p_) && valuesInRecord_ > 0)
+                throw RecordError{
+                    "the line ends before the record does (fewer values than the "
+                    "header's properties)"};
+            ++p_;
+        }
         if (p_ == end_) throw kTruncated;
         const char* start = p_;
         while (p_ != end_ && !IsSpace(*p_)) ++p_;
+        ++valuesInRecord_;
         return std::string_view(start, static_cast<size_t>(p_ - start));
+    }
+    // Lines end in LF, CR LF or CR alone.
+    static bool IsLineEnd(char c) { return c == '\n' || c == '\r'; }
+    static std::pair<int64_t, int64_t> IntegerRange(ScalarType type) {
+        switch (type) {
+            case ScalarType::kInt8:
+                return {INT8_MIN, INT8_MAX};
+            case ScalarType::kUint8:
+                return {0, UINT8_MAX};
+            case ScalarType::kInt16:
+                return {INT16_MIN, INT16_MAX};
+            case ScalarType::kUint16:
+                return {0, UINT16_MAX};
+            case ScalarType::kInt32:
+                return {INT32_MIN, INT32_MAX};
+            case ScalarType::kUint32:
+                return {0, UINT32_MAX};
+            default:
+                return {INT64_MIN, INT64_MAX};
+        }
     }
 
     const char* p_;
     const char* end_;
+    uint64_t valuesInRecord_ = 0;
 };
 
 template <class T>
@@ -123,6 +172,15 @@ class BinaryReader {
         if (count > static_cast<uint64_t>(end_ - p_) / SizeOf(type)) throw kTruncated;
         p_ += count * SizeOf(type);
     }
+    void EndRecord() {}
+    // Bytes after the last record: the header's counts do not match the data (a file of one face
+    // more than announced had lost it; one vertex fewer had read a face's bytes as a vertex).
+    std::optional<std::string> Leftover() const {
+        if (p_ == end_) return std::nullopt;
+        return std::to_string(end_ - p_) +
+               " bytes after the last record the header announces (its counts do not match the "
+               "data)";
+    }
 
   private:
     template <class T>
@@ -171,6 +229,7 @@ void ReadPlyVertices(Reader& reader, const PlyLayout& layout, uint64_t& record,
                 values[slotOf[i]] = static_cast<float>(reader.ReadReal(properties[i].type));
             }
         }
+        reader.EndRecord();
         vec3 position(values[0], values[1], values[2]);
         if (!IsFinite(position)) throw RecordError{"coordinate is NaN or infinite"};
         mesh.positions.push_back(position);
@@ -218,6 +277,7 @@ void ReadPlyIndexLists(Reader& reader, const PlyElement& element, int listProper
             }
             onList(list);
         }
+        reader.EndRecord();
     }
 }
 
@@ -234,6 +294,11 @@ void ReadPlyFaces(Reader& reader, const PlyLayout& layout, uint64_t& record, Tri
     ReadPlyIndexLists(
         reader, *layout.faces, layout.faceIndexProperty, int64_t(layout.vertices->count), false,
         record, [&](const std::vector<int64_t>& corners) {
+            // A face of fewer corners had been dropped without a word.
+            if (corners.size() < 3)
+                throw RecordError{"a face of " + std::to_string(corners.size()) +
+                                  (corners.size() == 1 ? " corner" : " corners") +
+                                  " (a face needs at least 3)"};
             if (corners.size() == 3) {
                 AddTriangle(uint32_t(corners[0]), uint32_t(corners[1]), uint32_t(corners[2]), mesh,
                             pending.triangles);
@@ -342,12 +407,15 @@ void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayo
                     for (const PlyProperty& property : element.properties) {
                         SkipProperty(reader, property);
                     }
+                    reader.EndRecord();
                 }
             }
         } catch (const RecordError& error) {
             throw InputError(path, element.name + " " + std::to_string(record), error.reason);
         }
     }
+    if (const std::optional<std::string> leftover = reader.Leftover())
+        throw InputError(path, "", *leftover);
     TriangulatePolygons(path, pending, mesh);
 }
 

@@ -1,5 +1,6 @@
 #include "game/assets/polygon_triangulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -58,7 +59,23 @@ void PolygonTriangulator::Triangulate(std::span<const vec3> corners,
         const glm::dvec3 b = glm::dvec3(corners[source_[(i + 1) % n]]) - origin;
         normal += glm::cross(a, b);
     }
-    const glm::dvec3 absNormal = glm::abs(normal);
+    // Lobes of opposite winding cancel in the Newell normal (a bowtie's is zero): such a polygon
+    // is seen along the axis its corners spread least, so that a crossing still shows.
+    glm::dvec3 absNormal = glm::abs(normal);
+    const double largest = std::max({absNormal.x, absNormal.y, absNormal.z});
+    if (!(largest > 0.0) || !std::isfinite(largest)) {
+        glm::dvec3 lo(corners[source_[0]]), hi = lo;
+        for (size_t i = 1; i < n; ++i) {
+            lo = glm::min(lo, glm::dvec3(corners[source_[i]]));
+            hi = glm::max(hi, glm::dvec3(corners[source_[i]]));
+        }
+        const glm::dvec3 spread = hi - lo;
+        const int narrowest = spread.x <= spread.y && spread.x <= spread.z ? 0
+                              : spread.y <= spread.z                       ? 1
+                                                                           : 2;
+        absNormal = glm::dvec3(0.0);
+        absNormal[narrowest] = 1.0;
+    }
     const int axis = absNormal.x >= absNormal.y && absNormal.x >= absNormal.z ? 0
                      : absNormal.y >= absNormal.z                             ? 1
                                                                               : 2;
@@ -69,6 +86,10 @@ void PolygonTriangulator::Triangulate(std::span<const vec3> corners,
         points_[i] = glm::dvec2(p[(axis + 1) % 3], flip * p[(axis + 2) % 3]);
     }
 
+    // One whose edges cross (a bowtie, a star drawn in one stroke: ear clipping finds ears in
+    // both, and a star turns one way at every corner, as a convex polygon does) has no inside to
+    // keep: it is fanned, and counted for the warning.
+    if (n >= 4 && CrossesItself()) return FanAfterGivingUp(triangles, triangles.size(), noEar_);
     // A polygon with no area (its corners on a line) covers nothing: its fan is as good as any.
     bool convex = true;
     for (size_t i = 0; convex && i < n; ++i)
@@ -96,6 +117,27 @@ void PolygonTriangulator::FanAfterGivingUp(std::vector<glm::uvec3>& triangles, s
     ++counter;
     for (size_t i = 2; i < source_.size(); ++i)
         triangles.emplace_back(source_[0], source_[i - 1], source_[i]);
+}
+
+// Whether two edges of the projected polygon that share no corner cross at a point inside both
+// (touching, as at a pinch or along a slit, does not count). Quadratic in the corners: a polygon
+// of more than 16 pays from the budget (a file of small ones pays in its own size), and one it
+// cannot pay for is not tested.
+bool PolygonTriangulator::CrossesItself() {
+    const size_t n = points_.size();
+    if (n > 16 && !Spend(uint64_t(n) * n / 2)) return false;
+    const auto side = [](double turn) { return (turn > 0.0) - (turn < 0.0); };
+    for (size_t i = 0; i < n; ++i) {
+        const glm::dvec2 a = points_[i], b = points_[(i + 1) % n];
+        for (size_t j = i + 2; j < n; ++j) {
+            if ((j + 1) % n == i) continue;  // the edge before i shares corner i
+            const glm::dvec2 c = points_[j], d = points_[(j + 1) % n];
+            if (side(Turn(a, b, c)) * side(Turn(a, b, d)) < 0 &&
+                side(Turn(c, d, a)) * side(Turn(c, d, b)) < 0)
+                return true;
+        }
+    }
+    return false;
 }
 
 bool PolygonTriangulator::Spend(uint64_t work) {

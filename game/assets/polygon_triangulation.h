@@ -24,13 +24,14 @@ class PolygonTriangulator {
     // one; triangles of zero area may result, as from a fan.
     void Triangulate(std::span<const vec3> corners, std::vector<glm::uvec3>& triangles);
 
-    // Concave polygons that had to be fanned: ones with no ear left to clip (self-intersecting
-    // or folded), and ones past the budget.
+    // Polygons that had to be fanned: ones whose edges cross or that fold over themselves (no ear
+    // left to clip), and concave ones past the budget.
     uint64_t NoEar() const { return noEar_; }
     uint64_t OverBudget() const { return overBudget_; }
 
   private:
     enum class Outcome { kDone, kNoEar, kOverBudget };
+    bool CrossesItself();
     bool SplitAtTouchingCorners();
     Outcome ClipEars(std::span<const uint32_t> loop, std::vector<glm::uvec3>& triangles);
     void FanAfterGivingUp(std::vector<glm::uvec3>& triangles, size_t firstTriangle,

@@ -180,7 +180,7 @@ TEST_F(MeshIoTest, ObjStatementsContinueAfterABackslash) {
                              "v 0 0 0\nv 1 0 0\\\n"
                              "  \nv 1 1 0\nv 0 1 \\  # a comment after the backslash\n"
                              "0\n"
-                             "f 1 2 \\\r\n 3 4\nf 1 \\\n");
+                             "f 1 2 \\\r\n 3 4\n");
     TriangleMesh mesh = LoadMesh(path);
     ASSERT_EQ(mesh.positions.size(), 4u);
     EXPECT_EQ(mesh.positions[3], vec3(0.0f, 1.0f, 0.0f));
@@ -190,13 +190,15 @@ TEST_F(MeshIoTest, ObjStatementsContinueAfterABackslash) {
     // An error in a continued statement names its first line.
     ExpectInputError(Write("continued_error.obj", "v 0 0 0\nv 1 \\\n0 \\\nzero\n"), "line 2",
                      "expected a number, found 'zero'");
+    // A statement continued to the end of the file ends there.
+    ExpectInputError(Write("continued_face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 \\\n"), "line 4",
+                     "a face of 1 corner (a face needs at least 3)");
 }
 
 TEST_F(MeshIoTest, ObjDropsDegenerateFacesSilently) {
     std::string path = Write("degenerate.obj",
                              "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
                              "f 1 1 2\n"
-                             "f 1 2\n"
                              "f 1 2 3 3\n");
     TriangleMesh mesh = LoadMesh(path);
     ASSERT_EQ(mesh.indices.size(), 1u);
@@ -206,6 +208,11 @@ TEST_F(MeshIoTest, ObjDropsDegenerateFacesSilently) {
 TEST_F(MeshIoTest, ObjErrors) {
     const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     ExpectInputError(Write("range.obj", vertices + "f 1 2 4\n"), "line 4", "out of range");
+    // Faces of fewer than 3 corners had been dropped without a word.
+    ExpectInputError(Write("line.obj", vertices + "f 1 2 3\nf 1 2\n"), "line 5",
+                     "a face of 2 corners (a face needs at least 3)");
+    ExpectInputError(Write("empty_face.obj", vertices + "f\n"), "line 4",
+                     "a face of 0 corners (a face needs at least 3)");
     ExpectInputError(Write("zero.obj", vertices + "f 0 1 2\n"), "line 4", "out of range");
     ExpectInputError(Write("negative.obj", vertices + "f -4 1 2\n"), "line 4", "out of range");
     ExpectInputError(Write("normal.obj", vertices + "f 1//1 2//1 3//1\n"), "line 4",

@@ -245,7 +245,7 @@ TEST_F(MeshIoTest, PlyDataErrors) {
                                                     "1.000000000001 0.000000000002 0\n"),
                      "vertex 2", "truncated");
     ExpectInputError(Write("shortface.ply", ascii + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n"), "face 0",
-                     "truncated");
+                     "the line ends before the record does");
     ExpectInputError(Write("noface.ply",
                            "ply\nformat ascii 1.0\nelement vertex 1\n"
                            "property float x\nproperty float y\n"
@@ -275,6 +275,40 @@ TEST_F(MeshIoTest, PlyDataErrors) {
     ExpectInputError(Write("negative_count.ply",
                            PlyHeader("binary_little_endian", 3, 1, "char") + negative.Data()),
                      "face 0", "negative vertex count");
+}
+
+// The data must be what the header announces: records one to a line in ASCII, no more and no
+// fewer; the shifted, longer or mistyped files below had loaded as other meshes, or lost faces.
+TEST_F(MeshIoTest, PlyDataMustFollowItsHeader) {
+    const std::string ascii = PlyHeader("ascii", 3, 1);
+    const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+    ExpectInputError(Write("shifted.ply", ascii + "0 0 0 7\n1 0\n0 1 0\n3 0 1 2\n"), "vertex 0",
+                     "more values on the line than the header's properties ('7')");
+    ExpectInputError(Write("extra_index.ply", ascii + vertices + "3 0 1 2 5\n"), "face 0",
+                     "more values on the line than the header's properties ('5')");
+    ExpectInputError(Write("trailing.ply", ascii + vertices + "3 0 1 2\ngarbage\n"), "",
+                     "text after the last record the header announces ('garbage')");
+    ExpectInputError(Write("wide_count.ply", ascii + vertices + "300 0 1 2\n"), "face 0",
+                     "value 300 does not fit the property's type (0 to 255)");
+    ExpectInputError(Write("two_corners.ply", ascii + vertices + "2 0 1\n"), "face 0",
+                     "a face of 2 corners (a face needs at least 3)");
+    ExpectInputError(Write("duplicate_x.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                           "property float x\nproperty float y\nproperty float z\nend_header\n"),
+                     "header line 5", "element vertex has a property 'x' already");
+    // Whitespace after the last record, and blank lines between records, are fine.
+    EXPECT_EQ(LoadMesh(Write("spaced.ply", ascii + vertices + "\n3 0 1 2  \n\n")).indices.size(),
+              1u);
+
+    Bytes data(false);
+    for (float v : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f}) data.Put(v);
+    data.Put<uint8_t>(3).Put<int32_t>(0).Put<int32_t>(1).Put<int32_t>(2);
+    const std::string binary = PlyHeader("binary_little_endian", 3, 1);
+    EXPECT_EQ(LoadMesh(Write("one_face.ply", binary + data.Data())).indices.size(), 1u);
+    data.Put<uint8_t>(3).Put<int32_t>(2).Put<int32_t>(1).Put<int32_t>(0);
+    ExpectInputError(Write("two_faces.ply", binary + data.Data()), "",
+                     "13 bytes after the last record the header announces (its counts do not "
+                     "match the data)");
 }
 
 }  // namespace

@@ -201,6 +201,35 @@ TEST(PolygonTriangulation, ACrossedPolygonWithNoEarIsFannedAndCounted) {
     for (uint32_t i = 0; i < 4; ++i) EXPECT_EQ(split.triangles[i], glm::uvec3(0, i + 1, i + 2));
 }
 
+// Ear clipping finds ears in a bowtie, and a star drawn in one stroke turns one way at every
+// corner as a convex polygon does: both had been split without the warning the loaders promise.
+// The bowtie's lobes cancel in its Newell normal, so it is seen along its narrowest spread.
+TEST(PolygonTriangulation, PolygonsWhoseEdgesCrossAreFannedAndCounted) {
+    const std::vector<std::vector<vec3>> crossed = {
+        {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}},                         // bowtie in z = 0
+        {{0, 0, 5}, {0, 1, 6}, {0, 1, 5}, {0, 0, 6}},                         // bowtie in x = 0
+        {{0, 3, 0}, {2, -3, 0}, {-3, 1, 0}, {3, 1, 0}, {-2, -3, 0}},          // pentagram
+        {{0, 0, 0}, {4, 0, 0}, {4, 2, 0}, {2, 2, 0}, {2, -1, 0}, {0, 2, 0}},  // folded hexagon
+    };
+    for (size_t k = 0; k < crossed.size(); ++k) {
+        SCOPED_TRACE(k);
+        PolygonTriangulator triangulator;
+        const Split split = Triangulate(crossed[k], triangulator);
+        EXPECT_EQ(triangulator.NoEar(), 1u);
+        ASSERT_EQ(split.triangles.size(), crossed[k].size() - 2);
+        for (uint32_t i = 0; i < split.triangles.size(); ++i)
+            EXPECT_EQ(split.triangles[i], glm::uvec3(0, i + 1, i + 2));
+    }
+    // Touching is not crossing: a square pinched to a corner of itself, the U, a plain square.
+    for (const std::vector<vec3>& simple :
+         {kU, std::vector<vec3>{{0, 0, 0}, {2, 0, 0}, {1, 1, 0}, {2, 2, 0}, {0, 2, 0}, {1, 1, 0}},
+          std::vector<vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}}) {
+        PolygonTriangulator triangulator;
+        Triangulate(simple, triangulator);
+        EXPECT_EQ(triangulator.NoEar(), 0u);
+    }
+}
+
 TEST(PolygonTriangulation, PastTheBudgetConcavePolygonsAreFanned) {
     PolygonTriangulator triangulator(20);
     const Split first = Triangulate(kU, triangulator);
