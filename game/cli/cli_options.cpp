@@ -88,6 +88,15 @@ CLI::Validator DecimalInteger(bool signedType) {
                        " in decimal digits, got \"" + value + "\"";
             const size_t first = std::min(value.find_first_not_of('0', start), value.size() - 1);
             const std::string magnitude = value.substr(first);
+            // Beyond the 32 bits every whole-number option holds: said so, where the conversion
+            // had failed with the value alone as its message.
+            const std::string bound = !signedType ? "4294967295"
+                                      : negative  ? "2147483648"
+                                                  : "2147483647";
+            if (magnitude.size() > bound.size() ||
+                (magnitude.size() == bound.size() && magnitude > bound))
+                return "\"" + value + "\" is beyond the " + (negative ? "smallest" : "largest") +
+                       " whole number this option takes (" + (negative ? "-" : "") + bound + ")";
             value = (negative && magnitude != "0" ? "-" : "") + magnitude;
             return "";
         },

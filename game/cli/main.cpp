@@ -82,8 +82,14 @@ int WithStdoutChecked(int exitCode) {
     const int error = errno;
     if (std::fclose(stdout) != 0 || failed) {
         const int why = error != 0 ? error : errno;
-        std::fprintf(stderr, "rtrt: error: stdout: %s\n",
-                     why != 0 ? std::strerror(why) : "a write to it failed");
+        // The command's own outputs are finished and kept: said so, since exit 1 elsewhere means
+        // that nothing is left at a failed output.
+        std::fprintf(stderr, "rtrt: error: stdout: %s%s\n",
+                     why != 0 ? std::strerror(why) : "a write to it failed",
+                     exitCode == rtrt::kExitOk
+                         ? " (the command's work is done and its files are written; only what it "
+                           "printed was lost)"
+                         : "");
         return exitCode == rtrt::kExitOk ? rtrt::kExitFailure : exitCode;
     }
     return exitCode;

@@ -143,6 +143,13 @@ if(EXISTS /dev/full)
     if(NOT status EQUAL 1 OR NOT stderr MATCHES "rtrt: error: stdout: No space left on device")
         message(FATAL_ERROR "info > /dev/full: status ${status}: ${stderr}")
     endif()
+    # A render whose image is written says that only its messages were lost.
+    execute_process(COMMAND ${RTRT} render default --size 8x4 -o ${WORK_DIR}/printed${EXT}
+        OUTPUT_FILE /dev/full RESULT_VARIABLE status ERROR_VARIABLE stderr)
+    if(NOT status EQUAL 1 OR NOT EXISTS ${WORK_DIR}/printed${EXT} OR NOT stderr MATCHES
+       "stdout: No space left on device \\(the command's work is done and its files are written")
+        message(FATAL_ERROR "render > /dev/full: status ${status}: ${stderr}")
+    endif()
 endif()
 
 # rtrt play: bad invocations exit 2 and write nothing; a good one writes every frame.

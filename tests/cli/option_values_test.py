@@ -49,6 +49,9 @@ expect("hex depth", image + ["--max-depth", "0x3"], 2,
 expect("wrapped spp", image + ["--spp", "-18446744073709551612"], 2,
        '--spp: expected a whole number >= 0 in decimal digits')
 expect("leading zero spp", image + ["--spp", "016"], 0, "wrote out.ppm")
+# Past 32 bits the conversion had failed with the value alone as its message.
+expect("spp beyond 32 bits", image + ["--spp", "4294967296"], 2,
+       '--spp: "4294967296" is beyond the largest whole number this option takes (4294967295)')
 expect("hex fps", ["play", "default", "--headless", "--frames", "1", "--fps", "0x10", "--backend",
                    "cpu", "--size", "8x4", "-o", "f%d.ppm"], 2,
        '--fps: expected a number in decimal notation, got "0x10"')
