@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <span>
 #include <vector>
 
@@ -21,10 +22,19 @@ namespace {
 // all).
 constexpr float kMaxModelExtent = 1e6f;
 
-// "fit": the size the model is scaled to, greater than 0 and at most kMaxModelExtent.
-float FitSize(JsonFields& f) {
+// "fit": the size the model is scaled to, greater than 0 and at most kMaxModelExtent, for a model
+// whose triangles cover BOUNDS: one so small that the scale overflows is refused as such (its
+// infinite world bounds had been put down to a model too large).
+float FitSize(JsonFields& f, const Aabb& bounds) {
     const float fit = f.Positive("fit");
     if (!(fit <= kMaxModelExtent)) f.Fail("fit", "must be at most 1e6");
+    const float largest = MaxComponent(bounds.Extent());
+    if (!bounds.IsEmpty() && largest > 0.0f && !std::isfinite(fit / largest)) {
+        char extent[32];
+        std::snprintf(extent, sizeof(extent), "%g", double(largest));
+        f.Fail("fit", std::string("the model's largest extent, ") + extent +
+                          ", is too small to be scaled in 32-bit floats");
+    }
     return fit;
 }
 
@@ -105,13 +115,14 @@ Blas ParseSceneModel(JsonFields& f, const std::string& baseDir, ModelShape& shap
         // Meshes come through the BLAS cache; fitting moves the built BLAS exactly as
         // FitMesh would have moved the mesh's vertices.
         MeshModel model = LoadMeshModel(ModelFile(f, {}, baseDir), options);
-        if (f.Has("fit")) FitBlas(model.blas, model.info.sourceBounds, FitSize(f));
+        if (f.Has("fit"))
+            FitBlas(model.blas, model.info.sourceBounds, FitSize(f, model.info.sourceBounds));
         return std::move(model.blas);
     } else {
         f.Fail("type", "unknown model type \"" + type +
                            "\" (expected sphere, spheres, box, plane, teapot, mesh or gltf)");
     }
-    if (f.Has("fit")) FitMesh(mesh, FitSize(f));
+    if (f.Has("fit")) FitMesh(mesh, FitSize(f, mesh.Bounds()));
     return BuildTriangleBlas(mesh, options);
 }
 

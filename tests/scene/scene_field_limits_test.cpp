@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "engine/core/error.h"
@@ -108,6 +109,21 @@ TEST_F(SceneModelFiles, AFolderIsNotAModelFile) {
         EXPECT_EQ(reason, std::string("models.m.file: ") + base + "/" + file +
                               " is not a regular file (a folder)");
     }
+}
+
+// A model too small to be fitted had been refused as one whose world bounds were too large.
+TEST_F(SceneModelFiles, AModelTooSmallToFitSaysSo) {
+    std::ofstream((dir_ / "tiny.obj").string()) << "v 0 0 0\nv 1e-45 0 0\nv 0 1e-45 0\nf 1 2 3\n";
+    EXPECT_EQ(Refusal(R"({"models": {"m": {"type": "mesh", "file": "tiny.obj", "fit": 2}},
+                          "instances": [{"model": "m"}]})",
+                      dir_.string()),
+              "models.m.fit: the model's largest extent, 1.4013e-45, is too small to be scaled in "
+              "32-bit floats");
+    std::ofstream((dir_ / "small.obj").string()) << "v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nf 1 2 3\n";
+    EXPECT_EQ(Refusal(R"({"models": {"m": {"type": "mesh", "file": "small.obj", "fit": 2}},
+                          "instances": [{"model": "m"}]})",
+                      dir_.string()),
+              "");
 }
 
 }  // namespace
