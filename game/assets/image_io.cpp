@@ -112,7 +112,8 @@ void CheckImageFormat(const std::string& path) {
                          "is a folder; name an image file, e.g. " +
                              (std::filesystem::path(path) / "out.png").string());
     const std::string ext = Extension(path);
-    if (ext.empty())
+    // "a.png." has the extension "." (it had been named as a kind of image rtrt cannot write).
+    if (ext.empty() || ext == ".")
         throw InputError(path, "", "the output needs an extension such as .png or .exr");
 #if defined(RTRT_WITH_OIIO)
     if (ext != ".ppm" && ext != ".pfm") {

@@ -32,5 +32,18 @@ TEST_F(ImageIoTest, AnOutputFolderGoneByTheWriteIsAFailedWrite) {
     EXPECT_THROW(WriteImage((dir_ / "frame.nosuchformat").string(), image), InputError);
 }
 
+// A name ending in a dot has no extension; it had been named as a format rtrt cannot write (".").
+TEST_F(ImageIoTest, ANameEndingInADotNeedsAnExtension) {
+    for (const char* name : {"a.png.", "a", "a."}) {
+        try {
+            CheckImagePath((dir_ / name).string());
+            ADD_FAILURE() << name << " passed";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.Reason(), "the output needs an extension such as .png or .exr") << name;
+        }
+    }
+    EXPECT_NO_THROW(CheckImagePath((dir_ / "a.ppm").string()));
+}
+
 }  // namespace
 }  // namespace rtrt
