@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <optional>
 #include <string>
@@ -70,7 +71,8 @@ class AsciiReader {
                               Quote(Token()) + ")"};
         valuesInRecord_ = 0;
     }
-    // Whitespace alone may follow the last record.
+    // Whitespace alone may follow the last record: text is records the header does not announce.
+    static constexpr bool kLeftoverIsError = true;
     std::optional<std::string> Leftover() {
         while (p_ != end_ && IsSpace(*p_)) ++p_;
         if (p_ == end_) return std::nullopt;
@@ -173,13 +175,15 @@ class BinaryReader {
         p_ += count * SizeOf(type);
     }
     void EndRecord() {}
-    // Bytes after the last record: the header's counts do not match the data (a file of one face
-    // more than announced had lost it; one vertex fewer had read a face's bytes as a vertex).
+    // Bytes after the last record: records the header does not announce (a file of one face more
+    // than announced had lost it without a word), or padding some writer left; a warning, since
+    // binary data cannot tell which.
+    static constexpr bool kLeftoverIsError = false;
     std::optional<std::string> Leftover() const {
         if (p_ == end_) return std::nullopt;
         return std::to_string(end_ - p_) +
-               " bytes after the last record the header announces (its counts do not match the "
-               "data)";
+               " bytes after the last record the header announces are ignored (do its counts "
+               "match the data?)";
     }
 
   private:
@@ -414,8 +418,11 @@ void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayo
             throw InputError(path, element.name + " " + std::to_string(record), error.reason);
         }
     }
-    if (const std::optional<std::string> leftover = reader.Leftover())
-        throw InputError(path, "", *leftover);
+    if (const std::optional<std::string> leftover = reader.Leftover()) {
+        if (Reader::kLeftoverIsError) throw InputError(path, "", *leftover);
+        std::fprintf(stderr, "rtrt: warning: %s: %s\n", WithoutControlCharacters(path).c_str(),
+                     leftover->c_str());
+    }
     TriangulatePolygons(path, pending, mesh);
 }
 

@@ -305,10 +305,17 @@ TEST_F(MeshIoTest, PlyDataMustFollowItsHeader) {
     data.Put<uint8_t>(3).Put<int32_t>(0).Put<int32_t>(1).Put<int32_t>(2);
     const std::string binary = PlyHeader("binary_little_endian", 3, 1);
     EXPECT_EQ(LoadMesh(Write("one_face.ply", binary + data.Data())).indices.size(), 1u);
+    // Binary data cannot tell records the header does not announce from a writer's padding: the
+    // bytes after the last record are a warning, and the announced records load.
     data.Put<uint8_t>(3).Put<int32_t>(2).Put<int32_t>(1).Put<int32_t>(0);
-    ExpectInputError(Write("two_faces.ply", binary + data.Data()), "",
-                     "13 bytes after the last record the header announces (its counts do not "
-                     "match the data)");
+    testing::internal::CaptureStderr();
+    const TriangleMesh longer = LoadMesh(Write("two_faces.ply", binary + data.Data()));
+    const std::string warning = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(longer.indices.size(), 1u);
+    EXPECT_NE(warning.find("two_faces.ply: 13 bytes after the last record the header announces are "
+                           "ignored (do its counts match the data?)"),
+              std::string::npos)
+        << warning;
 }
 
 }  // namespace
