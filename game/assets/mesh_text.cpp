@@ -73,6 +73,14 @@ void WarnOfFannedPolygons(const std::string& file, const PolygonTriangulator& tr
                      static_cast<unsigned long long>(triangulator.OverBudget()));
 }
 
+void WarnOfShortFaces(const std::string& file, uint64_t count) {
+    if (count == 0) return;
+    std::fprintf(stderr,
+                 "rtrt: warning: %s: %llu faces of fewer than 3 corners (lines or points, no "
+                 "surface) skipped\n",
+                 WithoutControlCharacters(file).c_str(), static_cast<unsigned long long>(count));
+}
+
 void CheckTriangleCount(uint64_t triangles) {
     if (triangles < kMaxTriangles) return;
     throw RecordError{"over " + std::to_string(kMaxTriangles) +

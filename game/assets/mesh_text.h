@@ -65,4 +65,8 @@ void KeepFileNormals(TriangleMesh& mesh);
 // they are concave; nothing when there are none.
 void WarnOfFannedPolygons(const std::string& file, const PolygonTriangulator& triangulator);
 
+// Prints one warning on stderr for the COUNT faces of FILE given fewer than three corners (loose
+// edges, as older exporters wrote them), which have no surface and were skipped.
+void WarnOfShortFaces(const std::string& file, uint64_t count);
+
 }  // namespace rtrt::mesh_text

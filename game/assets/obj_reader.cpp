@@ -91,6 +91,7 @@ struct ObjData {
     std::vector<glm::uvec3> triangles;
     std::vector<glm::uvec3> normalTriangles;  // normal indices of the same corners
     bool anyCornerHasNormal = false;
+    uint64_t shortFaces = 0;  // of fewer than 3 corners, skipped
     PolygonTriangulator triangulator;
     // The face being read, its corners' positions and its triangles as indices into it.
     std::vector<ObjCorner> face;
@@ -105,11 +106,12 @@ void ParseObjFace(std::string_view rest, ObjData& obj) {
             ParseObjCorner(word, obj.positions.size(), obj.texcoords, obj.normals.size()));
         obj.anyCornerHasNormal |= obj.face.back().normal != kNoNormal;
     }
-    // A face of fewer corners (a line, or nothing) had been dropped without a word.
-    if (obj.face.size() < 3)
-        throw RecordError{"a face of " + std::to_string(obj.face.size()) +
-                          (obj.face.size() == 1 ? " corner" : " corners") +
-                          " (a face needs at least 3)"};
+    // A face of fewer corners (a loose edge, as older exporters wrote them) has no surface: it is
+    // skipped and counted for a warning (it had been dropped without a word).
+    if (obj.face.size() < 3) {
+        ++obj.shortFaces;
+        return;
+    }
     obj.faceTriangles.clear();
     if (obj.face.size() == 3) {
         obj.faceTriangles.emplace_back(0, 1, 2);
@@ -234,6 +236,7 @@ TriangleMesh ParseObj(const std::string& path, std::string_view text, uint64_t* 
         continued.clear();
     }
     mesh_text::WarnOfFannedPolygons(path, obj.triangulator);
+    mesh_text::WarnOfShortFaces(path, obj.shortFaces);
     if (fileVertices) *fileVertices = obj.positions.size();
     if (obj.anyCornerHasNormal && !obj.triangles.empty()) return SplitByNormals(obj);
     TriangleMesh mesh;

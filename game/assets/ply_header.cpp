@@ -82,11 +82,20 @@ PlyProperty ParsePlyProperty(const std::string& path, const std::string& field,
     return property;
 }
 
-int FindProperty(const PlyElement& element, std::string_view name) {
+// The property NAME of ELEMENT, one rtrt reads, or -1. Named twice, it is refused: which of two
+// x's is the vertex's own? The first had been taken without a word. (Properties rtrt skips may
+// repeat: real files have such duplicates.)
+int FindProperty(const std::string& path, const PlyElement& element, std::string_view name) {
+    int found = -1;
     for (size_t i = 0; i < element.properties.size(); ++i) {
-        if (element.properties[i].name == name) return static_cast<int>(i);
+        if (element.properties[i].name != name) continue;
+        if (found >= 0)
+            throw InputError(
+                path, "header",
+                "element " + element.name + " has the property " + Quote(name) + " twice");
+        found = static_cast<int>(i);
     }
-    return -1;
+    return found;
 }
 
 const PlyElement* FindElement(const std::string& path, const PlyHeader& header,
@@ -103,8 +112,8 @@ const PlyElement* FindElement(const std::string& path, const PlyHeader& header,
 // The vertex_indices (or vertex_index) list of ELEMENT, or -1 without the element.
 int IndexListProperty(const std::string& path, const PlyElement* element) {
     if (!element) return -1;
-    int property = FindProperty(*element, "vertex_indices");
-    if (property < 0) property = FindProperty(*element, "vertex_index");
+    int property = FindProperty(path, *element, "vertex_indices");
+    if (property < 0) property = FindProperty(path, *element, "vertex_index");
     if (property < 0) {
         throw InputError(path, "header", element->name + " element has no vertex_indices list");
     }
@@ -180,15 +189,7 @@ PlyHeader ParsePlyHeaderLines(const std::string& path, std::string_view data) {
             header.elements.push_back(std::move(element));
         } else if (keyword == "property") {
             if (header.elements.empty()) throw InputError(path, field, "property before element");
-            PlyElement& element = header.elements.back();
-            PlyProperty property = ParsePlyProperty(path, field, words);
-            // Which of two x's is the vertex's own? The first had been taken without a word.
-            for (const PlyProperty& other : element.properties)
-                if (other.name == property.name)
-                    throw InputError(path, field,
-                                     "element " + element.name + " has a property " +
-                                         Quote(property.name) + " already");
-            element.properties.push_back(std::move(property));
+            header.elements.back().properties.push_back(ParsePlyProperty(path, field, words));
         } else {
             throw InputError(path, field, "unknown keyword " + Quote(keyword));
         }
@@ -231,7 +232,7 @@ PlyLayout FindPlyLayout(const std::string& path, const PlyHeader& header) {
     }
     static constexpr std::array<std::string_view, 6> kNames = {"x", "y", "z", "nx", "ny", "nz"};
     for (size_t i = 0; i < kNames.size(); ++i) {
-        int index = FindProperty(*layout.vertices, kNames[i]);
+        int index = FindProperty(path, *layout.vertices, kNames[i]);
         if (index >= 0 && layout.vertices->properties[index].isList) {
             throw InputError(path, "header", "vertex property " + Quote(kNames[i]) + " is a list");
         }

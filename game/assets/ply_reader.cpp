@@ -45,17 +45,15 @@ class AsciiReader {
         }
         return value;
     }
-    int64_t ReadInteger(ScalarType type) {
+    // Not held to the declared type's range: Blender's exporter declares uchar counts and writes
+    // n-gons of more than 255 corners in ASCII. A count that does not match the line is caught
+    // when the line ends early or has values left over.
+    int64_t ReadInteger(ScalarType) {
         std::string_view token = Token();
         int64_t value = 0;
         if (!ParseNumber(token, value)) {
             throw RecordError{"expected an integer, found " + Quote(token)};
         }
-        // As the binary forms hold it: a uchar count of 300 had read 300 items.
-        if (const auto [lo, hi] = IntegerRange(type); value < lo || value > hi)
-            throw RecordError{"value " + std::string(token) +
-                              " does not fit the property's type (" + std::to_string(lo) + " to " +
-                              std::to_string(hi) + ")"};
         return value;
     }
     void Skip(ScalarType) { Token(); }
@@ -74,7 +72,8 @@ class AsciiReader {
     // Whitespace alone may follow the last record: text is records the header does not announce.
     static constexpr bool kLeftoverIsError = true;
     std::optional<std::string> Leftover() {
-        while (p_ != end_ && IsSpace(*p_)) ++p_;
+        // NUL padding and a DOS end-of-file mark (^Z) count as nothing.
+        while (p_ != end_ && (IsSpace(*p_) || *p_ == '\0' || *p_ == '\x1a')) ++p_;
         if (p_ == end_) return std::nullopt;
         return "text after the last record the header announces (" + Quote(Token()) + ")";
     }
@@ -96,25 +95,6 @@ class AsciiReader {
     }
     // Lines end in LF, CR LF or CR alone.
     static bool IsLineEnd(char c) { return c == '\n' || c == '\r'; }
-    static std::pair<int64_t, int64_t> IntegerRange(ScalarType type) {
-        switch (type) {
-            case ScalarType::kInt8:
-                return {INT8_MIN, INT8_MAX};
-            case ScalarType::kUint8:
-                return {0, UINT8_MAX};
-            case ScalarType::kInt16:
-                return {INT16_MIN, INT16_MAX};
-            case ScalarType::kUint16:
-                return {0, UINT16_MAX};
-            case ScalarType::kInt32:
-                return {INT32_MIN, INT32_MAX};
-            case ScalarType::kUint32:
-                return {0, UINT32_MAX};
-            default:
-                return {INT64_MIN, INT64_MAX};
-        }
-    }
-
     const char* p_;
     const char* end_;
     uint64_t valuesInRecord_ = 0;
@@ -252,7 +232,8 @@ struct PlyPolygons {
     };
     std::vector<Polygon> polygons;
     std::vector<uint32_t> corners;
-    uint64_t triangles = 0;  // at most, corners - 2 each: counted against the bound as read
+    uint64_t triangles = 0;   // at most, corners - 2 each: counted against the bound as read
+    uint64_t shortFaces = 0;  // of fewer than 3 corners, skipped
 };
 
 // Reads the index list of each record of ELEMENT (its other properties skipped) and hands it to
@@ -298,11 +279,12 @@ void ReadPlyFaces(Reader& reader, const PlyLayout& layout, uint64_t& record, Tri
     ReadPlyIndexLists(
         reader, *layout.faces, layout.faceIndexProperty, int64_t(layout.vertices->count), false,
         record, [&](const std::vector<int64_t>& corners) {
-            // A face of fewer corners had been dropped without a word.
-            if (corners.size() < 3)
-                throw RecordError{"a face of " + std::to_string(corners.size()) +
-                                  (corners.size() == 1 ? " corner" : " corners") +
-                                  " (a face needs at least 3)"};
+            // A face of fewer corners (a loose edge) has no surface: skipped and counted for a
+            // warning (it had been dropped without a word).
+            if (corners.size() < 3) {
+                ++pending.shortFaces;
+                return;
+            }
             if (corners.size() == 3) {
                 AddTriangle(uint32_t(corners[0]), uint32_t(corners[1]), uint32_t(corners[2]), mesh,
                             pending.triangles);
@@ -424,6 +406,7 @@ void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayo
                      leftover->c_str());
     }
     TriangulatePolygons(path, pending, mesh);
+    mesh_text::WarnOfShortFaces(path, pending.shortFaces);
 }
 
 }  // namespace

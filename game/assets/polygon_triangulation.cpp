@@ -86,15 +86,19 @@ void PolygonTriangulator::Triangulate(std::span<const vec3> corners,
         points_[i] = glm::dvec2(p[(axis + 1) % 3], flip * p[(axis + 2) % 3]);
     }
 
-    // One whose edges cross (a bowtie, a star drawn in one stroke: ear clipping finds ears in
-    // both, and a star turns one way at every corner, as a convex polygon does) has no inside to
-    // keep: it is fanned, and counted for the warning.
-    if (n >= 4 && CrossesItself()) return FanAfterGivingUp(triangles, triangles.size(), noEar_);
-    // A polygon with no area (its corners on a line) covers nothing: its fan is as good as any.
     bool convex = true;
     for (size_t i = 0; convex && i < n; ++i)
         convex = Turn(points_[(i + n - 1) % n], points_[i], points_[(i + 1) % n]) >= 0.0;
-    if (convex || !(normal[axis] != 0.0 && std::isfinite(normal[axis]))) {
+    // One whose edges cross has no inside to keep: it is fanned, and counted for the warning. A
+    // star drawn in one stroke turns one way at every corner, as a convex polygon does, but twice
+    // round (a linear test); in others (a bowtie: ear clipping finds ears in both) edges are
+    // tested in pairs.
+    const bool hasArea = normal[axis] != 0.0 && std::isfinite(normal[axis]);
+    const bool crosses =
+        convex ? n >= 5 && hasArea && TurnsMoreThanOnce() : n >= 4 && CrossesItself();
+    if (crosses) return FanAfterGivingUp(triangles, triangles.size(), noEar_);
+    // A polygon with no area (its corners on a line) covers nothing: its fan is as good as any.
+    if (convex || !hasArea) {
         for (size_t i = 2; i < n; ++i)
             triangles.emplace_back(source_[0], source_[i - 1], source_[i]);
         return;
@@ -119,13 +123,30 @@ void PolygonTriangulator::FanAfterGivingUp(std::vector<glm::uvec3>& triangles, s
         triangles.emplace_back(source_[0], source_[i - 1], source_[i]);
 }
 
+// Whether the projected polygon, turning left at every corner, turns more than once round: the
+// exterior angles of a convex polygon sum to 2 pi, a star's to 4 pi or more.
+bool PolygonTriangulator::TurnsMoreThanOnce() const {
+    const size_t n = points_.size();
+    double turned = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        const glm::dvec2 in = points_[i] - points_[(i + n - 1) % n];
+        const glm::dvec2 out = points_[(i + 1) % n] - points_[i];
+        turned += std::atan2(in.x * out.y - in.y * out.x, glm::dot(in, out));
+    }
+    return turned > 3.0 * 3.141592653589793;
+}
+
 // Whether two edges of the projected polygon that share no corner cross at a point inside both
 // (touching, as at a pinch or along a slit, does not count). Quadratic in the corners: a polygon
-// of more than 16 pays from the budget (a file of small ones pays in its own size), and one it
-// cannot pay for is not tested.
+// of more than 16 pays from a budget of its own (a file of small ones pays in its own size), and
+// one it cannot pay for is not tested, leaving the ear tests' budget whole.
 bool PolygonTriangulator::CrossesItself() {
     const size_t n = points_.size();
-    if (n > 16 && !Spend(uint64_t(n) * n / 2)) return false;
+    if (n > 16) {
+        const uint64_t work = uint64_t(n) * n / 2;
+        if (crossingBudget_ < work) return false;
+        crossingBudget_ -= work;
+    }
     const auto side = [](double turn) { return (turn > 0.0) - (turn < 0.0); };
     for (size_t i = 0; i < n; ++i) {
         const glm::dvec2 a = points_[i], b = points_[(i + 1) % n];

@@ -17,7 +17,8 @@ namespace rtrt {
 class PolygonTriangulator {
   public:
     // BUDGET: ear-in-corner tests for the whole file, about a second's worth by default.
-    explicit PolygonTriangulator(uint64_t budget = uint64_t{1} << 28) : budget_(budget) {}
+    explicit PolygonTriangulator(uint64_t budget = uint64_t{1} << 28)
+        : budget_(budget), crossingBudget_(budget) {}
 
     // Appends the triangles of the polygon whose corners lie at CORNERS, in order, as indices
     // into CORNERS in the polygon's winding. Consecutive corners at the same position count as
@@ -31,6 +32,7 @@ class PolygonTriangulator {
 
   private:
     enum class Outcome { kDone, kNoEar, kOverBudget };
+    bool TurnsMoreThanOnce() const;
     bool CrossesItself();
     bool SplitAtTouchingCorners();
     Outcome ClipEars(std::span<const uint32_t> loop, std::vector<glm::uvec3>& triangles);
@@ -40,6 +42,7 @@ class PolygonTriangulator {
     bool Spend(uint64_t work);  // false, and nothing left, when the budget cannot pay
 
     uint64_t budget_;
+    uint64_t crossingBudget_;  // edge-pair tests of the crossing check, apart from the ears'
     uint64_t noEar_ = 0, overBudget_ = 0;
     // The polygon being split: its distinct corners projected on its plane, oriented so that it
     // winds counter-clockwise, its loops (split where it touches itself) and the ring of a

@@ -87,8 +87,8 @@ int WithStdoutChecked(int exitCode) {
         std::fprintf(stderr, "rtrt: error: stdout: %s%s\n",
                      why != 0 ? std::strerror(why) : "a write to it failed",
                      exitCode == rtrt::kExitOk
-                         ? " (the command's work is done and its files are written; only what it "
-                           "printed was lost)"
+                         ? " (the command's work is done, any files it wrote are complete; only "
+                           "what it printed was lost)"
                          : "");
         return exitCode == rtrt::kExitOk ? rtrt::kExitFailure : exitCode;
     }

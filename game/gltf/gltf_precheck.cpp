@@ -330,6 +330,16 @@ std::vector<bool> CheckJson(const std::string& file, const std::string& json,
             throw InputError(
                 file, names,
                 std::string("expected an array of strings, got ") + root[names].type_name());
+    // Required meshopt compression leaves the buffers' own data empty (a fallback without a uri):
+    // read as if uncompressed, they had failed with errors that named other fields.
+    if (root.contains("extensionsRequired"))
+        for (const Json& name : root["extensionsRequired"])
+            if (name == "EXT_meshopt_compression" || name == "KHR_meshopt_compression")
+                throw InputError(file, "extensionsRequired",
+                                 name.get<std::string>() +
+                                     ": the buffers are meshopt-compressed, which rtrt cannot "
+                                     "decode; export the file uncompressed (gltfpack without -c "
+                                     "or -cc) or with Draco (KHR_draco_mesh_compression)");
     // glTF's minimums for the sizes and offsets tinygltf reads without checking them (a negative
     // byteOffset was read as 0).
     for (const FieldMinimum& m : kFieldMinimums) {

@@ -160,10 +160,15 @@ class DuplicateKeyFinder : public nlohmann::json_sax<Json> {
 
 Json ParseJson(const std::string& text, const std::string& file, DuplicateKeys duplicates) {
     // nlohmann's parser takes a NUL byte for the end of the text: what followed one was ignored.
-    if (const size_t nul = text.find('\0'); nul != std::string::npos)
+    // NULs at the very end are padding (some writers pad a GLB's JSON chunk with them) and end the
+    // text; one before the JSON's end is refused.
+    const size_t nul = text.find('\0');
+    if (nul != std::string::npos &&
+        text.find_first_not_of(std::string(" \t\r\n\0", 5), nul) != std::string::npos)
         throw InputError(file, "",
                          TextPosition(text, nul) +
                              ": malformed JSON: a NUL byte (a JSON text holds none; binary file?)");
+    if (nul != std::string::npos) return ParseJson(text.substr(0, nul), file, duplicates);
     Json parsed;
     try {
         parsed = Json::parse(text);

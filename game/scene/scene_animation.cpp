@@ -78,6 +78,9 @@ std::shared_ptr<const physics::KeyframeClip> ParseClip(const Json& j, const std:
         within(at, v, 1e-6f, 1e6f,
                "scale factors must be between 1e-6 and 1e6 (a pop-in starts at 1e-6: a scale of 0 "
                "has no inverse to trace with)");
+        // As an instance's scale (scene_file.cpp): flattened further, a model no longer traces.
+        if (!(std::min({v.x, v.y, v.z}) >= 1e-4f * std::max({v.x, v.y, v.z})))
+            f.Fail(at, "the smallest scale factor must be at least 1e-4 of the largest");
         clip->scale.times.push_back(t);
         clip->scale.values.push_back(v);
     });

@@ -436,6 +436,10 @@ class SceneParser {
             }
             if (!(scale.x > 0 && scale.y > 0 && scale.z > 0))
                 f.Fail("scale", "scale factors must be greater than 0");
+            // As models' own sizes are bounded (scene_models.cpp): a sphere scaled by 1e15
+            // vanished.
+            if (!(std::max({scale.x, scale.y, scale.z}) <= 1e6f))
+                f.Fail("scale", "scale factors must be at most 1e6");
             // Flattened more than 1e-4 of its other sides, a model's error bounds (taken in its
             // own space, where it is not flat) no longer keep secondary rays off its surface: a
             // box scaled by 1e-6 in z shadowed its own lit face. A uniform scale is free.
@@ -444,10 +448,6 @@ class SceneParser {
                 f.Fail("scale",
                        "the smallest scale factor must be at least 1e-4 of the largest (size the "
                        "model instead)");
-            // As models' own sizes are bounded (scene_models.cpp): a sphere scaled by 1e15
-            // vanished.
-            if (!(std::max({scale.x, scale.y, scale.z}) <= 1e6f))
-                f.Fail("scale", "scale factors must be at most 1e6");
         }
         physics::LocalTransform t;
         t.translation = position;

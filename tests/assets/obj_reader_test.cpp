@@ -190,9 +190,10 @@ TEST_F(MeshIoTest, ObjStatementsContinueAfterABackslash) {
     // An error in a continued statement names its first line.
     ExpectInputError(Write("continued_error.obj", "v 0 0 0\nv 1 \\\n0 \\\nzero\n"), "line 2",
                      "expected a number, found 'zero'");
-    // A statement continued to the end of the file ends there.
-    ExpectInputError(Write("continued_face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 \\\n"), "line 4",
-                     "a face of 1 corner (a face needs at least 3)");
+    // A statement continued to the end of the file ends there (a face of one corner: skipped).
+    EXPECT_EQ(LoadMesh(Write("continued_face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 \\\n"))
+                  .indices.size(),
+              1u);
 }
 
 TEST_F(MeshIoTest, ObjDropsDegenerateFacesSilently) {
@@ -208,11 +209,16 @@ TEST_F(MeshIoTest, ObjDropsDegenerateFacesSilently) {
 TEST_F(MeshIoTest, ObjErrors) {
     const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     ExpectInputError(Write("range.obj", vertices + "f 1 2 4\n"), "line 4", "out of range");
-    // Faces of fewer than 3 corners had been dropped without a word.
-    ExpectInputError(Write("line.obj", vertices + "f 1 2 3\nf 1 2\n"), "line 5",
-                     "a face of 2 corners (a face needs at least 3)");
-    ExpectInputError(Write("empty_face.obj", vertices + "f\n"), "line 4",
-                     "a face of 0 corners (a face needs at least 3)");
+    // Faces of fewer than 3 corners (loose edges, as older exporters wrote them) are skipped with
+    // a warning that counts them; they had been dropped without a word.
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(LoadMesh(Write("line.obj", vertices + "f 1 2 3\nf 1 2\nf\n")).indices.size(), 1u);
+    const std::string warning = testing::internal::GetCapturedStderr();
+    EXPECT_NE(warning.find("line.obj: 2 faces of fewer than 3 corners (lines or points, no "
+                           "surface) skipped"),
+              std::string::npos)
+        << warning;
+    ExpectInputError(Write("only_lines.obj", vertices + "f 1 2\n"), "", "contains no triangles");
     ExpectInputError(Write("zero.obj", vertices + "f 0 1 2\n"), "line 4", "out of range");
     ExpectInputError(Write("negative.obj", vertices + "f -4 1 2\n"), "line 4", "out of range");
     ExpectInputError(Write("normal.obj", vertices + "f 1//1 2//1 3//1\n"), "line 4",

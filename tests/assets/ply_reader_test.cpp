@@ -288,16 +288,50 @@ TEST_F(MeshIoTest, PlyDataMustFollowItsHeader) {
                      "more values on the line than the header's properties ('5')");
     ExpectInputError(Write("trailing.ply", ascii + vertices + "3 0 1 2\ngarbage\n"), "",
                      "text after the last record the header announces ('garbage')");
+    // A count is not held to its type's range (Blender writes n-gons of more than 255 corners
+    // under a uchar count), but to the line.
     ExpectInputError(Write("wide_count.ply", ascii + vertices + "300 0 1 2\n"), "face 0",
-                     "value 300 does not fit the property's type (0 to 255)");
-    ExpectInputError(Write("two_corners.ply", ascii + vertices + "2 0 1\n"), "face 0",
-                     "a face of 2 corners (a face needs at least 3)");
+                     "the line ends before the record does");
+    std::string ngon =
+        "ply\nformat ascii 1.0\nelement vertex 300\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 1\n"
+        "property list uchar int vertex_indices\nend_header\n";
+    std::string corners = "300";
+    for (int i = 0; i < 300; ++i) {
+        const double a = 2.0 * 3.141592653589793 * i / 300;
+        ngon += std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+        corners += " " + std::to_string(i);
+    }
+    EXPECT_EQ(LoadMesh(Write("ngon.ply", ngon + corners + "\n")).indices.size(), 298u);
+    testing::internal::CaptureStderr();
+    const TriangleMesh withEdge = LoadMesh(
+        Write("two_corners.ply", PlyHeader("ascii", 3, 2) + vertices + "2 0 1\n3 0 1 2\n"));
+    const std::string edgeWarning = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(withEdge.indices.size(), 1u);
+    EXPECT_NE(edgeWarning.find("two_corners.ply: 1 faces of fewer than 3 corners"),
+              std::string::npos)
+        << edgeWarning;
     ExpectInputError(Write("duplicate_x.ply",
                            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                           "property float x\nproperty float y\nproperty float z\nend_header\n"),
-                     "header line 5", "element vertex has a property 'x' already");
-    // Whitespace after the last record, and blank lines between records, are fine.
+                           "property float x\nproperty float y\nproperty float z\nend_header\n"
+                           "0 0 0 0\n1 1 0 0\n0 0 1 0\n"),
+                     "header", "element vertex has the property 'x' twice");
+    // Properties rtrt skips may repeat (real files have such duplicates).
+    EXPECT_EQ(LoadMesh(Write("duplicate_red.ply",
+                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nproperty uchar red\n"
+                             "property uchar red\nelement face 1\n"
+                             "property list uchar int vertex_indices\nend_header\n"
+                             "0 0 0 1 2\n1 0 0 1 2\n0 1 0 1 2\n3 0 1 2\n"))
+                  .indices.size(),
+              1u);
+    // Whitespace after the last record, and blank lines between records, are fine, as are NUL
+    // padding and a DOS end-of-file mark at the end.
     EXPECT_EQ(LoadMesh(Write("spaced.ply", ascii + vertices + "\n3 0 1 2  \n\n")).indices.size(),
+              1u);
+    EXPECT_EQ(LoadMesh(Write("padded.ply",
+                             ascii + vertices + "3 0 1 2\n" + std::string(4, '\0') + "\x1a"))
+                  .indices.size(),
               1u);
 
     Bytes data(false);

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -228,6 +230,35 @@ TEST(PolygonTriangulation, PolygonsWhoseEdgesCrossAreFannedAndCounted) {
         Triangulate(simple, triangulator);
         EXPECT_EQ(triangulator.NoEar(), 0u);
     }
+}
+
+// The crossing check of a huge convex polygon is linear and spends nothing: a convex 24,000-gon's
+// pairwise check had emptied the file's ear-test budget, and a concave polygon after it was
+// fanned.
+TEST(PolygonTriangulation, AHugeConvexPolygonLeavesTheBudgetWhole) {
+    // Exactly convex in float: the primitive integer vectors of length at most 100 per axis,
+    // walked in the order of their angles, as edges (each direction once, so every corner turns
+    // left; they sum to zero, so the walk closes).
+    std::vector<glm::ivec2> edges;
+    for (int a = -100; a <= 100; ++a)
+        for (int b = -100; b <= 100; ++b)
+            if (std::gcd(a, b) == 1) edges.emplace_back(a, b);
+    std::sort(edges.begin(), edges.end(), [](glm::ivec2 p, glm::ivec2 q) {
+        return std::atan2(double(p.y), double(p.x)) < std::atan2(double(q.y), double(q.x));
+    });
+    std::vector<vec3> convex;
+    glm::ivec2 at(0);
+    for (const glm::ivec2& e : edges) {
+        convex.push_back(vec3(float(at.x), float(at.y), 0.0f));
+        at += e;
+    }
+    ASSERT_GT(convex.size(), 23200u);  // its pairs of edges would cost more than the whole budget
+    PolygonTriangulator triangulator;
+    EXPECT_EQ(Triangulate(convex, triangulator).triangles.size(), convex.size() - 2);
+    const Split u = Triangulate(kU, triangulator);
+    EXPECT_EQ(triangulator.OverBudget(), 0u);
+    EXPECT_EQ(triangulator.NoEar(), 0u);
+    EXPECT_EQ(u.area, 7.0);
 }
 
 TEST(PolygonTriangulation, PastTheBudgetConcavePolygonsAreFanned) {

@@ -147,7 +147,7 @@ if(EXISTS /dev/full)
     execute_process(COMMAND ${RTRT} render default --size 8x4 -o ${WORK_DIR}/printed${EXT}
         OUTPUT_FILE /dev/full RESULT_VARIABLE status ERROR_VARIABLE stderr)
     if(NOT status EQUAL 1 OR NOT EXISTS ${WORK_DIR}/printed${EXT} OR NOT stderr MATCHES
-       "stdout: No space left on device \\(the command's work is done and its files are written")
+       "stdout: No space left on device \\(the command's work is done, any files it wrote are complete")
         message(FATAL_ERROR "render > /dev/full: status ${status}: ${stderr}")
     endif()
 endif()

@@ -88,6 +88,17 @@ TEST_F(GltfTest, MistypedMaterialFieldsAndUnknownComponentTypesAreRefused) {
     d["extensionsRequired"] = "KHR_texture_basisu";
     ExpectGltfError(Save("required.gltf", d.dump()), "extensionsRequired",
                     "expected an array of strings, got string");
+    // Required meshopt compression: refused by name (read as uncompressed, its empty fallback
+    // buffers had failed with errors about other fields).
+    for (const char* meshopt : {"EXT_meshopt_compression", "KHR_meshopt_compression"}) {
+        d = base;
+        d["extensionsUsed"] = {meshopt};
+        d["extensionsRequired"] = {meshopt};
+        ExpectGltfError(Save("meshopt.gltf", d.dump()), "extensionsRequired",
+                        std::string(meshopt) +
+                            ": the buffers are meshopt-compressed, which rtrt "
+                            "cannot decode");
+    }
     d = base;
     d["accessors"][0]["componentType"] = 5124;
     ExpectGltfError(Save("int32.gltf", d.dump()), "accessors[0].componentType",

@@ -60,6 +60,10 @@ TEST(JsonParseTest, ANulByteIsRefusedWhereItIs) {
     EXPECT_EQ(DuplicateError(text),
               "s.json: line 2, column 1: malformed JSON: a NUL byte (a JSON text holds none; "
               "binary file?)");
+    // NULs at the end are padding (a GLB's JSON chunk padded with them had loaded, and must).
+    EXPECT_EQ(ParseJson(std::string("{\"k\": 1}  ") + std::string(3, '\0'), "m.glb",
+                        DuplicateKeys::kLastWins)["k"],
+              1);
     // An escaped NUL inside a string is JSON; the fields that read names refuse it.
     EXPECT_EQ(ParseJson(R"({"k": "a\u0000b"})", "s.json", DuplicateKeys::kError)["k"]
                   .get<std::string>()

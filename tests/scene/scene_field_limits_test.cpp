@@ -79,6 +79,18 @@ TEST(SceneFieldLimits, InstancesAreNotFlattenedBeyondWhatFloatsTrace) {
     EXPECT_EQ(scaled("[1, 1, 1e-4]"), "");
     EXPECT_EQ(scaled("1e-8"), "");
     EXPECT_EQ(scaled("[2e-8, 1e-8, 1e-8]"), "");
+    // The bound comes first where both are broken.
+    EXPECT_EQ(scaled("[1e7, 1, 1]"), "instances[0].scale: scale factors must be at most 1e6");
+    // Keys of a scale animation are held to the same rule; a uniform pop-in from 1e-6 is fine.
+    auto keyed = [](const std::string& key) {
+        return Refusal(R"({"models": {"b": {"type": "box"}}, "instances": [{"model": "b",
+            "animate": {"keyframes": {"scale": [[0, 1, 1, 1], )" +
+                       key + "]}}}]}");
+    };
+    EXPECT_EQ(keyed("[1, 1, 1e-6, 1]"),
+              "instances[0].animate.keyframes.scale[1]: the smallest scale factor must be at "
+              "least 1e-4 of the largest");
+    EXPECT_EQ(keyed("[1, 1e-6, 1e-6, 1e-6]"), "");
 }
 
 // sbvh splits triangles; on a sphere model it had been accepted and ignored.

@@ -356,10 +356,10 @@ TEST(SceneFile, AnimationsDeformationsAndSpawnsStayWithinTheSceneBounds) {
                 "spawners[0].rain.min", "at most 1e7");
     EXPECT_NO_THROW(
         ParseScene(animated(R"({"keyframes": {"translation": [[0, 0, 0, 0], [1, 1e7, 0, 0]],
-                                  "scale": [[0, 1e-6, 1, 1e6]]}})"),
+                                  "scale": [[0, 1e-6, 1e-6, 1e-6], [1, 1e6, 1e6, 1e6]]}})"),
                    "s.json", ""));
     EXPECT_NO_THROW(ParseScene(
-        animated(R"({"keyframes": {"scale": [[0, 1e-6, 1, 1e6]]}, "orbit": {"radius": 1e7}})"),
+        animated(R"({"keyframes": {"scale": [[0, 1e6, 1e6, 1e6]]}, "orbit": {"radius": 1e7}})"),
         "s.json", ""));
     // Axes far from unit length keep their direction (one of 1e20 had become +y, one of 1e-30 was
     // refused as zero).

@@ -2,16 +2,10 @@
 
 #include <algorithm>
 
+#include "engine/core/timer.h"
+
 namespace rtrt {
 namespace {
-
-// The mean of the two middle times of an even count (a trial has 4 per form), not core's Median
-// (timer.h), which takes the upper one and so weighs one slow frame more.
-double Median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // A trial whose times have not all arrived this many frames after its last frame starts again.
 constexpr uint32_t kMaxWait = 16;
