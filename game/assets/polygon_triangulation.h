@@ -13,7 +13,9 @@ namespace rtrt {
 // notches, after it is cut into loops where it touches itself at a corner. Ear clipping tests
 // candidate ears against the polygon's reflex corners, quadratic in its corners at worst: a file's
 // polygons share a budget of such tests, after which the rest are fanned too (counted in
-// OverBudget), so that a crafted file of huge concave polygons still loads in seconds.
+// OverBudget), so that a crafted file of huge concave polygons still loads in seconds. One whose
+// edges cross (a bowtie, a star) is fanned and counted in NoEar; the pairwise edge test for that
+// has a budget of its own, and convex-turning polygons take a linear test instead.
 class PolygonTriangulator {
   public:
     // BUDGET: ear-in-corner tests for the whole file, about a second's worth by default.
