@@ -79,6 +79,7 @@ inline void GenerateTangents(TriangleMesh& mesh) {
         mesh.positions.push_back(mesh.positions[v]);
         if (!mesh.normals.empty()) mesh.normals.push_back(mesh.normals[v]);
         mesh.uvs.push_back(mesh.uvs[v]);
+        if (!mesh.colors.empty()) mesh.colors.push_back(mesh.colors[v]);
     }
     std::vector<vec4> tangents(mesh.positions.size(), vec4(1, 0, 0, 1));
     auto frame = [&](const Sum& s, vec3 normal) {

@@ -56,6 +56,36 @@ struct TriangleTangents {
 };
 static_assert(sizeof(TriangleTangents) == 48);
 
+// Per-vertex colours of one triangle, in the same order as Triangle (glTF's COLOR_0: linear RGB
+// that multiplies the base colour), each channel a 16-bit unsigned normalised value: exact for the
+// 8- and 16-bit colours files hold, within 1/131070 of float ones, in half the bytes of floats.
+// Alpha is not kept: surfaces are opaque.
+struct TriangleColors {
+    uint16_t rgb[9];
+
+    // Each channel clamped to [0, 1] and rounded to the nearest step.
+    RT_HD static TriangleColors Pack(vec3 a, vec3 b, vec3 c) {
+        TriangleColors t;
+        const vec3 corners[3] = {a, b, c};
+        for (int v = 0; v < 3; ++v)
+            for (int k = 0; k < 3; ++k) {
+                const float x = corners[v][k];
+                const float clamped = x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;  // NaN -> 0
+                t.rgb[3 * v + k] = uint16_t(clamped * 65535.0f + 0.5f);
+            }
+        return t;
+    }
+    RT_HD vec3 Corner(int v) const {
+        constexpr float kScale = 1.0f / 65535.0f;
+        return vec3(float(rgb[3 * v]), float(rgb[3 * v + 1]), float(rgb[3 * v + 2])) * kScale;
+    }
+    // The interpolation at barycentrics (b1, b2) of vertices 1 and 2.
+    RT_HD vec3 At(float b1, float b2) const {
+        return (1.0f - b1 - b2) * Corner(0) + b1 * Corner(1) + b2 * Corner(2);
+    }
+};
+static_assert(sizeof(TriangleColors) == 18);
+
 enum class GeometryKind : uint32_t { kTriangles = 0, kSpheres = 1 };
 
 }  // namespace rtrt

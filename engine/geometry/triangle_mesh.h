@@ -11,6 +11,7 @@ struct TriangleMesh {
     std::vector<vec3> positions;
     std::vector<vec3> normals;  // per vertex; empty means flat shading
     std::vector<vec2> uvs;      // per vertex; empty means untextured
+    std::vector<vec3> colors;   // per vertex, linear RGB in [0, 1]; empty means none
     // Per vertex (see TriangleTangents), for normal maps; empty means tangents from each
     // triangle's uvs at the hit.
     std::vector<vec4> tangents;

@@ -106,16 +106,22 @@ constexpr size_t kMaterialUseScanLimit = 65536;
 uint32_t RenderScene::Features() const {
     uint32_t features = lights.empty() ? 0u : kFeatureShadows;
     features |= InstanceCountFeatures(instances.size());
+    // Vertex colours are applied where textures are (MaterialAt, PbrInputsAt).
+    auto colored = [](const std::shared_ptr<const Blas>& b) { return !b->colors.empty(); };
     if (instances.size() > kMaterialUseScanLimit) {
         for (const Material& m : materials) features |= MaterialFeatures(m, pbrMaterials);
+        if (std::any_of(blases.begin(), blases.end(), colored)) features |= kFeatureTextures;
         return features;
     }
     std::vector<bool> used(materials.size(), false);
-    for (const Instance& inst : instances)
+    for (const Instance& inst : instances) {
         if (inst.materialId < used.size() && !used[inst.materialId]) {
             used[inst.materialId] = true;
             features |= MaterialFeatures(materials[inst.materialId], pbrMaterials);
         }
+        if (inst.blasId < blases.size() && colored(blases[inst.blasId]))
+            features |= kFeatureTextures;
+    }
     return features;
 }
 

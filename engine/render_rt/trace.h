@@ -40,24 +40,28 @@ RT_HD inline float HitFootprint(const RenderSceneView& scene, const SceneHit& hi
                             glm::dot(s.geomNormal, glm::normalize(ray.dir)));
 }
 
-// The material at a hit, its base-colour texture applied (only in kernels with kFeatureTextures):
-// the sample multiplies diffuse and ambient. scratch holds the textured copy. footprint selects
-// the mip level (HitFootprint).
+// The material at a hit, its base-colour texture and the mesh's vertex colours applied (only in
+// kernels with kFeatureTextures): they multiply diffuse and ambient. scratch holds the tinted
+// copy. footprint selects the mip level (HitFootprint).
 template <uint32_t kFeatures>
 RT_HD inline const Material& MaterialAt(const RenderSceneView& scene, const SceneHit& hit,
                                         uint32_t materialId, float footprint, Material* scratch) {
     const Material& m = scene.materials[materialId];
     if constexpr ((kFeatures & kFeatureTextures) != 0) {
-        if (m.baseColorTexture == kNoTexture) return m;
         const Instance& inst = scene.tlas.instances[hit.instance];
         const BlasView& blas = scene.tlas.blases[inst.blasId];
-        if (blas.kind != GeometryKind::kTriangles || !blas.uvs) return m;
-        const vec2 uv = InterpolateUv(blas.uvs[hit.prim], hit.b1, hit.b2);
-        const vec3 sample =
-            SampleTexture(scene.textures[m.baseColorTexture], scene.texels, uv, footprint);
+        if (blas.kind != GeometryKind::kTriangles) return m;
+        const bool textured = m.baseColorTexture != kNoTexture && blas.uvs;
+        if (!textured && !blas.colors) return m;
+        vec3 tint(1.0f);
+        if (textured) {
+            const vec2 uv = InterpolateUv(blas.uvs[hit.prim], hit.b1, hit.b2);
+            tint = SampleTexture(scene.textures[m.baseColorTexture], scene.texels, uv, footprint);
+        }
+        if (blas.colors) tint *= blas.colors[hit.prim].At(hit.b1, hit.b2);
         *scratch = m;
-        scratch->diffuse *= sample;
-        scratch->ambient *= sample;
+        scratch->diffuse *= tint;
+        scratch->ambient *= tint;
         return *scratch;
     }
     return m;

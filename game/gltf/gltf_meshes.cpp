@@ -1,5 +1,6 @@
 #include "game/gltf/gltf_meshes.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 
@@ -159,6 +160,41 @@ void GltfMeshes::ReadDeformation(const tinygltf::Primitive& prim, const std::str
     summary_.deformingPrimitives++;
 }
 
+std::vector<vec3> GltfMeshes::ReadVertexColors(int accessor, const std::string& field,
+                                               size_t vertices) {
+    AccessorView a;
+    try {
+        a = GltfAccessor(doc_, accessor, field, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4});
+    } catch (const GltfUnsupported& u) {
+        doc_.Warn("unsupported:" + u.what, field + ": " + u.what + "; vertex colours not applied");
+        return {};
+    }
+    // glTF 2.0, 3.7.2.1: floats, or unsigned bytes or shorts, normalised.
+    const bool normalisedInteger =
+        a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                         a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !normalisedInteger)
+        doc_.Fail(JsonIndexed("accessors", size_t(accessor)),
+                  "COLOR_0 must be floats or normalized unsigned bytes or shorts");
+    if (a.count != vertices) doc_.Fail(field, "count differs from POSITION's");
+    std::vector<vec3> colors(a.count);
+    size_t outside = 0;
+    for (size_t i = 0; i < a.count; ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float v = a.Component(i, c);
+            if (!FiniteFloat(v))
+                doc_.Fail(field, "accessor " + std::to_string(accessor) + ", element " +
+                                     std::to_string(i) + ": NaN or infinite");
+            if (v < 0.0f || v > 1.0f) ++outside;
+            colors[i][c] = std::clamp(v, 0.0f, 1.0f);
+        }
+    if (outside > 0)
+        doc_.Warn("color0-range", field + ": " + std::to_string(outside) +
+                                      " components outside [0, 1] (glTF's range for colours) "
+                                      "are clamped");
+    return colors;
+}
+
 // The triangles of a strip or a fan as the glTF specification numbers them (3.7.2.1): strip
 // triangle i is (v_i, v_{i+1+i%2}, v_{i+2-i%2}), keeping one winding; fan triangle i is
 // (v_{i+1}, v_{i+2}, v_0). Degenerate ones (repeated vertices, as strips use to restart) are left
@@ -184,9 +220,8 @@ TriangleMesh GltfMeshes::ReadPrimitive(const tinygltf::Primitive& prim, const st
     mesh.positions =
         ReadGltfFloats<3>(doc_, position, at + ".attributes.POSITION", TINYGLTF_TYPE_VEC3);
     const size_t vertices = mesh.positions.size();
-    if (attribute("COLOR_0") >= 0)
-        doc_.Warn("color0", at + ".attributes.COLOR_0: vertex colours are not supported; the "
-                                 "base colour is the material's alone");
+    if (const int color = attribute("COLOR_0"); color >= 0)
+        mesh.colors = ReadVertexColors(color, at + ".attributes.COLOR_0", vertices);
     if (const int normal = attribute("NORMAL"); normal >= 0) {
         mesh.normals =
             ReadGltfFloats<3>(doc_, normal, at + ".attributes.NORMAL", TINYGLTF_TYPE_VEC3);

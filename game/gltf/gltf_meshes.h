@@ -33,6 +33,9 @@ class GltfMeshes {
 
   private:
     TriangleMesh ReadPrimitive(const tinygltf::Primitive& prim, const std::string& at);
+    // COLOR_0 (accessor ACCESSOR, named FIELD) as linear RGB per vertex, for a primitive of
+    // VERTICES vertices; empty, with a warning, where rtrt cannot read it (a sparse accessor).
+    std::vector<vec3> ReadVertexColors(int accessor, const std::string& field, size_t vertices);
     // Whether the primitive's material samples any texture.
     bool Textured(const tinygltf::Primitive& prim) const;
     // Whether the primitive's material has a normal map (its triangles then carry tangents).

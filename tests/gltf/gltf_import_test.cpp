@@ -277,20 +277,6 @@ TEST_F(GltfTest, AMatrixWithAZeroScaleIsItsTrs) {
     EXPECT_EQ(hidden.entities.at(1).local.translation, vec3(5, 0, 0));
 }
 
-// Vertex colours are not shaded: a warning says so, once per file, rather than nothing.
-TEST_F(GltfTest, VertexColoursAreNamedAsUnsupported) {
-    GltfBuilder b = test::TwoLevels();
-    b.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] =
-        b.Floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4", 4);
-    ::testing::internal::CaptureStderr();
-    LoadSceneFile(Save("coloured.gltf", b.GltfText()));
-    const std::string warnings = ::testing::internal::GetCapturedStderr();
-    EXPECT_NE(warnings.find("meshes[0].primitives[0].attributes.COLOR_0: vertex colours are not "
-                            "supported"),
-              std::string::npos)
-        << warnings;
-}
-
 // Keys at time 0 only are a pose (how exporters write one): the node takes it, at the start
 // and after. The channel had been dropped, leaving the node at rest.
 TEST_F(GltfTest, AChannelOfOneKeyPosesItsNode) {

@@ -48,9 +48,11 @@ struct DeformingScene {
     uint32_t deformation = 0;
 
     explicit DeformingScene(ProceduralDeform procedural, uint32_t rings = 24,
-                            BvhBuildOptions options = {}) {
+                            BvhBuildOptions options = {}, bool colored = false) {
         auto mesh = std::make_shared<DeformableMesh>();
         mesh->rest = UvSphere(rings, 2 * rings);
+        if (colored)
+            for (vec3 p : mesh->rest.positions) mesh->rest.colors.push_back(0.5f * p + 0.5f);
         const uint32_t rest =
             scene.AddBlas(std::make_shared<const Blas>(BuildTriangleBlas(mesh->rest, options)));
         const uint32_t meshId = scene.AddDeformableMesh(mesh);
@@ -222,6 +224,24 @@ std::vector<Aabb> Bounds(const RenderScene& s) {
     return v;
 }
 
+// The deformation's tree after FRAMES frames STEP apart in time under MODE; each frame deforms
+// it, and under kAlwaysRebuild rebuilds it.
+Blas TreeAfter(DeformingScene& s, BlasRebuildPolicy::Mode mode, int frames, float step) {
+    BlasRebuildPolicy policy;
+    policy.mode = mode;
+    CpuDeformer deformer(policy);
+    std::vector<BlasView> views = Views(s.scene);
+    std::vector<Aabb> bounds = Bounds(s.scene);
+    const uint32_t d = s.deformation;
+    for (int frame = 0; frame < frames; ++frame) {
+        s.At(step * float(frame));
+        const DeformStats stats = deformer.Update(s.scene, std::span(&d, 1), views, bounds);
+        EXPECT_EQ(stats.deformed, 1u);
+        EXPECT_EQ(stats.rebuilt, mode == BlasRebuildPolicy::Mode::kAlwaysRebuild ? 1u : 0u);
+    }
+    return deformer.Snapshot(d);
+}
+
 TEST(CpuDeformer, RefitTreeStaysExactAfterManyDeformingFrames) {
     DeformingScene s(Twist(2.5f));
     BlasRebuildPolicy refitOnly;
@@ -256,17 +276,7 @@ TEST(CpuDeformer, SpatialSplitRestTreeRefitsExactly) {
     DeformingScene s(Twist(2.5f), 12, sbvh);  // coarse enough for its triangles to be split
     const Blas& rest = *s.scene.blases[s.scene.deformations[s.deformation].blasId];
     ASSERT_GT(rest.PrimCount(), rest.SourcePrimCount()) << "no triangle was split";
-    BlasRebuildPolicy refitOnly;
-    refitOnly.mode = BlasRebuildPolicy::Mode::kAlwaysRefit;
-    CpuDeformer deformer(refitOnly);
-    std::vector<BlasView> views = Views(s.scene);
-    std::vector<Aabb> bounds = Bounds(s.scene);
-    const uint32_t d = s.deformation;
-    for (int frame = 0; frame < 30; ++frame) {
-        s.At(0.05f * float(frame));
-        ASSERT_EQ(deformer.Update(s.scene, std::span(&d, 1), views, bounds).deformed, 1u);
-    }
-    const Blas blas = deformer.Snapshot(d);
+    const Blas blas = TreeAfter(s, BlasRebuildPolicy::Mode::kAlwaysRefit, 30, 0.05f);
     ASSERT_EQ(blas.PrimCount(), rest.PrimCount());
     // Every leaf bounds the whole triangles of its slots, however the rest tree clipped them.
     uint32_t slots = 0;
@@ -290,20 +300,35 @@ TEST(CpuDeformer, SpatialSplitRestTreeRefitsExactly) {
 
 TEST(CpuDeformer, RebuiltTreeIsAValidLbvhOfTheDeformedTriangles) {
     DeformingScene s(Wave(0.3f));
-    BlasRebuildPolicy rebuild;
-    rebuild.mode = BlasRebuildPolicy::Mode::kAlwaysRebuild;
-    CpuDeformer deformer(rebuild);
-    std::vector<BlasView> views = Views(s.scene);
-    std::vector<Aabb> bounds = Bounds(s.scene);
-    const uint32_t d = s.deformation;
-    for (int frame = 0; frame < 3; ++frame) {
-        s.At(0.3f * float(frame));
-        EXPECT_EQ(deformer.Update(s.scene, std::span(&d, 1), views, bounds).rebuilt, 1u);
-    }
-    const Blas blas = deformer.Snapshot(d);
+    const Blas blas = TreeAfter(s, BlasRebuildPolicy::Mode::kAlwaysRebuild, 3, 0.3f);
     EXPECT_EQ(blas.nodes.size(), 2 * blas.PrimCount());  // one triangle per leaf
     ExpectWellFormed(blas);
     ExpectMatchesBruteForce(blas, 12);
+}
+
+// Vertex colours follow their triangles into each rebuilt tree's leaf order, and back out of it
+// into a rest mesh.
+TEST(CpuDeformer, VertexColoursFollowTheirTrianglesThroughRebuilds) {
+    DeformingScene s(Twist(2.0f), 12, {}, true);
+    const Blas blas = TreeAfter(s, BlasRebuildPolicy::Mode::kAlwaysRebuild, 3, 0.5f);
+    const TriangleMesh& rest = s.scene.deformableMeshes[0]->rest;
+    const Blas& restTree = *s.scene.blases[0];
+    ASSERT_EQ(blas.colors.size(), blas.PrimCount());
+    ASSERT_EQ(restTree.colors.size(), restTree.PrimCount());
+    uint32_t moved = 0;
+    for (uint32_t slot = 0; slot < blas.PrimCount(); ++slot) {
+        const glm::uvec3 idx = rest.indices[blas.primIds[slot]];
+        const TriangleColors want =
+            TriangleColors::Pack(rest.colors[idx.x], rest.colors[idx.y], rest.colors[idx.z]);
+        for (int k = 0; k < 9; ++k) EXPECT_EQ(blas.colors[slot].rgb[k], want.rgb[k]) << slot;
+        moved += blas.primIds[slot] != restTree.primIds[slot];
+    }
+    EXPECT_GT(moved, 0u) << "the rebuilt tree should order the triangles otherwise";
+    const TriangleMesh back = RestMeshOfBlas(blas).rest;
+    ASSERT_EQ(back.colors.size(), 3 * size_t(blas.PrimCount()));
+    for (uint32_t slot = 0; slot < blas.PrimCount(); ++slot)
+        for (int k = 0; k < 3; ++k)
+            EXPECT_EQ(back.colors[3 * slot + k], blas.colors[slot].Corner(k));
 }
 
 // The policy rebuilds in the frame after a refit let the cost pass (1 + growth) x the cost of the

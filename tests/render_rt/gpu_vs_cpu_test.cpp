@@ -275,6 +275,26 @@ TEST(GpuVsCpu, ExtensionTexturesGltf) {
     ExpectGpuMatchesCpu(loaded.scene, ViewMode::kShaded, std::exp2(loaded.output.exposureEv));
 }
 
+// glTF vertex colours on the device: per-vertex colours times a bilinear base colour texture on
+// the lit quad (PBR), and the same colours under the default Blinn-Phong material.
+TEST(GpuVsCpu, VertexColoursGltf) {
+    for (const bool pbr : {true, false}) {
+        test::GltfBuilder b = test::LitQuadScene(test::GltfBuilder::Png(
+            2, 2, {255, 40, 200, 255, 30, 20, 220, 255, 128, 128, 0, 255, 60, 0, 255, 255}));
+        b.doc["samplers"][0]["magFilter"] = 9729;
+        b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+        nlohmann::json& primitive = b.doc["meshes"][0]["primitives"][0];
+        if (!pbr) primitive.erase("material");
+        primitive["attributes"]["COLOR_0"] = b.Floats(
+            {1, 0.2f, 0.1f, 1, 0.3f, 1, 0, 1, 0.5f, 0.5f, 1, 1, 0.9f, 0.8f, 0.1f, 1}, "VEC4", 4);
+        const std::string path = ::testing::TempDir() + "rtrt_gpu_vertex_colors.glb";
+        test::GltfBuilder::Save(path, b.Glb());
+        const LoadedScene loaded = LoadSceneFile(path);
+        ASSERT_FALSE(loaded.scene.blases.at(loaded.scene.instances.at(0).blasId)->colors.empty());
+        ExpectGpuMatchesCpu(loaded.scene, ViewMode::kShaded, std::exp2(loaded.output.exposureEv));
+    }
+}
+
 // The GPU samples texels exactly as the CPU does: an unlit quad filling the image shows each
 // texel of a 4x4 nearest-filtered texture on 2x2 pixels, bit for bit.
 TEST(GpuVsCpu, TexturedQuadTexelsDecoded) {

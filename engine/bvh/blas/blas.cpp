@@ -18,6 +18,7 @@ BlasView Blas::View() const {
     view.primCount = PrimCount();
     view.uvs = uvs.empty() ? nullptr : uvs.data();
     view.tangents = tangents.empty() ? nullptr : tangents.data();
+    view.colors = colors.empty() ? nullptr : colors.data();
     return view;
 }
 
@@ -25,7 +26,7 @@ size_t Blas::Bytes() const {
     return nodes.size() * sizeof(BvhNode) + nodes4.size() * sizeof(Bvh4Node) +
            triangles.size() * sizeof(Triangle) + normals.size() * sizeof(TriangleNormals) +
            spheres.size() * sizeof(Sphere) + uvs.size() * sizeof(TriangleUvs) +
-           tangents.size() * sizeof(TriangleTangents);
+           tangents.size() * sizeof(TriangleTangents) + colors.size() * sizeof(TriangleColors);
 }
 
 uint32_t Blas::SourcePrimCount() const {
@@ -50,6 +51,7 @@ DeformableMesh RestMeshOfBlas(const Blas& blas) {
     }
     if (!blas.normals.empty()) rest.normals.resize(3 * n);
     if (!blas.uvs.empty()) rest.uvs.resize(3 * n);
+    if (!blas.colors.empty()) rest.colors.resize(3 * n);
     ParallelFor(0, n, 4096, [&](size_t s) {
         const uint32_t v = uint32_t(3 * s);
         const Triangle& t = blas.triangles[s];
@@ -66,6 +68,8 @@ DeformableMesh RestMeshOfBlas(const Blas& blas) {
             rest.uvs[v + 1] = blas.uvs[s].uv1;
             rest.uvs[v + 2] = blas.uvs[s].uv2;
         }
+        if (!blas.colors.empty())
+            for (int k = 0; k < 3; ++k) rest.colors[v + k] = blas.colors[s].Corner(k);
     });
     return mesh;
 }
@@ -101,6 +105,8 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
     if (textured) blas.uvs.resize(slots);
     const bool tangents = !mesh.tangents.empty();
     if (tangents) blas.tangents.resize(slots);
+    const bool colored = !mesh.colors.empty();
+    if (colored) blas.colors.resize(slots);
     ParallelFor(0, slots, 4096, [&](size_t slot) {
         const uint32_t prim = blas.primIds[slot];
         blas.triangles[slot] = triangle(prim);
@@ -117,6 +123,11 @@ Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options)
             const glm::uvec3 idx = mesh.indices[prim];
             blas.tangents[slot] = {mesh.tangents[idx.x], mesh.tangents[idx.y],
                                    mesh.tangents[idx.z]};
+        }
+        if (colored) {
+            const glm::uvec3 idx = mesh.indices[prim];
+            blas.colors[slot] =
+                TriangleColors::Pack(mesh.colors[idx.x], mesh.colors[idx.y], mesh.colors[idx.z]);
         }
     });
     blas.nodes4 = CollapseToBvh4(blas.nodes);

@@ -24,6 +24,7 @@ struct BlasView {
     uint32_t primCount;
     const TriangleUvs* uvs;  // kTriangles: leaf order, or null without texture coordinates
     const TriangleTangents* tangents;  // kTriangles: leaf order, or null (per-face tangents)
+    const TriangleColors* colors;      // kTriangles: leaf order, or null without vertex colours
 };
 
 struct Blas {
@@ -36,6 +37,7 @@ struct Blas {
     std::vector<uint32_t> primIds;           // leaf slot -> index in the source mesh or sphere list
     std::vector<TriangleUvs> uvs;            // kTriangles: leaf order, or none
     std::vector<TriangleTangents> tangents;  // kTriangles: leaf order, or none
+    std::vector<TriangleColors> colors;      // kTriangles: leaf order, or none
     Aabb bounds;
 
     uint32_t PrimCount() const { return uint32_t(primIds.size()); }  // leaf slots
@@ -45,7 +47,7 @@ struct Blas {
     BlasView View() const;
     size_t Bytes() const;        // what the CPU tracer keeps of it (both node layouts too)
     size_t DeviceBytes() const;  // what the GPU holds: binary nodes, primitives, normals, uvs,
-                                 // tangents
+                                 // tangents, colours
 };
 
 Blas BuildTriangleBlas(const TriangleMesh& mesh, const BvhBuildOptions& options = {});
@@ -53,8 +55,8 @@ Blas BuildSphereBlas(std::span<const Sphere> spheres, const BvhBuildOptions& opt
 
 // A triangle BLAS's mesh as a deformable rest mesh whose triangle primIds[s] is the BLAS's slot s
 // (the first such slot where spatial splits put a triangle in several; three vertices of its own
-// per slot, with its normals and uvs), so that the BLAS is the rest tree of the mesh: models loaded
-// as BLASes only (.rtmodel caches) can deform too.
+// per slot, with its normals, uvs and colours), so that the BLAS is the rest tree of the mesh:
+// models loaded as BLASes only (.rtmodel caches) can deform too.
 DeformableMesh RestMeshOfBlas(const Blas& blas);
 
 // Moves and scales a triangle BLAS in place, p -> (p - centre) * scale with scale > 0, on every

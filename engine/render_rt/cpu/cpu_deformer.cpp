@@ -19,6 +19,7 @@ void CpuDeformer::Admit(const RenderScene& scene) {
     triangles_.resize(plan_.SlotTotal());
     triangleNormals_.resize(plan_.SlotTotal());
     triangleUvs_.resize(plan_.SlotTotal());
+    triangleColors_.resize(plan_.SlotTotal());
     slotTriangle_.resize(plan_.SlotTotal());
     nodes_.resize(plan_.NodeTotal());
     parents_.resize(plan_.NodeTotal(), kLbvhNoParent);
@@ -30,13 +31,15 @@ void CpuDeformer::Admit(const RenderScene& scene) {
                   slotTriangle_.begin() + at.slotOffset);
         std::copy(init.rest->uvs.begin(), init.rest->uvs.end(),
                   triangleUvs_.begin() + at.slotOffset);
+        std::copy(init.rest->colors.begin(), init.rest->colors.end(),
+                  triangleColors_.begin() + at.slotOffset);
     }
 }
 
 DeformJobs CpuDeformer::Work() {
     DeformPools pools{positions_.data(),       normals_.data(),     triangles_.data(),
-                      triangleNormals_.data(), triangleUvs_.data(), slotTriangle_.data(),
-                      nodes_.data(),           parents_.data()};
+                      triangleNormals_.data(), triangleUvs_.data(), triangleColors_.data(),
+                      slotTriangle_.data(),    nodes_.data(),       parents_.data()};
     return {plan_.Jobs().data(), uint32_t(plan_.Jobs().size()), meshes_.data(), pools};
 }
 
@@ -52,6 +55,7 @@ BlasView CpuDeformer::ViewOf(uint32_t d) const {
     v.kind = GeometryKind::kTriangles;
     v.primCount = plan_.SlotCount(d);
     v.uvs = mesh.uvs ? triangleUvs_.data() + at.slotOffset : nullptr;
+    v.colors = mesh.colors ? triangleColors_.data() + at.slotOffset : nullptr;
     return v;
 }
 
@@ -65,6 +69,7 @@ Blas CpuDeformer::Snapshot(uint32_t d) const {
     blas.triangles.assign(v.triangles, v.triangles + n);
     if (v.normals) blas.normals.assign(v.normals, v.normals + n);
     if (v.uvs) blas.uvs.assign(v.uvs, v.uvs + n);
+    if (v.colors) blas.colors.assign(v.colors, v.colors + n);
     blas.primIds.assign(slotTriangle_.begin() + at.slotOffset,
                         slotTriangle_.begin() + at.slotOffset + n);
     blas.bounds = blas.nodes[0].Bounds();

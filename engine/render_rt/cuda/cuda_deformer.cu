@@ -47,6 +47,7 @@ void CudaDeformer::Admit(const RenderScene& scene) {
             a->normals.Upload(mesh.rest.normals);
             a->indices.Upload(mesh.rest.indices);
             a->uvs.Upload(mesh.rest.uvs);
+            a->colors.Upload(mesh.rest.colors);
             a->joints.Upload(mesh.joints);
             a->weights.Upload(mesh.weights);
             a->positionDeltas.Upload(mesh.positionDeltas);
@@ -56,6 +57,7 @@ void CudaDeformer::Admit(const RenderScene& scene) {
             v.normals = OrNull(a->normals);
             v.indices = a->indices.Data();
             v.uvs = OrNull(a->uvs);
+            v.colors = OrNull(a->colors);
             v.joints = OrNull(a->joints);
             v.weights = OrNull(a->weights);
             v.positionDeltas = OrNull(a->positionDeltas);
@@ -72,6 +74,7 @@ void CudaDeformer::Admit(const RenderScene& scene) {
     triangles_.GrowTo(plan_.SlotTotal());
     triangleNormals_.GrowTo(plan_.SlotTotal());
     triangleUvs_.GrowTo(plan_.SlotTotal());
+    triangleColors_.GrowTo(plan_.SlotTotal());
     slotTriangle_.GrowTo(plan_.SlotTotal());
     nodes_.GrowTo(plan_.NodeTotal());
     parents_.GrowTo(plan_.NodeTotal());
@@ -81,13 +84,15 @@ void CudaDeformer::Admit(const RenderScene& scene) {
         CopyInto(parents_, at.nodeOffset, std::span<const uint32_t>(init.parents));
         CopyInto(slotTriangle_, at.slotOffset, std::span<const uint32_t>(init.rest->primIds));
         CopyInto(triangleUvs_, at.slotOffset, std::span<const TriangleUvs>(init.rest->uvs));
+        CopyInto(triangleColors_, at.slotOffset,
+                 std::span<const TriangleColors>(init.rest->colors));
     }
 }
 
 DeformJobs CudaDeformer::Work() const {
     DeformPools pools{positions_.Data(),       normals_.Data(),     triangles_.Data(),
-                      triangleNormals_.Data(), triangleUvs_.Data(), slotTriangle_.Data(),
-                      nodes_.Data(),           parents_.Data()};
+                      triangleNormals_.Data(), triangleUvs_.Data(), triangleColors_.Data(),
+                      slotTriangle_.Data(),    nodes_.Data(),       parents_.Data()};
     return {jobs_.Data(), uint32_t(plan_.Jobs().size()), meshes_.Data(), pools};
 }
 
@@ -105,6 +110,7 @@ std::vector<BlasView> CudaDeformer::Views() const {
         v.kind = GeometryKind::kTriangles;
         v.primCount = plan_.SlotCount(d);
         v.uvs = mesh.uvs ? triangleUvs_.Data() + at.slotOffset : nullptr;
+        v.colors = mesh.colors ? triangleColors_.Data() + at.slotOffset : nullptr;
         views.push_back(v);
     }
     return views;

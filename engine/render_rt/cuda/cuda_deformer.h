@@ -55,6 +55,7 @@ class CudaDeformer {
         DeviceBuffer<vec3> positions, normals, positionDeltas, normalDeltas;
         DeviceBuffer<glm::uvec3> indices;
         DeviceBuffer<vec2> uvs;
+        DeviceBuffer<vec3> colors;
         DeviceBuffer<uint32_t> joints;
         DeviceBuffer<float> weights;
     };
@@ -66,6 +67,7 @@ class CudaDeformer {
     DeviceBuffer<Triangle> triangles_;
     DeviceBuffer<TriangleNormals> triangleNormals_;
     DeviceBuffer<TriangleUvs> triangleUvs_;
+    DeviceBuffer<TriangleColors> triangleColors_;
     DeviceBuffer<uint32_t> slotTriangle_;
     DeviceBuffer<BvhNode> nodes_;
     DeviceBuffer<uint32_t> parents_;

@@ -19,6 +19,7 @@ struct DeviceScene {
     std::vector<DeviceBuffer<Sphere>> spheres;
     std::vector<DeviceBuffer<TriangleUvs>> uvs;
     std::vector<DeviceBuffer<TriangleTangents>> tangents;
+    std::vector<DeviceBuffer<TriangleColors>> colors;
     DeviceBuffer<BlasView> blasViews;
     DeviceBuffer<Material> materials;
     DeviceBuffer<PbrMaterial> pbrMaterials;
@@ -52,6 +53,7 @@ struct DeviceScene {
             spheres.emplace_back(std::span<const Sphere>(blas->spheres));
             uvs.emplace_back(std::span<const TriangleUvs>(blas->uvs));
             tangents.emplace_back(std::span<const TriangleTangents>(blas->tangents));
+            colors.emplace_back(std::span<const TriangleColors>(blas->colors));
             BlasView v = blas->View();
             v.nodes = blasNodes.back().Data();
             v.nodes4 = nullptr;  // the GPU traverses the binary BVH
@@ -60,6 +62,7 @@ struct DeviceScene {
             v.spheres = spheres.back().Data();
             v.uvs = blas->uvs.empty() ? nullptr : uvs.back().Data();
             v.tangents = blas->tangents.empty() ? nullptr : tangents.back().Data();
+            v.colors = blas->colors.empty() ? nullptr : colors.back().Data();
             uploaded_[blas] = v;
             views_.push_back(v);
         }

@@ -30,6 +30,7 @@ DeformMeshView HostMeshView(const DeformableMesh& mesh) {
     view.normals = orNull(mesh.rest.normals);
     view.indices = mesh.rest.indices.data();
     view.uvs = orNull(mesh.rest.uvs);
+    view.colors = orNull(mesh.rest.colors);
     view.joints = orNull(mesh.joints);
     view.weights = orNull(mesh.weights);
     view.positionDeltas = orNull(mesh.positionDeltas);

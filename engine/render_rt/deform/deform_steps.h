@@ -30,6 +30,7 @@ struct DeformPools {
     Triangle* triangles;
     TriangleNormals* triangleNormals;  // per slot; unused for flat meshes
     TriangleUvs* triangleUvs;          // per slot; unused for untextured meshes
+    TriangleColors* triangleColors;    // per slot; unused for meshes without vertex colours
     uint32_t* slotTriangle;            // leaf slot -> triangle of the rest mesh
     BvhNode* nodes;
     uint32_t* parents;  // relative to the job's nodeOffset; the root's is kLbvhNoParent
@@ -69,12 +70,12 @@ struct DeformVerticesStep {
     }
 };
 
-// Leaf-ordered triangles (and normals; with `uvs`, texture coordinates, which only a rebuild's
-// new order changes) from the deformed vertices.
+// Leaf-ordered triangles (and normals; with `reordered`, texture coordinates and colours, which
+// only a rebuild's new order changes) from the deformed vertices.
 struct GatherTrianglesStep {
     DeformJobs work;
     const uint32_t* slotBegins;
-    bool uvs;
+    bool reordered;
     RT_HD void operator()(size_t i) const {
         const uint32_t j = FindJob(slotBegins, work.count, uint32_t(i));
         const DeformJob& job = work.jobs[j];
@@ -87,8 +88,11 @@ struct GatherTrianglesStep {
             const uint32_t* n = work.pools.normals + job.vertexOffset;
             work.pools.triangleNormals[slot] = {n[idx.x], n[idx.y], n[idx.z]};
         }
-        if (uvs && mesh.uvs)
+        if (reordered && mesh.uvs)
             work.pools.triangleUvs[slot] = {mesh.uvs[idx.x], mesh.uvs[idx.y], mesh.uvs[idx.z]};
+        if (reordered && mesh.colors)
+            work.pools.triangleColors[slot] =
+                TriangleColors::Pack(mesh.colors[idx.x], mesh.colors[idx.y], mesh.colors[idx.z]);
     }
 };
 

@@ -14,6 +14,7 @@ struct DeformMeshView {
     const vec3* normals;  // null: the mesh is flat shaded
     const glm::uvec3* indices;
     const vec2* uvs;         // null: untextured
+    const vec3* colors;      // null: no vertex colours
     const uint32_t* joints;  // vertexCount x influences
     const float* weights;
     const vec3* positionDeltas;  // targetCount x vertexCount

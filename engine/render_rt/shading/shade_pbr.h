@@ -19,8 +19,8 @@ struct HitShading {
     vec3 refracted;  // unit direction, where refractWeight is not zero
 };
 
-// The material's factors times its textures at the hit (kernels with kFeatureTextures only), and
-// the normal map's normal.
+// The material's factors times its textures and the mesh's vertex colours at the hit (kernels with
+// kFeatureTextures only), and the normal map's normal.
 struct PbrInputs {
     PbrSample sample;
     float roughness;
@@ -80,6 +80,8 @@ RT_HD inline PbrInputs PbrInputsAt(const RenderSceneView& scene, const SceneHit&
                 in.normal = s.frontFace ? n : -n;
             }
         }
+        if (blas.kind == GeometryKind::kTriangles && blas.colors)
+            in.sample.baseColor *= blas.colors[hit.prim].At(hit.b1, hit.b2);
     }
     in.sample.dielectricF0 = glm::min(dielectricF0, vec3(1.0f));
     in.sample.alpha = GgxAlpha(in.roughness);
