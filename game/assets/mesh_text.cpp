@@ -1,5 +1,6 @@
 #include "game/assets/mesh_text.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -55,6 +56,22 @@ void KeepFileNormals(TriangleMesh& mesh) {
         for (size_t v : undirected) file[v] = mesh.normals[v];
     }
     mesh.normals = std::move(file);
+}
+
+void ClampColors(const std::string& file, TriangleMesh& mesh) {
+    uint64_t outside = 0;
+    for (vec3& color : mesh.colors)
+        for (int k = 0; k < 3; ++k)
+            if (color[k] < 0.0f || color[k] > 1.0f) {
+                ++outside;
+                color[k] = std::clamp(color[k], 0.0f, 1.0f);
+            }
+    if (outside > 0)
+        std::fprintf(stderr,
+                     "rtrt: warning: %s: %llu vertex colour components outside [0, 1] are "
+                     "clamped\n",
+                     WithoutControlCharacters(file).c_str(),
+                     static_cast<unsigned long long>(outside));
 }
 
 void WarnOfFannedPolygons(const std::string& file, const PolygonTriangulator& triangulator) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -87,6 +88,9 @@ ObjCorner ParseObjCorner(std::string_view word, size_t positions, size_t texcoor
 struct ObjData {
     std::vector<vec3> positions;
     std::vector<vec3> normals;
+    // Per vertex once any vertex statement gives a colour; white for those that give none.
+    std::vector<vec3> colors;
+    uint64_t uncolored = 0;  // vertices given white so
     size_t texcoords = 0;
     std::vector<glm::uvec3> triangles;
     std::vector<glm::uvec3> normalTriangles;  // normal indices of the same corners
@@ -130,6 +134,32 @@ void ParseObjFace(std::string_view rest, ObjData& obj) {
     }
 }
 
+// The colour a vertex statement gives after its coordinates (x y z r g b, as MeshLab and other
+// tools write it), where exactly three more numbers follow them: a fourth coordinate alone (w) is
+// no colour.
+void ReadObjVertexColor(std::string_view rest, ObjData& obj) {
+    for (int axis = 0; axis < 3; ++axis) NextWord(rest);
+    std::array<std::string_view, 3> words;
+    size_t count = 0;
+    for (std::string_view word = NextWord(rest); !word.empty(); word = NextWord(rest))
+        if (count++ < words.size()) words[count - 1] = word;
+    if (count != 3) {
+        if (!obj.colors.empty()) {
+            obj.colors.emplace_back(1.0f);
+            ++obj.uncolored;
+        }
+        return;
+    }
+    vec3 color;
+    for (int k = 0; k < 3; ++k) color[k] = ParseCoordinate(words[size_t(k)]);
+    if (!IsFinite(color)) throw RecordError{"vertex colour is NaN or infinite"};
+    if (obj.colors.empty()) {
+        obj.uncolored = obj.positions.size() - 1;
+        obj.colors.assign(obj.uncolored, vec3(1.0f));
+    }
+    obj.colors.push_back(color);
+}
+
 void ParseObjLine(std::string_view line, ObjData& obj) {
     line = line.substr(0, line.find('#'));
     std::string_view keyword = NextWord(line);
@@ -139,6 +169,7 @@ void ParseObjLine(std::string_view line, ObjData& obj) {
         if (!IsFinite(obj.positions.back())) {
             throw RecordError{"vertex coordinate is NaN or infinite"};
         }
+        ReadObjVertexColor(line, obj);
         if (obj.positions.size() > kMaxVertices) throw RecordError{"too many vertices"};
     } else if (keyword == "vn") {
         obj.normals.push_back(ParseObjVector(line, "normal", true));
@@ -185,6 +216,7 @@ TriangleMesh SplitByNormals(ObjData& obj) {
             if (inserted) {
                 mesh.positions.push_back(obj.positions[v]);
                 mesh.normals.push_back(n == kNoNormal ? smooth.normals[v] : obj.normals[n]);
+                if (!obj.colors.empty()) mesh.colors.push_back(obj.colors[v]);
             }
             mesh.indices[t][corner] = it->second;
         }
@@ -238,11 +270,22 @@ TriangleMesh ParseObj(const std::string& path, std::string_view text, uint64_t* 
     mesh_text::WarnOfFannedPolygons(path, obj.triangulator);
     mesh_text::WarnOfShortFaces(path, obj.shortFaces);
     if (fileVertices) *fileVertices = obj.positions.size();
-    if (obj.anyCornerHasNormal && !obj.triangles.empty()) return SplitByNormals(obj);
+    if (obj.uncolored > 0 && !obj.colors.empty())
+        std::fprintf(stderr,
+                     "rtrt: warning: %s: %llu vertices without a colour (x y z r g b) among "
+                     "coloured ones are white\n",
+                     WithoutControlCharacters(path).c_str(),
+                     static_cast<unsigned long long>(obj.uncolored));
     TriangleMesh mesh;
-    mesh.positions = std::move(obj.positions);
-    mesh.indices = std::move(obj.triangles);
-    ComputeSmoothNormals(mesh);
+    if (obj.anyCornerHasNormal && !obj.triangles.empty()) {
+        mesh = SplitByNormals(obj);
+    } else {
+        mesh.positions = std::move(obj.positions);
+        mesh.colors = std::move(obj.colors);
+        mesh.indices = std::move(obj.triangles);
+        ComputeSmoothNormals(mesh);
+    }
+    mesh_text::ClampColors(path, mesh);
     return mesh;
 }
 

@@ -1,5 +1,8 @@
 #include "game/assets/ply_header.h"
 
+#include <cstdio>
+#include <string>
+
 #include "engine/core/error.h"
 #include "game/assets/mesh_text.h"
 
@@ -243,6 +246,34 @@ PlyLayout FindPlyLayout(const std::string& path, const PlyHeader& header) {
     }
     layout.hasNormals = layout.vertexProperty[3] >= 0 && layout.vertexProperty[4] >= 0 &&
                         layout.vertexProperty[5] >= 0;
+    using Names = std::array<std::string_view, 3>;
+    for (const Names& names :
+         {Names{"red", "green", "blue"}, Names{"diffuse_red", "diffuse_green", "diffuse_blue"}}) {
+        std::array<int, 3> found{-1, -1, -1};
+        bool twice = false;
+        for (size_t k = 0; k < 3; ++k)
+            for (size_t i = 0; i < layout.vertices->properties.size(); ++i) {
+                if (layout.vertices->properties[i].name != names[k]) continue;
+                twice |= found[k] >= 0;
+                found[k] = static_cast<int>(i);
+                if (layout.vertices->properties[i].isList)
+                    throw InputError(path, "header",
+                                     "vertex property " + Quote(names[k]) + " is a list");
+            }
+        if (found[0] < 0 || found[1] < 0 || found[2] < 0) continue;
+        // Real files repeat such properties; which one is the colour is anyone's guess.
+        if (twice) {
+            std::fprintf(stderr,
+                         "rtrt: warning: %s: a vertex colour property (%s %s %s) is named twice; "
+                         "the vertices' colours are not read\n",
+                         WithoutControlCharacters(path).c_str(), std::string(names[0]).c_str(),
+                         std::string(names[1]).c_str(), std::string(names[2]).c_str());
+            break;
+        }
+        layout.colorProperty = found;
+        layout.hasColors = true;
+        break;
+    }
     layout.faceIndexProperty = IndexListProperty(path, layout.faces);
     layout.stripIndexProperty = IndexListProperty(path, layout.strips);
     return layout;

@@ -41,6 +41,9 @@ struct PlyLayout {
     int faceIndexProperty = -1;
     int stripIndexProperty = -1;
     bool hasNormals = false;
+    // red green blue (or diffuse_red diffuse_green diffuse_blue), where all three are there.
+    std::array<int, 3> colorProperty{-1, -1, -1};
+    bool hasColors = false;
 };
 
 size_t SizeOf(ScalarType type);

@@ -196,6 +196,27 @@ void SkipProperty(Reader& reader, const PlyProperty& property) {
     }
 }
 
+// A colour channel as a fraction: integers of their type's largest value (255 for the usual
+// uchar), floats as they are.
+float NormalizedColor(double value, ScalarType type) {
+    switch (type) {
+        case ScalarType::kInt8:
+            return float(value / 127.0);
+        case ScalarType::kUint8:
+            return float(value / 255.0);
+        case ScalarType::kInt16:
+            return float(value / 32767.0);
+        case ScalarType::kUint16:
+            return float(value / 65535.0);
+        case ScalarType::kInt32:
+            return float(value / 2147483647.0);
+        case ScalarType::kUint32:
+            return float(value / 4294967295.0);
+        default:
+            return float(value);
+    }
+}
+
 template <class Reader>
 void ReadPlyVertices(Reader& reader, const PlyLayout& layout, uint64_t& record,
                      TriangleMesh& mesh) {
@@ -204,11 +225,16 @@ void ReadPlyVertices(Reader& reader, const PlyLayout& layout, uint64_t& record,
     for (int slot = 0; slot < (layout.hasNormals ? 6 : 3); ++slot) {
         slotOf[layout.vertexProperty[slot]] = slot;
     }
+    if (layout.hasColors)
+        for (int k = 0; k < 3; ++k) slotOf[layout.colorProperty[k]] = 6 + k;
     for (; record < layout.vertices->count; ++record) {
-        std::array<float, 6> values{};
+        std::array<float, 9> values{};
         for (size_t i = 0; i < properties.size(); ++i) {
             if (slotOf[i] < 0) {
                 SkipProperty(reader, properties[i]);
+            } else if (slotOf[i] >= 6) {
+                values[slotOf[i]] =
+                    NormalizedColor(reader.ReadReal(properties[i].type), properties[i].type);
             } else {
                 values[slotOf[i]] = static_cast<float>(reader.ReadReal(properties[i].type));
             }
@@ -218,6 +244,11 @@ void ReadPlyVertices(Reader& reader, const PlyLayout& layout, uint64_t& record,
         if (!IsFinite(position)) throw RecordError{"coordinate is NaN or infinite"};
         mesh.positions.push_back(position);
         if (layout.hasNormals) mesh.normals.emplace_back(values[3], values[4], values[5]);
+        if (layout.hasColors) {
+            const vec3 color(values[6], values[7], values[8]);
+            if (!IsFinite(color)) throw RecordError{"colour is NaN or infinite"};
+            mesh.colors.push_back(color);
+        }
     }
 }
 
@@ -343,6 +374,7 @@ void TriangulatePolygons(const std::string& path, const PlyPolygons& pending, Tr
     TriangleMesh merged;
     merged.positions = std::move(mesh.positions);
     merged.normals = std::move(mesh.normals);
+    merged.colors = std::move(mesh.colors);
     merged.indices.reserve(mesh.indices.size() + pending.triangles);
     std::vector<vec3> positions;
     std::vector<glm::uvec3> local;
@@ -373,6 +405,7 @@ void ReadPlyBody(const std::string& path, const PlyHeader& header, const PlyLayo
     PlyPolygons pending;
     mesh.positions.reserve(layout.vertices->count);
     if (layout.hasNormals) mesh.normals.reserve(layout.vertices->count);
+    if (layout.hasColors) mesh.colors.reserve(layout.vertices->count);
     // A face count is bounded by the body only at a byte a face (an empty list), so the
     // reservation for triangles is bounded by what a mesh may hold and by the body's bytes at
     // four a triangle (a count and three one-byte indices): a header may not ask for gigabytes.
@@ -430,6 +463,7 @@ TriangleMesh ParsePly(const std::string& path, std::string_view data) {
     } else {
         ComputeSmoothNormals(mesh);
     }
+    mesh_text::ClampColors(path, mesh);
     return mesh;
 }
 

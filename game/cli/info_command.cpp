@@ -78,6 +78,8 @@ void PrintModel(const std::string& path) {
     PrintBounds("  ", blas.bounds);
     std::printf("  normals       %s\n",
                 blas.normals.empty() ? "none (flat shading)" : "per vertex (smooth shading)");
+    std::printf("  colours       %s\n",
+                blas.colors.empty() ? "none" : "per vertex (multiply the material's colour)");
     std::printf("  materials     none (a model takes its material from the scene)\n");
     PrintBvh("  ", blas);
     if (rtmodel) {

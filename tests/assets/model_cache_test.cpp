@@ -276,5 +276,34 @@ TEST_F(ModelCacheTest, FitIgnoresVerticesNoTriangleUses) {
     EXPECT_EQ(CacheEntries(), 1u);
 }
 
+// The BLAS built from a coloured mesh keeps its colours, and so does the cache entry read back.
+TEST_F(ModelCacheTest, VertexColoursSurviveTheCache) {
+    const std::string path = Write("quad.obj",
+                                   "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 1 1 0 0 0 1\nv 0 1 0 1 1 1\n"
+                                   "f 1 2 3 4\n");
+    const MeshModel built = LoadMeshModel(path, {});
+    const MeshModel cached = LoadMeshModel(path, {});
+    EXPECT_EQ(built.origin, MeshModel::Origin::kBuilt);
+    EXPECT_EQ(cached.origin, MeshModel::Origin::kCache);
+    ASSERT_EQ(built.blas.colors.size(), 2u);
+    ASSERT_EQ(cached.blas.colors.size(), 2u);
+    for (size_t s = 0; s < 2; ++s)
+        for (int k = 0; k < 9; ++k)
+            EXPECT_EQ(cached.blas.colors[s].rgb[k], built.blas.colors[s].rgb[k]);
+    // Each corner has its vertex's colour, wherever the triangulation and the tree put it.
+    auto colorAt = [](vec3 p) {
+        return p == vec3(0, 0, 0)   ? vec3(1, 0, 0)
+               : p == vec3(1, 0, 0) ? vec3(0, 1, 0)
+               : p == vec3(1, 1, 0) ? vec3(0, 0, 1)
+                                    : vec3(1, 1, 1);
+    };
+    for (size_t s = 0; s < 2; ++s) {
+        const Triangle& t = cached.blas.triangles[s];
+        EXPECT_EQ(cached.blas.colors[s].Corner(0), colorAt(t.v0)) << s;
+        EXPECT_EQ(cached.blas.colors[s].Corner(1), colorAt(t.v1)) << s;
+        EXPECT_EQ(cached.blas.colors[s].Corner(2), colorAt(t.v2)) << s;
+    }
+}
+
 }  // namespace
 }  // namespace rtrt

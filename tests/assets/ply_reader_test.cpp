@@ -316,15 +316,24 @@ TEST_F(MeshIoTest, PlyDataMustFollowItsHeader) {
                            "property float x\nproperty float y\nproperty float z\nend_header\n"
                            "0 0 0 0\n1 1 0 0\n0 0 1 0\n"),
                      "header", "element vertex has the property 'x' twice");
-    // Properties rtrt skips may repeat (real files have such duplicates).
-    EXPECT_EQ(LoadMesh(Write("duplicate_red.ply",
-                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                             "property float y\nproperty float z\nproperty uchar red\n"
-                             "property uchar red\nelement face 1\n"
-                             "property list uchar int vertex_indices\nend_header\n"
-                             "0 0 0 1 2\n1 0 0 1 2\n0 1 0 1 2\n3 0 1 2\n"))
-                  .indices.size(),
-              1u);
+    // Properties rtrt skips may repeat (real files have such duplicates); a repeated colour
+    // channel leaves the colours unread, with a warning.
+    ::testing::internal::CaptureStderr();
+    const TriangleMesh repeated = LoadMesh(Write("duplicate_red.ply",
+                                                 "ply\nformat ascii 1.0\nelement vertex 3\n"
+                                                 "property float x\nproperty float y\n"
+                                                 "property float z\nproperty uchar red\n"
+                                                 "property uchar red\nproperty uchar green\n"
+                                                 "property uchar blue\nelement face 1\n"
+                                                 "property list uchar int vertex_indices\n"
+                                                 "end_header\n0 0 0 1 2 3 4\n1 0 0 1 2 3 4\n"
+                                                 "0 1 0 1 2 3 4\n3 0 1 2\n"));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(repeated.indices.size(), 1u);
+    EXPECT_TRUE(repeated.colors.empty());
+    EXPECT_NE(warnings.find("a vertex colour property (red green blue) is named twice"),
+              std::string::npos)
+        << warnings;
     // Whitespace after the last record, and blank lines between records, are fine, as are NUL
     // padding and a DOS end-of-file mark at the end.
     EXPECT_EQ(LoadMesh(Write("spaced.ply", ascii + vertices + "\n3 0 1 2  \n\n")).indices.size(),

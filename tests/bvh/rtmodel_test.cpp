@@ -14,6 +14,7 @@
 #include <limits>
 #include <sstream>
 
+#include "engine/bvh/blas/blas_check.h"
 #include "engine/bvh/blas/rtmodel_format.h"
 #include "engine/core/error.h"
 #include "engine/geometry/smooth_normals.h"
@@ -41,6 +42,7 @@ void ExpectIdentical(const Blas& a, const Blas& b) {
     EXPECT_TRUE(SameBytes(a.spheres, b.spheres));
     EXPECT_TRUE(SameBytes(a.primIds, b.primIds));
     EXPECT_TRUE(SameBytes(a.uvs, b.uvs));
+    EXPECT_TRUE(SameBytes(a.colors, b.colors));
     EXPECT_EQ(std::memcmp(&a.bounds, &b.bounds, sizeof(Aabb)), 0);
 }
 
@@ -75,6 +77,7 @@ Blas CorpusBlas() {
     TriangleMesh mesh = test::RandomTriangles(40, 7);
     ComputeSmoothNormals(mesh);
     for (const vec3& p : mesh.positions) mesh.uvs.push_back(vec2(p.x, p.z));
+    for (const vec3& p : mesh.positions) mesh.colors.push_back(glm::fract(p));
     return BuildTriangleBlas(mesh);
 }
 
@@ -89,6 +92,7 @@ RtModelInfo CorpusInfo() {
 
 TEST_F(RtModelTest, RoundTripIsBitIdentical) {
     const Blas blas = CorpusBlas();
+    ASSERT_EQ(blas.colors.size(), blas.PrimCount());
     RtModelInfo info = CorpusInfo();
     WriteRtModel(Path("m.rtmodel"), blas, info);
     RtModelInfo read;
@@ -102,6 +106,29 @@ TEST_F(RtModelTest, RoundTripIsBitIdentical) {
     EXPECT_EQ(ReadRtModelInfo(Path("m.rtmodel")).key, info.key);
     // No temporary file is left beside it.
     EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+}
+
+// Colours, like uvs, are one triple per triangle or none, and no part of a sphere model.
+TEST_F(RtModelTest, ColoursAreOnePerTriangleOrNone) {
+    Blas blas = CorpusBlas();
+    blas.colors.pop_back();
+    try {
+        CheckBlas(blas, "m.rtmodel");
+        ADD_FAILURE() << "a missing colour triple was accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.Field(), "colors") << e.what();
+        EXPECT_NE(e.Reason().find("expected 0 or 40 colour triples, got 39"), std::string::npos)
+            << e.what();
+    }
+    const Sphere sphere{vec3(0.0f), 1.0f};
+    Blas ball = BuildSphereBlas(std::span(&sphere, 1));
+    ball.colors.resize(1);
+    try {
+        CheckBlas(ball, "m.rtmodel");
+        ADD_FAILURE() << "a sphere model with colours was accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.Field(), "kind") << e.what();
+    }
 }
 
 // A model near the float limit: every plane of its box is finite, though their sum is not (the

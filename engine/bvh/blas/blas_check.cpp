@@ -73,14 +73,18 @@ class Checker {
             if (!blas_.uvs.empty() && blas_.uvs.size() != prims)
                 Fail("uvs", "expected 0 or " + std::to_string(prims) + " uv triples, got " +
                                 std::to_string(blas_.uvs.size()));
+            if (!blas_.colors.empty() && blas_.colors.size() != prims)
+                Fail("colors", "expected 0 or " + std::to_string(prims) + " colour triples, got " +
+                                   std::to_string(blas_.colors.size()));
             if (!blas_.spheres.empty()) Fail("spheres", "a triangle model holds no spheres");
         } else if (blas_.kind == GeometryKind::kSpheres) {
             if (blas_.spheres.size() != prims)
                 Fail("spheres", std::to_string(blas_.spheres.size()) + " spheres but " +
                                     std::to_string(prims) + " primIds");
             if (!blas_.triangles.empty() || !blas_.normals.empty() || !blas_.nodes4.empty() ||
-                !blas_.uvs.empty())
-                Fail("kind", "a sphere model holds no triangles, normals, uvs or 4-wide nodes");
+                !blas_.uvs.empty() || !blas_.colors.empty())
+                Fail("kind",
+                     "a sphere model holds no triangles, normals, uvs, colours or 4-wide nodes");
         } else {
             Fail("kind", "unknown geometry kind " + std::to_string(uint32_t(blas_.kind)));
         }

@@ -39,7 +39,8 @@ std::array<Bytes, kSectionCount> SectionsOf(const Blas& b) {
              {b.normals.data(), b.normals.size()},
              {b.spheres.data(), b.spheres.size()},
              {b.primIds.data(), b.primIds.size()},
-             {b.uvs.data(), b.uvs.size()}}};
+             {b.uvs.data(), b.uvs.size()},
+             {b.colors.data(), b.colors.size()}}};
 }
 
 class File {
@@ -138,7 +139,8 @@ class Reader {
                              [&] { hashes[kNormals] = ReadSection(kNormals, blas.normals); },
                              [&] { hashes[kSpheres] = ReadSection(kSpheres, blas.spheres); },
                              [&] { hashes[kPrimIds] = ReadSection(kPrimIds, blas.primIds); },
-                             [&] { hashes[kUvs] = ReadSection(kUvs, blas.uvs); });
+                             [&] { hashes[kUvs] = ReadSection(kUvs, blas.uvs); },
+                             [&] { hashes[kColors] = ReadSection(kColors, blas.colors); });
         if (PayloadChecksum(hashes) != h_.payloadChecksum)
             Fail("payloadChecksum", "checksum mismatch: the file is corrupt");
         CheckBlas(blas, path_, BvhBuilder(h_.builder) == BvhBuilder::kSpatialSah);

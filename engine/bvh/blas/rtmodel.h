@@ -3,6 +3,7 @@
 // array plus validation, and no BVH build. Little-endian, every array on a 64-byte boundary:
 //
 //   RtModelHeader (256 bytes) | nodes | nodes4 | triangles | normals | spheres | primIds | uvs
+//   | colors
 //
 // The header carries the format version, the array counts, the file size, XXH3-64 checksums of
 // itself and of everything after it, the SAH cost, and the key of the source (content hash,
@@ -15,8 +16,9 @@
 namespace rtrt {
 
 // Version 2 added the uvs section (per-triangle texture coordinates); version 3 packs the
-// normals (three 32-bit octahedral normals per triangle, packed_normal.h).
-inline constexpr uint32_t kRtModelVersion = 3;
+// normals (three 32-bit octahedral normals per triangle, packed_normal.h); version 4 added the
+// colors section (per-vertex colours of each triangle, TriangleColors).
+inline constexpr uint32_t kRtModelVersion = 4;
 // Bump when a builder or a mesh loader changes its output for the same input: cached files made
 // before then no longer match their key and are rebuilt. 2: sourceBounds of the vertices the
 // triangles use. 3: concave polygons ear-clipped, PLY triangle strips, file normals kept per

@@ -12,12 +12,22 @@ namespace rtrt::rtmodel {
 inline constexpr char kMagic[8] = {'R', 'T', 'M', 'O', 'D', 'E', 'L', '\0'};
 inline constexpr uint64_t kAlignment = 64;
 
-enum Section { kNodes, kNodes4, kTriangles, kNormals, kSpheres, kPrimIds, kUvs, kSectionCount };
+enum Section {
+    kNodes,
+    kNodes4,
+    kTriangles,
+    kNormals,
+    kSpheres,
+    kPrimIds,
+    kUvs,
+    kColors,
+    kSectionCount
+};
 inline constexpr const char* kSectionNames[kSectionCount] = {
-    "nodes", "nodes4", "triangles", "normals", "spheres", "primIds", "uvs"};
+    "nodes", "nodes4", "triangles", "normals", "spheres", "primIds", "uvs", "colors"};
 inline constexpr uint64_t kElementBytes[kSectionCount] = {
-    sizeof(BvhNode), sizeof(Bvh4Node), sizeof(Triangle),   sizeof(TriangleNormals),
-    sizeof(Sphere),  sizeof(uint32_t), sizeof(TriangleUvs)};
+    sizeof(BvhNode), sizeof(Bvh4Node), sizeof(Triangle),    sizeof(TriangleNormals),
+    sizeof(Sphere),  sizeof(uint32_t), sizeof(TriangleUvs), sizeof(TriangleColors)};
 
 struct RtModelHeader {
     char magic[8];
@@ -37,7 +47,7 @@ struct RtModelHeader {
     uint32_t reserved0;
     uint64_t fileBytes;
     uint64_t payloadChecksum;  // PayloadChecksum of the sections' hashes
-    uint8_t reserved[96];
+    uint8_t reserved[88];
     uint64_t headerChecksum;  // HashBytes of the header's first 248 bytes
 };
 static_assert(sizeof(RtModelHeader) == 256, "the header is 256 bytes, a multiple of 64");
@@ -63,7 +73,7 @@ inline Layout LayoutOf(const uint64_t counts[kSectionCount]) {
 }
 
 // Each section is hashed with its padding (HashBytes of [offset, next offset)), so that sections
-// can be read and hashed in parallel; the payload checksum is the hash of those seven hashes.
+// can be read and hashed in parallel; the payload checksum is the hash of those hashes.
 inline uint64_t PayloadChecksum(const uint64_t (&sectionHashes)[kSectionCount]) {
     return HashBytes(sectionHashes, sizeof(sectionHashes));
 }

@@ -1,0 +1,130 @@
+// Vertex colours in mesh files: PLY's red/green/blue (or diffuse_*) of any type, integers as
+// fractions of their type's largest value, kept through polygon triangulation; OBJ's
+// `v x y z r g b`, through vertices split by normals, white where a vertex gives none; values
+// outside [0, 1] clamped with a warning. The BLAS cache keeps them: model_cache_test.cpp.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "engine/core/error.h"
+#include "game/assets/mesh_io.h"
+#include "tests/assets/mesh_test_files.h"
+
+namespace rtrt {
+namespace {
+
+using namespace mesh_test;  // NOLINT(build/namespaces): the shared test helpers
+
+std::string ColouredPly(const std::string& type, const std::string& prefix,
+                        const std::string& vertices) {
+    return "ply\nformat ascii 1.0\nelement vertex 4\n"
+           "property float x\nproperty float y\nproperty float z\n"
+           "property " +
+           type + " " + prefix + "red\nproperty " + type + " " + prefix + "green\nproperty " +
+           type + " " + prefix +
+           "blue\nproperty uchar alpha\n"
+           "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+           vertices + "4 0 1 2 3\n";
+}
+
+TEST_F(MeshIoTest, PlyColoursOfEachTypeAreFractions) {
+    const TriangleMesh bytes = LoadMesh(Write("bytes.ply", ColouredPly("uchar", "",
+                                                                       "0 0 0 255 0 51 9\n"
+                                                                       "1 0 0 0 255 0 9\n"
+                                                                       "1 1 0 0 0 255 9\n"
+                                                                       "0 1 0 128 128 128 9\n")));
+    ASSERT_EQ(bytes.indices.size(), 2u);  // the quad, triangulated
+    ASSERT_EQ(bytes.colors.size(), 4u);
+    EXPECT_EQ(bytes.colors[0], vec3(1.0f, 0.0f, float(51.0 / 255.0)));
+    EXPECT_EQ(bytes.colors[2], vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(bytes.colors[3], vec3(float(128.0 / 255.0)));
+    const TriangleMesh shorts = LoadMesh(Write("shorts.ply", ColouredPly("ushort", "diffuse_",
+                                                                         "0 0 0 65535 0 1 1\n"
+                                                                         "1 0 0 0 0 0 1\n"
+                                                                         "1 1 0 0 0 0 1\n"
+                                                                         "0 1 0 0 0 0 1\n")));
+    ASSERT_EQ(shorts.colors.size(), 4u);
+    EXPECT_EQ(shorts.colors[0], vec3(1.0f, 0.0f, float(1.0 / 65535.0)));
+    const TriangleMesh none = LoadMesh(Write("none.ply", ColouredPly("uchar", "no_",
+                                                                     "0 0 0 1 1 1 1\n"
+                                                                     "1 0 0 1 1 1 1\n"
+                                                                     "1 1 0 1 1 1 1\n"
+                                                                     "0 1 0 1 1 1 1\n")));
+    EXPECT_TRUE(none.colors.empty());
+}
+
+TEST_F(MeshIoTest, PlyFloatColoursOutsideTheUnitRangeAreClampedWithAWarning) {
+    const std::string path = Write("floats.ply", ColouredPly("float", "",
+                                                             "0 0 0 1.5 0.25 -2 1\n"
+                                                             "1 0 0 0.5 0.5 0.5 1\n"
+                                                             "1 1 0 0 1 0 1\n"
+                                                             "0 1 0 0 0 1 1\n"));
+    ::testing::internal::CaptureStderr();
+    const TriangleMesh mesh = LoadMesh(path);
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("2 vertex colour components outside [0, 1] are clamped"),
+              std::string::npos)
+        << warnings;
+    ASSERT_EQ(mesh.colors.size(), 4u);
+    EXPECT_EQ(mesh.colors[0], vec3(1.0f, 0.25f, 0.0f));
+    EXPECT_EQ(mesh.colors[1], vec3(0.5f));
+    ExpectInputError(Write("nan.ply", ColouredPly("float", "",
+                                                  "0 0 0 nan 0 0 1\n"
+                                                  "1 0 0 0 0 0 1\n"
+                                                  "1 1 0 0 0 0 1\n"
+                                                  "0 1 0 0 0 0 1\n")),
+                     "vertex 0", "colour is NaN or infinite");
+}
+
+TEST_F(MeshIoTest, ObjColoursFollowTheirVertices) {
+    // Without normals: the vertices as they are. A fourth coordinate alone (w) is no colour.
+    const TriangleMesh plain = LoadMesh(Write("plain.obj",
+                                              "v 0 0 0 1 0 0\n"
+                                              "v 1 0 0 0 1 0\n"
+                                              "v 1 1 0 0 0 1\n"
+                                              "f 1 2 3\n"));
+    ASSERT_EQ(plain.colors.size(), 3u);
+    EXPECT_EQ(plain.colors[1], vec3(0, 1, 0));
+    EXPECT_TRUE(
+        LoadMesh(Write("w.obj", "v 0 0 0 1\nv 1 0 0 1\nv 1 1 0 1\nf 1 2 3\n")).colors.empty());
+    // With normals, vertices are split by them: each copy keeps its vertex's colour.
+    const TriangleMesh split = LoadMesh(Write("split.obj",
+                                              "v 0 0 0 0.25 0.5 0.75\n"
+                                              "v 1 0 0 1 1 1\n"
+                                              "v 1 1 0 0 0 0\n"
+                                              "v 0 1 0 0.5 0.5 0.5\n"
+                                              "vn 0 0 1\nvn 0 0.6 0.8\n"
+                                              "f 1//1 2//1 3//1\nf 1//2 3//2 4//2\n"));
+    ASSERT_EQ(split.positions.size(), 6u);
+    ASSERT_EQ(split.colors.size(), 6u);
+    for (size_t v = 0; v < split.positions.size(); ++v) {
+        const vec3 p = split.positions[v];
+        const vec3 want = p == vec3(0, 0, 0)   ? vec3(0.25f, 0.5f, 0.75f)
+                          : p == vec3(1, 0, 0) ? vec3(1.0f)
+                          : p == vec3(1, 1, 0) ? vec3(0.0f)
+                                               : vec3(0.5f);
+        EXPECT_EQ(split.colors[v], want) << "vertex " << v;
+    }
+}
+
+TEST_F(MeshIoTest, ObjVerticesWithoutAColourAmongColouredOnesAreWhite) {
+    const std::string path = Write("mixed.obj",
+                                   "v 0 0 0\n"
+                                   "v 1 0 0 0 1 0\n"
+                                   "v 1 1 0\n"
+                                   "f 1 2 3\n");
+    ::testing::internal::CaptureStderr();
+    const TriangleMesh mesh = LoadMesh(path);
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("2 vertices without a colour (x y z r g b) among coloured ones are "
+                            "white"),
+              std::string::npos)
+        << warnings;
+    ASSERT_EQ(mesh.colors.size(), 3u);
+    EXPECT_EQ(mesh.colors[0], vec3(1.0f));
+    EXPECT_EQ(mesh.colors[1], vec3(0, 1, 0));
+    EXPECT_EQ(mesh.colors[2], vec3(1.0f));
+}
+
+}  // namespace
+}  // namespace rtrt
