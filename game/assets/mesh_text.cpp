@@ -58,9 +58,9 @@ void KeepFileNormals(TriangleMesh& mesh) {
     mesh.normals = std::move(file);
 }
 
-void ClampColors(const std::string& file, TriangleMesh& mesh) {
+void ClampColors(const std::string& file, std::vector<vec3>& colors) {
     uint64_t outside = 0;
-    for (vec3& color : mesh.colors)
+    for (vec3& color : colors)
         for (int k = 0; k < 3; ++k)
             if (color[k] < 0.0f || color[k] > 1.0f) {
                 ++outside;

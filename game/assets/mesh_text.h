@@ -56,9 +56,9 @@ float ParseCoordinate(std::string_view token, bool refuseBeyondFloat = true);
 // A normal read from a file, normalised; false when it has no direction (zero, NaN, infinite).
 bool NormalizeFileNormal(vec3& normal);
 
-// MESH.colors, one per vertex where the file has them, clamped to [0, 1], with a warning naming
-// FILE and how many components were outside.
-void ClampColors(const std::string& file, TriangleMesh& mesh);
+// COLORS, a file's vertex colours, clamped to [0, 1] (infinities too), with a warning naming FILE
+// and how many components were outside.
+void ClampColors(const std::string& file, std::vector<vec3>& colors);
 
 // MESH.normals, one per vertex, are a file's: each is normalised, and one without a direction
 // is replaced by the vertex's area-weighted normal (ComputeSmoothNormals), so that a few

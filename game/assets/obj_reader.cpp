@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <limits>
@@ -91,6 +92,7 @@ struct ObjData {
     // Per vertex once any vertex statement gives a colour; white for those that give none.
     std::vector<vec3> colors;
     uint64_t uncolored = 0;  // vertices given white so
+    uint64_t oddExtras = 0;  // vertex statements with values past x y z that are no colour
     size_t texcoords = 0;
     std::vector<glm::uvec3> triangles;
     std::vector<glm::uvec3> normalTriangles;  // normal indices of the same corners
@@ -135,24 +137,33 @@ void ParseObjFace(std::string_view rest, ObjData& obj) {
 }
 
 // The colour a vertex statement gives after its coordinates (x y z r g b, as MeshLab and other
-// tools write it), where exactly three more numbers follow them: a fourth coordinate alone (w) is
-// no colour.
+// tools write it), where exactly three numbers follow them. A fourth coordinate alone (w) is no
+// colour; other values past x y z (which rtrt ignored before it read colours) are counted for a
+// warning and ignored.
 void ReadObjVertexColor(std::string_view rest, ObjData& obj) {
     for (int axis = 0; axis < 3; ++axis) NextWord(rest);
     std::array<std::string_view, 3> words;
     size_t count = 0;
     for (std::string_view word = NextWord(rest); !word.empty(); word = NextWord(rest))
         if (count++ < words.size()) words[count - 1] = word;
-    if (count != 3) {
+    // As doubles and bounded, so that a value beyond float's range is clamped like any above 1.
+    vec3 color;
+    bool numbers = count == 3;
+    for (size_t k = 0; numbers && k < 3; ++k) {
+        double value = 0.0;
+        numbers = ParseNumber(words[k], value);
+        color[int(k)] = float(std::clamp(value, -1.0, 2.0));
+    }
+    if (!numbers) {
+        if (count > 1) ++obj.oddExtras;
         if (!obj.colors.empty()) {
             obj.colors.emplace_back(1.0f);
             ++obj.uncolored;
         }
         return;
     }
-    vec3 color;
-    for (int k = 0; k < 3; ++k) color[k] = ParseCoordinate(words[size_t(k)]);
-    if (!IsFinite(color)) throw RecordError{"vertex colour is NaN or infinite"};
+    if (std::isnan(color.x) || std::isnan(color.y) || std::isnan(color.z))
+        throw RecordError{"vertex colour is NaN"};
     if (obj.colors.empty()) {
         obj.uncolored = obj.positions.size() - 1;
         obj.colors.assign(obj.uncolored, vec3(1.0f));
@@ -270,6 +281,13 @@ TriangleMesh ParseObj(const std::string& path, std::string_view text, uint64_t* 
     mesh_text::WarnOfFannedPolygons(path, obj.triangulator);
     mesh_text::WarnOfShortFaces(path, obj.shortFaces);
     if (fileVertices) *fileVertices = obj.positions.size();
+    if (obj.oddExtras > 0)
+        std::fprintf(stderr,
+                     "rtrt: warning: %s: %llu vertex statements have values after x y z that are "
+                     "not a colour (x y z r g b) or w; they are ignored\n",
+                     WithoutControlCharacters(path).c_str(),
+                     static_cast<unsigned long long>(obj.oddExtras));
+    mesh_text::ClampColors(path, obj.colors);
     if (obj.uncolored > 0 && !obj.colors.empty())
         std::fprintf(stderr,
                      "rtrt: warning: %s: %llu vertices without a colour (x y z r g b) among "
@@ -285,7 +303,6 @@ TriangleMesh ParseObj(const std::string& path, std::string_view text, uint64_t* 
         mesh.indices = std::move(obj.triangles);
         ComputeSmoothNormals(mesh);
     }
-    mesh_text::ClampColors(path, mesh);
     return mesh;
 }
 

@@ -197,24 +197,33 @@ void SkipProperty(Reader& reader, const PlyProperty& property) {
 }
 
 // A colour channel as a fraction: integers of their type's largest value (255 for the usual
-// uchar), floats as they are.
+// uchar), floats as they are; bounded (NaN stays NaN) so that a double beyond float's range is
+// clamped like any value above 1 rather than read as infinite.
 float NormalizedColor(double value, ScalarType type) {
+    double largest = 1.0;
     switch (type) {
         case ScalarType::kInt8:
-            return float(value / 127.0);
+            largest = 127.0;
+            break;
         case ScalarType::kUint8:
-            return float(value / 255.0);
+            largest = 255.0;
+            break;
         case ScalarType::kInt16:
-            return float(value / 32767.0);
+            largest = 32767.0;
+            break;
         case ScalarType::kUint16:
-            return float(value / 65535.0);
+            largest = 65535.0;
+            break;
         case ScalarType::kInt32:
-            return float(value / 2147483647.0);
+            largest = 2147483647.0;
+            break;
         case ScalarType::kUint32:
-            return float(value / 4294967295.0);
+            largest = 4294967295.0;
+            break;
         default:
-            return float(value);
+            break;
     }
+    return float(std::clamp(value / largest, -1.0, 2.0));
 }
 
 template <class Reader>
@@ -463,7 +472,7 @@ TriangleMesh ParsePly(const std::string& path, std::string_view data) {
     } else {
         ComputeSmoothNormals(mesh);
     }
-    mesh_text::ClampColors(path, mesh);
+    mesh_text::ClampColors(path, mesh.colors);
     return mesh;
 }
 

@@ -126,5 +126,53 @@ TEST_F(MeshIoTest, ObjVerticesWithoutAColourAmongColouredOnesAreWhite) {
     EXPECT_EQ(mesh.colors[2], vec3(1.0f));
 }
 
+// Values past x y z that are not three numbers (words, RGBA) were ignored before colours were
+// read, and still are, with a warning; numbers beyond float's range are clamped like any value
+// above 1, once per component however many copies the normals split the vertex into.
+TEST_F(MeshIoTest, ObjValuesPastXyzThatAreNoColourAreIgnoredWithAWarning) {
+    ::testing::internal::CaptureStderr();
+    const TriangleMesh odd = LoadMesh(Write("odd.obj",
+                                            "v 0 0 0 a b c\n"
+                                            "v 1 0 0 1 0 0 1\n"
+                                            "v 1 1 0 0 1\n"
+                                            "f 1 2 3\n"));
+    std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_TRUE(odd.colors.empty());
+    EXPECT_NE(warnings.find("3 vertex statements have values after x y z that are not a colour"),
+              std::string::npos)
+        << warnings;
+    ::testing::internal::CaptureStderr();
+    const TriangleMesh big =
+        LoadMesh(Write("big.obj",
+                       "v 0 0 0 1e39 0.5 -1e300\n"
+                       "v 1 0 0 0 0 0\n"
+                       "v 1 1 0 0 0 0\n"
+                       "vn 0 0 1\nvn 0 1 0\nvn 1 0 0\n"
+                       "f 1//1 2//1 3//1\nf 1//2 3//2 2//2\nf 1//3 2//3 3//3\n"));
+    warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find(": 2 vertex colour components outside [0, 1] are clamped"),
+              std::string::npos)
+        << warnings;
+    ASSERT_EQ(big.positions.size(), 9u);  // each vertex split in three by its normals
+    for (size_t v = 0; v < big.positions.size(); ++v)
+        if (big.positions[v] == vec3(0.0f)) EXPECT_EQ(big.colors[v], vec3(1.0f, 0.5f, 0.0f));
+}
+
+TEST_F(MeshIoTest, PlyDoubleColoursBeyondFloatsRangeAreClamped) {
+    std::string ply = ColouredPly("double", "",
+                                  "0 0 0 1e300 0.5 -1e300 1\n"
+                                  "1 0 0 0 0 0 1\n"
+                                  "1 1 0 0 0 0 1\n"
+                                  "0 1 0 0 0 0 1\n");
+    ::testing::internal::CaptureStderr();
+    const TriangleMesh mesh = LoadMesh(Write("huge.ply", ply));
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("2 vertex colour components outside [0, 1] are clamped"),
+              std::string::npos)
+        << warnings;
+    ASSERT_EQ(mesh.colors.size(), 4u);
+    EXPECT_EQ(mesh.colors[0], vec3(1.0f, 0.5f, 0.0f));
+}
+
 }  // namespace
 }  // namespace rtrt

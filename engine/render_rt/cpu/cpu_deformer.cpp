@@ -19,7 +19,7 @@ void CpuDeformer::Admit(const RenderScene& scene) {
     triangles_.resize(plan_.SlotTotal());
     triangleNormals_.resize(plan_.SlotTotal());
     triangleUvs_.resize(plan_.SlotTotal());
-    triangleColors_.resize(plan_.SlotTotal());
+    if (!triangleColors_.empty() || AnyColors(added)) triangleColors_.resize(plan_.SlotTotal());
     slotTriangle_.resize(plan_.SlotTotal());
     nodes_.resize(plan_.NodeTotal());
     parents_.resize(plan_.NodeTotal(), kLbvhNoParent);
@@ -31,8 +31,9 @@ void CpuDeformer::Admit(const RenderScene& scene) {
                   slotTriangle_.begin() + at.slotOffset);
         std::copy(init.rest->uvs.begin(), init.rest->uvs.end(),
                   triangleUvs_.begin() + at.slotOffset);
-        std::copy(init.rest->colors.begin(), init.rest->colors.end(),
-                  triangleColors_.begin() + at.slotOffset);
+        if (!init.rest->colors.empty())
+            std::copy(init.rest->colors.begin(), init.rest->colors.end(),
+                      triangleColors_.begin() + at.slotOffset);
     }
 }
 

@@ -38,7 +38,7 @@ class CpuDeformer {
     std::vector<Triangle> triangles_;
     std::vector<TriangleNormals> triangleNormals_;
     std::vector<TriangleUvs> triangleUvs_;
-    std::vector<TriangleColors> triangleColors_;
+    std::vector<TriangleColors> triangleColors_;  // empty until a mesh with colours comes
     std::vector<uint32_t> slotTriangle_;
     AlignedVector<BvhNode> nodes_;
     std::vector<uint32_t> parents_;

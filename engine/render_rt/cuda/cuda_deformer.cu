@@ -74,7 +74,7 @@ void CudaDeformer::Admit(const RenderScene& scene) {
     triangles_.GrowTo(plan_.SlotTotal());
     triangleNormals_.GrowTo(plan_.SlotTotal());
     triangleUvs_.GrowTo(plan_.SlotTotal());
-    triangleColors_.GrowTo(plan_.SlotTotal());
+    if (triangleColors_.Size() > 0 || AnyColors(added)) triangleColors_.GrowTo(plan_.SlotTotal());
     slotTriangle_.GrowTo(plan_.SlotTotal());
     nodes_.GrowTo(plan_.NodeTotal());
     parents_.GrowTo(plan_.NodeTotal());

@@ -67,7 +67,7 @@ class CudaDeformer {
     DeviceBuffer<Triangle> triangles_;
     DeviceBuffer<TriangleNormals> triangleNormals_;
     DeviceBuffer<TriangleUvs> triangleUvs_;
-    DeviceBuffer<TriangleColors> triangleColors_;
+    DeviceBuffer<TriangleColors> triangleColors_;  // empty until a mesh with colours comes
     DeviceBuffer<uint32_t> slotTriangle_;
     DeviceBuffer<BvhNode> nodes_;
     DeviceBuffer<uint32_t> parents_;

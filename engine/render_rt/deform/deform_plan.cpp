@@ -56,6 +56,9 @@ std::vector<DeformSlotInit> DeformPlan::Admit(const RenderScene& scene) {
         if (rest.kind != GeometryKind::kTriangles ||
             rest.SourcePrimCount() != mesh.rest.indices.size())
             throw std::invalid_argument(at + ": its BLAS is not the mesh's triangles");
+        if (rest.uvs.empty() != mesh.rest.uvs.empty() ||
+            rest.colors.empty() != mesh.rest.colors.empty())
+            throw std::invalid_argument(at + ": its BLAS and mesh differ in uvs or colours");
         Entry slot;
         slot.place.mesh = def.mesh;
         slot.place.blasId = def.blasId;

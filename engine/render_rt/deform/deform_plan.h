@@ -18,6 +18,14 @@ struct DeformSlotInit {
     std::vector<uint32_t> parents;  // of rest->nodes
 };
 
+// Whether any of the deformations ADDED has vertex colours: the deformers keep a pool of slot
+// colours only once one has.
+inline bool AnyColors(const std::vector<DeformSlotInit>& added) {
+    for (const DeformSlotInit& init : added)
+        if (!init.rest->colors.empty()) return true;
+    return false;
+}
+
 class DeformPlan {
   public:
     explicit DeformPlan(BlasRebuildPolicy policy) : policy_(policy) {}
