@@ -74,6 +74,34 @@ void ExpectCorners(const Blas& blas, const std::vector<vec3>& vertexColors) {
         }
 }
 
+// The lit quad with VALUES, normalised integers of TYPE, as its COLOR_0.
+template <typename T>
+std::string WithIntegerColors(const std::vector<T>& values, int type, const char* vec,
+                              size_t components) {
+    GltfBuilder b = LitQuad(true);
+    const int accessor = b.Accessor(values, type, vec, components);
+    b.doc["accessors"][accessor]["normalized"] = true;
+    SetColors(b, accessor);
+    return b.GltfText();
+}
+
+// Each slot's 16-bit channels are SCALE times the file's integers (STRIDE per vertex) of its
+// source triangle's corners.
+template <typename T>
+void ExpectNormalizedIntegers(const std::string& path, const std::vector<T>& values,
+                              uint32_t stride, uint32_t scale) {
+    const LoadedScene loaded = LoadSceneFile(path);
+    const Blas& blas = QuadBlas(loaded);
+    ASSERT_EQ(blas.colors.size(), 2u);
+    const uint32_t corners[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (uint32_t s = 0; s < 2; ++s)
+        for (int k = 0; k < 3; ++k)
+            for (uint32_t c = 0; c < 3; ++c)
+                EXPECT_EQ(blas.colors[s].rgb[3 * k + int(c)],
+                          scale * values[stride * corners[blas.primIds[s]][k] + c])
+                    << path << " slot " << s << " corner " << k;
+}
+
 TEST_F(GltfTest, VertexColoursOfEveryAllowedTypeReachTheBlas) {
     // Floats, RGBA (alpha is not kept: surfaces are opaque).
     GltfBuilder f = LitQuad(true);
@@ -81,36 +109,15 @@ TEST_F(GltfTest, VertexColoursOfEveryAllowedTypeReachTheBlas) {
               f.Floats({1, 0, 0, 1, 0, 1, 0, 0.5f, 0, 0, 1, 1, 0.25f, 0.5f, 0.75f, 1}, "VEC4", 4));
     ExpectCorners(QuadBlas(LoadSceneFile(Save("floats.gltf", f.GltfText()))),
                   {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.25f, 0.5f, 0.75f}});
-    // Normalised bytes, RGB: each byte b is b / 255 exactly.
-    GltfBuilder u8 = LitQuad(true);
+    // Normalised bytes, RGB: each byte b is b / 255, 257 b in 16 bits, exactly.
     const std::vector<uint8_t> bytes = {255, 0, 7, 128, 64, 1, 0, 255, 200, 33, 99, 254};
-    const int a8 = u8.Accessor(bytes, kUByte, "VEC3", 3);
-    u8.doc["accessors"][a8]["normalized"] = true;
-    SetColors(u8, a8);
-    const LoadedScene loaded8 = LoadSceneFile(Save("bytes.gltf", u8.GltfText()));
-    const Blas& blas8 = QuadBlas(loaded8);
-    ASSERT_EQ(blas8.colors.size(), 2u);
-    const uint32_t corners[2][3] = {{0, 1, 2}, {0, 2, 3}};
-    for (uint32_t s = 0; s < 2; ++s)
-        for (int k = 0; k < 3; ++k)
-            for (int c = 0; c < 3; ++c)
-                EXPECT_EQ(blas8.colors[s].rgb[3 * k + c],
-                          257u * bytes[3 * corners[blas8.primIds[s]][k] + uint32_t(c)]);
+    ExpectNormalizedIntegers(Save("bytes.gltf", WithIntegerColors(bytes, kUByte, "VEC3", 3)), bytes,
+                             3, 257);
     // Normalised shorts, RGBA: exact too.
-    GltfBuilder u16 = LitQuad(true);
     const std::vector<uint16_t> words = {65535, 0, 1, 9, 30000, 65534, 2,  3,
                                          4,     5, 6, 7, 8,     9,     10, 11};
-    const int a16 = u16.Accessor(words, kUShort, "VEC4", 4);
-    u16.doc["accessors"][a16]["normalized"] = true;
-    SetColors(u16, a16);
-    const LoadedScene loaded16 = LoadSceneFile(Save("shorts.gltf", u16.GltfText()));
-    const Blas& blas16 = QuadBlas(loaded16);
-    ASSERT_EQ(blas16.colors.size(), 2u);
-    for (uint32_t s = 0; s < 2; ++s)
-        for (int k = 0; k < 3; ++k)
-            for (int c = 0; c < 3; ++c)
-                EXPECT_EQ(blas16.colors[s].rgb[3 * k + c],
-                          words[4 * corners[blas16.primIds[s]][k] + uint32_t(c)]);
+    ExpectNormalizedIntegers(Save("shorts.gltf", WithIntegerColors(words, kUShort, "VEC4", 4)),
+                             words, 4, 1);
 }
 
 TEST_F(GltfTest, VertexColoursOfOtherTypesOrCountsAreRefusedByName) {
