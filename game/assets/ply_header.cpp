@@ -276,6 +276,15 @@ PlyLayout FindPlyLayout(const std::string& path, const PlyHeader& header) {
     }
     layout.faceIndexProperty = IndexListProperty(path, layout.faces);
     layout.stripIndexProperty = IndexListProperty(path, layout.strips);
+    if (layout.faces)
+        for (const PlyProperty& property : layout.faces->properties)
+            if (property.name == "red" || property.name == "diffuse_red") {
+                std::fprintf(stderr,
+                             "rtrt: warning: %s: the faces' colours are not read (rtrt reads "
+                             "colours per vertex); the faces take the model's material colour\n",
+                             WithoutControlCharacters(path).c_str());
+                break;
+            }
     return layout;
 }
 

@@ -174,5 +174,21 @@ TEST_F(MeshIoTest, PlyDoubleColoursBeyondFloatsRangeAreClamped) {
     EXPECT_EQ(mesh.colors[0], vec3(1.0f, 0.5f, 0.0f));
 }
 
+// Colours per face (as some exporters write them) are not read: a warning says so.
+TEST_F(MeshIoTest, PlyFaceColoursAreNamedAsNotRead) {
+    const std::string path = Write("faces.ply",
+                                   "ply\nformat ascii 1.0\nelement vertex 3\n"
+                                   "property float x\nproperty float y\nproperty float z\n"
+                                   "element face 1\nproperty list uchar int vertex_indices\n"
+                                   "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                                   "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n");
+    ::testing::internal::CaptureStderr();
+    const TriangleMesh mesh = LoadMesh(path);
+    const std::string warnings = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(mesh.indices.size(), 1u);
+    EXPECT_TRUE(mesh.colors.empty());
+    EXPECT_NE(warnings.find("the faces' colours are not read"), std::string::npos) << warnings;
+}
+
 }  // namespace
 }  // namespace rtrt
