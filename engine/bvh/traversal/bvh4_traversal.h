@@ -8,6 +8,8 @@
 #endif
 #include <immintrin.h>
 
+#include <type_traits>
+
 #include "engine/bvh/layout/bvh4.h"
 #include "engine/bvh/traversal/traversal.h"
 #include "engine/geometry/ray_setup.h"
@@ -51,8 +53,9 @@ inline int SlabTest4(const Bvh4Node& node, const WideRay& r, float tMax, __m128*
 
 inline constexpr uint32_t kBvh4StackSize = 3 * kBvhStackSize + 4;
 
-// Both queries, as Traverse in traversal.h: test(slot, tMax) tests one primitive; kOccluded stops
-// at the first that blocks the ray and, with tMax fixed, neither sorts children nor prunes pops.
+// Both queries, as Traverse in traversal.h: test(slot, tMax) tests one primitive, or
+// test(first, count, tMax) a whole leaf; kOccluded stops at the first that blocks the ray and,
+// with tMax fixed, neither sorts children nor prunes pops.
 template <Query kQuery, typename TestPrim>
 inline bool Traverse4(const Bvh4Node* nodes, const RaySetup& ray, float& tMax, TestPrim&& test) {
     struct Entry {
@@ -66,10 +69,18 @@ inline bool Traverse4(const Bvh4Node* nodes, const RaySetup& ray, float& tMax, T
     Entry current{0, 0, 0.0f};
     for (;;) {
         if (current.count > 0) {
-            for (uint32_t i = 0; i < current.count; ++i) {
-                if (test(current.child + i, tMax)) {
+            if constexpr (std::is_invocable_v<TestPrim&, uint32_t, uint32_t, float&>) {
+                // A test of the whole leaf, test(first, count, tMax).
+                if (test(current.child, current.count, tMax)) {
                     if constexpr (kQuery == Query::kOccluded) return true;
                     found = true;
+                }
+            } else {
+                for (uint32_t i = 0; i < current.count; ++i) {
+                    if (test(current.child + i, tMax)) {
+                        if constexpr (kQuery == Query::kOccluded) return true;
+                        found = true;
+                    }
                 }
             }
         } else {

@@ -13,10 +13,19 @@
 // heatmap's node counts use the binary BVH.
 #if !defined(__CUDACC__)
 #include "engine/bvh/traversal/bvh4_traversal.h"
+#include "engine/geometry/triangle_intersect4.h"
 #define RTRT_HOST_WIDE_BVH 1
 #endif
 
 namespace rtrt {
+
+#if defined(RTRT_HOST_WIDE_BVH)
+// Whether Tests tests triangles with production's watertight test, which the CPU then runs on
+// up to four triangles of a leaf at once (triangle_intersect4.h) with the same answers.
+template <class Tests>
+inline constexpr bool kWatertightTriangles =
+    &Tests::IntersectTriangle == &PrimitiveTests::IntersectTriangle;
+#endif
 
 // The world-space ray against one instance's BLAS. Tests supplies the primitive tests
 // (primitive_tests.h); spheres are tested on the exact object-space ray (ToObjectSpaceExact).
@@ -37,6 +46,21 @@ RT_HD inline bool IntersectBlas(const BlasView& blas, const Instance& inst, cons
             return true;
         };
 #if defined(RTRT_HOST_WIDE_BVH)
+        if constexpr (kWatertightTriangles<Tests>) {
+            if (blas.nodes4 && !stats) {
+                auto intersectLeaf = [&](uint32_t first, uint32_t count, float& tBest) {
+                    TriangleHit h;
+                    const int i = ClosestTriangle(blas.triangles + first, count, setup, tBest, &h);
+                    if (i < 0) return false;
+                    hit->t = h.t;
+                    hit->prim = first + uint32_t(i);
+                    hit->b1 = h.b1;
+                    hit->b2 = h.b2;
+                    return true;
+                };
+                return Traverse4<Query::kIntersect>(blas.nodes4, setup, tMax, intersectLeaf);
+            }
+        }
         if (blas.nodes4 && !stats)
             return Traverse4<Query::kIntersect>(blas.nodes4, setup, tMax, intersect);
 #endif
@@ -69,6 +93,14 @@ RT_HD inline bool OccludedBlas(const BlasView& blas, const Instance& inst, const
             return Tests::IntersectTriangle(blas.triangles[slot], setup, tLimit, &h);
         };
 #if defined(RTRT_HOST_WIDE_BVH)
+        if constexpr (kWatertightTriangles<Tests>) {
+            if (blas.nodes4 && !stats) {
+                auto occludesLeaf = [&](uint32_t first, uint32_t count, float tLimit) {
+                    return AnyTriangle(blas.triangles + first, count, setup, tLimit);
+                };
+                return Traverse4<Query::kOccluded>(blas.nodes4, setup, tMax, occludesLeaf);
+            }
+        }
         if (blas.nodes4 && !stats)
             return Traverse4<Query::kOccluded>(blas.nodes4, setup, tMax, occludes);
 #endif
