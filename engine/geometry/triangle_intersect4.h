@@ -28,9 +28,11 @@ inline __m128 MaxOrKeepPs(__m128 candidate, __m128 acc) { return _mm_max_ps(cand
 
 }  // namespace triangle4_detail
 
-// tris[0, count), count 1 to 4, against r within (0, tMax].
-inline void IntersectTriangles4(const Triangle* tris, uint32_t count, const RaySetup& r, float tMax,
-                                TriangleHits4* out) {
+// tris[0, count), count 1 to 4, against r within (0, tMax]. Forced inline: g++ left it a call in
+// the leaf helpers below, its vectors passed through memory.
+[[gnu::always_inline]] inline void IntersectTriangles4(const Triangle* tris, uint32_t count,
+                                                       const RaySetup& r, float tMax,
+                                                       TriangleHits4* out) {
     using namespace triangle4_detail;
     // Gather the lanes' vertices into one vector per coordinate: floats 0-3 and 4-7 of each
     // triangle transposed, float 8 (v2.z) on its own so that no load reads past a triangle.
@@ -129,9 +131,15 @@ inline void IntersectTriangles4(const Triangle* tris, uint32_t count, const RayS
 }
 
 // The closest hit among tris[0, count) within tMax, as the scalar test over them in order finds
-// it (of hits at equal t, the later triangle's): its index, or -1; tMax lowers to its t.
+// it (of hits at equal t, the later triangle's): its index, or -1; tMax lowers to its t. A lone
+// triangle goes to the scalar test, which needs no gather.
 inline int ClosestTriangle(const Triangle* tris, uint32_t count, const RaySetup& r, float& tMax,
                            TriangleHit* hit) {
+    if (count == 1) {
+        if (!IntersectTriangle(tris[0], r, tMax, hit)) return -1;
+        tMax = hit->t;
+        return 0;
+    }
     int best = -1;
     for (uint32_t first = 0; first < count; first += 4) {
         const uint32_t n = count - first < 4 ? count - first : 4;
@@ -150,6 +158,10 @@ inline int ClosestTriangle(const Triangle* tris, uint32_t count, const RaySetup&
 
 // Whether any of tris[0, count) is hit within tMax.
 inline bool AnyTriangle(const Triangle* tris, uint32_t count, const RaySetup& r, float tMax) {
+    if (count == 1) {
+        TriangleHit h;
+        return IntersectTriangle(tris[0], r, tMax, &h);
+    }
     for (uint32_t first = 0; first < count; first += 4) {
         TriangleHits4 h;
         IntersectTriangles4(tris + first, count - first < 4 ? count - first : 4, r, tMax, &h);
