@@ -3,7 +3,9 @@
 // triangle_intersect.h lane by lane, the same float operations in the same order, so that every
 // lane's answer is the scalar test's bit for bit. Lanes the scalar test sends down its rare paths
 // (an edge function exactly 0, redone in double; a hit within the error bound of the origin,
-// decided on the plane) are handed to the scalar test itself.
+// decided on the plane) are handed to the scalar test itself. Like the scalar test it relies on
+// host code being compiled with -ffp-contract=off (engine/core): g++ fuses the intrinsics'
+// products and sums into FMAs otherwise.
 #if defined(__CUDACC__)
 #error "triangle_intersect4.h is host code"
 #endif
@@ -145,12 +147,19 @@ inline int ClosestTriangle(const Triangle* tris, uint32_t count, const RaySetup&
         const uint32_t n = count - first < 4 ? count - first : 4;
         TriangleHits4 h;
         IntersectTriangles4(tris + first, n, r, tMax, &h);
+        bool lowered = false;  // tMax lowered by an earlier lane of this group
         for (int rest = h.mask; rest != 0; rest &= rest - 1) {
             const int i = __builtin_ctz(rest);
-            if (!(h.t[i] <= tMax)) continue;
-            tMax = h.t[i];
-            *hit = {h.t[i], h.b1[i], h.b2[i]};
+            TriangleHit lane{h.t[i], h.b1[i], h.b2[i]};
+            // The lanes were tested against the group's first tMax. Against a lower one the
+            // scalar test's answer is not always "t <= tMax": its early exit can reject a hit
+            // at its own t when that t is subnormal. A second hit in a group (rare) is asked
+            // again, so that the leaf's answer is the scalar loop's in every case.
+            if (lowered && !IntersectTriangle(tris[first + uint32_t(i)], r, tMax, &lane)) continue;
+            tMax = lane.t;
+            *hit = lane;
             best = int(first) + i;
+            lowered = true;
         }
     }
     return best;

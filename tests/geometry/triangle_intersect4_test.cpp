@@ -141,8 +141,92 @@ TEST(TriangleIntersect4, DegenerateAndNonFiniteTrianglesMatchTheScalarTest) {
     EXPECT_GT(counts.hits, 4u);
 }
 
-// The leaf helpers: of hits at equal t the later triangle wins, as in the scalar loop; hits
-// beyond tMax are none; AnyTriangle answers as any scalar test would.
+// The scalar loop over a leaf that the helpers stand for: each triangle against the closest hit
+// so far, a later one at equal t taking its place.
+int ScalarClosest(const std::vector<Triangle>& tris, const RaySetup& r, float& tMax,
+                  TriangleHit* hit) {
+    int best = -1;
+    for (size_t i = 0; i < tris.size(); ++i) {
+        TriangleHit h;
+        if (!IntersectTriangle(tris[i], r, tMax, &h)) continue;
+        tMax = h.t;
+        *hit = h;
+        best = int(i);
+    }
+    return best;
+}
+
+void ExpectHelpersMatchScalarLoop(const std::vector<Triangle>& tris, const Ray& ray) {
+    const RaySetup r = MakeRaySetup(ray);
+    float tScalar = ray.tMax, tWide = ray.tMax;
+    TriangleHit scalarHit{}, wideHit{};
+    const int scalar = ScalarClosest(tris, r, tScalar, &scalarHit);
+    const int wide = ClosestTriangle(tris.data(), uint32_t(tris.size()), r, tWide, &wideHit);
+    ASSERT_EQ(wide, scalar);
+    EXPECT_EQ(std::bit_cast<uint32_t>(tWide), std::bit_cast<uint32_t>(tScalar));
+    if (scalar >= 0) {
+        EXPECT_EQ(std::bit_cast<uint32_t>(wideHit.b1), std::bit_cast<uint32_t>(scalarHit.b1));
+        EXPECT_EQ(std::bit_cast<uint32_t>(wideHit.b2), std::bit_cast<uint32_t>(scalarHit.b2));
+    }
+    bool anyScalar = false;
+    for (const Triangle& tri : tris) {
+        TriangleHit h;
+        anyScalar = anyScalar || IntersectTriangle(tri, r, ray.tMax, &h);
+    }
+    EXPECT_EQ(AnyTriangle(tris.data(), uint32_t(tris.size()), r, ray.tMax), anyScalar);
+}
+
+// Leaves of 1 to 8 triangles on a small integer lattice (exact ties, edge functions of 0),
+// copies and flipped copies among them, with tMax unbounded or at a hit's exact t.
+TEST(TriangleIntersect4, LeafHelpersMatchTheScalarLoopOnRandomLeaves) {
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> coord(-3, 3), size(1, 8), pick(0, 3);
+    for (int k = 0; k < 20000; ++k) {
+        std::vector<Triangle> tris;
+        const int n = size(rng);
+        while (int(tris.size()) < n) {
+            const int kind = tris.empty() ? 0 : pick(rng);
+            if (kind == 1) {
+                tris.push_back(tris[size_t(rng() % tris.size())]);
+            } else if (kind == 2) {
+                const Triangle& t = tris[size_t(rng() % tris.size())];
+                tris.push_back({t.v0, t.v2, t.v1});
+            } else {
+                auto point = [&] {
+                    return vec3(float(coord(rng)), float(coord(rng)), 0.5f * float(coord(rng)));
+                };
+                tris.push_back({point(), point(), point()});
+            }
+        }
+        const vec3 origin(float(coord(rng)), float(coord(rng)), 4.0f + float(pick(rng)));
+        const vec3 target(0.5f * float(coord(rng)), 0.5f * float(coord(rng)), 0.0f);
+        Ray ray{origin, kInfinity, target - origin, 0};
+        if (k % 2 == 1) {
+            const RaySetup r = MakeRaySetup(ray);
+            float t = kInfinity;
+            TriangleHit h;
+            if (ScalarClosest(tris, r, t, &h) >= 0) ray.tMax = t;
+        }
+        ExpectHelpersMatchScalarLoop(tris, ray);
+    }
+}
+
+// A hit whose t is subnormal can be rejected by the scalar test when tMax is that very t (its
+// early exit's slack is relative): a copy of the triangle later in the leaf is then no hit in the
+// scalar loop, and the leaf helpers must agree.
+TEST(TriangleIntersect4, SubnormalHitsChooseAsTheScalarLoop) {
+    const Triangle tiny{vec3(-1, 1, 8 * 0x1p-149f), vec3(1, 2, 4 * 0x1p-149f),
+                        vec3(0, -1, 5 * 0x1p-149f)};
+    ExpectHelpersMatchScalarLoop({tiny, tiny}, Ray{vec3(0.0f), kInfinity, vec3(0, 0, 1), 0});
+    ExpectHelpersMatchScalarLoop({tiny, tiny, tiny}, Ray{vec3(0.0f), kInfinity, vec3(0, 0, 1), 0});
+    const Triangle far{vec3(-1, 3, -2), vec3(-3, -2, -0x1.8p-120f), vec3(2, -4, -4)};
+    ExpectHelpersMatchScalarLoop({far, far},
+                                 Ray{vec3(-2, 0, -1), kInfinity, vec3(1, -3, 0x1.8p+125f), 0});
+}
+
+// The leaf helpers: of hits at equal t the later triangle wins, as in the scalar loop, within a
+// group of four and across groups; hits beyond tMax are none; AnyTriangle answers as any scalar
+// test would.
 TEST(TriangleIntersect4, LeafHelpersChooseAsTheScalarLoop) {
     const Triangle near{vec3(-1, -1, 1), vec3(1, -1, 1), vec3(0, 1, 1)};
     const Triangle far{vec3(-1, -1, 3), vec3(1, -1, 3), vec3(0, 1, 3)};
@@ -157,6 +241,9 @@ TEST(TriangleIntersect4, LeafHelpersChooseAsTheScalarLoop) {
     float shortRay = 0.5f;
     EXPECT_EQ(ClosestTriangle(tris.data(), uint32_t(tris.size()), r, shortRay, &hit), -1);
     EXPECT_EQ(shortRay, 0.5f);
+    const std::vector<Triangle> oneGroup{near, aside, near};
+    float groupTMax = kInfinity;
+    EXPECT_EQ(ClosestTriangle(oneGroup.data(), 3, r, groupTMax, &hit), 2);
     EXPECT_TRUE(AnyTriangle(tris.data() + 3, 3, r, 2.0f));
     EXPECT_FALSE(AnyTriangle(tris.data(), 2, r, 2.0f));  // far lies beyond, aside off the ray
     EXPECT_FALSE(AnyTriangle(&aside, 1, r, kInfinity));
