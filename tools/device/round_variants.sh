@@ -4,7 +4,8 @@
 # its GPU tests, which run first), then bench gpu, bench grid and bench frame run for each build
 # in turn, RTRT_ROUNDS times (default 2) interleaved, so that a drift of the machine shows as a
 # spread between rounds rather than as a difference between variants. RTRT_GRID=0 leaves out
-# bench grid. Leaves results.tar (the JSON of every run) and variants.log in $OUT.
+# bench grid, RTRT_FRAME=0 bench frame. Leaves results.tar (the JSON of every run) and
+# variants.log in $OUT.
 set -uo pipefail
 source "$(dirname "$0")/device_env.sh"
 builds=("$root")
@@ -33,9 +34,10 @@ rm -f "$out/build.log"
             [ "${RTRT_GRID:-1}" = 0 ] ||
                 RTRT_COMMIT=$c "$b/build/gpu/game/rtrt" bench grid --counts 1000,10000,100000 \
                     --frames 100 -o "$out/grid-$c-$round.json" | tail -4
-            RTRT_COMMIT=$c "$b/build/gpu/game/rtrt" bench frame assets/scenes/demo_glass.json \
-                assets/scenes/demo_1000_instances.json --size 1920x1080 \
-                -o "$out/frame-$c-$round.json" | tail -3
+            [ "${RTRT_FRAME:-1}" = 0 ] ||
+                RTRT_COMMIT=$c "$b/build/gpu/game/rtrt" bench frame assets/scenes/demo_glass.json \
+                    assets/scenes/demo_1000_instances.json --size 1920x1080 \
+                    -o "$out/frame-$c-$round.json" | tail -3
         done
     done
 } 2>&1 | tee "$out/variants.log"
