@@ -121,8 +121,9 @@ RT_HOST_ALWAYS_INLINE RT_HD inline PixelResult TraceRay(const RenderSceneView& s
     };
 #if defined(__CUDA_ARCH__)
     // On the GPU the primary ray waits on the stack too. Taken in hand as on the CPU it traced
-    // faster, but frame-equality GPU tests of demo_crowd then failed, differently from run to run,
-    // for a cause not found (bench/results/primary-ray-in-hand-h100-2026-12-07.txt).
+    // faster, but the nested and single-loop kernels then no longer computed the same bits (FMA
+    // contraction, most likely), which tests of the traversal forms require
+    // (bench/results/primary-ray-in-hand-h100-2026-12-07.txt).
     push(primaryRay, vec3(1.0f), 1, 0.0f);
 #endif
 
