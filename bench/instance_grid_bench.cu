@@ -42,6 +42,8 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
                                                   const std::vector<uint32_t>& counts, int frames) {
     std::vector<InstanceGridRow> rows;
     const DeviceBuffer<Aabb> blasBounds(std::span<const Aabb>(&model->bounds, 1));
+    const BlasOutline outline = OutlineOfBlas(*model);
+    const DeviceBuffer<BlasOutline> blasOutline(std::span<const BlasOutline>(&outline, 1));
     RenderScene scene = MakePaperScene(model);  // BLAS, material, light; its one instance unused
     DeviceScene device(scene);
     for (uint32_t n : counts) {
@@ -72,7 +74,7 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
             RT_CUDA_CHECK_LAUNCH();
             RT_CUDA_CHECK(cudaEventRecord(events[1]));
             // The TLAS reads the instances' world boxes as it needs them (no array of them).
-            tlas.Build(instances.Data(), blasBounds.Data(), n);
+            tlas.Build(instances.Data(), {blasBounds.Data(), blasOutline.Data()}, n);
             RT_CUDA_CHECK(cudaEventRecord(events[2]));
             view.tlas = {tlas.Nodes(), instances.Data(), view.tlas.blases};
             LaunchTrace(view, ViewMode::kShaded, features, frame.Data(),
@@ -80,7 +82,7 @@ std::vector<InstanceGridRow> RunInstanceGridBench(std::shared_ptr<const Blas> mo
             RT_CUDA_CHECK(cudaEventRecord(events[3]));
             // The refit path, timed alone: same tree, the boxes this frame's rebuild used.
             RT_CUDA_CHECK(cudaEventRecord(events[4]));
-            tlas.Refit(instances.Data(), blasBounds.Data());
+            tlas.Refit(instances.Data(), {blasBounds.Data(), blasOutline.Data()});
             RT_CUDA_CHECK(cudaEventRecord(events[5]));
             RT_CUDA_CHECK(cudaEventSynchronize(events[5]));
             float refitMs = 0.0f;

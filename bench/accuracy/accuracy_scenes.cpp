@@ -84,9 +84,9 @@ void UseRuntimeTlas(RenderScene& scene, uint32_t frames) {
     }
     // Never rebuilt by the SAH-growth rule: the interval alone decides.
     DynamicTlas tlas(TlasPolicy{false, 1e30f, 0});
-    const std::vector<vec4> spheres = BlasSpheres(scene.blases);
-    tlas.Update(before, blasBounds, true, spheres);
-    if (frames > 0) tlas.Update(scene.instances, blasBounds, false, spheres);
+    const std::vector<BlasOutline> outlines = scene.BlasOutlines();
+    tlas.Update(before, blasBounds, true, outlines);
+    if (frames > 0) tlas.Update(scene.instances, blasBounds, false, outlines);
     scene.SetTlas({tlas.Tree().nodes});
 }
 

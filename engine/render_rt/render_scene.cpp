@@ -69,7 +69,17 @@ void RenderScene::BuildTlas() {
         blasBounds.push_back(blas->bounds);
         blasViews_.push_back(blas->View());
     }
-    tlas_ = rtrt::BuildTlas(instances, blasBounds, TlasBuilder::kSah, BlasSpheres(blases));
+    tlas_ = rtrt::BuildTlas(instances, blasBounds, TlasBuilder::kSah, BlasOutlines());
+}
+
+std::vector<BlasOutline> RenderScene::BlasOutlines(size_t firstBlas) const {
+    std::vector<bool> deforms(blases.size(), false);
+    for (const Deformation& d : deformations)
+        if (d.blasId < deforms.size()) deforms[d.blasId] = true;
+    std::vector<BlasOutline> outlines;
+    for (size_t id = firstBlas; id < blases.size(); ++id)
+        outlines.push_back(OutlineOfBlas(*blases[id], deforms[id]));
+    return outlines;
 }
 
 void RenderScene::SetTlas(Tlas tlas) {

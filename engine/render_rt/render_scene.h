@@ -59,6 +59,9 @@ struct RenderScene {
     void BuildTlas();
     // Takes a TLAS built elsewhere over the current instances (tests, the accuracy study).
     void SetTlas(Tlas tlas);
+    // The outline (blas_outline.h) of each BLAS from firstBlas on, for a TLAS over the instances:
+    // a deformation's slot keeps no parts, as its frame renderer refits or rebuilds its tree.
+    std::vector<BlasOutline> BlasOutlines(size_t firstBlas = 0) const;
     // The SceneFeature bits this scene's lights and the materials of its instances call for.
     uint32_t Features() const;
     uint64_t TriangleCount() const;  // over all instances

@@ -12,6 +12,7 @@
 
 #include "engine/bvh/build/lbvh.h"
 #include "engine/render_rt/renderer.h"
+#include "tests/test_util.h"
 
 namespace rtrt {
 namespace {
@@ -71,27 +72,24 @@ TEST(GpuTlas, EqualsCpuForManySizes) {
     }
 }
 
-// With a sphere inside BLAS 0's box (BlasSphere; smaller than the box, so that the sphere's box
-// is the tighter one): its instances' boxes come from the sphere on both sides, and the trees
-// still match.
-TEST(GpuTlas, EqualsCpuWithSphereBounds) {
-    std::string why;
-    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
-    const std::vector<vec4> spheres = {vec4(0.25f, 0.0f, 0.0f, 0.5f), vec4(0.0f)};
-    const DeviceBuffer<Aabb> blasBounds{std::span<const Aabb>(kBlasBounds)};
-    const DeviceBuffer<vec4> blasSpheres{std::span<const vec4>(spheres)};
+// Builds and refits over records with outlines (blas_outline.h) as the GPU and the host read them,
+// compared bit for bit; a third of the records move before the refit.
+void ExpectSameTreesWithOutlines(const std::vector<Aabb>& bounds,
+                                 const std::vector<BlasOutline>& outlines) {
+    const DeviceBuffer<Aabb> blasBounds{std::span<const Aabb>(bounds)};
+    const DeviceBuffer<BlasOutline> blasOutlines{std::span<const BlasOutline>(outlines)};
     for (uint32_t n : {1u, 17u, 5000u}) {
         SCOPED_TRACE(n);
         std::vector<Instance> instances = RandomInstances(n, n + 11);
         DeviceBuffer<Instance> records{std::span<const Instance>(instances)};
         GpuTlas gpu;
-        gpu.Build(records.Data(), {blasBounds.Data(), blasSpheres.Data()}, n);
-        const Tlas cpu = BuildTlas(instances, kBlasBounds, TlasBuilder::kLbvh, spheres);
+        gpu.Build(records.Data(), {blasBounds.Data(), blasOutlines.Data()}, n);
+        const Tlas cpu = BuildTlas(instances, bounds, TlasBuilder::kLbvh, outlines);
         ExpectSameNodes(cpu.nodes, gpu.Download().nodes);
-        // A refit after a third of the instances moved takes their new sphere boxes as the
-        // host's refit does (unmoved, a refit that did nothing would pass too).
-        Lbvh cpuLbvh = BuildLbvh(InstanceWorldBounds(instances, kBlasBounds, spheres),
-                                 LbvhLeaves::kPrimitiveIds);
+        // A refit after a third of the instances moved takes their new boxes as the host's refit
+        // does (unmoved, a refit that did nothing would pass too).
+        Lbvh cpuLbvh =
+            BuildLbvh(InstanceWorldBounds(instances, bounds, outlines), LbvhLeaves::kPrimitiveIds);
         std::vector<Instance> onDevice(n);
         records.Download(onDevice);
         std::mt19937 rng(n);
@@ -100,14 +98,37 @@ TEST(GpuTlas, EqualsCpuWithSphereBounds) {
             SetPlacement(onDevice[i], instances[i]);
         }
         records.Upload(onDevice);
-        gpu.Refit(records.Data(), {blasBounds.Data(), blasSpheres.Data()});
-        RefitLbvh(cpuLbvh, InstanceWorldBounds(instances, kBlasBounds, spheres));
+        gpu.Refit(records.Data(), {blasBounds.Data(), blasOutlines.Data()});
+        RefitLbvh(cpuLbvh, InstanceWorldBounds(instances, bounds, outlines));
         ExpectSameNodes(cpuLbvh.nodes, gpu.Download().nodes);
         EXPECT_NE(
             std::memcmp(cpu.nodes.data(), cpuLbvh.nodes.data(), cpu.nodes.size() * sizeof(BvhNode)),
             0)
             << "the moves changed no box";
     }
+}
+
+// With a sphere inside BLAS 0's box (smaller than the box, so that the sphere's box is the
+// tighter one): its instances' boxes come from the sphere on both sides, and the trees still
+// match.
+TEST(GpuTlas, EqualsCpuWithSphereBounds) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    std::vector<BlasOutline> outlines(2);
+    outlines[0].sphere = vec4(0.25f, 0.0f, 0.0f, 0.5f);
+    ExpectSameTreesWithOutlines(kBlasBounds, outlines);
+}
+
+// With the parts of two triangle BLASes (PartsImageBox), which the exact placements make the
+// host and the device compute alike.
+TEST(GpuTlas, EqualsCpuWithBlasParts) {
+    std::string why;
+    if (!CudaBackendAvailable(&why)) GTEST_SKIP() << why;
+    const Blas a = BuildTriangleBlas(test::RandomTriangles(300, 4));
+    const Blas b = BuildTriangleBlas(test::RandomTriangles(40, 5));
+    const std::vector<BlasOutline> outlines = {OutlineOfBlas(a), OutlineOfBlas(b)};
+    ASSERT_EQ(outlines[0].partCount, BlasOutline::kMaxParts);
+    ExpectSameTreesWithOutlines({a.bounds, b.bounds}, outlines);
 }
 
 TEST(GpuTlas, KeepsOnlyItsNodes) {

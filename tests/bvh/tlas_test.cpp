@@ -29,14 +29,14 @@ struct TwoLevel {
     }
     TlasView Build(TlasBuilder builder = TlasBuilder::kSah) {
         std::vector<Aabb> bounds;
-        std::vector<vec4> spheres;
+        std::vector<BlasOutline> outlines;
         views.clear();
         for (const Blas& b : blases) {
             bounds.push_back(b.bounds);
-            spheres.push_back(BlasSphere(b));
+            outlines.push_back(OutlineOfBlas(b));
             views.push_back(b.View());
         }
-        tlas = BuildTlas(instances, bounds, builder, spheres);
+        tlas = BuildTlas(instances, bounds, builder, outlines);
         return {tlas.nodes.data(), instances.data(), views.data()};
     }
 };
@@ -156,6 +156,7 @@ TEST(Tlas, StretchedSphereInstancesMatchBruteForce) {
 TEST(Tlas, OneSphereInstanceBoxIsTheEllipsoidsBox) {
     const Sphere s{vec3(1.0f, -2.0f, 0.5f), 0.75f};
     const Blas blas = BuildSphereBlas(std::span<const Sphere>(&s, 1));
+    const BlasOutline outline = OutlineOfBlas(blas);
     std::mt19937 rng(8);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f), stretch(0.1f, 4.0f);
     std::uniform_int_distribution<int> kind(0, 3);
@@ -170,7 +171,7 @@ TEST(Tlas, OneSphereInstanceBoxIsTheEllipsoidsBox) {
         m = glm::scale(m, scale);
         m = glm::rotate(m, 3.0f * u(rng), glm::normalize(vec3(u(rng), u(rng), u(rng)) + 0.01f));
         const Instance inst = MakeInstance(0, 0, m);
-        const Aabb box = InstanceWorldBox(inst, blas.bounds, BlasSphere(blas));
+        const Aabb box = InstanceWorldBox(inst, blas.bounds, &outline);
         const Aabb corners = TransformBounds(inst.ObjectToWorld(), blas.bounds);
         using LongVec = glm::vec<3, long double>;
         const LongVec ra(inst.InverseRow(0)), rb(inst.InverseRow(1)), rd(inst.InverseRow(2));
@@ -200,7 +201,7 @@ TEST(Tlas, BuildsBoxBallsByTheirSpheres) {
     const Sphere s{vec3(0.0f), 0.5f};
     const std::vector<Aabb> bounds = {s.Bounds()};
     const Blas blas = BuildSphereBlas(std::span<const Sphere>(&s, 1));
-    const std::vector<vec4> spheres = {BlasSphere(blas)};
+    const std::vector<BlasOutline> spheres = {OutlineOfBlas(blas)};
     std::mt19937 rng(12);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     std::vector<Instance> instances;
@@ -213,7 +214,7 @@ TEST(Tlas, BuildsBoxBallsByTheirSpheres) {
     const std::vector<Aabb> cornerBoxes = InstanceWorldBounds(instances, bounds);
     double area = 0.0, cornerArea = 0.0;
     for (size_t i = 0; i < instances.size(); ++i) {
-        const Aabb expected = InstanceWorldBox(instances[i], bounds[0], spheres[0]);
+        const Aabb expected = InstanceWorldBox(instances[i], bounds[0], &spheres[0]);
         EXPECT_EQ(world[i].min, expected.min);
         EXPECT_EQ(world[i].max, expected.max);
         area += world[i].Area();

@@ -91,6 +91,18 @@ ProceduralDeform Wave(float amplitude) {
 
 DeformMeshView ViewOf(const DeformableMesh& mesh) { return HostMeshView(mesh); }
 
+// A deformation's slot keeps no parts in its outline (its box follows the deformation, the parts
+// would not), while the rest BLAS it started from keeps them.
+TEST(DeformingScene, SlotsThatDeformKeepNoOutlineParts) {
+    DeformingScene d(ProceduralDeform{});
+    const std::vector<BlasOutline> outlines = d.scene.BlasOutlines();
+    const uint32_t slot = d.scene.deformations[d.deformation].blasId;
+    ASSERT_EQ(outlines.size(), d.scene.blases.size());
+    EXPECT_EQ(outlines[slot].partCount, 0u);
+    EXPECT_EQ(outlines[0].partCount, BlasOutline::kMaxParts);
+    EXPECT_EQ(d.scene.BlasOutlines(slot).size(), d.scene.blases.size() - slot);
+}
+
 TEST(DeformVertex, WaveMovesEachVertexByTheFormula) {
     DeformableMesh mesh;
     mesh.rest = UvSphere(8, 16);

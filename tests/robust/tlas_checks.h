@@ -16,7 +16,7 @@ namespace rtrt::robust {
 inline void UseTlasBuilder(RenderScene& scene, TlasBuilder builder) {
     std::vector<Aabb> blasBounds;
     for (const auto& blas : scene.blases) blasBounds.push_back(blas->bounds);
-    scene.SetTlas(BuildTlas(scene.instances, blasBounds, builder, BlasSpheres(scene.blases)));
+    scene.SetTlas(BuildTlas(scene.instances, blasBounds, builder, scene.BlasOutlines()));
 }
 
 // Rays from a box of half-size `spread` around `centre`, half random, half aimed at a random

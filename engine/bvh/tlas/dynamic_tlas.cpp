@@ -7,8 +7,8 @@ namespace rtrt {
 
 TlasUpdateStats DynamicTlas::Update(std::span<const Instance> instances,
                                     std::span<const Aabb> blasBounds, bool topologyChanged,
-                                    std::span<const vec4> blasSpheres) {
-    const std::vector<Aabb> bounds = InstanceWorldBounds(instances, blasBounds, blasSpheres);
+                                    std::span<const BlasOutline> blasOutlines) {
+    const std::vector<Aabb> bounds = InstanceWorldBounds(instances, blasBounds, blasOutlines);
     TlasUpdateStats stats;
     const bool rebuild = policy_.alwaysRebuild || topologyChanged || !built_ ||
                          tree_.primOrder.size() != instances.size() ||

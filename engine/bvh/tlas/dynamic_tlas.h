@@ -9,6 +9,7 @@
 #include <span>
 
 #include "engine/bvh/build/lbvh.h"
+#include "engine/bvh/tlas/blas_outline.h"
 #include "engine/bvh/tlas/instance.h"
 
 namespace rtrt {
@@ -47,9 +48,9 @@ class DynamicTlas {
 
     // Brings the tree up to date with the instances' current transforms. topologyChanged: an
     // instance was added or removed since the last update (refitting cannot follow that).
-    // blasSpheres: BlasSphere of each BLAS (tlas.h), or empty.
+    // blasOutlines: each BLAS's outline (blas_outline.h), or empty: the boxes alone.
     TlasUpdateStats Update(std::span<const Instance> instances, std::span<const Aabb> blasBounds,
-                           bool topologyChanged, std::span<const vec4> blasSpheres = {});
+                           bool topologyChanged, std::span<const BlasOutline> blasOutlines = {});
 
     const Lbvh& Tree() const { return tree_; }
     const TlasPolicy& Policy() const { return policy_; }

@@ -51,7 +51,7 @@ void GpuTlas::Build(Instance* records, GpuBlasBounds blas, uint32_t n, cudaStrea
     count_ = n;
     nodes_.Resize(std::max<size_t>(2, 2 * size_t(n)));
     BvhNode* const nodes = nodes_.Data();
-    const InstanceWorldBoxes boxes{records, blas.boxes, blas.spheres};
+    const InstanceWorldBoxes boxes{records, blas.boxes, blas.outlines};
     if (n == 0) {
         const BvhNode empty{vec3(kInfinity), 0, vec3(-kInfinity), 0};
         const BvhNode host[2] = {empty, empty};  // as the CPU build leaves an empty tree
@@ -120,7 +120,7 @@ void GpuTlas::Build(Instance* records, GpuBlasBounds blas, uint32_t n, cudaStrea
 }
 
 void GpuTlas::Refit(Instance* records, GpuBlasBounds blas, cudaStream_t stream) {
-    const InstanceWorldBoxes boxes{records, blas.boxes, blas.spheres};
+    const InstanceWorldBoxes boxes{records, blas.boxes, blas.outlines};
     BvhNode* const nodes = nodes_.Data();
     if (count_ == 0) return;
     if (count_ == 1) {

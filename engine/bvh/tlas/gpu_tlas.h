@@ -18,12 +18,12 @@
 namespace rtrt {
 
 // What the tree reads of each BLAS, by BLAS id, in device memory: its box and, where given, its
-// BlasSphere (tlas.h).
+// outline (blas_outline.h).
 struct GpuBlasBounds {
-    GpuBlasBounds(const Aabb* boxes, const vec4* spheres = nullptr)  // NOLINT: boxes alone
-        : boxes(boxes), spheres(spheres) {}
+    GpuBlasBounds(const Aabb* boxes, const BlasOutline* outlines = nullptr)  // NOLINT: boxes alone
+        : boxes(boxes), outlines(outlines) {}
     const Aabb* boxes;
-    const vec4* spheres;
+    const BlasOutline* outlines;
 };
 
 class GpuTlas {

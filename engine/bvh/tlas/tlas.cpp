@@ -11,19 +11,12 @@ vec4 BlasSphere(const Blas& blas) {
     return vec4(s.center, s.radius);
 }
 
-std::vector<vec4> BlasSpheres(std::span<const std::shared_ptr<const Blas>> blases) {
-    std::vector<vec4> spheres;
-    spheres.reserve(blases.size());
-    for (const auto& blas : blases) spheres.push_back(BlasSphere(*blas));
-    return spheres;
-}
-
 std::vector<Aabb> InstanceWorldBounds(std::span<const Instance> instances,
                                       std::span<const Aabb> blasBounds,
-                                      std::span<const vec4> blasSpheres) {
+                                      std::span<const BlasOutline> blasOutlines) {
     std::vector<Aabb> worldBounds(instances.size());
     const InstanceWorldBoxes boxes{instances.data(), blasBounds.data(),
-                                   blasSpheres.empty() ? nullptr : blasSpheres.data()};
+                                   blasOutlines.empty() ? nullptr : blasOutlines.data()};
     ParallelFor(0, instances.size(), 4096, [&](size_t i) { worldBounds[i] = boxes[i]; });
     return worldBounds;
 }
@@ -36,8 +29,8 @@ std::vector<uint32_t> TlasLeafInstances(const Tlas& tlas) {
 }
 
 Tlas BuildTlas(std::span<const Instance> instances, std::span<const Aabb> blasBounds,
-               TlasBuilder builder, std::span<const vec4> blasSpheres) {
-    const std::vector<Aabb> worldBounds = InstanceWorldBounds(instances, blasBounds, blasSpheres);
+               TlasBuilder builder, std::span<const BlasOutline> blasOutlines) {
+    const std::vector<Aabb> worldBounds = InstanceWorldBounds(instances, blasBounds, blasOutlines);
     if (builder == TlasBuilder::kLbvh)
         return {std::move(BuildLbvh(worldBounds, LbvhLeaves::kPrimitiveIds).nodes)};
     BvhBuildOptions options;
@@ -49,7 +42,7 @@ Tlas BuildTlas(std::span<const Instance> instances, std::span<const Aabb> blasBo
         // leaf of several instances, which a TLAS cannot name: the LBVH's depth is bounded by
         // its keys instead.
         if (node.primCount > 1)
-            return BuildTlas(instances, blasBounds, TlasBuilder::kLbvh, blasSpheres);
+            return BuildTlas(instances, blasBounds, TlasBuilder::kLbvh, blasOutlines);
         node.leftFirst = bvh.primOrder[node.leftFirst];
     }
     return {std::move(bvh.nodes)};

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/bvh/blas/blas.h"
+#include "engine/bvh/tlas/blas_outline.h"
 #include "engine/bvh/tlas/instance.h"
 
 namespace rtrt {
@@ -28,7 +29,7 @@ RT_HD inline Aabb TransformBounds(const Affine& m, const Aabb& b) {
     return out;
 }
 
-// The sphere a BLAS of one sphere is (w: its radius), else w = 0 (BlasSpheres).
+// The sphere a BLAS of one sphere is (w: its radius), else w = 0 (BlasOutline::sphere).
 vec4 BlasSphere(const Blas& blas);
 
 // d rounded to a float no greater (no less, with up = true) than d.
@@ -63,14 +64,29 @@ RT_HD inline Aabb SphereImageBox(const Instance& inst, vec4 sphere) {
     return box;
 }
 
-// An instance's world box: its BLAS's box under its transform, and for a BLAS of one sphere also
-// the sphere's (SphereImageBox), where the turned cube's corners reach up to sqrt(3) r from the
-// centre: a rolling ball took up to 5x the volume it needs in the TLAS. The two boxes are
-// intersected (fmaxf and fminf keep the corner box's plane where the other is NaN).
-RT_HD inline Aabb InstanceWorldBox(const Instance& inst, const Aabb& blasBox, vec4 blasSphere) {
-    Aabb box = TransformBounds(inst.ObjectToWorld(), blasBox);
-    if (!(blasSphere.w > 0.0f) || box.IsEmpty()) return box;
-    const Aabb sphereBox = SphereImageBox(inst, blasSphere);
+// No plane infinite or NaN (either fails the comparison with the largest float).
+RT_HD inline bool IsFiniteBox(const Aabb& b) {
+    constexpr float kLargest = 3.40282347e38f;
+    for (int i = 0; i < 3; ++i)
+        if (!(fabsf(b.min[i]) <= kLargest) || !(fabsf(b.max[i]) <= kLargest)) return false;
+    return true;
+}
+
+// An instance's world box: the union of its BLAS's parts' images (PartsImageBox), else its
+// BLAS's box under its transform (a transform too large for the parts' rounding bound falls back
+// to the box too), and for a BLAS of one sphere also the sphere's box (SphereImageBox), where
+// the turned cube's corners reach up to sqrt(3) r from the centre: a rolling ball took up to 5x
+// the volume it needs in the TLAS. The two boxes are intersected (fmaxf and fminf keep the
+// first box's plane where the other is NaN). outline: the BLAS's, or null for the box alone.
+RT_HD inline Aabb InstanceWorldBox(const Instance& inst, const Aabb& blasBox,
+                                   const BlasOutline* outline) {
+    const Affine m = inst.ObjectToWorld();
+    Aabb box;
+    if (outline && outline->partCount > 0 && !blasBox.IsEmpty())
+        box = PartsImageBox(m, *outline, blasBox);
+    if (!IsFiniteBox(box)) box = TransformBounds(m, blasBox);
+    if (!outline || !(outline->sphere.w > 0.0f) || box.IsEmpty()) return box;
+    const Aabb sphereBox = SphereImageBox(inst, outline->sphere);
     for (int i = 0; i < 3; ++i) {
         box.min[i] = fmaxf(box.min[i], sphereBox.min[i]);
         box.max[i] = fminf(box.max[i], sphereBox.max[i]);
@@ -79,32 +95,30 @@ RT_HD inline Aabb InstanceWorldBox(const Instance& inst, const Aabb& blasBox, ve
 }
 
 // The instances' world boxes as a TLAS build reads them (the Boxes of lbvh_steps.h): computed
-// from the record and its BLAS's box each time, so that no array of them is kept.
+// from the record and its BLAS's box and outline each time, so that no array of them is kept.
 struct InstanceWorldBoxes {
     const Instance* instances;
-    const Aabb* blasBounds;   // by BLAS id
-    const vec4* blasSpheres;  // by BLAS id (BlasSphere), or null: boxes only
+    const Aabb* blasBounds;           // by BLAS id
+    const BlasOutline* blasOutlines;  // by BLAS id, or null: boxes only
     RT_HD Aabb operator[](size_t i) const {
         const Instance& inst = instances[i];
         return InstanceWorldBox(inst, blasBounds[inst.blasId],
-                                blasSpheres ? blasSpheres[inst.blasId] : vec4(0.0f));
+                                blasOutlines ? &blasOutlines[inst.blasId] : nullptr);
     }
 };
 
 enum class TlasBuilder { kSah, kLbvh };
 
-// BlasSphere of every BLAS.
-std::vector<vec4> BlasSpheres(std::span<const std::shared_ptr<const Blas>> blases);
-
-// World bounds of every instance (InstanceWorldBox; blasSpheres empty: the boxes alone).
+// World bounds of every instance (InstanceWorldBox; blasOutlines empty: the boxes alone).
 std::vector<Aabb> InstanceWorldBounds(std::span<const Instance> instances,
                                       std::span<const Aabb> blasBounds,
-                                      std::span<const vec4> blasSpheres = {});
+                                      std::span<const BlasOutline> blasOutlines = {});
 
 // The instances its leaves name, in node order (each once, for a well-formed TLAS).
 std::vector<uint32_t> TlasLeafInstances(const Tlas& tlas);
 
 Tlas BuildTlas(std::span<const Instance> instances, std::span<const Aabb> blasBounds,
-               TlasBuilder builder = TlasBuilder::kSah, std::span<const vec4> blasSpheres = {});
+               TlasBuilder builder = TlasBuilder::kSah,
+               std::span<const BlasOutline> blasOutlines = {});
 
 }  // namespace rtrt

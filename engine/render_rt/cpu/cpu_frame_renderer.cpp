@@ -23,11 +23,13 @@ class CpuFrameRenderer final : public FrameRenderer {
         pending_ = {};
         pending_.tlasSahCost = lastSahCost_;
         instances_ = scene.instances.data();
-        for (size_t id = blasViews_.size(); id < scene.blases.size(); ++id) {
+        const size_t known = blasViews_.size();
+        for (size_t id = known; id < scene.blases.size(); ++id) {
             blasViews_.push_back(scene.blases[id]->View());
             blasBounds_.push_back(scene.blases[id]->bounds);
-            blasSpheres_.push_back(BlasSphere(*scene.blases[id]));
         }
+        for (const BlasOutline& outline : scene.BlasOutlines(known))
+            blasOutlines_.push_back(outline);
         const DeformStats deformed =
             deformer_.Update(scene, changes.deformations, blasViews_, blasBounds_);
         pending_.deformMs = deformed.deformMs;
@@ -40,7 +42,7 @@ class CpuFrameRenderer final : public FrameRenderer {
         if (changes.instances.empty() && !topology && deformed.deformed == 0) return;
         Stopwatch timer;
         const TlasUpdateStats s =
-            tlas_.Update(scene.instances, blasBounds_, topology, blasSpheres_);
+            tlas_.Update(scene.instances, blasBounds_, topology, blasOutlines_);
         built_ = true;
         pending_.tlasMs = timer.Milliseconds();
         pending_.tlasRebuilt = s.rebuilt;
@@ -91,7 +93,7 @@ class CpuFrameRenderer final : public FrameRenderer {
     bool built_ = false;
     std::vector<BlasView> blasViews_;
     std::vector<Aabb> blasBounds_;
-    std::vector<vec4> blasSpheres_;  // BlasSphere of each BLAS
+    std::vector<BlasOutline> blasOutlines_;
     // The scene's records as of the last update or trace: Pick reads them, so the scene must
     // not have changed size since (a frame loop picks before it advances).
     const Instance* instances_ = nullptr;

@@ -70,7 +70,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         std::vector<Aabb> bounds;
         for (const auto& blas : scene.blases) bounds.push_back(blas->bounds);
         blasBounds_.Upload(bounds);
-        blasSpheres_.Upload(BlasSpheres(scene.blases));
+        blasOutlines_.Upload(scene.BlasOutlines());
         for (FrameEvents& f : frames_) {
             for (cudaEvent_t& e : f.events) RT_CUDA_CHECK(cudaEventCreate(&e));
             RT_CUDA_CHECK(cudaMallocHost(&f.raysHost, sizeof(unsigned long long)));
@@ -131,10 +131,10 @@ class CudaFrameRenderer final : public GpuBandRenderer {
                                               : sahCost_.Last() > (1.0f + policy_.maxSahGrowth) *
                                                                       sahCost_.Rebuilt());
         if (rebuild) {
-            tlas_.Build(instances_.Data(), {blasBounds_.Data(), blasSpheres_.Data()}, n);
+            tlas_.Build(instances_.Data(), {blasBounds_.Data(), blasOutlines_.Data()}, n);
             built_ = true;
         } else if (f.times.uploaded > 0) {
-            tlas_.Refit(instances_.Data(), {blasBounds_.Data(), blasSpheres_.Data()});
+            tlas_.Refit(instances_.Data(), {blasBounds_.Data(), blasOutlines_.Data()});
         }
         // Always-rebuild (the benchmark's mode) and rebuilds whenever records changed need no cost.
         if ((rebuild || f.times.uploaded > 0) && !policy_.alwaysRebuild && !rebuildsChanged)
@@ -403,17 +403,15 @@ class CudaFrameRenderer final : public GpuBandRenderer {
         const size_t known = blasBounds_.Size();
         if (!device_.AddBlases(scene)) return;
         blasBounds_.GrowTo(scene.blases.size());
-        blasSpheres_.GrowTo(scene.blases.size());
+        blasOutlines_.GrowTo(scene.blases.size());
         std::vector<Aabb> bounds;
-        std::vector<vec4> spheres;
-        for (size_t id = known; id < scene.blases.size(); ++id) {
+        for (size_t id = known; id < scene.blases.size(); ++id)
             bounds.push_back(scene.blases[id]->bounds);
-            spheres.push_back(BlasSphere(*scene.blases[id]));
-        }
+        const std::vector<BlasOutline> outlines = scene.BlasOutlines(known);
         RT_CUDA_CHECK(cudaMemcpy(blasBounds_.Data() + known, bounds.data(),
                                  bounds.size() * sizeof(Aabb), cudaMemcpyHostToDevice));
-        RT_CUDA_CHECK(cudaMemcpy(blasSpheres_.Data() + known, spheres.data(),
-                                 spheres.size() * sizeof(vec4), cudaMemcpyHostToDevice));
+        RT_CUDA_CHECK(cudaMemcpy(blasOutlines_.Data() + known, outlines.data(),
+                                 outlines.size() * sizeof(BlasOutline), cudaMemcpyHostToDevice));
     }
 
     // Which instances show each deformed BLAS: their world boxes follow the deformation.
@@ -468,7 +466,7 @@ class CudaFrameRenderer final : public GpuBandRenderer {
     std::vector<uint32_t> marks_;                           // instance -> last frame queued
     uint32_t mark_ = 0;
     DeviceBuffer<Aabb> blasBounds_;
-    DeviceBuffer<vec4> blasSpheres_;  // BlasSphere of each BLAS
+    DeviceBuffer<BlasOutline> blasOutlines_;
     DeviceBuffer<Instance> instances_;
     DeviceBuffer<uint32_t> changedIndices_;
     DeviceBuffer<Instance> changedRecords_;
