@@ -54,7 +54,24 @@ TEST(BlasOutline, PartsHoldEveryPrimitive) {
         EXPECT_TRUE(root.Contains(PartBox(outline, k))) << "part " << k;
 }
 
-TEST(BlasOutline, NoPartsForALeafRootOrADeformingTree) {
+// The 12 triangles of the cube [-h, h]^3.
+TriangleMesh Cube(float h) {
+    TriangleMesh mesh;
+    for (uint32_t i = 0; i < 8; ++i)
+        mesh.positions.push_back(vec3(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h));
+    const uint32_t faces[12][3] = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5},
+                                   {0, 4, 5}, {0, 5, 1}, {2, 3, 7}, {2, 7, 6},
+                                   {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
+    for (const auto& f : faces) mesh.indices.push_back({f[0], f[1], f[2]});
+    return mesh;
+}
+
+// No parts where the root is a leaf, where the tree deforms, or where the parts' images take no
+// less room than the turned box: a cube's faces reach its corners under any turn.
+TEST(BlasOutline, NoPartsForALeafRootADeformingTreeOrACube) {
+    const Blas cube = BuildTriangleBlas(Cube(0.25f));
+    ASSERT_FALSE(cube.nodes[0].IsLeaf());
+    EXPECT_EQ(OutlineOfBlas(cube).partCount, 0u);
     const Blas one = BuildTriangleBlas(test::RandomTriangles(1, 1));
     EXPECT_EQ(OutlineOfBlas(one).partCount, 0u);
     const Blas many = BuildTriangleBlas(test::RandomTriangles(100, 2));

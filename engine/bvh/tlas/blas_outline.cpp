@@ -1,10 +1,35 @@
 #include "engine/bvh/tlas/blas_outline.h"
 
 #include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/bvh/tlas/tlas.h"
 
 namespace rtrt {
+namespace {
+
+// Whether the parts' images take less room than the turned box, on average over turns about a
+// spread of axes by a spread of angles (a box's faces, for one, reach its corners whatever the
+// turn, and would cost every TLAS build their transforms for nothing).
+bool PartsSaveRoom(const BlasOutline& outline, const Aabb& box) {
+    constexpr int kTurns = 32;
+    constexpr double kKeepBelow = 0.97;
+    double corners = 0.0, parts = 0.0;
+    for (int k = 0; k < kTurns; ++k) {
+        // Axes on a Fibonacci spiral over the sphere, angles the golden angle apart.
+        const float z = 1.0f - (2.0f * float(k) + 1.0f) / float(kTurns);
+        const float r = std::sqrt(1.0f - z * z), phi = 2.39996323f * float(k);
+        const vec3 axis(r * std::cos(phi), r * std::sin(phi), z);
+        const Affine m =
+            AffineFromMat4(glm::rotate(glm::mat4(1.0f), 2.39996323f * float(k + 1), axis));
+        corners += TransformBounds(m, box).Area();
+        parts += PartsImageBox(m, outline, box).Area();
+    }
+    return parts < kKeepBelow * corners;
+}
+
+}  // namespace
 
 BlasOutline OutlineOfBlas(const Blas& blas, bool deforms) {
     BlasOutline outline;
@@ -36,6 +61,7 @@ BlasOutline OutlineOfBlas(const Blas& blas, bool deforms) {
         outline.partHalf[outline.partCount] = half;
         ++outline.partCount;
     }
+    if (outline.partCount > 0 && !PartsSaveRoom(outline, blas.bounds)) outline.partCount = 0;
     return outline;
 }
 

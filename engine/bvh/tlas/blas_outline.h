@@ -28,8 +28,10 @@ struct BlasOutline {
 
 // The outline of a BLAS as built: its sphere, and as parts the up to kMaxParts nodes reached by
 // splitting, from the root down, the node of largest surface area among them until there are
-// kMaxParts or only leaves (none where the root is a leaf). A BLAS whose tree will be refit or
-// rebuilt (a deformation's slot) keeps no parts, which its new box would not match.
+// kMaxParts or only leaves (none where the root is a leaf), kept where their images under turns
+// about a spread of axes take at least 3% less surface area than the turned box's. A BLAS whose
+// tree will be refit or rebuilt (a deformation's slot) keeps no parts, which its new box would not
+// match.
 BlasOutline OutlineOfBlas(const Blas& blas, bool deforms = false);
 
 // OutlineOfBlas of each BLAS, none of them deforming.
