@@ -4,8 +4,6 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/bvh/tlas/tlas.h"
-
 namespace rtrt {
 namespace {
 
@@ -30,6 +28,12 @@ bool PartsSaveRoom(const BlasOutline& outline, const Aabb& box) {
 }
 
 }  // namespace
+
+vec4 BlasSphere(const Blas& blas) {
+    if (blas.kind != GeometryKind::kSpheres || blas.spheres.size() != 1) return vec4(0.0f);
+    const Sphere& s = blas.spheres[0];
+    return vec4(s.center, s.radius);
+}
 
 BlasOutline OutlineOfBlas(const Blas& blas, bool deforms) {
     BlasOutline outline;

@@ -16,6 +16,21 @@
 
 namespace rtrt {
 
+// World bounds of a box under an affine transform (the 8 transformed corners' bounds).
+RT_HD inline Aabb TransformBounds(const Affine& m, const Aabb& b) {
+    Aabb out;
+    if (b.IsEmpty()) return out;
+    for (int corner = 0; corner < 8; ++corner) {
+        const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                     (corner & 4) ? b.max.z : b.min.z);
+        out.Grow(m.Point(p));
+    }
+    return out;
+}
+
+// The sphere a BLAS of one sphere is (w: its radius), else w = 0 (BlasOutline::sphere).
+vec4 BlasSphere(const Blas& blas);
+
 struct BlasOutline {
     static constexpr uint32_t kMaxParts = 8;
     vec4 sphere{0.0f};       // a BLAS of one sphere: xyz centre, w radius; else w = 0

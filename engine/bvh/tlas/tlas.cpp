@@ -5,12 +5,6 @@
 
 namespace rtrt {
 
-vec4 BlasSphere(const Blas& blas) {
-    if (blas.kind != GeometryKind::kSpheres || blas.spheres.size() != 1) return vec4(0.0f);
-    const Sphere& s = blas.spheres[0];
-    return vec4(s.center, s.radius);
-}
-
 std::vector<Aabb> InstanceWorldBounds(std::span<const Instance> instances,
                                       std::span<const Aabb> blasBounds,
                                       std::span<const BlasOutline> blasOutlines) {

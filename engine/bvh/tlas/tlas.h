@@ -17,21 +17,6 @@ struct Tlas {
     AlignedVector<BvhNode> nodes;  // leaves: leftFirst = instance index, primCount = 1
 };
 
-// World bounds of a box under an affine transform (the 8 transformed corners' bounds).
-RT_HD inline Aabb TransformBounds(const Affine& m, const Aabb& b) {
-    Aabb out;
-    if (b.IsEmpty()) return out;
-    for (int corner = 0; corner < 8; ++corner) {
-        const vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
-                     (corner & 4) ? b.max.z : b.min.z);
-        out.Grow(m.Point(p));
-    }
-    return out;
-}
-
-// The sphere a BLAS of one sphere is (w: its radius), else w = 0 (BlasOutline::sphere).
-vec4 BlasSphere(const Blas& blas);
-
 // d rounded to a float no greater (no less, with up = true) than d.
 RT_HD inline float FloatOutward(double d, bool up) {
     const float f = float(d);
